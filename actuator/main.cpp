@@ -1,0 +1,44 @@
+/// @file
+/// The actuator process: stands in for the drives between controller and
+/// robot. For order m = 0 the commanded torque passes through, optionally
+/// saturated.
+///
+///   CONTROL_COMMAND -> validate -> PassthroughActuator::step -> ACTUATOR_STATE
+
+#include "actuator/passthrough.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+#include "transport/process.hpp"
+#include "transport/tick_responder.hpp"
+
+namespace lagrange {
+namespace {
+
+int DoMain(int argc, char** argv) {
+  return transport::runProcess(
+      "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).",
+      argc, argv, nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
+        const actuator::PassthroughActuator act(s.dof(), s.actuator.saturation);
+        transport::Progress progress;
+        transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
+            node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
+            [&](const lagrange::control_command_t& m) {
+              const actuator::ActuatorOutput out = act.step(transport::toEigen(m.u));
+              lagrange::actuator_state_t a;
+              a.header = transport::makeHeader(m.header.tick, m.header.sim_time);
+              a.input_command_tick = m.header.tick;
+              a.num_joints = m.num_joints;
+              a.order = 0;
+              a.u_commanded = m.u;
+              a.tau_applied = transport::toStd(out.tau);
+              a.saturated.assign(out.saturated.data(), out.saturated.data() + out.saturated.size());
+              return a;
+            });
+        return transport::serveUntilPlantFinished(node, progress);
+      });
+}
+
+}  // namespace
+}  // namespace lagrange
+
+int main(int argc, char** argv) { return lagrange::DoMain(argc, argv); }

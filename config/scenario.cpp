@@ -1,0 +1,299 @@
+#include "config/scenario.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "config/yaml_reader.hpp"
+
+namespace lagrange::config {
+
+int Scenario::substepsPerTick() const {
+  return static_cast<int>(std::llround(tickPeriod() / plant.physics_step));
+}
+
+long long Scenario::lastTick() const { return std::llround(duration * plant.publish_rate); }
+
+namespace {
+
+// --set a.b.c=value: value is YAML ("[1, 2]", "0.5", "smooth_sine").
+void applyOverride(YAML::Node& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("config: --set '" + assignment + "': expected key=value, e.g. controller.kp=50");
+  const std::string key = assignment.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("config: --set " + key + ": the value is not valid YAML: " + e.msg);
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  // Rebuild the path node by node; yaml-cpp nodes are references, so
+  // assigning to the last one edits the tree in place.
+  std::vector<YAML::Node> chain{root};
+  for (size_t i = 0; i + 1 < parts.size(); ++i) {
+    YAML::Node next = chain.back()[parts[i]];
+    if (!next.IsDefined() || next.IsNull()) {
+      chain.back()[parts[i]] = YAML::Node(YAML::NodeType::Map);
+      next = chain.back()[parts[i]];
+    }
+    if (!next.IsMap())
+      throw ConfigError("config: --set " + key + ": '" + parts[i] + "' is not a map");
+    chain.push_back(next);
+  }
+  chain.back()[parts.back()] = value;
+}
+
+model::ChainParams readRobot(MapReader robot) {
+  model::ChainParams params;
+  const bool has_preset = robot.has("preset");
+  const bool has_links = robot.has("links");
+  if (has_preset == has_links)
+    robot.fail("links", "give exactly one of robot.preset (pelican) or robot.links");
+  if (has_preset) {
+    const std::string preset = robot.text("preset");
+    if (preset != "pelican") robot.fail("preset", "unknown preset '" + preset + "'; expected: pelican");
+    params = model::pelicanParams();
+  } else {
+    YAML::Node links = robot.child("links");
+    if (!links.IsSequence() || links.size() == 0)
+      robot.fail("links", "expected a non-empty list of links, each with length, com, mass, inertia");
+    for (size_t i = 0; i < links.size(); ++i) {
+      MapReader link(links[i], robot.keyPath("links") + "[" + std::to_string(i) + "]");
+      model::LinkParams p;
+      p.length = link.positive("length");
+      p.com = link.number("com");
+      if (p.com < 0.0) link.fail("com", "expected a number >= 0 (distance joint to centre of mass)");
+      p.mass = link.positive("mass");
+      p.inertia = link.positive("inertia");
+      link.finish({"length", "com", "mass", "inertia"});
+      params.links.push_back(p);
+    }
+  }
+  params.gravity = robot.number("gravity", params.gravity);
+  if (params.gravity < 0.0) robot.fail("gravity", "expected a number >= 0 [m/s^2]");
+  robot.finish({"preset", "links", "gravity"});
+  return params;
+}
+
+model::ReferenceParams readReference(MapReader ref, int n) {
+  model::ReferenceParams p;
+  const std::string type = ref.text("type");
+  if (type == "sine") {
+    p.type = model::ReferenceType::kSine;
+  } else if (type == "smooth_sine") {
+    p.type = model::ReferenceType::kSmoothSine;
+  } else {
+    ref.fail("type", "unknown reference type '" + type + "'; expected: sine or smooth_sine");
+  }
+  p.offset = ref.vector("offset", n, true, false);
+  p.amplitude = ref.vector("amplitude", n, true, false);
+  p.frequency = ref.vector("frequency", n, true, false);
+  if ((p.frequency.array() < 0.0).any()) ref.fail("frequency", "expected numbers >= 0 [rad/s]");
+  p.phase = ref.has("phase") ? ref.vector("phase", n, true, false) : Eigen::VectorXd::Zero(n);
+  if (p.type == model::ReferenceType::kSmoothSine) {
+    p.alpha = ref.vector("alpha", n, true, true);
+  } else if (ref.has("alpha")) {
+    ref.fail("alpha", "only a smooth_sine reference has alpha");
+  }
+  ref.finish({"type", "offset", "amplitude", "frequency", "phase", "alpha"});
+  return p;
+}
+
+Scenario readScenario(MapReader root) {
+  Scenario s;
+  s.name = root.text("name");
+  s.description = root.text("description", "");
+  s.duration = root.positive("duration");
+  s.mode = root.text("mode", s.mode);
+  if (s.mode != "lockstep")
+    root.fail("mode", "mode '" + s.mode +
+                          "' is not available in this version; expected: lockstep");
+
+  s.robot = readRobot(root.map("robot"));
+  const int n = s.dof();
+
+  MapReader init = root.map("initial_state");
+  s.initial_state.q = init.vector("q", n, false, false);
+  s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false)
+                                          : Eigen::VectorXd::Zero(n);
+  init.finish({"q", "qdot"});
+
+  s.reference = readReference(root.map("reference"), n);
+
+  if (root.has("plant")) {
+    MapReader plant = root.map("plant");
+    s.plant.physics_step = plant.positive("physics_step", s.plant.physics_step);
+    s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
+    plant.finish({"physics_step", "publish_rate"});
+    const double ratio = s.tickPeriod() / s.plant.physics_step;
+    if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
+      plant.fail("physics_step", "the publish period 1/publish_rate = " +
+                                     std::to_string(s.tickPeriod()) +
+                                     " s must be a whole multiple of physics_step");
+  }
+  const double ticks = s.duration * s.plant.publish_rate;
+  if (std::abs(ticks - std::round(ticks)) > 1e-6)
+    root.fail("duration", "expected a whole number of publish periods (duration * plant.publish_rate)");
+
+  if (root.has("actuator")) {
+    MapReader act = root.map("actuator");
+    s.actuator.order = act.integer("order", 0);
+    if (s.actuator.order != 0)
+      act.fail("order", "order " + std::to_string(s.actuator.order) +
+                            " is not available in this version; expected: 0 (torque passes through)");
+    s.actuator.saturation = act.optionalVector("saturation", n, true, true);
+    act.finish({"order", "saturation"});
+  }
+
+  MapReader ctl = root.map("controller");
+  s.controller.type = ctl.text("type");
+  if (s.controller.type != "theorem1")
+    ctl.fail("type", "unknown controller type '" + s.controller.type + "'; expected: theorem1");
+  s.controller.gains.kp = ctl.vector("kp", n, true, true);
+  s.controller.gains.kd = ctl.vector("kd", n, true, true);
+  s.controller.gains.a = ctl.vector("a", n, true, true);
+  s.controller.gains.b = ctl.vector("b", n, true, true);
+  if (!ctl.has("initial_filter_state")) {
+    s.controller.initial_filter_state = Eigen::VectorXd::Zero(n);
+  } else if (ctl.child("initial_filter_state").IsScalar() &&
+             ctl.child("initial_filter_state").Scalar() == "bumpless") {
+    s.controller.initial_filter_state.reset();
+  } else {
+    s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
+  }
+  ctl.finish({"type", "kp", "kd", "a", "b", "initial_filter_state"});
+
+  if (root.has("metrics")) {
+    MapReader m = root.map("metrics");
+    s.metrics.tolerance = m.positive("tolerance", s.metrics.tolerance);
+    s.metrics.convergence_deadline = m.positive("convergence_deadline", s.metrics.convergence_deadline);
+    m.finish({"tolerance", "convergence_deadline"});
+  }
+  if (root.has("lockstep")) {
+    MapReader l = root.map("lockstep");
+    s.lockstep.retransmit_timeout = l.positive("retransmit_timeout", s.lockstep.retransmit_timeout);
+    s.lockstep.logger_window = l.integer("logger_window", s.lockstep.logger_window);
+    if (s.lockstep.logger_window < 1) l.fail("logger_window", "expected a whole number >= 1");
+    l.finish({"retransmit_timeout", "logger_window"});
+  }
+  root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference",
+               "plant", "actuator", "controller", "metrics", "lockstep"});
+  return s;
+}
+
+}  // namespace
+
+Scenario parseScenario(const std::string& yaml_text, const std::string& source,
+                       const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError("config: " + source + ": malformed YAML at line " +
+                      std::to_string(e.mark.line + 1) + ", column " +
+                      std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+  if (!root.IsMap())
+    throw ConfigError("config: " + source + ": expected a map of keys at the top level");
+  for (const auto& o : overrides) applyOverride(root, o);
+  try {
+    return readScenario(MapReader(root, ""));
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    // Prefix the source so the user knows which file (or --set) was wrong.
+    throw ConfigError("config: " + source + ": " + what.substr(std::string("config: ").size()));
+  }
+}
+
+Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("config: cannot read '" + path + "': expected a readable YAML file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parseScenario(buffer.str(), path, overrides);
+}
+
+namespace {
+void emitVector(YAML::Emitter& out, const char* key, const Eigen::VectorXd& v) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (int i = 0; i < v.size(); ++i) out << v(i);
+  out << YAML::EndSeq;
+}
+}  // namespace
+
+std::string toYaml(const Scenario& s) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << s.name;
+  out << YAML::Key << "description" << YAML::Value << s.description;
+  out << YAML::Key << "duration" << YAML::Value << s.duration;
+  out << YAML::Key << "mode" << YAML::Value << s.mode;
+
+  out << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;
+  out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
+  for (const auto& l : s.robot.links) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length
+        << YAML::Key << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value
+        << l.mass << YAML::Key << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+
+  out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginMap;
+  emitVector(out, "q", s.initial_state.q);
+  emitVector(out, "qdot", s.initial_state.qdot);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "reference" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "type" << YAML::Value << model::toString(s.reference.type);
+  emitVector(out, "offset", s.reference.offset);
+  emitVector(out, "amplitude", s.reference.amplitude);
+  emitVector(out, "frequency", s.reference.frequency);
+  emitVector(out, "phase", s.reference.phase);
+  if (s.reference.type == model::ReferenceType::kSmoothSine) emitVector(out, "alpha", s.reference.alpha);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "physics_step" << YAML::Value << s.plant.physics_step;
+  out << YAML::Key << "publish_rate" << YAML::Value << s.plant.publish_rate;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "order" << YAML::Value << s.actuator.order;
+  if (s.actuator.saturation) emitVector(out, "saturation", *s.actuator.saturation);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "type" << YAML::Value << s.controller.type;
+  emitVector(out, "kp", s.controller.gains.kp);
+  emitVector(out, "kd", s.controller.gains.kd);
+  emitVector(out, "a", s.controller.gains.a);
+  emitVector(out, "b", s.controller.gains.b);
+  if (s.controller.initial_filter_state)
+    emitVector(out, "initial_filter_state", *s.controller.initial_filter_state);
+  else
+    out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
+  out << YAML::EndMap;
+
+  out << YAML::Key << "metrics" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "tolerance" << YAML::Value << s.metrics.tolerance;
+  out << YAML::Key << "convergence_deadline" << YAML::Value << s.metrics.convergence_deadline;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "lockstep" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "retransmit_timeout" << YAML::Value << s.lockstep.retransmit_timeout;
+  out << YAML::Key << "logger_window" << YAML::Value << s.lockstep.logger_window;
+  out << YAML::EndMap;
+
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace lagrange::config

@@ -1,0 +1,146 @@
+#include "config/yaml_reader.hpp"
+
+#include <cmath>
+
+#include "config/scenario.hpp"
+
+namespace lagrange::config {
+
+std::string lineOf(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return "";
+  return " (line " + std::to_string(mark.line + 1) + ")";
+}
+
+namespace {
+std::string show(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return "a list";
+  if (node.IsMap()) return "a map";
+  return "nothing";
+}
+
+bool toNumber(const YAML::Node& node, double& out) {
+  if (!node.IsScalar()) return false;
+  try {
+    out = node.as<double>();
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+  return std::isfinite(out);
+}
+}  // namespace
+
+MapReader::MapReader(YAML::Node node, std::string path) : node_(node), path_(std::move(path)) {
+  if (!node_.IsMap())
+    throw ConfigError("config: " + (path_.empty() ? std::string("the file") : path_) +
+                      ": expected a map of keys, got " + show(node_) + lineOf(node_));
+}
+
+std::string MapReader::keyPath(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+void MapReader::fail(const std::string& key, const std::string& what) const {
+  const YAML::Node value = has(key) ? node_[key] : YAML::Node();
+  const std::string where = has(key) ? lineOf(value) : lineOf(node_);
+  throw ConfigError("config: " + keyPath(key) + ": " + what + where);
+}
+
+bool MapReader::has(const std::string& key) const {
+  return node_[key].IsDefined() && !node_[key].IsNull();
+}
+
+YAML::Node MapReader::child(const std::string& key) { return node_[key]; }
+
+double MapReader::number(const std::string& key) {
+  if (!has(key)) fail(key, "missing; expected a number");
+  double v = 0.0;
+  if (!toNumber(node_[key], v)) fail(key, "expected a finite number, got " + show(node_[key]));
+  return v;
+}
+
+double MapReader::number(const std::string& key, double fallback) {
+  return has(key) ? number(key) : fallback;
+}
+
+double MapReader::positive(const std::string& key) {
+  if (!has(key)) fail(key, "missing; expected a positive number");
+  const double v = number(key);
+  if (!(v > 0.0)) fail(key, "expected a positive number, got " + show(node_[key]));
+  return v;
+}
+
+double MapReader::positive(const std::string& key, double fallback) {
+  return has(key) ? positive(key) : fallback;
+}
+
+int MapReader::integer(const std::string& key, int fallback) {
+  if (!has(key)) return fallback;
+  const double v = number(key);
+  if (v != std::floor(v) || std::abs(v) > 1e9)
+    fail(key, "expected a whole number, got " + show(node_[key]));
+  return static_cast<int>(v);
+}
+
+std::string MapReader::text(const std::string& key) {
+  if (!has(key)) fail(key, "missing; expected a string");
+  if (!node_[key].IsScalar()) fail(key, "expected a string, got " + show(node_[key]));
+  return node_[key].Scalar();
+}
+
+std::string MapReader::text(const std::string& key, const std::string& fallback) {
+  return has(key) ? text(key) : fallback;
+}
+
+Eigen::VectorXd MapReader::vector(const std::string& key, int n, bool allow_scalar,
+                                  bool positive_only) {
+  const std::string kind = positive_only ? "positive number" : "number";
+  const std::string expected = "a list of " + std::to_string(n) + " " + kind + "s (one per joint)" +
+                               (allow_scalar ? " or a single " + kind + " for every joint" : "");
+  if (!has(key)) fail(key, "missing; expected " + expected);
+  const YAML::Node value = node_[key];
+  Eigen::VectorXd out(n);
+  double x = 0.0;
+  if (value.IsScalar()) {
+    if (!allow_scalar || !toNumber(value, x)) fail(key, "expected " + expected + ", got " + show(value));
+    if (positive_only && !(x > 0.0)) fail(key, "expected " + expected + ", got " + show(value));
+    out.setConstant(x);
+    return out;
+  }
+  if (!value.IsSequence()) fail(key, "expected " + expected + ", got " + show(value));
+  if (static_cast<int>(value.size()) != n)
+    fail(key, "expected " + expected + ", got a list of " + std::to_string(value.size()));
+  for (int i = 0; i < n; ++i) {
+    if (!toNumber(value[i], x) || (positive_only && !(x > 0.0)))
+      fail(key, "entry " + std::to_string(i + 1) + ": expected a " + kind + ", got " + show(value[i]));
+    out(i) = x;
+  }
+  return out;
+}
+
+std::optional<Eigen::VectorXd> MapReader::optionalVector(const std::string& key, int n,
+                                                         bool allow_scalar, bool positive_only) {
+  if (!has(key)) return std::nullopt;
+  return vector(key, n, allow_scalar, positive_only);
+}
+
+MapReader MapReader::map(const std::string& key) {
+  if (!has(key)) fail(key, "missing; expected a map");
+  if (!node_[key].IsMap()) fail(key, "expected a map, got " + show(node_[key]));
+  return MapReader(node_[key], keyPath(key));
+}
+
+void MapReader::finish(const std::set<std::string>& known) const {
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.Scalar();
+    if (known.count(key) == 0) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw ConfigError("config: " + keyPath(key) + ": unknown key" + lineOf(entry.first) +
+                        "; expected one of: " + list);
+    }
+  }
+}
+
+}  // namespace lagrange::config

@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Strict, path-aware reading of a YAML map: every key read is remembered, so
+/// finish() can reject the ones nobody asked for (unknown keys are errors,
+/// never ignored), and every error names the dotted key, the value, what was
+/// expected and the line.
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Dense>
+#include <optional>
+#include <set>
+#include <string>
+
+namespace lagrange::config {
+
+class MapReader {
+ public:
+  /// @throws ConfigError if node is not a map.
+  MapReader(YAML::Node node, std::string path);
+
+  bool has(const std::string& key) const;
+  YAML::Node child(const std::string& key);  ///< marks the key as read; may be undefined
+
+  double number(const std::string& key);                       ///< required
+  double number(const std::string& key, double fallback);      ///< optional
+  double positive(const std::string& key);
+  double positive(const std::string& key, double fallback);
+  int integer(const std::string& key, int fallback);
+  std::string text(const std::string& key);
+  std::string text(const std::string& key, const std::string& fallback);
+
+  /// A per-joint vector: a list of exactly n numbers, or one number applied
+  /// to every joint when allow_scalar. Required.
+  Eigen::VectorXd vector(const std::string& key, int n, bool allow_scalar, bool positive_only);
+  std::optional<Eigen::VectorXd> optionalVector(const std::string& key, int n, bool allow_scalar,
+                                                bool positive_only);
+
+  MapReader map(const std::string& key);  ///< required sub-map
+
+  /// @throws ConfigError listing the first unknown key and the known ones.
+  void finish(const std::set<std::string>& known) const;
+
+  std::string keyPath(const std::string& key) const;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+
+ private:
+  YAML::Node node_;
+  std::string path_;
+};
+
+/// " (line N)" for a node with a position, "" otherwise.
+std::string lineOf(const YAML::Node& node);
+
+}  // namespace lagrange::config

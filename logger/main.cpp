@@ -1,0 +1,169 @@
+/// @file
+/// The logger process: records every LCM channel of the run to a standard LCM
+/// event log (readable by lcm-logplayer and lcm::LogFile), computes the
+/// tracking metrics live, and writes summary.json at the end.
+///
+///   .* -> LogFile (flushed at least every 100 ms)
+///   PLANT_TRUTH, ACTUATOR_STATE -> TrackingMetrics -> STATUS (progress, flow control)
+///   STATUS of every process -> summary.json "messages" and "processes"
+///
+/// The first event of the log is the resolved scenario on channel SCENARIO,
+/// so a log describes itself.
+
+#include <lcm/lcm-cpp.hpp>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "controller/gain_report.hpp"
+#include "logger/summary.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+#include "transport/process.hpp"
+
+namespace lagrange {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class EventLog {
+ public:
+  explicit EventLog(const std::string& path) : file_(path, "w") {
+    if (!file_.good())
+      throw std::runtime_error("cannot create the log '" + path + "'; expected a writable directory");
+  }
+  void write(const std::string& channel, const void* data, int size, int64_t utime) {
+    lcm::LogEvent ev;
+    ev.eventnum = events_;
+    ev.timestamp = utime;
+    ev.channel = channel;
+    ev.datalen = size;
+    ev.data = const_cast<void*>(data);
+    if (file_.writeEvent(&ev) != 0) throw std::runtime_error("writing the log failed (disk full?)");
+    ++events_;
+  }
+  void flush() { std::fflush(file_.getFilePtr()); }
+  long long events() const { return events_; }
+
+ private:
+  lcm::LogFile file_;
+  long long events_ = 0;
+};
+
+int DoMain(int argc, char** argv) {
+  std::string out_dir = ".";
+  double finish_grace = 2.0;
+  return transport::runProcess(
+      "logger", "Records every LCM channel to run.lcm and writes summary.json.", argc, argv,
+      [&](CLI::App& app) {
+        app.add_option("-o,--out", out_dir, "Directory for run.lcm and summary.json")->capture_default_str();
+        app.add_option("--finish-grace", finish_grace,
+                       "Seconds to wait for the other processes' final STATUS after the plant finished")
+            ->capture_default_str();
+      },
+      [&](const config::Scenario& s, transport::LcmNode& node) {
+        const auto wall_start = Clock::now();
+        const std::string log_path = (std::filesystem::path(out_dir) / "run.lcm").string();
+        EventLog log(log_path);
+        const std::string scenario_text = config::toYaml(s);
+        log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
+                  transport::nowUtime());
+
+        const controller::GainReport gains = controller::checkGains(s);
+        logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance);
+        transport::StatusReporter status(node);
+        logger::RunFacts facts;
+        facts.log_path = log_path;
+        const int n = s.dof();
+
+        // Record first, then interpret: the log keeps every message, even ones
+        // the validators below reject.
+        node.subscribeRaw(".*", [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+          log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
+        });
+        bool progress_due = false;
+        node.subscribe<lagrange::plant_truth_t>(
+            transport::kPlantTruth, [n](const auto& m) { return transport::validate(m, n); },
+            [&](const lagrange::plant_truth_t& m) {
+              if (metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q)) &&
+                  m.header.tick % 50 == 0)
+                progress_due = true;
+            });
+        node.subscribe<lagrange::actuator_state_t>(
+            transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
+            [&](const lagrange::actuator_state_t& m) { metrics.addTorque(transport::toEigen(m.tau_applied)); });
+        std::optional<Clock::time_point> plant_finished_at;
+        node.subscribe<lagrange::status_t>(
+            transport::kStatus, [](const auto& m) { return transport::validate(m); },
+            [&](const lagrange::status_t& m) {
+              if (m.process == "logger") return;
+              facts.final_status[m.process] = m;
+              if (m.process == "plant" && m.state == "finished" && !plant_finished_at)
+                plant_finished_at = Clock::now();
+            });
+
+        auto report = [&](const char* state) {
+          status.publish(state, metrics.lastTick(), metrics.summary().sim_time, metrics.lastError());
+        };
+        auto all_final = [&]() {
+          for (const char* p : {"plant", "controller", "actuator"}) {
+            auto it = facts.final_status.find(p);
+            if (it == facts.final_status.end() || it->second.state != "finished") return false;
+          }
+          return true;
+        };
+
+        report("ready");
+        auto next_flush = Clock::now() + std::chrono::milliseconds(100);
+        auto next_status = Clock::now() + std::chrono::milliseconds(100);
+        while (!transport::stopRequested()) {
+          node.handle(20);
+          const auto now = Clock::now();
+          if (now >= next_flush) {
+            log.flush();
+            next_flush = now + std::chrono::milliseconds(100);
+          }
+          if (progress_due || now >= next_status) {
+            report("running");
+            progress_due = false;
+            next_status = now + std::chrono::milliseconds(100);
+          }
+          if (plant_finished_at &&
+              (all_final() || now - *plant_finished_at > std::chrono::duration<double>(finish_grace)))
+            break;
+        }
+        // Drain what is still queued, then close the log before the summary.
+        while (node.raw().handleTimeout(10) > 0) {
+        }
+        facts.status = transport::stopRequested() ? "interrupted" : "completed";
+        if (!transport::stopRequested() && !all_final())
+          spdlog::warn("not every process reported 'finished' within {} s of the plant", finish_grace);
+        report(transport::stopRequested() ? "interrupted" : "finished");
+        log.flush();
+        facts.log_events = log.events();
+        lagrange::status_t own;
+        own.process = "logger";
+        own.state = facts.status == "completed" ? "finished" : "interrupted";
+        own.last_tick = metrics.lastTick();
+        own.channels = node.channelStats();
+        own.num_channels = static_cast<int32_t>(own.channels.size());
+        facts.final_status["logger"] = own;
+        facts.wall_time = std::chrono::duration<double>(Clock::now() - wall_start).count();
+
+        const auto summary = logger::makeSummary(s, metrics.summary(), gains, facts);
+        const std::string summary_path = (std::filesystem::path(out_dir) / "summary.json").string();
+        std::ofstream out(summary_path);
+        out << summary.dump(2) << "\n";
+        if (!out) throw std::runtime_error("cannot write '" + summary_path + "'");
+        spdlog::info("wrote {} events to {} and {}", facts.log_events, log_path, summary_path);
+        return 0;
+      });
+}
+
+}  // namespace
+}  // namespace lagrange
+
+int main(int argc, char** argv) { return lagrange::DoMain(argc, argv); }

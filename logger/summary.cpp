@@ -1,0 +1,59 @@
+#include "logger/summary.hpp"
+
+namespace lagrange::logger {
+
+nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
+                           const controller::GainReport& g, const RunFacts& f) {
+  using nlohmann::json;
+  json j;
+  j["scenario"] = s.name;
+  j["mode"] = s.mode;
+  j["status"] = f.status;
+  j["tracking"] = {
+      {"tolerance", t.tolerance},
+      {"final_error", t.final_error},
+      {"max_error", t.max_error},
+      {"convergence_time", t.convergence_time ? json(*t.convergence_time) : json(nullptr)},
+      {"rms_last_second", t.rms_last_second},
+      {"convergence_deadline", s.metrics.convergence_deadline},
+      {"met", t.convergence_time.has_value() && *t.convergence_time <= s.metrics.convergence_deadline},
+      {"samples", t.samples},
+  };
+  j["torque"] = {{"max_abs", t.max_abs_torque}};
+  j["gains"] = {
+      {"condition", g.condition.name},
+      {"expression", g.condition.expression},
+      {"lhs", g.condition.lhs},
+      {"rhs", g.condition.rhs},
+      {"condition_holds", g.condition.holds},
+      {"margin", g.condition.margin()},
+      {"k_c", g.kc},
+      {"k_delta", g.kdelta},
+  };
+  j["timing"] = {
+      {"sim_time", t.sim_time},
+      {"wall_time", f.wall_time},
+      {"realtime_factor", f.wall_time > 0.0 ? t.sim_time / f.wall_time : 0.0},
+  };
+  json messages = json::object();
+  json processes = json::object();
+  for (const auto& [name, st] : f.final_status) {
+    json channels = json::object();
+    for (const auto& c : st.channels) {
+      channels[c.channel] = {{"published", c.published}, {"received", c.received}, {"rejected", c.rejected}};
+      json& total = messages[c.channel];
+      if (total.is_null()) total = {{"published", 0}, {"received", 0}, {"rejected", 0}};
+      total["published"] = total["published"].get<long long>() + c.published;
+      total["received"] = total["received"].get<long long>() + c.received;
+      total["rejected"] = total["rejected"].get<long long>() + c.rejected;
+    }
+    processes[name] = {{"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message},
+                       {"channels", channels}};
+  }
+  j["messages"] = messages;
+  j["processes"] = processes;
+  j["log"] = {{"path", f.log_path}, {"events", f.log_events}};
+  return j;
+}
+
+}  // namespace lagrange::logger

@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// summary.json: the numbers of a run (every key in docs/summary.md).
+
+#include <nlohmann/json.hpp>
+#include <map>
+#include <string>
+
+#include "config/scenario.hpp"
+#include "controller/gain_report.hpp"
+#include "lagrange/status_t.hpp"
+#include "logger/tracking_metrics.hpp"
+
+namespace lagrange::logger {
+
+struct RunFacts {
+  std::string status;  ///< "completed" or "interrupted"
+  double wall_time = 0.0;
+  std::string log_path;
+  long long log_events = 0;
+  std::map<std::string, lagrange::status_t> final_status;  ///< by process name
+};
+
+nlohmann::json makeSummary(const config::Scenario& scenario, const TrackingSummary& tracking,
+                           const controller::GainReport& gains, const RunFacts& facts);
+
+}  // namespace lagrange::logger

@@ -1,0 +1,55 @@
+#include "logger/tracking_metrics.hpp"
+
+#include <cmath>
+
+namespace lagrange::logger {
+
+TrackingMetrics::TrackingMetrics(model::Reference reference, double tolerance)
+    : reference_(std::move(reference)), tolerance_(tolerance) {}
+
+std::optional<double> TrackingMetrics::addSample(long long tick, double t, const Eigen::VectorXd& q) {
+  if (tick <= last_tick_) return std::nullopt;
+  last_tick_ = tick;
+  Eigen::VectorXd qd(reference_.dof());
+  for (int i = 0; i < reference_.dof(); ++i) qd(i) = reference_.jointDerivative(i, 0, t);
+  const double e = (q - qd).norm();
+  times_.push_back(t);
+  errors_.push_back(e);
+  return e;
+}
+
+void TrackingMetrics::addTorque(const Eigen::VectorXd& tau) {
+  if (tau.size() > 0) max_abs_torque_ = std::max(max_abs_torque_, tau.cwiseAbs().maxCoeff());
+}
+
+TrackingSummary TrackingMetrics::summary() const {
+  TrackingSummary s;
+  s.tolerance = tolerance_;
+  s.max_abs_torque = max_abs_torque_;
+  s.samples = static_cast<long long>(errors_.size());
+  if (errors_.empty()) return s;
+  s.sim_time = times_.back();
+  s.final_error = errors_.back();
+  double sum_sq = 0.0;
+  long long in_window = 0;
+  // Walk backwards: the convergence time is the sample after the last one at
+  // or above the tolerance.
+  std::optional<size_t> last_violation;
+  for (size_t i = errors_.size(); i-- > 0;) {
+    s.max_error = std::max(s.max_error, errors_[i]);
+    if (!last_violation && errors_[i] >= tolerance_) last_violation = i;
+    if (times_[i] >= s.sim_time - 1.0 - 1e-12) {
+      sum_sq += errors_[i] * errors_[i];
+      ++in_window;
+    }
+  }
+  s.rms_last_second = std::sqrt(sum_sq / static_cast<double>(in_window));
+  if (!last_violation) {
+    s.convergence_time = times_.front();
+  } else if (*last_violation + 1 < errors_.size()) {
+    s.convergence_time = times_[*last_violation + 1];
+  }
+  return s;
+}
+
+}  // namespace lagrange::logger

@@ -1,0 +1,160 @@
+#include "model/planar_chain.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace lagrange::model {
+
+ChainParams pelicanParams() {
+  ChainParams p;
+  p.links = {{0.26, 0.0983, 6.5225, 0.1213}, {0.26, 0.0229, 2.0458, 0.01616}};
+  p.gravity = 9.81;
+  return p;
+}
+
+PlanarChain::PlanarChain(ChainParams params) : params_(std::move(params)) {
+  const int n = dof();
+  if (n < 1) throw std::invalid_argument("PlanarChain: at least one link is needed");
+  for (int i = 0; i < n; ++i) {
+    const LinkParams& l = params_.links[i];
+    const std::string which = "PlanarChain: link " + std::to_string(i + 1) + ": ";
+    if (!(l.length > 0.0) || !std::isfinite(l.length))
+      throw std::invalid_argument(which + "length must be positive and finite");
+    if (!(l.mass > 0.0) || !std::isfinite(l.mass))
+      throw std::invalid_argument(which + "mass must be positive and finite");
+    if (!(l.inertia > 0.0) || !std::isfinite(l.inertia))
+      throw std::invalid_argument(which + "inertia must be positive and finite");
+    if (!(l.com >= 0.0) || !std::isfinite(l.com))
+      throw std::invalid_argument(which + "com must be non-negative and finite");
+  }
+  if (!std::isfinite(params_.gravity))
+    throw std::invalid_argument("PlanarChain: gravity must be finite");
+
+  // c(i, a): lever arm of absolute angle a in the centre of mass of link i.
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < i; ++a) c(i, a) = params_.links[a].length;
+    c(i, i) = params_.links[i].com;
+  }
+  Eigen::VectorXd m(n);
+  for (int i = 0; i < n; ++i) m(i) = params_.links[i].mass;
+  h_ = c.transpose() * m.asDiagonal() * c;
+  s_ = c.transpose() * m;
+}
+
+void PlanarChain::checkSize(const Eigen::VectorXd& x, const char* what) const {
+  if (x.size() != dof())
+    throw std::invalid_argument(std::string("PlanarChain: ") + what + " has " +
+                                std::to_string(x.size()) + " entries, expected " +
+                                std::to_string(dof()));
+}
+
+Eigen::VectorXd PlanarChain::absoluteAngles(const Eigen::VectorXd& q) const {
+  Eigen::VectorXd phi(q.size());
+  double sum = 0.0;
+  for (int i = 0; i < q.size(); ++i) phi(i) = (sum += q(i));
+  return phi;
+}
+
+namespace {
+// D = L^T M L with L lower-triangular ones: D_jk = sum_{a>=j, b>=k} M_ab,
+// computed with suffix sums in O(n^2).
+Eigen::MatrixXd congruenceWithOnes(const Eigen::MatrixXd& m) {
+  const int n = static_cast<int>(m.rows());
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(n, n);
+  for (int j = n - 1; j >= 0; --j) {
+    for (int k = n - 1; k >= 0; --k) {
+      d(j, k) = m(j, k) + (j + 1 < n ? d(j + 1, k) : 0.0) + (k + 1 < n ? d(j, k + 1) : 0.0) -
+                (j + 1 < n && k + 1 < n ? d(j + 1, k + 1) : 0.0);
+    }
+  }
+  return d;
+}
+}  // namespace
+
+Eigen::MatrixXd PlanarChain::inertia(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  const int n = dof();
+  const Eigen::VectorXd phi = absoluteAngles(q);
+  Eigen::MatrixXd m(n, n);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) m(a, b) = h_(a, b) * std::cos(phi(a) - phi(b));
+  for (int a = 0; a < n; ++a) m(a, a) += params_.links[a].inertia;
+  return congruenceWithOnes(m);
+}
+
+std::vector<Eigen::MatrixXd> PlanarChain::inertiaPartials(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  const int n = dof();
+  const Eigen::VectorXd phi = absoluteAngles(q);
+  // dM_ab/dq_k = -h_ab sin(phi_a - phi_b) (L_ak - L_bk), L_ak = 1 iff k <= a.
+  std::vector<Eigen::MatrixXd> partials;
+  partials.reserve(n);
+  for (int k = 0; k < n; ++k) {
+    Eigen::MatrixXd dm = Eigen::MatrixXd::Zero(n, n);
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) {
+        const int selector = (k <= a ? 1 : 0) - (k <= b ? 1 : 0);
+        if (selector != 0) dm(a, b) = -h_(a, b) * std::sin(phi(a) - phi(b)) * selector;
+      }
+    }
+    partials.push_back(congruenceWithOnes(dm));
+  }
+  return partials;
+}
+
+std::vector<Eigen::MatrixXd> PlanarChain::coriolisPerVelocity(const Eigen::VectorXd& q) const {
+  const int n = dof();
+  const std::vector<Eigen::MatrixXd> dd = inertiaPartials(q);
+  // Christoffel symbols: c_ijk = (dD_ij/dq_k + dD_ik/dq_j - dD_jk/dq_i) / 2.
+  std::vector<Eigen::MatrixXd> ck(n, Eigen::MatrixXd::Zero(n, n));
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        ck[k](i, j) = 0.5 * (dd[k](i, j) + dd[j](i, k) - dd[i](j, k));
+  return ck;
+}
+
+Eigen::MatrixXd PlanarChain::coriolis(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  checkSize(v, "v");
+  const std::vector<Eigen::MatrixXd> ck = coriolisPerVelocity(q);
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(dof(), dof());
+  for (int k = 0; k < dof(); ++k) c += v(k) * ck[k];
+  return c;
+}
+
+Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  const Eigen::VectorXd phi = absoluteAngles(q);
+  // dU/dphi_a = g s_a sin(phi_a); dU/dq_k = sum_{a >= k} dU/dphi_a.
+  Eigen::VectorXd out(dof());
+  double suffix = 0.0;
+  for (int a = dof() - 1; a >= 0; --a) {
+    suffix += params_.gravity * s_(a) * std::sin(phi(a));
+    out(a) = suffix;
+  }
+  return out;
+}
+
+double PlanarChain::potentialEnergy(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  const Eigen::VectorXd phi = absoluteAngles(q);
+  double u = 0.0;
+  for (int a = 0; a < dof(); ++a) u -= params_.gravity * s_(a) * std::cos(phi(a));
+  return u;
+}
+
+double PlanarChain::kineticEnergy(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  checkSize(v, "v");
+  return 0.5 * v.dot(inertia(q) * v);
+}
+
+Eigen::VectorXd PlanarChain::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                          const Eigen::VectorXd& u) const {
+  checkSize(u, "u");
+  const Eigen::VectorXd rhs = u - coriolis(q, v) * v - gravity(q);
+  return inertia(q).llt().solve(rhs);
+}
+
+}  // namespace lagrange::model

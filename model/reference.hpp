@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// Reference trajectories q_d(t) with analytic time derivatives up to the 4th.
+///
+/// Per joint i (all parameters per joint):
+///   sine:         q_d,i(t) = b_i + c_i sin(w_i t + p_i)
+///   smooth_sine:  q_d,i(t) = (1 - exp(-alpha_i t^3)) (b_i + c_i sin(w_i t + p_i))
+/// The smooth-start sinusoid is the reference of Kelly, Santibanez and Loria's
+/// book: it starts at rest at zero, with zero derivatives up to the 2nd.
+
+#include <Eigen/Dense>
+#include <array>
+#include <string>
+
+namespace lagrange::model {
+
+enum class ReferenceType { kSine, kSmoothSine };
+
+/// Per-joint parameters of a reference.
+struct ReferenceParams {
+  ReferenceType type = ReferenceType::kSmoothSine;
+  Eigen::VectorXd offset;     ///< b [rad]
+  Eigen::VectorXd amplitude;  ///< c [rad]
+  Eigen::VectorXd frequency;  ///< w [rad/s]
+  Eigen::VectorXd phase;      ///< p [rad]
+  Eigen::VectorXd alpha;      ///< smooth-start rate [1/s^3]; smooth_sine only
+};
+
+/// q_d and its derivatives at one instant; derivative[k] is d^k q_d / dt^k.
+struct ReferenceSample {
+  std::array<Eigen::VectorXd, 5> derivative;
+  const Eigen::VectorXd& q() const { return derivative[0]; }
+  const Eigen::VectorXd& qd() const { return derivative[1]; }
+  const Eigen::VectorXd& qdd() const { return derivative[2]; }
+};
+
+class Reference {
+ public:
+  /// @throws std::invalid_argument if sizes differ, a value is not finite,
+  ///         a frequency is negative, or (smooth_sine) an alpha is not positive.
+  explicit Reference(ReferenceParams params);
+
+  int dof() const { return static_cast<int>(params_.offset.size()); }
+  const ReferenceParams& params() const { return params_; }
+
+  ReferenceSample evaluate(double t) const;
+
+  /// d^order q_d,joint / dt^order at t, order 0..4.
+  double jointDerivative(int joint, int order, double t) const;
+
+  /// Upper bound of sup_{t >= 0} |d^order q_d,joint / dt^order|, order 0..4.
+  /// sine: closed form (|b| + |c|, |c| w^order). smooth_sine: the larger of the
+  /// stationary closed form and a sampled supremum over the start-up transient
+  /// (t in [0, T_s + 2 pi / w], T_s where exp(-alpha t^3) < 1e-12, 20000
+  /// samples per period at least), times a safety factor of 1.02 for sampling.
+  double jointBound(int joint, int order) const;
+
+ private:
+  ReferenceParams params_;
+};
+
+const char* toString(ReferenceType type);
+
+}  // namespace lagrange::model

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package lagrange needs to build, test and run.
+# A no-op (no apt-get call at all) when everything is already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
+  libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
+  libgtest-dev nlohmann-json3-dev default-jdk-headless
+  iproute2 util-linux
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+echo "setup: installing missing Debian packages: ${missing[*]}"
+if [[ $(id -u) -eq 0 ]]; then
+  as_root=()
+elif command -v sudo >/dev/null; then
+  as_root=(sudo)
+else
+  echo "setup: error: packages missing (${missing[*]}) and neither root nor sudo is available;" \
+    "install them as root with: apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"

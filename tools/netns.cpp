@@ -1,0 +1,64 @@
+#include "tools/netns.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+namespace lagrange::tools {
+
+namespace {
+constexpr const char* kEnvMarker = "LAGRANGE_PRIVATE_NETNS";
+
+std::string findIp() {
+  for (const char* p : {"/usr/sbin/ip", "/sbin/ip", "/usr/bin/ip", "/bin/ip"})
+    if (access(p, X_OK) == 0) return p;
+  throw std::runtime_error("the 'ip' command (Debian package iproute2) is needed to set up the "
+                           "private network namespace; install it or run with --no-netns");
+}
+
+void runIp(const std::string& ip, const std::vector<std::string>& args) {
+  std::vector<char*> argv{const_cast<char*>(ip.c_str())};
+  std::string cmd = "ip";
+  for (const auto& a : args) {
+    argv.push_back(const_cast<char*>(a.c_str()));
+    cmd += " " + a;
+  }
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+  if (pid == 0) {
+    execv(ip.c_str(), argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error("'" + cmd + "' failed in the private network namespace");
+}
+}  // namespace
+
+bool insidePrivateNetns() { return std::getenv(kEnvMarker) != nullptr; }
+
+std::string reexecInPrivateNetns(const std::vector<std::string>& args) {
+  setenv(kEnvMarker, "1", 1);
+  std::vector<std::string> cmd{"unshare", geteuid() == 0 ? "-n" : "-rn", "--"};
+  cmd.insert(cmd.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& c : cmd) argv.push_back(c.data());
+  argv.push_back(nullptr);
+  execvp("unshare", argv.data());
+  return "cannot run 'unshare' (util-linux): " + std::string(std::strerror(errno));
+}
+
+void configureLoopbackMulticast() {
+  const std::string ip = findIp();
+  runIp(ip, {"link", "set", "lo", "up"});
+  runIp(ip, {"link", "set", "lo", "multicast", "on"});
+  runIp(ip, {"route", "add", "224.0.0.0/4", "dev", "lo"});
+}
+
+}  // namespace lagrange::tools

@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// Private network namespaces for runs: LCM traffic of a run stays on the
+/// loopback of its own namespace, so parallel runs never cross and no packet
+/// leaves the host.
+
+#include <string>
+#include <vector>
+
+namespace lagrange::tools {
+
+/// True when this process was started by reexecInPrivateNetns.
+bool insidePrivateNetns();
+
+/// Replaces this process with `unshare -n` (as root) or `unshare -rn` (as a
+/// user, through a user namespace) running the same command line again.
+/// Returns only on failure, with the reason.
+std::string reexecInPrivateNetns(const std::vector<std::string>& argv);
+
+/// Brings up lo with multicast and routes 224.0.0.0/4 to it.
+/// @throws std::runtime_error naming the failed `ip` command.
+void configureLoopbackMulticast();
+
+}  // namespace lagrange::tools

@@ -1,0 +1,63 @@
+#include "tools/progress.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace lagrange::tools {
+
+ProgressDisplay::ProgressDisplay(double duration, bool quiet)
+    : duration_(duration),
+      quiet_(quiet),
+      tty_(isatty(STDOUT_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      next_draw_(start_) {}
+
+void ProgressDisplay::update(double sim_time, double tracking_error) {
+  sim_time_ = sim_time;
+  if (std::isfinite(tracking_error)) error_ = tracking_error;
+}
+
+void ProgressDisplay::tick() {
+  if (quiet_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now < next_draw_) return;
+  next_draw_ = now + (tty_ ? std::chrono::milliseconds(100) : std::chrono::milliseconds(2000));
+  draw();
+}
+
+void ProgressDisplay::draw() {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double rtf = wall > 0.0 ? sim_time_ / wall : 0.0;
+  const double fraction = duration_ > 0.0 ? std::min(1.0, sim_time_ / duration_) : 0.0;
+  char err[32];
+  if (error_ >= 0.0)
+    std::snprintf(err, sizeof err, "%.2e rad", error_);
+  else
+    std::snprintf(err, sizeof err, "--");
+  if (tty_) {
+    constexpr int kWidth = 30;
+    const int filled = static_cast<int>(fraction * kWidth);
+    std::string bar(filled, '#');
+    bar += std::string(kWidth - filled, '.');
+    std::printf("\r[%s] t = %7.2f / %.2f s  %5.1fx real time  |q~| = %s   ", bar.c_str(), sim_time_,
+                duration_, rtf, err);
+  } else {
+    std::printf("progress: t = %.2f / %.2f s (%3.0f%%), %.1fx real time, |q~| = %s\n", sim_time_,
+                duration_, 100.0 * fraction, rtf, err);
+  }
+  std::fflush(stdout);
+  drawn_ = true;
+}
+
+void ProgressDisplay::finish() {
+  if (quiet_ || !drawn_) return;
+  draw();
+  if (tty_) std::printf("\n");
+  std::fflush(stdout);
+  drawn_ = false;
+}
+
+}  // namespace lagrange::tools

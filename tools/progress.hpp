@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// Progress of a run: on a terminal a bar redrawn in place (sim time,
+/// real-time factor, current tracking error); otherwise a plain line every
+/// few seconds, so logs of CI runs stay readable.
+
+#include <chrono>
+
+namespace lagrange::tools {
+
+class ProgressDisplay {
+ public:
+  ProgressDisplay(double duration, bool quiet);
+  void update(double sim_time, double tracking_error);  ///< latest values from the logger
+  void tick();    ///< redraw if due
+  void finish();  ///< end the line on a terminal
+
+ private:
+  void draw();
+  double duration_;
+  bool quiet_, tty_;
+  double sim_time_ = 0.0, error_ = -1.0;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_, next_draw_;
+};
+
+}  // namespace lagrange::tools

@@ -1,0 +1,192 @@
+#include "tools/run_command.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "config/scenario.hpp"
+#include "controller/gain_report.hpp"
+#include "tools/netns.hpp"
+#include "tools/progress.hpp"
+#include "tools/supervisor.hpp"
+#include "transport/channels.hpp"
+#include "transport/lcm_node.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::atomic<int> launcher_signal{0};
+void onSignal(int sig) { launcher_signal = sig; }
+
+std::string executableDir() { return fs::read_symlink("/proc/self/exe").parent_path().string(); }
+
+std::string freshLcmUrl() {
+  std::random_device rd;
+  const unsigned port = 20000 + rd() % 40000;
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+}
+
+// Creates the directory and proves it writable, before anything starts.
+std::string prepareOutDir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const fs::path probe = fs::path(dir) / ".lagrange-write-test";
+  std::ofstream test(probe);
+  if (ec || !test)
+    throw config::ConfigError("output directory '" + dir +
+                              "' cannot be created or written; expected a writable directory (--out)");
+  test.close();
+  fs::remove(probe, ec);
+  return fs::absolute(dir).string();
+}
+
+void printTail(const std::string& path, int lines) {
+  std::ifstream in(path);
+  std::vector<std::string> all;
+  for (std::string l; std::getline(in, l);) all.push_back(l);
+  const size_t from = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0;
+  for (size_t i = from; i < all.size(); ++i) std::cerr << "    " << all[i] << "\n";
+}
+
+void printResult(const std::string& out_dir) {
+  std::ifstream in(fs::path(out_dir) / "summary.json");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception&) {
+    std::cout << "summary.json could not be read in " << out_dir << "\n";
+    return;
+  }
+  const auto& t = j["tracking"];
+  std::printf("\nscenario %s: %s\n", j["scenario"].get<std::string>().c_str(),
+              j["status"].get<std::string>().c_str());
+  std::printf("  final tracking error  %.3e rad (tolerance %.1e)\n", t["final_error"].get<double>(),
+              t["tolerance"].get<double>());
+  if (t["convergence_time"].is_null())
+    std::printf("  convergence time      never (the error did not stay below the tolerance)\n");
+  else
+    std::printf("  convergence time      %.3f s (deadline %.3f s: %s)\n", t["convergence_time"].get<double>(),
+                t["convergence_deadline"].get<double>(), t["met"].get<bool>() ? "met" : "MISSED");
+  std::printf("  max |torque|          %.3f N m\n", j["torque"]["max_abs"].get<double>());
+  std::printf("  gain condition        %s (margin %.4g)\n",
+              j["gains"]["condition_holds"].get<bool>() ? "holds" : "VIOLATED",
+              j["gains"]["margin"].get<double>());
+  std::printf("  sim %.2f s in %.2f s wall (%.1fx real time)\n", j["timing"]["sim_time"].get<double>(),
+              j["timing"]["wall_time"].get<double>(), j["timing"]["realtime_factor"].get<double>());
+  std::printf("outputs in %s: run.lcm, config.resolved.yaml, summary.json, *.log\n", out_dir.c_str());
+}
+}  // namespace
+
+int runScenario(const RunOptions& opt) {
+  config::Scenario scenario;
+  std::string out_dir;
+  try {
+    scenario = config::loadScenario(opt.config_path, opt.overrides);
+    out_dir = prepareOutDir(opt.out_dir);
+  } catch (const config::ConfigError& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return 2;
+  }
+
+  if (opt.private_netns && !insidePrivateNetns()) {
+    const std::string why = reexecInPrivateNetns(opt.self_argv);
+    std::cerr << "lagrange run: " << why << "; install util-linux or run with --no-netns\n";
+    return 1;
+  }
+  if (opt.private_netns) {
+    try {
+      configureLoopbackMulticast();
+    } catch (const std::exception& e) {
+      std::cerr << "lagrange run: " << e.what() << "\n";
+      return 1;
+    }
+  }
+
+  const std::string resolved = (fs::path(out_dir) / "config.resolved.yaml").string();
+  {
+    std::ofstream out(resolved);
+    out << "# Resolved scenario of this run: defaults, the file " << opt.config_path
+        << " and --set overrides.\n"
+        << config::toYaml(scenario);
+  }
+  const controller::GainReport gains = controller::checkGains(scenario);
+  if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
+  if (!gains.condition.holds && opt.strict) {
+    std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is violated\n";
+    return 2;
+  }
+
+  const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  transport::LcmNode node("launcher", url);
+  ProgressDisplay progress(scenario.duration, opt.quiet);
+  node.subscribe<lagrange::status_t>(
+      transport::kStatus, [](const auto& m) { return transport::validate(m); },
+      [&](const lagrange::status_t& m) {
+        if (m.process == "logger") progress.update(m.header.sim_time, m.tracking_error);
+      });
+
+  const std::string bin = executableDir();
+  Supervisor supervisor;
+  auto spec = [&](const std::string& name, std::vector<std::string> extra) {
+    ChildSpec c;
+    c.name = name;
+    c.argv = {bin + "/lagrange-" + name, "--config", resolved, "--lcm-url", url};
+    c.argv.insert(c.argv.end(), extra.begin(), extra.end());
+    c.log_path = (fs::path(out_dir) / (name + ".log")).string();
+    return c;
+  };
+  // The logger first, so that it records from the first tick; the plant waits
+  // for the logger's STATUS before it starts the clock anyway.
+  std::vector<ChildSpec> specs = {spec("logger", {"--out", out_dir}),
+                                  spec("controller", opt.strict ? std::vector<std::string>{"--strict"}
+                                                                : std::vector<std::string>{}),
+                                  spec("actuator", {}), spec("plant", {})};
+  for (const auto& s : specs) supervisor.start(s);
+
+  int exit_code = 0;
+  while (supervisor.anyRunning()) {
+    node.handle(50);
+    progress.tick();
+    if (launcher_signal != 0) {
+      progress.finish();
+      std::cerr << "lagrange run: interrupted; stopping every process\n";
+      supervisor.stopAll(5.0);
+      exit_code = 130;
+      break;
+    }
+    for (const ChildExit& e : supervisor.reap()) {
+      if (!e.failed()) continue;
+      progress.finish();
+      std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
+                << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
+      printTail((fs::path(out_dir) / (e.name + ".log")).string(), 15);
+      for (const ChildExit& other : supervisor.stopAll(5.0))
+        if (other.failed() && other.signal != SIGTERM)
+          std::cerr << "lagrange run: process '" << other.name << "' " << other.describe() << "\n";
+      exit_code = 1;
+      break;
+    }
+  }
+  progress.finish();
+  if (exit_code == 0 && !opt.quiet) printResult(out_dir);
+  if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";
+  return exit_code;
+}
+
+}  // namespace lagrange::tools

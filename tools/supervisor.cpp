@@ -1,0 +1,96 @@
+#include "tools/supervisor.hpp"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+namespace lagrange::tools {
+
+std::string ChildExit::describe() const {
+  if (signal != 0) return "was killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")";
+  return "exited with code " + std::to_string(exit_code);
+}
+
+Supervisor::~Supervisor() {
+  if (anyRunning()) stopAll(2.0);
+}
+
+void Supervisor::start(const ChildSpec& spec) {
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+  if (pid == 0) {
+    // The child must not outlive the launcher.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(1);
+    const int fd = open(spec.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, STDOUT_FILENO);
+      dup2(fd, STDERR_FILENO);
+      close(fd);
+    }
+    const int devnull = open("/dev/null", O_RDONLY);
+    if (devnull >= 0) dup2(devnull, STDIN_FILENO);
+    std::signal(SIGINT, SIG_IGN);  // Ctrl-C reaches the launcher, which stops us with SIGTERM
+    std::vector<char*> argv;
+    for (const auto& a : spec.argv) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    std::fprintf(stderr, "cannot execute %s: %s\n", argv[0], std::strerror(errno));
+    _exit(127);
+  }
+  children_.push_back({spec, pid, true});
+}
+
+std::vector<ChildExit> Supervisor::reap() {
+  std::vector<ChildExit> out;
+  for (auto& c : children_) {
+    if (!c.running) continue;
+    int status = 0;
+    const pid_t r = waitpid(c.pid, &status, WNOHANG);
+    if (r != c.pid) continue;
+    c.running = false;
+    ChildExit e;
+    e.name = c.spec.name;
+    if (WIFSIGNALED(status)) e.signal = WTERMSIG(status);
+    if (WIFEXITED(status)) e.exit_code = WEXITSTATUS(status);
+    out.push_back(e);
+  }
+  return out;
+}
+
+bool Supervisor::anyRunning() const {
+  for (const auto& c : children_)
+    if (c.running) return true;
+  return false;
+}
+
+std::vector<ChildExit> Supervisor::waitAll(double timeout_seconds) {
+  std::vector<ChildExit> exits;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_seconds);
+  while (anyRunning() && std::chrono::steady_clock::now() < deadline) {
+    for (auto& e : reap()) exits.push_back(e);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return exits;
+}
+
+std::vector<ChildExit> Supervisor::stopAll(double grace_seconds) {
+  for (const auto& c : children_)
+    if (c.running) kill(c.pid, SIGTERM);
+  std::vector<ChildExit> exits = waitAll(grace_seconds);
+  for (const auto& c : children_)
+    if (c.running) kill(c.pid, SIGKILL);
+  for (auto& e : waitAll(5.0)) exits.push_back(e);
+  return exits;
+}
+
+}  // namespace lagrange::tools

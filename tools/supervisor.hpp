@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// Starts the processes of a run and watches them: who is alive, who died and how.
+
+#include <sys/types.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lagrange::tools {
+
+struct ChildSpec {
+  std::string name;               ///< "plant", ...
+  std::vector<std::string> argv;  ///< argv[0] is the executable path
+  std::string log_path;           ///< stdout and stderr go here
+};
+
+struct ChildExit {
+  std::string name;
+  int exit_code = 0;  ///< valid when signal == 0
+  int signal = 0;     ///< the signal that killed it, or 0
+  bool failed() const { return signal != 0 || exit_code != 0; }
+  std::string describe() const;  ///< "exited with code 3" / "was killed by signal 9 (Killed)"
+};
+
+class Supervisor {
+ public:
+  ~Supervisor();  ///< kills whatever is still running
+
+  /// @throws std::runtime_error if fork or exec setup fails.
+  void start(const ChildSpec& spec);
+
+  /// Children that exited since the last call (non-blocking).
+  std::vector<ChildExit> reap();
+
+  bool anyRunning() const;
+
+  /// SIGTERM to every running child, then SIGKILL after `grace_seconds`.
+  /// Returns how they exited.
+  std::vector<ChildExit> stopAll(double grace_seconds);
+
+  /// Wait (polling reap) until all exit or timeout; returns their exits.
+  std::vector<ChildExit> waitAll(double timeout_seconds);
+
+ private:
+  struct Child {
+    ChildSpec spec;
+    pid_t pid = -1;
+    bool running = false;
+  };
+  std::vector<Child> children_;
+};
+
+}  // namespace lagrange::tools

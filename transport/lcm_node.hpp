@@ -1,0 +1,101 @@
+#pragma once
+/// @file
+/// The one place where a process touches LCM: publishing with counters, and
+/// typed subscriptions that decode and validate by hand so that a malformed
+/// message is rejected, counted and logged once per kind, never crashes the
+/// process and never reaches the mathematics.
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lagrange/channel_stats_t.hpp"
+
+namespace lagrange::transport {
+
+/// Why a message was rejected (empty string: accepted).
+using Rejection = std::string;
+
+struct ChannelCounters {
+  long long published = 0;
+  long long received = 0;
+  long long rejected = 0;
+};
+
+class LcmNode {
+ public:
+  /// @throws std::runtime_error naming the URL if LCM cannot be initialised.
+  LcmNode(const std::string& process_name, const std::string& url);
+
+  /// Subscribe to a channel with type Msg. `validate` returns an empty string
+  /// to accept, or the reason to reject; `handle` sees accepted messages only.
+  template <class Msg>
+  void subscribe(const std::string& channel, std::function<Rejection(const Msg&)> validate,
+                 std::function<void(const Msg&)> handle);
+
+  template <class Msg>
+  void publish(const std::string& channel, const Msg& msg) {
+    if (lcm_.publish(channel, &msg) != 0) noteError(channel, "publish failed");
+    counters_[channel].published++;
+  }
+
+  /// Every message on channels matching the regex, undecoded. The queue is
+  /// deep (kQueueCapacity) so a slow handler does not silently drop messages.
+  void subscribeRaw(const std::string& channel_regex,
+                    std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle);
+
+  static constexpr int kQueueCapacity = 100000;
+
+  /// Process incoming messages for up to timeout_ms; returns false on an LCM error.
+  bool handle(int timeout_ms);
+
+  const std::map<std::string, ChannelCounters>& counters() const { return counters_; }
+  std::vector<lagrange::channel_stats_t> channelStats() const;
+  const std::string& processName() const { return process_name_; }
+  lcm::LCM& raw() { return lcm_; }
+
+ private:
+  void reject(const std::string& channel, const std::string& reason);
+  void noteError(const std::string& channel, const std::string& what);
+
+  std::string process_name_;
+  lcm::LCM lcm_;
+  std::map<std::string, ChannelCounters> counters_;
+  std::set<std::string> reported_;  ///< channel/reason pairs already logged
+
+  struct RawHandler {
+    std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;
+    void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) { fn(rbuf, channel); }
+  };
+  std::vector<std::unique_ptr<RawHandler>> handlers_;
+};
+
+template <class Msg>
+void LcmNode::subscribe(const std::string& channel, std::function<Rejection(const Msg&)> validate,
+                        std::function<void(const Msg&)> handle) {
+  counters_[channel];
+  auto callback = [this, channel, validate, handle](const lcm::ReceiveBuffer* rbuf,
+                                                      const std::string&) {
+    Msg msg;
+    bool decoded = false;
+    try {
+      decoded = msg.decode(rbuf->data, 0, rbuf->data_size) == static_cast<int>(rbuf->data_size);
+    } catch (const std::exception&) {
+      decoded = false;  // e.g. a negative array length makes resize() throw
+    }
+    if (!decoded) return reject(channel, "undecodable (wrong type, size or corrupt bytes)");
+    const Rejection why = validate(msg);
+    if (!why.empty()) return reject(channel, why);
+    counters_[channel].received++;
+    handle(msg);
+  };
+  subscribeRaw(channel, callback);
+}
+
+}  // namespace lagrange::transport

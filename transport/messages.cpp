@@ -1,0 +1,84 @@
+#include "transport/messages.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <initializer_list>
+
+namespace lagrange::transport {
+
+int64_t nowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+lagrange::header_t makeHeader(int64_t tick, double sim_time) {
+  lagrange::header_t h;
+  h.tick = tick;
+  h.sim_time = sim_time;
+  h.publish_utime = nowUtime();
+  return h;
+}
+
+Eigen::VectorXd toEigen(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+std::vector<double> toStd(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+namespace {
+std::string checkHeader(const lagrange::header_t& h) {
+  if (h.tick < 0) return "negative tick";
+  if (!std::isfinite(h.sim_time) || h.sim_time < 0.0) return "sim_time not finite or negative";
+  return "";
+}
+
+std::string checkArrays(int32_t num_joints, int joints,
+                        std::initializer_list<const std::vector<double>*> arrays) {
+  if (num_joints != joints)
+    return "num_joints is " + std::to_string(num_joints) + ", expected " + std::to_string(joints);
+  for (const auto* a : arrays) {
+    if (static_cast<int>(a->size()) != joints) return "array size differs from num_joints";
+    for (double x : *a)
+      if (!std::isfinite(x)) return "non-finite value (NaN or Inf)";
+  }
+  return "";
+}
+}  // namespace
+
+std::string validate(const lagrange::plant_position_t& m, int joints) {
+  std::string why = checkHeader(m.header);
+  return why.empty() ? checkArrays(m.num_joints, joints, {&m.q}) : why;
+}
+
+std::string validate(const lagrange::plant_truth_t& m, int joints) {
+  std::string why = checkHeader(m.header);
+  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.q, &m.qdot, &m.tau_applied});
+  if (why.empty() && !std::isfinite(m.total_energy)) why = "non-finite energy";
+  return why;
+}
+
+std::string validate(const lagrange::control_command_t& m, int joints) {
+  std::string why = checkHeader(m.header);
+  return why.empty() ? checkArrays(m.num_joints, joints,
+                                   {&m.u, &m.q_desired, &m.q_error, &m.theta, &m.filter_state})
+                     : why;
+}
+
+std::string validate(const lagrange::actuator_state_t& m, int joints) {
+  std::string why = checkHeader(m.header);
+  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.u_commanded, &m.tau_applied});
+  if (why.empty() && static_cast<int>(m.saturated.size()) != joints) why = "array size differs from num_joints";
+  if (why.empty() && (m.order < 0 || static_cast<int>(m.xi.size()) != m.order)) why = "xi rows differ from order";
+  for (const auto& row : m.xi)
+    if (why.empty()) why = checkArrays(m.num_joints, joints, {&row});
+  return why;
+}
+
+std::string validate(const lagrange::status_t& m) {
+  if (m.process.empty()) return "empty process name";
+  if (static_cast<int>(m.channels.size()) != m.num_channels) return "channel count mismatch";
+  return checkHeader(m.header);
+}
+
+}  // namespace lagrange::transport

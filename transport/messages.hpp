@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// Translation between LCM messages and the cores' Eigen types, and the
+/// validation every received message passes before it reaches the math.
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "lagrange/actuator_state_t.hpp"
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/header_t.hpp"
+#include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_truth_t.hpp"
+#include "lagrange/status_t.hpp"
+
+namespace lagrange::transport {
+
+/// Wall-clock time now [us since the Unix epoch].
+int64_t nowUtime();
+
+lagrange::header_t makeHeader(int64_t tick, double sim_time);
+
+Eigen::VectorXd toEigen(const std::vector<double>& v);
+std::vector<double> toStd(const Eigen::VectorXd& v);
+
+/// Each returns "" if the message is usable by a process that expects
+/// `joints` joints, else the reason: joint count, array sizes, non-finite
+/// numbers, negative tick.
+std::string validate(const lagrange::plant_position_t& m, int joints);
+std::string validate(const lagrange::plant_truth_t& m, int joints);
+std::string validate(const lagrange::control_command_t& m, int joints);
+std::string validate(const lagrange::actuator_state_t& m, int joints);
+std::string validate(const lagrange::status_t& m);
+
+}  // namespace lagrange::transport

@@ -1,0 +1,108 @@
+#include "transport/process.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cmath>
+
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::transport {
+
+namespace {
+std::atomic<bool> stop_flag{false};
+void onStopSignal(int) { stop_flag = true; }
+}  // namespace
+
+bool stopRequested() { return stop_flag.load(); }
+
+void StatusReporter::publish(const std::string& state, int64_t last_tick, double sim_time,
+                             double tracking_error, const std::string& message) {
+  lagrange::status_t s;
+  s.header = makeHeader(std::max<int64_t>(last_tick, 0), std::max(sim_time, 0.0));
+  s.process = node_.processName();
+  s.state = state;
+  s.last_tick = last_tick;
+  s.tracking_error = tracking_error;
+  s.message = message;
+  // Count this STATUS before taking the snapshot so the numbers it reports
+  // include itself.
+  s.channels = node_.channelStats();
+  bool found = false;
+  for (auto& c : s.channels)
+    if (c.channel == kStatus) {
+      c.published++;
+      found = true;
+    }
+  if (!found) {
+    lagrange::channel_stats_t c;
+    c.channel = kStatus;
+    c.published = 1;
+    c.received = c.rejected = 0;
+    s.channels.push_back(c);
+  }
+  s.num_channels = static_cast<int32_t>(s.channels.size());
+  node_.publish(kStatus, s);
+}
+
+int serveUntilPlantFinished(LcmNode& node, const Progress& progress) {
+  bool plant_finished = false;
+  node.subscribe<lagrange::status_t>(
+      kStatus, [](const auto& m) { return validate(m); },
+      [&](const lagrange::status_t& m) {
+        if (m.process == "plant" && m.state == "finished") plant_finished = true;
+      });
+  StatusReporter status(node);
+  status.publish("ready", progress.last_tick, progress.sim_time);
+  auto next_status = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+  while (!plant_finished && !stopRequested()) {
+    if (!node.handle(50)) throw std::runtime_error("LCM receive failed");
+    if (std::chrono::steady_clock::now() >= next_status) {
+      status.publish("running", progress.last_tick, progress.sim_time);
+      next_status += std::chrono::milliseconds(500);
+    }
+  }
+  status.publish(plant_finished ? "finished" : "interrupted", progress.last_tick, progress.sim_time);
+  return 0;
+}
+
+int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
+               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body) {
+  CLI::App app{description, "lagrange-" + name};
+  std::string config_path;
+  std::string url = kDefaultLcmUrl;
+  std::vector<std::string> overrides;
+  app.add_option("-c,--config", config_path, "Scenario YAML file (e.g. config.resolved.yaml)")
+      ->required();
+  app.add_option("--lcm-url", url, "LCM URL shared by every process of the run")
+      ->capture_default_str();
+  app.add_option("--set", overrides, "Override a config key, key=value (YAML value); repeatable");
+  if (add_options) add_options(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  spdlog::set_pattern("[%H:%M:%S.%e] [" + name + "] [%^%l%$] %v");
+
+  std::signal(SIGINT, onStopSignal);
+  std::signal(SIGTERM, onStopSignal);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  try {
+    const config::Scenario scenario = config::loadScenario(config_path, overrides);
+    LcmNode node(name, url);
+    return body(scenario, node);
+  } catch (const config::ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", name, e.what());
+    return 1;
+  }
+}
+
+}  // namespace lagrange::transport

@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// What every lagrange process shares: the command line (--config,
+/// --lcm-url), stop signals, STATUS reporting and the top-level error policy
+/// (a user error prints what was wrong and what was expected, then exits 2;
+/// a runtime failure exits 1). Process mains stay thin by building on it.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+#include "config/scenario.hpp"
+#include "transport/lcm_node.hpp"
+
+namespace lagrange::transport {
+
+/// Default LCM URL: LCM's own default group and port, TTL 0 (never leaves the host).
+inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+/// True once SIGINT or SIGTERM arrived.
+bool stopRequested();
+
+/// Publishes this process's STATUS with its channel counters.
+class StatusReporter {
+ public:
+  explicit StatusReporter(LcmNode& node) : node_(node) {}
+  void publish(const std::string& state, int64_t last_tick, double sim_time,
+               double tracking_error = std::nan(""), const std::string& message = "");
+
+ private:
+  LcmNode& node_;
+};
+
+/// Progress of a reactive process: its last completed tick and that tick's sim time.
+struct Progress {
+  int64_t last_tick = -1;
+  double sim_time = 0.0;
+};
+
+/// The loop of a process that only reacts to messages (controller, actuator):
+/// publishes STATUS "ready", handles messages with periodic "running" reports
+/// until the plant reports "finished" or a stop signal arrives, then
+/// publishes the final STATUS. Returns the exit code (0).
+int serveUntilPlantFinished(LcmNode& node, const Progress& progress);
+
+/// The body of a process: gets the validated scenario and a connected node;
+/// returns the exit code.
+using ProcessBody = std::function<int(const config::Scenario&, LcmNode&)>;
+
+/// Parses the common options (plus those `add_options` adds), installs the
+/// signal handlers, loads the scenario, connects LCM and runs `body`,
+/// translating exceptions into messages and exit codes.
+int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
+               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body);
+
+}  // namespace lagrange::transport
