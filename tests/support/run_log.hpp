@@ -1,0 +1,59 @@
+#pragma once
+/// @file
+/// Reading a run's outputs in tests: PLANT_TRUTH samples from run.lcm
+/// (through LCM's own log API) and summary.json.
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <Eigen/Dense>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lagrange/plant_truth_t.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::testing {
+
+struct TruthSample {
+  long long tick;
+  double t;
+  Eigen::VectorXd q, qdot;
+  double energy;
+};
+
+/// One sample per tick (retransmissions dropped), in tick order.
+inline std::vector<TruthSample> readTruth(const std::string& log_path) {
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw std::runtime_error("cannot open " + log_path);
+  std::map<long long, TruthSample> by_tick;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    if (ev->channel != "PLANT_TRUTH") continue;
+    lagrange::plant_truth_t m;
+    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad PLANT_TRUTH event");
+    by_tick.emplace(m.header.tick, TruthSample{m.header.tick, m.header.sim_time, transport::toEigen(m.q),
+                                               transport::toEigen(m.qdot), m.total_energy});
+  }
+  std::vector<TruthSample> out;
+  for (auto& [tick, s] : by_tick) out.push_back(s);
+  return out;
+}
+
+/// Every event's channel, in log order.
+inline std::vector<std::string> readChannels(const std::string& log_path) {
+  lcm::LogFile log(log_path, "r");
+  std::vector<std::string> out;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) out.push_back(ev->channel);
+  return out;
+}
+
+inline nlohmann::json readSummary(const std::string& dir) {
+  std::ifstream in(dir + "/summary.json");
+  if (!in) throw std::runtime_error("no summary.json in " + dir);
+  return nlohmann::json::parse(in);
+}
+
+}  // namespace lagrange::testing

@@ -1,0 +1,121 @@
+// Scenario loading: every shipped config loads; bad input is an error that
+// names the key and what was expected; the resolved YAML round-trips exactly.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "config/scenario.hpp"
+
+namespace lagrange::config {
+namespace {
+
+const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string errorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parseScenario(text, "test.yaml", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Scenario, EveryShippedConfigLoadsAndRoundTrips) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kConfigs)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++count;
+    const Scenario s = loadScenario(entry.path().string());
+    const Scenario again = parseScenario(toYaml(s), "resolved");
+    EXPECT_EQ(toYaml(again), toYaml(s)) << entry.path();
+    EXPECT_EQ(again.controller.gains.kp, s.controller.gains.kp);
+    EXPECT_EQ(again.initial_state.q, s.initial_state.q);
+    EXPECT_EQ(again.reference.offset, s.reference.offset);  // bit-exact doubles
+  }
+  EXPECT_GE(count, 3);
+}
+
+TEST(Scenario, DefaultsAndOverrides) {
+  const std::string base = readFile(kConfigs + "/rigid_2dof.yaml");
+  const Scenario s = parseScenario(base, "rigid_2dof.yaml",
+                                   {"controller.kp=[50, 7]", "duration=2", "controller.a=300"});
+  EXPECT_EQ(s.controller.gains.kp, Eigen::Vector2d(50, 7));
+  EXPECT_EQ(s.controller.gains.a, Eigen::Vector2d(300, 300));  // a scalar applies to every joint
+  EXPECT_EQ(s.duration, 2.0);
+  EXPECT_EQ(s.lastTick(), 2000);
+  EXPECT_EQ(s.substepsPerTick(), 10);
+  EXPECT_DOUBLE_EQ(s.robot.links[1].inertia, 0.01616);  // the Pelican preset
+}
+
+struct BadCase {
+  std::vector<std::string> overrides;
+  std::string fragment;
+};
+
+class BadScenario : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadScenario, NamesTheKeyAndWhatWasExpected) {
+  const std::string base = readFile(kConfigs + "/rigid_2dof.yaml");
+  const std::string error = errorOf(base, GetParam().overrides);
+  EXPECT_NE(error.find(GetParam().fragment), std::string::npos) << "got: " << error;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadScenario,
+    ::testing::Values(
+        BadCase{{"controller.kpp=3"}, "controller.kpp: unknown key"},
+        BadCase{{"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1, colour: red}]"},
+                "robot.links[0].colour: unknown key"},
+        BadCase{{"robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1}]"},
+                "give exactly one of robot.preset (pelican) or robot.links"},
+        BadCase{{"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 0, inertia: 0.1}]"},
+                "robot.links[0].mass: expected a positive number"},
+        BadCase{{"controller.kp=abc"}, "controller.kp: expected a list of 2 positive numbers"},
+        BadCase{{"controller.kd=[-1, 2]"}, "controller.kd: entry 1: expected a positive number, got '-1'"},
+        BadCase{{"controller.a=0"}, "controller.a: expected a list of 2 positive numbers"},
+        BadCase{{"initial_state.q=[1, 2, 3]"}, "initial_state.q: expected a list of 2 numbers"},
+        BadCase{{"reference.alpha=[1]"}, "reference.alpha: expected a list of 2 positive numbers"},
+        BadCase{{"duration=-1"}, "duration: expected a positive number, got '-1'"},
+        BadCase{{"duration=ten"}, "duration: expected a finite number, got 'ten'"},
+        BadCase{{"plant.physics_step=0.0003"}, "must be a whole multiple of physics_step"},
+        BadCase{{"mode=warp"}, "mode: mode 'warp' is not available"},
+        BadCase{{"controller.type=pid"}, "controller.type: unknown controller type 'pid'"},
+        BadCase{{"reference.type=square"}, "reference.type: unknown reference type 'square'"},
+        BadCase{{"robot.preset=puma"}, "robot.preset: unknown preset 'puma'"},
+        BadCase{{"actuator.saturation=[1, 0]"}, "actuator.saturation: entry 2"},
+        BadCase{{"controller.kp"}, "--set 'controller.kp': expected key=value"}));
+
+TEST(Scenario, MissingKeyIsNamed) {
+  std::string text = readFile(kConfigs + "/rigid_2dof.yaml");
+  const auto pos = text.find("  kp:");
+  text.erase(pos, text.find('\n', pos) - pos + 1);
+  EXPECT_NE(errorOf(text).find("controller.kp: missing; expected a list of 2 positive numbers"),
+            std::string::npos)
+      << errorOf(text);
+}
+
+TEST(Scenario, MalformedYamlGivesTheLine) {
+  const std::string error = errorOf("name: x\nduration: [1, 2\nrobot: {}\n");
+  EXPECT_NE(error.find("malformed YAML at line"), std::string::npos) << error;
+}
+
+TEST(Scenario, UnreadableFileIsNamed) {
+  try {
+    loadScenario("/nonexistent/x.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot read '/nonexistent/x.yaml'"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lagrange::config
