@@ -1,0 +1,327 @@
+// End-to-end tests of `lagrange run`: real processes over LCM, in a private
+// network namespace (tests/in_netns.sh). Each run's outputs are checked, and
+// the lockstep trajectory is cross-checked against references written
+// independently of the ODE plant.
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "config/scenario.hpp"
+#include "controller/theorem1.hpp"
+#include "lagrange/plant_position_t.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "support/rk4.hpp"
+#include "support/run_log.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kBin = LAGRANGE_BIN_DIR;
+const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;
+};
+
+std::string freshDir(const std::string& tag) {
+  static std::mt19937_64 rng(std::random_device{}());
+  const fs::path dir = fs::temp_directory_path() / ("lagrange-test-" + tag + "-" + std::to_string(rng() % 1000000000));
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+RunResult lagrange(const std::string& args) {
+  RunResult r;
+  FILE* pipe = popen((kBin + "/lagrange " + args + " 2>&1").c_str(), "r");
+  char buf[4096];
+  while (size_t got = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, got);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// The pid of a process whose argv[0] ends with `name` and whose command line
+// mentions `needle`, or -1.
+pid_t findProcess(const std::string& name, const std::string& needle) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(entry.path() / "cmdline");
+    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string argv0 = cmdline.substr(0, cmdline.find('\0'));
+    if (argv0.size() >= name.size() && argv0.compare(argv0.size() - name.size(), name.size(), name) == 0 &&
+        cmdline.find(needle) != std::string::npos)
+      return static_cast<pid_t>(std::stol(pid));
+  }
+  return -1;
+}
+
+RunResult runScenario(const std::string& config, const std::string& out, const std::string& extra = "") {
+  return lagrange("run " + quote(config) + " --out " + quote(out) + " " + extra);
+}
+
+// One lockstep run of the default scenario, shared by the cross-checks.
+class DefaultRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = freshDir("default");
+    result_ = runScenario(kConfigs + "/rigid_2dof.yaml", dir_);
+  }
+  static std::string dir_;
+  static RunResult result_;
+};
+std::string DefaultRun::dir_;
+RunResult DefaultRun::result_;
+
+TEST_F(DefaultRun, ConvergesAndLeavesEveryOutput) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.output;
+  for (const char* f : {"run.lcm", "config.resolved.yaml", "summary.json"})
+    EXPECT_TRUE(fs::exists(fs::path(dir_) / f)) << f;
+  const auto j = readSummary(dir_);
+  EXPECT_EQ(j["status"], "completed");
+  EXPECT_TRUE(j["gains"]["condition_holds"].get<bool>());
+  EXPECT_GT(j["gains"]["margin"].get<double>(), 0.0);
+  ASSERT_FALSE(j["tracking"]["convergence_time"].is_null());
+  EXPECT_LE(j["tracking"]["convergence_time"].get<double>(), 5.0);
+  EXPECT_LT(j["tracking"]["final_error"].get<double>(), 1e-3);
+  EXPECT_NE(result_.output.find("gain condition eq. (11) HOLDS"), std::string::npos);
+  // The log is complete: every tick's truth, the scenario first.
+  const auto channels = readChannels(dir_ + "/run.lcm");
+  ASSERT_FALSE(channels.empty());
+  EXPECT_EQ(channels.front(), "SCENARIO");
+  EXPECT_EQ(readTruth(dir_ + "/run.lcm").size(), 10001u);
+  EXPECT_EQ(j["messages"]["PLANT_POSITION"]["rejected"], 0);
+  EXPECT_EQ(j["messages"]["CONTROL_COMMAND"]["published"], j["messages"]["CONTROL_COMMAND"]["received"]);
+}
+
+// (a) The analytic model integrated by RK4 under the same sampled controller
+// (zero-order hold at the controller rate) stays within 1e-3 rad of the run.
+TEST_F(DefaultRun, MatchesRk4OfTheAnalyticModelUnderTheSampledController) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.output;
+  const config::Scenario s = config::loadScenario(dir_ + "/config.resolved.yaml");
+  const model::PlanarChain chain(s.robot);
+  const model::Reference reference(s.reference);
+  controller::Theorem1Controller ctl(chain, reference, s.controller.gains, s.controller.initial_filter_state);
+  const auto truth = readTruth(dir_ + "/run.lcm");
+  const int n = s.dof();
+  Eigen::VectorXd x(2 * n);
+  x << s.initial_state.q, s.initial_state.qdot;
+  const double period = s.tickPeriod();
+  double worst = 0.0;
+  for (const TruthSample& sample : truth) {
+    worst = std::max(worst, (sample.q - x.head(n)).cwiseAbs().maxCoeff());
+    const Eigen::VectorXd u = ctl.step(sample.t, x.head(n)).u;
+    for (int k = 0; k < 10; ++k) x = armStep(chain, x, u, period / 10);
+  }
+  std::printf("lockstep vs RK4 (sampled controller): max |dq| = %.3e rad\n", worst);
+  EXPECT_LT(worst, 1e-3);
+}
+
+// (b) The continuous-time closed loop of eqs. (10) and (90): the convergence
+// time agrees with the lockstep run's within 5 %.
+TEST_F(DefaultRun, ConvergenceTimeMatchesTheContinuousClosedLoop) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.output;
+  const config::Scenario s = config::loadScenario(dir_ + "/config.resolved.yaml");
+  const model::PlanarChain chain(s.robot);
+  const model::Reference reference(s.reference);
+  const auto& g = s.controller.gains;
+  const int n = s.dof();
+  // State [q; q'; qc], qc(0) bumpless as in the run.
+  Eigen::VectorXd x(3 * n);
+  const Eigen::VectorXd qt0 = s.initial_state.q - reference.evaluate(0.0).q();
+  x << s.initial_state.q, s.initial_state.qdot,
+      s.controller.initial_filter_state.value_or(-g.b.cwiseProduct(qt0));
+  auto f = [&](double t, const Eigen::VectorXd& st) {
+    const model::ReferenceSample r = reference.evaluate(t);
+    const Eigen::VectorXd q = st.head(n), v = st.segment(n, n), qc = st.tail(n);
+    const Eigen::VectorXd qt = q - r.q();
+    const Eigen::VectorXd theta = qc + g.b.cwiseProduct(qt);
+    const Eigen::VectorXd u = -g.kp.cwiseProduct(qt) - g.kd.cwiseProduct(theta) + chain.inertia(q) * r.qdd() +
+                              chain.coriolis(q, r.qd()) * r.qd() + chain.gravity(q);
+    Eigen::VectorXd d(3 * n);
+    d << v, chain.acceleration(q, v, u), -g.a.cwiseProduct(theta);
+    return d;
+  };
+  logger::TrackingMetrics metrics(reference, s.metrics.tolerance);
+  const double h = 1e-4;
+  for (long long k = 0; k <= s.lastTick(); ++k) {
+    const double t = k * s.tickPeriod();
+    metrics.addSample(k, t, x.head(n));
+    for (int i = 0; i < 10; ++i) x = rk4Step(f, t + i * h, x, h);
+  }
+  const auto continuous = metrics.summary().convergence_time;
+  const auto j = readSummary(dir_);
+  ASSERT_TRUE(continuous.has_value());
+  const double lockstep = j["tracking"]["convergence_time"].get<double>();
+  std::printf("convergence time: lockstep %.4f s, continuous-time closed loop %.4f s\n", lockstep, *continuous);
+  EXPECT_NEAR(lockstep, *continuous, 0.05 * *continuous);
+}
+
+TEST_F(DefaultRun, LockstepRunsAreDeterministic) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.output;
+  const std::string dir = freshDir("repeat");
+  const RunResult again = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=3 -q");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const auto a = readTruth(dir_ + "/run.lcm"), b = readTruth(dir + "/run.lcm");
+  ASSERT_EQ(b.size(), 3001u);
+  for (size_t i = 0; i < b.size(); ++i) {
+    ASSERT_EQ(a[i].q, b[i].q) << "tick " << i;  // bit for bit
+    ASSERT_EQ(a[i].qdot, b[i].qdot) << "tick " << i;
+  }
+}
+
+class ShippedConfig : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedConfig, MeetsItsStatedMetric) {
+  const std::string dir = freshDir(GetParam());
+  const RunResult r = runScenario(kConfigs + "/" + GetParam() + ".yaml", dir, "-q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
+  EXPECT_TRUE(j["gains"]["condition_holds"].get<bool>()) << j["gains"].dump();
+  const auto truth = readTruth(dir + "/run.lcm");
+  for (const auto& sample : truth) ASSERT_TRUE(sample.q.allFinite() && sample.qdot.allFinite());
+}
+
+INSTANTIATE_TEST_SUITE_P(Configs, ShippedConfig, ::testing::Values("rigid_2dof_large_error", "rigid_5link"));
+
+TEST(LargeError, AnglesStayMultiTurnAndConverge) {
+  const std::string dir = freshDir("large");
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof_large_error.yaml", dir, "-q --set duration=4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto truth = readTruth(dir + "/run.lcm");
+  EXPECT_DOUBLE_EQ(truth.front().q(0), 100.0);  // started 16 turns out, not wrapped to (-pi, pi]
+  for (size_t i = 1; i < truth.size(); ++i) {
+    // Continuity: the change per tick matches the mean rate over it. The
+    // transient reaches accelerations of 1e5 rad/s^2, so the trapezoid is
+    // rough; a wrapped angle would be off by 2 pi.
+    const Eigen::VectorXd predicted = 0.5 * 1e-3 * (truth[i].qdot + truth[i - 1].qdot);
+    ASSERT_LT(((truth[i].q - truth[i - 1].q) - predicted).cwiseAbs().maxCoeff(), 2.0) << "tick " << i;
+  }
+  EXPECT_LT(readSummary(dir)["tracking"]["final_error"].get<double>(), 1e-3);
+}
+
+TEST(BadInput, ConfigErrorsStopBeforeAnyProcessStarts) {
+  struct Case {
+    std::string args, fragment;
+  };
+  const std::vector<Case> cases = {
+      {"--set controller.kd=[-1,2]", "controller.kd: entry 1: expected a positive number"},
+      {"--set controller.gain=3", "controller.gain: unknown key"},
+      {"--set initial_state.q=[1,2,3]", "initial_state.q: expected a list of 2 numbers"},
+      {"--set duration=abc", "duration: expected a finite number, got 'abc'"},
+  };
+  for (const Case& c : cases) {
+    const std::string dir = freshDir("bad");
+    const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, c.args);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(c.fragment), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(fs::path(dir) / "run.lcm")) << "a process started for " << c.args;
+  }
+  const RunResult unwritable = runScenario(kConfigs + "/rigid_2dof.yaml", "/proc/lagrange-cannot-write");
+  EXPECT_EQ(unwritable.exit_code, 2);
+  EXPECT_NE(unwritable.output.find("cannot be created or written"), std::string::npos) << unwritable.output;
+}
+
+TEST(BadInput, ViolatedGainConditionWarnsOrRefusesUnderStrict) {
+  const std::string config = kConfigs + "/rigid_2dof.yaml";
+  const RunResult check = lagrange("check-gains " + quote(config) + " --set controller.kd=0.01");
+  EXPECT_EQ(check.exit_code, 1);
+  EXPECT_NE(check.output.find("VIOLATED"), std::string::npos) << check.output;
+  const std::string dir = freshDir("strict");
+  const RunResult strict = runScenario(config, dir, "--strict --set controller.kd=0.01");
+  EXPECT_EQ(strict.exit_code, 2) << strict.output;
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "run.lcm"));
+}
+
+// A dead process: the launcher names it and its signal, stops the rest and
+// keeps the log.
+TEST(Failure, KilledControllerIsNamedAndTheLogIsKept) {
+  const std::string dir = freshDir("kill");
+  std::atomic<bool> done{false};
+  RunResult r;
+  std::thread runner([&] {
+    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=600 -q");
+    done = true;
+  });
+  // Wait until the run is under way, then SIGKILL the controller.
+  bool killed = false;
+  for (int i = 0; i < 200 && !killed && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 100000) continue;
+    const pid_t pid = findProcess("lagrange-controller", dir);
+    killed = pid > 0 && kill(pid, SIGKILL) == 0;
+  }
+  runner.join();
+  ASSERT_TRUE(killed);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("process 'controller' was killed by signal 9"), std::string::npos) << r.output;
+  EXPECT_GT(readTruth(dir + "/run.lcm").size(), 10u);  // the log is readable
+}
+
+// Malformed messages are rejected, counted, and the run still converges.
+TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
+  const std::string dir = freshDir("garbage");
+  const std::string url = "udpm://239.255.76.67:7671?ttl=0";
+  std::atomic<bool> done{false};
+  RunResult r;
+  std::thread runner([&] {
+    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--no-netns -q --lcm-url '" + url + "'");
+    done = true;
+  });
+  lcm_t* lcm = lcm_create(url.c_str());
+  ASSERT_NE(lcm, nullptr);
+  lagrange::plant_position_t wrong_size;  // decodes, but 3 joints on a 2-joint robot
+  wrong_size.header = transport::makeHeader(5, 0.005);
+  wrong_size.num_joints = 3;
+  wrong_size.q = {1, 2, 3};
+  std::vector<uint8_t> wrong(wrong_size.getEncodedSize());
+  wrong_size.encode(wrong.data(), 0, static_cast<int>(wrong.size()));
+  lagrange::plant_position_t nan_msg = wrong_size;
+  nan_msg.num_joints = 2;
+  nan_msg.q = {std::nan(""), 0.0};
+  std::vector<uint8_t> nan_bytes(nan_msg.getEncodedSize());
+  nan_msg.encode(nan_bytes.data(), 0, static_cast<int>(nan_bytes.size()));
+  const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
+  // A bounded burst while the run is under way (after the logger's first
+  // flush), 20 of each kind.
+  while (!done && !fs::exists(fs::path(dir) / "run.lcm")) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  int sent = 0;
+  for (int i = 0; i < 20 && !done; ++i) {
+    lcm_publish(lcm, "PLANT_POSITION", garbage, sizeof garbage);
+    lcm_publish(lcm, "PLANT_POSITION", wrong.data(), static_cast<unsigned>(wrong.size()));
+    lcm_publish(lcm, "PLANT_POSITION", nan_bytes.data(), static_cast<unsigned>(nan_bytes.size()));
+    sent += 3;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  runner.join();
+  lcm_destroy(lcm);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  const long long rejected = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected"];
+  std::printf("sent %d bad messages; the controller rejected %lld\n", sent, rejected);
+  EXPECT_GE(rejected, 3);  // the fault happened ...
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>());  // ... and the run coped
+  std::ifstream log(dir + "/controller.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("undecodable"), std::string::npos);
+  EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
+  EXPECT_NE(text.find("non-finite"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lagrange::testing
