@@ -52,7 +52,7 @@ TEST(Scenario, DefaultsAndOverrides) {
   EXPECT_EQ(s.controller.gains.a, Eigen::Vector2d(300, 300));  // a scalar applies to every joint
   EXPECT_EQ(s.duration, 2.0);
   EXPECT_EQ(s.lastTick(), 2000);
-  EXPECT_EQ(s.substepsPerTick(), 10);
+  EXPECT_EQ(s.substepsPerTick(), 40);  // 1 ms ticks of 25 us physics steps
   EXPECT_DOUBLE_EQ(s.robot.links[1].inertia, 0.01616);  // the Pelican preset
 }
 
