@@ -16,8 +16,8 @@ namespace {
 
 int DoMain(int argc, char** argv) {
   return transport::runProcess(
-      "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).",
-      argc, argv, nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
+      "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).", argc, argv,
+      nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
         const actuator::PassthroughActuator act(s.dof(), s.actuator.saturation);
         transport::Progress progress;
         transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(

@@ -10,8 +10,8 @@
 namespace lagrange::actuator {
 
 struct ActuatorOutput {
-  Eigen::VectorXd tau;                                  ///< torque applied [N m]
-  Eigen::Array<bool, Eigen::Dynamic, 1> saturated;      ///< where tau was clipped
+  Eigen::VectorXd tau;                              ///< torque applied [N m]
+  Eigen::Array<bool, Eigen::Dynamic, 1> saturated;  ///< where tau was clipped
 };
 
 class PassthroughActuator {

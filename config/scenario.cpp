@@ -42,8 +42,7 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
       chain.back()[parts[i]] = YAML::Node(YAML::NodeType::Map);
       next = chain.back()[parts[i]];
     }
-    if (!next.IsMap())
-      throw ConfigError("config: --set " + key + ": '" + parts[i] + "' is not a map");
+    if (!next.IsMap()) throw ConfigError("config: --set " + key + ": '" + parts[i] + "' is not a map");
     chain.push_back(next);
   }
   chain.back()[parts.back()] = value;
@@ -112,16 +111,14 @@ Scenario readScenario(MapReader root) {
   s.duration = root.positive("duration");
   s.mode = root.text("mode", s.mode);
   if (s.mode != "lockstep")
-    root.fail("mode", "mode '" + s.mode +
-                          "' is not available in this version; expected: lockstep");
+    root.fail("mode", "mode '" + s.mode + "' is not available in this version; expected: lockstep");
 
   s.robot = readRobot(root.map("robot"));
   const int n = s.dof();
 
   MapReader init = root.map("initial_state");
   s.initial_state.q = init.vector("q", n, false, false);
-  s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false)
-                                          : Eigen::VectorXd::Zero(n);
+  s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false) : Eigen::VectorXd::Zero(n);
   init.finish({"q", "qdot"});
 
   s.reference = readReference(root.map("reference"), n);
@@ -133,8 +130,7 @@ Scenario readScenario(MapReader root) {
     plant.finish({"physics_step", "publish_rate"});
     const double ratio = s.tickPeriod() / s.plant.physics_step;
     if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
-      plant.fail("physics_step", "the publish period 1/publish_rate = " +
-                                     std::to_string(s.tickPeriod()) +
+      plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +
                                      " s must be a whole multiple of physics_step");
   }
   const double ticks = s.duration * s.plant.publish_rate;
@@ -182,8 +178,8 @@ Scenario readScenario(MapReader root) {
     if (s.lockstep.logger_window < 1) l.fail("logger_window", "expected a whole number >= 1");
     l.finish({"retransmit_timeout", "logger_window"});
   }
-  root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference",
-               "plant", "actuator", "controller", "metrics", "lockstep"});
+  root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference", "plant",
+               "actuator", "controller", "metrics", "lockstep"});
   return s;
 }
 
@@ -195,12 +191,10 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError("config: " + source + ": malformed YAML at line " +
-                      std::to_string(e.mark.line + 1) + ", column " +
-                      std::to_string(e.mark.column + 1) + ": " + e.msg);
+    throw ConfigError("config: " + source + ": malformed YAML at line " + std::to_string(e.mark.line + 1) +
+                      ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
-  if (!root.IsMap())
-    throw ConfigError("config: " + source + ": expected a map of keys at the top level");
+  if (!root.IsMap()) throw ConfigError("config: " + source + ": expected a map of keys at the top level");
   for (const auto& o : overrides) applyOverride(root, o);
   try {
     return readScenario(MapReader(root, ""));
@@ -240,9 +234,9 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;
   out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
   for (const auto& l : s.robot.links) {
-    out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length
-        << YAML::Key << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value
-        << l.mass << YAML::Key << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length << YAML::Key
+        << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value << l.mass << YAML::Key
+        << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;
 

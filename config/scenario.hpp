@@ -34,7 +34,7 @@ struct PlantConfig {
 };
 
 struct ActuatorConfig {
-  int order = 0;                           ///< m: integrator-chain order (only 0 so far)
+  int order = 0;                              ///< m: integrator-chain order (only 0 so far)
   std::optional<Eigen::VectorXd> saturation;  ///< per-joint |tau| limit [N m]
 };
 
@@ -46,8 +46,8 @@ struct ControllerConfig {
 };
 
 struct MetricsConfig {
-  double tolerance = 1e-3;             ///< on ||q~|| [rad]
-  double convergence_deadline = 5.0;   ///< stated metric: converged by this sim time [s]
+  double tolerance = 1e-3;            ///< on ||q~|| [rad]
+  double convergence_deadline = 5.0;  ///< stated metric: converged by this sim time [s]
 };
 
 struct LockstepConfig {

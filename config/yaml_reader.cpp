@@ -47,9 +47,7 @@ void MapReader::fail(const std::string& key, const std::string& what) const {
   throw ConfigError("config: " + keyPath(key) + ": " + what + where);
 }
 
-bool MapReader::has(const std::string& key) const {
-  return node_[key].IsDefined() && !node_[key].IsNull();
-}
+bool MapReader::has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
 
 YAML::Node MapReader::child(const std::string& key) { return node_[key]; }
 
@@ -78,8 +76,7 @@ double MapReader::positive(const std::string& key, double fallback) {
 int MapReader::integer(const std::string& key, int fallback) {
   if (!has(key)) return fallback;
   const double v = number(key);
-  if (v != std::floor(v) || std::abs(v) > 1e9)
-    fail(key, "expected a whole number, got " + show(node_[key]));
+  if (v != std::floor(v) || std::abs(v) > 1e9) fail(key, "expected a whole number, got " + show(node_[key]));
   return static_cast<int>(v);
 }
 
@@ -93,8 +90,7 @@ std::string MapReader::text(const std::string& key, const std::string& fallback)
   return has(key) ? text(key) : fallback;
 }
 
-Eigen::VectorXd MapReader::vector(const std::string& key, int n, bool allow_scalar,
-                                  bool positive_only) {
+Eigen::VectorXd MapReader::vector(const std::string& key, int n, bool allow_scalar, bool positive_only) {
   const std::string kind = positive_only ? "positive number" : "number";
   const std::string expected = "a list of " + std::to_string(n) + " " + kind + "s (one per joint)" +
                                (allow_scalar ? " or a single " + kind + " for every joint" : "");
@@ -119,8 +115,8 @@ Eigen::VectorXd MapReader::vector(const std::string& key, int n, bool allow_scal
   return out;
 }
 
-std::optional<Eigen::VectorXd> MapReader::optionalVector(const std::string& key, int n,
-                                                         bool allow_scalar, bool positive_only) {
+std::optional<Eigen::VectorXd> MapReader::optionalVector(const std::string& key, int n, bool allow_scalar,
+                                                         bool positive_only) {
   if (!has(key)) return std::nullopt;
   return vector(key, n, allow_scalar, positive_only);
 }

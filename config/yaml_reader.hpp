@@ -22,8 +22,8 @@ class MapReader {
   bool has(const std::string& key) const;
   YAML::Node child(const std::string& key);  ///< marks the key as read; may be undefined
 
-  double number(const std::string& key);                       ///< required
-  double number(const std::string& key, double fallback);      ///< optional
+  double number(const std::string& key);                   ///< required
+  double number(const std::string& key, double fallback);  ///< optional
   double positive(const std::string& key);
   double positive(const std::string& key, double fallback);
   int integer(const std::string& key, int fallback);

@@ -4,8 +4,7 @@
 
 namespace lagrange::controller {
 
-DirtyDerivativeFilter::DirtyDerivativeFilter(Eigen::VectorXd a, Eigen::VectorXd b,
-                                             Eigen::VectorXd state)
+DirtyDerivativeFilter::DirtyDerivativeFilter(Eigen::VectorXd a, Eigen::VectorXd b, Eigen::VectorXd state)
     : a_(std::move(a)), b_(std::move(b)), state_(std::move(state)) {
   if (a_.size() != b_.size() || a_.size() != state_.size())
     throw std::invalid_argument("DirtyDerivativeFilter: a, b and state must have the same size");

@@ -11,7 +11,6 @@
 
 #include <spdlog/spdlog.h>
 
-
 #include "controller/gain_report.hpp"
 #include "controller/theorem1.hpp"
 #include "transport/channels.hpp"
@@ -22,8 +21,7 @@
 namespace lagrange {
 namespace {
 
-lagrange::control_command_t toMessage(const controller::Theorem1Output& out, int64_t tick,
-                                      double sim_time) {
+lagrange::control_command_t toMessage(const controller::Theorem1Output& out, int64_t tick, double sim_time) {
   lagrange::control_command_t m;
   m.header = transport::makeHeader(tick, sim_time);
   m.input_position_tick = tick;
@@ -39,8 +37,7 @@ lagrange::control_command_t toMessage(const controller::Theorem1Output& out, int
 int DoMain(int argc, char** argv) {
   bool strict = false;
   return transport::runProcess(
-      "controller", "Theorem 1 position-feedback tracking controller (eq. 90) over LCM.", argc,
-      argv,
+      "controller", "Theorem 1 position-feedback tracking controller (eq. 90) over LCM.", argc, argv,
       [&](CLI::App& app) {
         app.add_flag("--strict", strict, "Refuse to start when the gain condition eq. (11) is violated");
       },

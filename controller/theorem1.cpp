@@ -16,36 +16,32 @@ void requirePositive(const Eigen::VectorXd& v, const char* name, int n) {
 }
 }  // namespace
 
-Theorem1Controller::Theorem1Controller(const model::PlanarChain& chain,
-                                       const model::Reference& reference, Theorem1Gains gains,
+Theorem1Controller::Theorem1Controller(const model::PlanarChain& chain, const model::Reference& reference,
+                                       Theorem1Gains gains,
                                        std::optional<Eigen::VectorXd> initial_filter_state)
     : chain_(chain),
       reference_(reference),
       gains_(std::move(gains)),
-      filter_(gains_.a, gains_.b,
-              initial_filter_state.value_or(Eigen::VectorXd::Zero(gains_.a.size()))),
+      filter_(gains_.a, gains_.b, initial_filter_state.value_or(Eigen::VectorXd::Zero(gains_.a.size()))),
       bumpless_(!initial_filter_state) {
   const int n = chain_.dof();
   if (reference_.dof() != n)
-    throw std::invalid_argument("Theorem1Controller: reference has " +
-                                std::to_string(reference_.dof()) + " joints, robot has " +
-                                std::to_string(n));
+    throw std::invalid_argument("Theorem1Controller: reference has " + std::to_string(reference_.dof()) +
+                                " joints, robot has " + std::to_string(n));
   requirePositive(gains_.kp, "kp", n);
   requirePositive(gains_.kd, "kd", n);
   requirePositive(gains_.a, "a", n);
   requirePositive(gains_.b, "b", n);
   if (filter_.state().size() != n)
-    throw std::invalid_argument("Theorem1Controller: initial filter state must have " +
-                                std::to_string(n) + " entries");
+    throw std::invalid_argument("Theorem1Controller: initial filter state must have " + std::to_string(n) +
+                                " entries");
 }
 
-Eigen::VectorXd Theorem1Controller::law(const model::ReferenceSample& ref,
-                                        const Eigen::VectorXd& q,
+Eigen::VectorXd Theorem1Controller::law(const model::ReferenceSample& ref, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& theta) const {
   const Eigen::VectorXd q_error = q - ref.q();
-  return -gains_.kp.cwiseProduct(q_error) - gains_.kd.cwiseProduct(theta) +
-         chain_.inertia(q) * ref.qdd() + chain_.coriolis(q, ref.qd()) * ref.qd() +
-         chain_.gravity(q);
+  return -gains_.kp.cwiseProduct(q_error) - gains_.kd.cwiseProduct(theta) + chain_.inertia(q) * ref.qdd() +
+         chain_.coriolis(q, ref.qd()) * ref.qd() + chain_.gravity(q);
 }
 
 Theorem1Output Theorem1Controller::step(double t, const Eigen::VectorXd& q) {

@@ -39,8 +39,8 @@ class Theorem1Controller {
   /// at the first step, so theta(t0) = 0 and the first command has no
   /// damping kick from a filter that has not seen the error yet.
   /// @throws std::invalid_argument on size mismatch or non-positive gains.
-  Theorem1Controller(const model::PlanarChain& chain, const model::Reference& reference,
-                     Theorem1Gains gains, std::optional<Eigen::VectorXd> initial_filter_state);
+  Theorem1Controller(const model::PlanarChain& chain, const model::Reference& reference, Theorem1Gains gains,
+                     std::optional<Eigen::VectorXd> initial_filter_state);
 
   /// u at time t from the measured q. Before computing it, the filter is
   /// advanced from the previous measurement's time to t with the previous q~

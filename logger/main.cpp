@@ -10,12 +10,12 @@
 /// The first event of the log is the resolved scenario on channel SCENARIO,
 /// so a log describes itself.
 
-#include <lcm/lcm-cpp.hpp>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <lcm/lcm-cpp.hpp>
 
 #include "controller/gain_report.hpp"
 #include "logger/summary.hpp"
@@ -94,7 +94,9 @@ int DoMain(int argc, char** argv) {
             });
         node.subscribe<lagrange::actuator_state_t>(
             transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
-            [&](const lagrange::actuator_state_t& m) { metrics.addTorque(transport::toEigen(m.tau_applied)); });
+            [&](const lagrange::actuator_state_t& m) {
+              metrics.addTorque(transport::toEigen(m.tau_applied));
+            });
         std::optional<Clock::time_point> plant_finished_at;
         node.subscribe<lagrange::status_t>(
             transport::kStatus, [](const auto& m) { return transport::validate(m); },

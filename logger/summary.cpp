@@ -47,8 +47,8 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       total["received"] = total["received"].get<long long>() + c.received;
       total["rejected"] = total["rejected"].get<long long>() + c.rejected;
     }
-    processes[name] = {{"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message},
-                       {"channels", channels}};
+    processes[name] = {
+        {"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message}, {"channels", channels}};
   }
   j["messages"] = messages;
   j["processes"] = processes;

@@ -2,8 +2,8 @@
 /// @file
 /// summary.json: the numbers of a run (every key in docs/summary.md).
 
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "config/scenario.hpp"

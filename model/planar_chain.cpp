@@ -28,8 +28,7 @@ PlanarChain::PlanarChain(ChainParams params) : params_(std::move(params)) {
     if (!(l.com >= 0.0) || !std::isfinite(l.com))
       throw std::invalid_argument(which + "com must be non-negative and finite");
   }
-  if (!std::isfinite(params_.gravity))
-    throw std::invalid_argument("PlanarChain: gravity must be finite");
+  if (!std::isfinite(params_.gravity)) throw std::invalid_argument("PlanarChain: gravity must be finite");
 
   // c(i, a): lever arm of absolute angle a in the centre of mass of link i.
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
@@ -45,9 +44,8 @@ PlanarChain::PlanarChain(ChainParams params) : params_(std::move(params)) {
 
 void PlanarChain::checkSize(const Eigen::VectorXd& x, const char* what) const {
   if (x.size() != dof())
-    throw std::invalid_argument(std::string("PlanarChain: ") + what + " has " +
-                                std::to_string(x.size()) + " entries, expected " +
-                                std::to_string(dof()));
+    throw std::invalid_argument(std::string("PlanarChain: ") + what + " has " + std::to_string(x.size()) +
+                                " entries, expected " + std::to_string(dof()));
 }
 
 Eigen::VectorXd PlanarChain::absoluteAngles(const Eigen::VectorXd& q) const {
@@ -111,8 +109,7 @@ std::vector<Eigen::MatrixXd> PlanarChain::coriolisPerVelocity(const Eigen::Vecto
   std::vector<Eigen::MatrixXd> ck(n, Eigen::MatrixXd::Zero(n, n));
   for (int k = 0; k < n; ++k)
     for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        ck[k](i, j) = 0.5 * (dd[k](i, j) + dd[j](i, k) - dd[i](j, k));
+      for (int j = 0; j < n; ++j) ck[k](i, j) = 0.5 * (dd[k](i, j) + dd[j](i, k) - dd[i](j, k));
   return ck;
 }
 

@@ -23,10 +23,10 @@ namespace lagrange::model {
 
 /// Physical parameters of one link.
 struct LinkParams {
-  double length = 0.0;       ///< l: joint-to-joint length [m]
-  double com = 0.0;          ///< lc: distance from the link's joint to its centre of mass [m]
-  double mass = 0.0;         ///< m [kg]
-  double inertia = 0.0;      ///< I: moment of inertia about the centre of mass, normal to the plane [kg m^2]
+  double length = 0.0;   ///< l: joint-to-joint length [m]
+  double com = 0.0;      ///< lc: distance from the link's joint to its centre of mass [m]
+  double mass = 0.0;     ///< m [kg]
+  double inertia = 0.0;  ///< I: moment of inertia about the centre of mass, normal to the plane [kg m^2]
 };
 
 /// Parameters of the whole chain (constant; Pinocchio's "Model").

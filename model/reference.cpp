@@ -6,18 +6,15 @@
 
 namespace lagrange::model {
 
-const char* toString(ReferenceType type) {
-  return type == ReferenceType::kSine ? "sine" : "smooth_sine";
-}
+const char* toString(ReferenceType type) { return type == ReferenceType::kSine ? "sine" : "smooth_sine"; }
 
 Reference::Reference(ReferenceParams params) : params_(std::move(params)) {
   const auto n = params_.offset.size();
   if (n < 1) throw std::invalid_argument("reference: offset must have at least one entry");
   auto check = [n](const Eigen::VectorXd& v, const char* name) {
     if (v.size() != n)
-      throw std::invalid_argument(std::string("reference: ") + name + " has " +
-                                  std::to_string(v.size()) + " entries, expected " +
-                                  std::to_string(n) + " (one per joint)");
+      throw std::invalid_argument(std::string("reference: ") + name + " has " + std::to_string(v.size()) +
+                                  " entries, expected " + std::to_string(n) + " (one per joint)");
     if (!v.allFinite()) throw std::invalid_argument(std::string("reference: ") + name + " must be finite");
   };
   check(params_.amplitude, "amplitude");
@@ -39,10 +36,14 @@ double sineDerivative(double b, double c, double w, double p, int k, double t) {
   const double x = w * t + p;
   const double wk = std::pow(w, k);
   switch (k % 4) {
-    case 0: return (k == 0 ? b : 0.0) + c * wk * std::sin(x);
-    case 1: return c * wk * std::cos(x);
-    case 2: return -c * wk * std::sin(x);
-    default: return -c * wk * std::cos(x);
+    case 0:
+      return (k == 0 ? b : 0.0) + c * wk * std::sin(x);
+    case 1:
+      return c * wk * std::cos(x);
+    case 2:
+      return -c * wk * std::sin(x);
+    default:
+      return -c * wk * std::cos(x);
   }
 }
 
@@ -51,10 +52,14 @@ double smoothStartDerivative(double alpha, int k, double t) {
   const double e = std::exp(-alpha * t * t * t);
   const double p1 = -3.0 * alpha * t * t, p2 = -6.0 * alpha * t, p3 = -6.0 * alpha;
   switch (k) {
-    case 0: return 1.0 - e;
-    case 1: return -p1 * e;
-    case 2: return -(p2 + p1 * p1) * e;
-    case 3: return -(p3 + 3.0 * p1 * p2 + p1 * p1 * p1) * e;
+    case 0:
+      return 1.0 - e;
+    case 1:
+      return -p1 * e;
+    case 2:
+      return -(p2 + p1 * p1) * e;
+    case 3:
+      return -(p3 + 3.0 * p1 * p2 + p1 * p1 * p1) * e;
     default:
       return -(4.0 * p1 * p3 + 3.0 * p2 * p2 + 6.0 * p1 * p1 * p2 + p1 * p1 * p1 * p1) * e;
   }
@@ -73,8 +78,8 @@ double Reference::jointDerivative(int joint, int order, double t) const {
   const double alpha = params_.alpha(joint);
   double sum = 0.0;
   for (int j = 0; j <= order; ++j)
-    sum += kBinomial[order][j] * smoothStartDerivative(alpha, j, t) *
-           sineDerivative(b, c, w, p, order - j, t);
+    sum +=
+        kBinomial[order][j] * smoothStartDerivative(alpha, j, t) * sineDerivative(b, c, w, p, order - j, t);
   return sum;
 }
 

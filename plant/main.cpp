@@ -91,8 +91,8 @@ int DoMain(int argc, char** argv) {
           while (logger_tick == -2 || k - logger_tick > s.lockstep.logger_window) {
             if (transport::stopRequested()) break;
             if (logger_tick == -2 && Clock::now() > startup_deadline)
-              throw std::runtime_error("no STATUS from the logger within " +
-                                       std::to_string(startup_timeout) + " s; is it running on the same LCM URL?");
+              throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
+                                       " s; is it running on the same LCM URL?");
             node.handle(20);
           }
           if (transport::stopRequested()) {

@@ -45,11 +45,8 @@ struct PlantSim::Ode {
   }
 };
 
-PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial,
-                   double physics_step)
-    : dof_(static_cast<int>(params.links.size())),
-      physics_step_(physics_step),
-      gravity_(params.gravity) {
+PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step)
+    : dof_(static_cast<int>(params.links.size())), physics_step_(physics_step), gravity_(params.gravity) {
   model::PlanarChain validated(params);  // validates the parameters
   if (!(physics_step > 0.0) || !std::isfinite(physics_step))
     throw std::invalid_argument("plant: physics_step must be positive and finite");
@@ -76,7 +73,7 @@ PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial,
     const model::LinkParams& link = params.links[i];
     phi += initial.q(i);
     phidot += initial.qdot(i);
-    const double dx = std::sin(phi), dy = -std::cos(phi);  // link direction
+    const double dx = std::sin(phi), dy = -std::cos(phi);                   // link direction
     const double vx = phidot * std::cos(phi), vy = phidot * std::sin(phi);  // d(direction)/dt
 
     dBodyID body = dBodyCreate(ode_->world);
@@ -131,8 +128,8 @@ void PlantSim::updateJointAngles() {
 
 void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
   if (tau.size() != dof_)
-    throw std::invalid_argument("plant: torque has " + std::to_string(tau.size()) +
-                                " entries, expected " + std::to_string(dof_));
+    throw std::invalid_argument("plant: torque has " + std::to_string(tau.size()) + " entries, expected " +
+                                std::to_string(dof_));
   for (int s = 0; s < substeps; ++s) {
     for (int i = 0; i < dof_; ++i) {
       dBodyAddTorque(ode_->bodies[i], 0, 0, tau(i));

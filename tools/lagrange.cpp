@@ -4,7 +4,6 @@
 ///   check-gains   print the gain conditions of a scenario without running it
 
 #include <CLI/CLI.hpp>
-
 #include <filesystem>
 #include <iostream>
 
@@ -33,27 +32,28 @@ int DoMain(int argc, char** argv) {
 
   tools::RunOptions run;
   bool no_netns = false;
-  CLI::App* run_cmd = app.add_subcommand(
-      "run", "Run a scenario: plant, actuator, controller and logger as LCM processes");
+  CLI::App* run_cmd =
+      app.add_subcommand("run", "Run a scenario: plant, actuator, controller and logger as LCM processes");
   run_cmd->add_option("config", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml")
       ->required()
       ->check(CLI::ExistingFile);
   run_cmd->add_option("-o,--out", run.out_dir, "Output directory (created if missing)")->required();
-  run_cmd->add_option("--set", run.overrides,
-                      "Override a config key: key=value, value in YAML (e.g. controller.kp=[100,20]); repeatable");
+  run_cmd->add_option(
+      "--set", run.overrides,
+      "Override a config key: key=value, value in YAML (e.g. controller.kp=[100,20]); repeatable");
   run_cmd->add_flag("--no-netns", no_netns,
                     "Use the machine's network instead of a private network namespace "
                     "(LCM traffic then reaches other processes on this host)");
-  run_cmd->add_option("--lcm-url", run.lcm_url,
-                      "LCM URL for the run (default: a fresh udpm port, TTL 0)");
+  run_cmd->add_option("--lcm-url", run.lcm_url, "LCM URL for the run (default: a fresh udpm port, TTL 0)");
   run_cmd->add_flag("--strict", run.strict, "Refuse to run when the gain condition eq. (11) is violated");
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
 
   std::string gains_config;
   std::vector<std::string> gains_overrides;
-  CLI::App* gains_cmd = app.add_subcommand(
-      "check-gains", "Print the gain condition of a scenario (k_c, k_delta, eq. 11) without running it; "
-                     "exit 1 if it is violated");
+  CLI::App* gains_cmd =
+      app.add_subcommand("check-gains",
+                         "Print the gain condition of a scenario (k_c, k_delta, eq. 11) without running it; "
+                         "exit 1 if it is violated");
   gains_cmd->add_option("config", gains_config, "Scenario YAML file")->required()->check(CLI::ExistingFile);
   gains_cmd->add_option("--set", gains_overrides, "Override a config key: key=value; repeatable");
 

@@ -16,8 +16,9 @@ constexpr const char* kEnvMarker = "LAGRANGE_PRIVATE_NETNS";
 std::string findIp() {
   for (const char* p : {"/usr/sbin/ip", "/sbin/ip", "/usr/bin/ip", "/bin/ip"})
     if (access(p, X_OK) == 0) return p;
-  throw std::runtime_error("the 'ip' command (Debian package iproute2) is needed to set up the "
-                           "private network namespace; install it or run with --no-netns");
+  throw std::runtime_error(
+      "the 'ip' command (Debian package iproute2) is needed to set up the "
+      "private network namespace; install it or run with --no-netns");
 }
 
 void runIp(const std::string& ip, const std::vector<std::string>& args) {

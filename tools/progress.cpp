@@ -45,8 +45,8 @@ void ProgressDisplay::draw() {
     std::printf("\r[%s] t = %7.2f / %.2f s  %5.1fx real time  |q~| = %s   ", bar.c_str(), sim_time_,
                 duration_, rtf, err);
   } else {
-    std::printf("progress: t = %.2f / %.2f s (%3.0f%%), %.1fx real time, |q~| = %s\n", sim_time_,
-                duration_, 100.0 * fraction, rtf, err);
+    std::printf("progress: t = %.2f / %.2f s (%3.0f%%), %.1fx real time, |q~| = %s\n", sim_time_, duration_,
+                100.0 * fraction, rtf, err);
   }
   std::fflush(stdout);
   drawn_ = true;

@@ -12,8 +12,8 @@ class ProgressDisplay {
  public:
   ProgressDisplay(double duration, bool quiet);
   void update(double sim_time, double tracking_error);  ///< latest values from the logger
-  void tick();    ///< redraw if due
-  void finish();  ///< end the line on a terminal
+  void tick();                                          ///< redraw if due
+  void finish();                                        ///< end the line on a terminal
 
  private:
   void draw();

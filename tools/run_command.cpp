@@ -153,10 +153,10 @@ int runScenario(const RunOptions& opt) {
   };
   // The logger first, so that it records from the first tick; the plant waits
   // for the logger's STATUS before it starts the clock anyway.
-  std::vector<ChildSpec> specs = {spec("logger", {"--out", out_dir}),
-                                  spec("controller", opt.strict ? std::vector<std::string>{"--strict"}
-                                                                : std::vector<std::string>{}),
-                                  spec("actuator", {}), spec("plant", {})};
+  std::vector<ChildSpec> specs = {
+      spec("logger", {"--out", out_dir}),
+      spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{}),
+      spec("actuator", {}), spec("plant", {})};
   for (const auto& s : specs) supervisor.start(s);
 
   int exit_code = 0;

@@ -12,9 +12,8 @@ LcmNode::LcmNode(const std::string& process_name, const std::string& url)
                              "and a network interface with multicast enabled");
 }
 
-void LcmNode::subscribeRaw(
-    const std::string& channel_regex,
-    std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle) {
+void LcmNode::subscribeRaw(const std::string& channel_regex,
+                           std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle) {
   handlers_.push_back(std::make_unique<RawHandler>(RawHandler{std::move(handle)}));
   lcm::Subscription* sub = lcm_.subscribe(channel_regex, &RawHandler::onMessage, handlers_.back().get());
   sub->setQueueCapacity(kQueueCapacity);

@@ -5,9 +5,8 @@
 /// message is rejected, counted and logged once per kind, never crashes the
 /// process and never reaches the mathematics.
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <functional>
+#include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <memory>
 #include <set>
@@ -80,8 +79,7 @@ template <class Msg>
 void LcmNode::subscribe(const std::string& channel, std::function<Rejection(const Msg&)> validate,
                         std::function<void(const Msg&)> handle) {
   counters_[channel];
-  auto callback = [this, channel, validate, handle](const lcm::ReceiveBuffer* rbuf,
-                                                      const std::string&) {
+  auto callback = [this, channel, validate, handle](const lcm::ReceiveBuffer* rbuf, const std::string&) {
     Msg msg;
     bool decoded = false;
     try {

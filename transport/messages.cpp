@@ -60,16 +60,18 @@ std::string validate(const lagrange::plant_truth_t& m, int joints) {
 
 std::string validate(const lagrange::control_command_t& m, int joints) {
   std::string why = checkHeader(m.header);
-  return why.empty() ? checkArrays(m.num_joints, joints,
-                                   {&m.u, &m.q_desired, &m.q_error, &m.theta, &m.filter_state})
-                     : why;
+  return why.empty()
+             ? checkArrays(m.num_joints, joints, {&m.u, &m.q_desired, &m.q_error, &m.theta, &m.filter_state})
+             : why;
 }
 
 std::string validate(const lagrange::actuator_state_t& m, int joints) {
   std::string why = checkHeader(m.header);
   if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.u_commanded, &m.tau_applied});
-  if (why.empty() && static_cast<int>(m.saturated.size()) != joints) why = "array size differs from num_joints";
-  if (why.empty() && (m.order < 0 || static_cast<int>(m.xi.size()) != m.order)) why = "xi rows differ from order";
+  if (why.empty() && static_cast<int>(m.saturated.size()) != joints)
+    why = "array size differs from num_joints";
+  if (why.empty() && (m.order < 0 || static_cast<int>(m.xi.size()) != m.order))
+    why = "xi rows differ from order";
   for (const auto& row : m.xi)
     if (why.empty()) why = checkArrays(m.num_joints, joints, {&row});
   return why;

@@ -4,8 +4,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -75,10 +75,8 @@ int runProcess(const std::string& name, const std::string& description, int argc
   std::string config_path;
   std::string url = kDefaultLcmUrl;
   std::vector<std::string> overrides;
-  app.add_option("-c,--config", config_path, "Scenario YAML file (e.g. config.resolved.yaml)")
-      ->required();
-  app.add_option("--lcm-url", url, "LCM URL shared by every process of the run")
-      ->capture_default_str();
+  app.add_option("-c,--config", config_path, "Scenario YAML file (e.g. config.resolved.yaml)")->required();
+  app.add_option("--lcm-url", url, "LCM URL shared by every process of the run")->capture_default_str();
   app.add_option("--set", overrides, "Override a config key, key=value (YAML value); repeatable");
   if (add_options) add_options(app);
   try {

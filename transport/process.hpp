@@ -6,7 +6,6 @@
 /// a runtime failure exits 1). Process mains stay thin by building on it.
 
 #include <CLI/CLI.hpp>
-
 #include <functional>
 #include <string>
 

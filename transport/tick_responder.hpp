@@ -17,8 +17,8 @@
 namespace lagrange::transport {
 
 template <class In, class Out>
-void respondPerTick(LcmNode& node, const std::string& in_channel, const std::string& out_channel,
-                    int joints, Progress& progress, std::function<Out(const In&)> compute) {
+void respondPerTick(LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
+                    Progress& progress, std::function<Out(const In&)> compute) {
   auto cached = std::make_shared<std::optional<Out>>();
   node.subscribe<In>(
       in_channel, [joints](const In& m) { return validate(m, joints); },

@@ -2,12 +2,13 @@
 // network namespace (tests/in_netns.sh). Each run's outputs are checked, and
 // the lockstep trajectory is cross-checked against references written
 // independently of the ODE plant.
+#include "config/scenario.hpp"
+
+#include <gtest/gtest.h>
 #include <lcm/lcm.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <atomic>
 #include <filesystem>
@@ -16,7 +17,6 @@
 #include <sstream>
 #include <thread>
 
-#include "config/scenario.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "logger/tracking_metrics.hpp"
@@ -37,7 +37,8 @@ struct RunResult {
 
 std::string freshDir(const std::string& tag) {
   static std::mt19937_64 rng(std::random_device{}());
-  const fs::path dir = fs::temp_directory_path() / ("lagrange-test-" + tag + "-" + std::to_string(rng() % 1000000000));
+  const fs::path dir =
+      fs::temp_directory_path() / ("lagrange-test-" + tag + "-" + std::to_string(rng() % 1000000000));
   fs::remove_all(dir);
   return dir.string();
 }
@@ -167,7 +168,8 @@ TEST_F(DefaultRun, ConvergenceTimeMatchesTheContinuousClosedLoop) {
   const auto j = readSummary(dir_);
   ASSERT_TRUE(continuous.has_value());
   const double lockstep = j["tracking"]["convergence_time"].get<double>();
-  std::printf("convergence time: lockstep %.4f s, continuous-time closed loop %.4f s\n", lockstep, *continuous);
+  std::printf("convergence time: lockstep %.4f s, continuous-time closed loop %.4f s\n", lockstep,
+              *continuous);
   EXPECT_NEAR(lockstep, *continuous, 0.05 * *continuous);
 }
 
@@ -299,7 +301,8 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
   // A bounded burst while the run is under way (after the logger's first
   // flush), 20 of each kind.
-  while (!done && !fs::exists(fs::path(dir) / "run.lcm")) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (!done && !fs::exists(fs::path(dir) / "run.lcm"))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   int sent = 0;
   for (int i = 0; i < 20 && !done; ++i) {
     lcm_publish(lcm, "PLANT_POSITION", garbage, sizeof garbage);
@@ -314,7 +317,7 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   const auto j = readSummary(dir);
   const long long rejected = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected"];
   std::printf("sent %d bad messages; the controller rejected %lld\n", sent, rejected);
-  EXPECT_GE(rejected, 3);  // the fault happened ...
+  EXPECT_GE(rejected, 3);                         // the fault happened ...
   EXPECT_TRUE(j["tracking"]["met"].get<bool>());  // ... and the run coped
   std::ifstream log(dir + "/controller.log");
   const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());

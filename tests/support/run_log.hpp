@@ -3,10 +3,9 @@
 /// Reading a run's outputs in tests: PLANT_TRUTH samples from run.lcm
 /// (through LCM's own log API) and summary.json.
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <Eigen/Dense>
 #include <fstream>
+#include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>

@@ -46,13 +46,13 @@ TEST(Scenario, EveryShippedConfigLoadsAndRoundTrips) {
 
 TEST(Scenario, DefaultsAndOverrides) {
   const std::string base = readFile(kConfigs + "/rigid_2dof.yaml");
-  const Scenario s = parseScenario(base, "rigid_2dof.yaml",
-                                   {"controller.kp=[50, 7]", "duration=2", "controller.a=300"});
+  const Scenario s =
+      parseScenario(base, "rigid_2dof.yaml", {"controller.kp=[50, 7]", "duration=2", "controller.a=300"});
   EXPECT_EQ(s.controller.gains.kp, Eigen::Vector2d(50, 7));
   EXPECT_EQ(s.controller.gains.a, Eigen::Vector2d(300, 300));  // a scalar applies to every joint
   EXPECT_EQ(s.duration, 2.0);
   EXPECT_EQ(s.lastTick(), 2000);
-  EXPECT_EQ(s.substepsPerTick(), 40);  // 1 ms ticks of 25 us physics steps
+  EXPECT_EQ(s.substepsPerTick(), 40);                   // 1 ms ticks of 25 us physics steps
   EXPECT_DOUBLE_EQ(s.robot.links[1].inertia, 0.01616);  // the Pelican preset
 }
 
@@ -73,8 +73,9 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, BadScenario,
     ::testing::Values(
         BadCase{{"controller.kpp=3"}, "controller.kpp: unknown key"},
-        BadCase{{"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1, colour: red}]"},
-                "robot.links[0].colour: unknown key"},
+        BadCase{
+            {"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1, colour: red}]"},
+            "robot.links[0].colour: unknown key"},
         BadCase{{"robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1}]"},
                 "give exactly one of robot.preset (pelican) or robot.links"},
         BadCase{{"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 0, inertia: 0.1}]"},

@@ -77,8 +77,8 @@ TEST(Theorem1, LawIsEquation90c) {
   const Eigen::Vector2d qt = q - r.q();
   const Eigen::Vector2d theta = Eigen::Vector2d(0.3, -0.2) + fx.gains.b.cwiseProduct(qt);
   const Eigen::Vector2d expected = -fx.gains.kp.cwiseProduct(qt) - fx.gains.kd.cwiseProduct(theta) +
-                                   fx.chain.inertia(q) * r.qdd() +
-                                   fx.chain.coriolis(q, r.qd()) * r.qd() + fx.chain.gravity(q);
+                                   fx.chain.inertia(q) * r.qdd() + fx.chain.coriolis(q, r.qd()) * r.qd() +
+                                   fx.chain.gravity(q);
   EXPECT_LT((out.u - expected).norm(), 1e-12);
   EXPECT_LT((out.theta - theta).norm(), 1e-12);
 }

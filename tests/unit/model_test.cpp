@@ -67,8 +67,8 @@ INSTANTIATE_TEST_SUITE_P(Dof, ChainProperties, ::testing::Values(1, 2, 3, 5, 8))
 
 TEST(Pelican, MatchesTheBookClosedForm) {
   const PlanarChain chain(pelicanParams());
-  const double l1 = 0.26, lc1 = 0.0983, lc2 = 0.0229, m1 = 6.5225, m2 = 2.0458, i1 = 0.1213,
-               i2 = 0.01616, g = 9.81;
+  const double l1 = 0.26, lc1 = 0.0983, lc2 = 0.0229, m1 = 6.5225, m2 = 2.0458, i1 = 0.1213, i2 = 0.01616,
+               g = 9.81;
   std::mt19937_64 rng(7);
   for (int trial = 0; trial < 50; ++trial) {
     const Eigen::VectorXd q = randomVector(rng, 2, 7.0), v = randomVector(rng, 2, 4.0);

@@ -30,9 +30,9 @@ TEST_P(ReferenceDerivatives, MatchFiniteDifferences) {
     const double tc = std::max(t, h);  // central differences need t - h >= 0
     for (int joint = 0; joint < 2; ++joint) {
       for (int order = 1; order <= 4; ++order) {
-        const double fd = (ref.jointDerivative(joint, order - 1, tc + h) -
-                           ref.jointDerivative(joint, order - 1, tc - h)) /
-                          (2 * h);
+        const double fd =
+            (ref.jointDerivative(joint, order - 1, tc + h) - ref.jointDerivative(joint, order - 1, tc - h)) /
+            (2 * h);
         EXPECT_NEAR(ref.jointDerivative(joint, order, tc), fd, 1e-5 * (1 + std::abs(fd)))
             << "t=" << tc << " joint=" << joint << " order=" << order;
       }
