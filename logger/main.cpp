@@ -110,10 +110,15 @@ int DoMain(int argc, char** argv) {
         auto report = [&](const char* state) {
           status.publish(state, metrics.lastTick(), metrics.summary().sim_time, metrics.lastError());
         };
-        auto all_final = [&]() {
+        // True when plant, controller and actuator have all reported `state`
+        // (or, with state empty, any final state).
+        auto all_reported = [&](const std::string& state) {
           for (const char* p : {"plant", "controller", "actuator"}) {
             auto it = facts.final_status.find(p);
-            if (it == facts.final_status.end() || it->second.state != "finished") return false;
+            if (it == facts.final_status.end()) return false;
+            const std::string& reported = it->second.state;
+            if (state.empty() ? (reported == "ready" || reported == "running") : reported != state)
+              return false;
           }
           return true;
         };
@@ -133,15 +138,24 @@ int DoMain(int argc, char** argv) {
             progress_due = false;
             next_status = now + std::chrono::milliseconds(100);
           }
-          if (plant_finished_at &&
-              (all_final() || now - *plant_finished_at > std::chrono::duration<double>(finish_grace)))
+          if (plant_finished_at && (all_reported("finished") ||
+                                    now - *plant_finished_at > std::chrono::duration<double>(finish_grace)))
             break;
         }
         // Drain what is still queued, then close the log before the summary.
-        while (node.raw().handleTimeout(10) > 0) {
+        // Bounded in time: other traffic on the URL (another publisher, a
+        // flood) must not keep the logger from finishing. When interrupted,
+        // the others are stopping too: wait (up to the grace) for their final
+        // STATUS so the summary says how each ended.
+        const auto drain_until =
+            Clock::now() + (transport::stopRequested() ? std::chrono::duration<double>(finish_grace)
+                                                       : std::chrono::duration<double>(0.2));
+        while (Clock::now() < drain_until) {
+          const bool got = node.raw().handleTimeout(10) > 0;
+          if (!got && (!transport::stopRequested() || all_reported(""))) break;
         }
         facts.status = transport::stopRequested() ? "interrupted" : "completed";
-        if (!transport::stopRequested() && !all_final())
+        if (!transport::stopRequested() && !all_reported("finished"))
           spdlog::warn("not every process reported 'finished' within {} s of the plant", finish_grace);
         report(transport::stopRequested() ? "interrupted" : "finished");
         log.flush();

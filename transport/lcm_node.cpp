@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
+
 namespace lagrange::transport {
 
 LcmNode::LcmNode(const std::string& process_name, const std::string& url)
@@ -19,7 +21,10 @@ void LcmNode::subscribeRaw(const std::string& channel_regex,
   sub->setQueueCapacity(kQueueCapacity);
 }
 
-bool LcmNode::handle(int timeout_ms) { return lcm_.handleTimeout(timeout_ms) >= 0; }
+bool LcmNode::handle(int timeout_ms) {
+  if (lcm_.handleTimeout(timeout_ms) >= 0) return true;
+  return errno == EINTR;  // a signal interrupted the wait: not an LCM failure
+}
 
 void LcmNode::reject(const std::string& channel, const std::string& reason) {
   counters_[channel].rejected++;
