@@ -250,48 +250,48 @@ TEST(BadInput, ViolatedGainConditionWarnsOrRefusesUnderStrict) {
   EXPECT_FALSE(fs::exists(fs::path(dir) / "run.lcm"));
 }
 
+// Runs the default scenario for a long time and, once its log holds 100 kB,
+// sends `sig` to the process whose argv[0] ends with `process`.
+struct SignalledRun {
+  RunResult result;
+  bool signalled = false;
+};
+
+SignalledRun signalMidRun(const std::string& dir, const std::string& process, int sig) {
+  SignalledRun out;
+  std::atomic<bool> done{false};
+  std::thread runner([&] {
+    out.result = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=600 -q");
+    done = true;
+  });
+  for (int i = 0; i < 200 && !out.signalled && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 100000) continue;
+    const pid_t pid = findProcess(process, dir);
+    out.signalled = pid > 0 && kill(pid, sig) == 0;
+  }
+  runner.join();
+  return out;
+}
+
 // A dead process: the launcher names it and its signal, stops the rest and
 // keeps the log.
 TEST(Failure, KilledControllerIsNamedAndTheLogIsKept) {
   const std::string dir = freshDir("kill");
-  std::atomic<bool> done{false};
-  RunResult r;
-  std::thread runner([&] {
-    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=600 -q");
-    done = true;
-  });
-  // Wait until the run is under way, then SIGKILL the controller.
-  bool killed = false;
-  for (int i = 0; i < 200 && !killed && !done; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 100000) continue;
-    const pid_t pid = findProcess("lagrange-controller", dir);
-    killed = pid > 0 && kill(pid, SIGKILL) == 0;
-  }
-  runner.join();
-  ASSERT_TRUE(killed);
-  EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("process 'controller' was killed by signal 9"), std::string::npos) << r.output;
+  const SignalledRun run = signalMidRun(dir, "lagrange-controller", SIGKILL);
+  ASSERT_TRUE(run.signalled);
+  EXPECT_EQ(run.result.exit_code, 1) << run.result.output;
+  EXPECT_NE(run.result.output.find("process 'controller' was killed by signal 9"), std::string::npos)
+      << run.result.output;
   EXPECT_GT(readTruth(dir + "/run.lcm").size(), 10u);  // the log is readable
 }
 
 // Ctrl-C: every process stops cleanly, the log and the summary are kept.
 TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
   const std::string dir = freshDir("interrupt");
-  std::atomic<bool> done{false};
-  RunResult r;
-  std::thread runner([&] {
-    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=600 -q");
-    done = true;
-  });
-  bool interrupted = false;
-  for (int i = 0; i < 200 && !interrupted && !done; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 100000) continue;
-    const pid_t launcher = findProcess("bin/lagrange", dir);
-    interrupted = launcher > 0 && kill(launcher, SIGINT) == 0;
-  }
-  runner.join();
+  const SignalledRun run = signalMidRun(dir, "bin/lagrange", SIGINT);
+  const RunResult& r = run.result;
+  const bool interrupted = run.signalled;
   ASSERT_TRUE(interrupted);
   EXPECT_EQ(r.exit_code, 130) << r.output;
   const auto j = readSummary(dir);
