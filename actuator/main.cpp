@@ -6,6 +6,7 @@
 ///   CONTROL_COMMAND -> validate -> PassthroughActuator::step -> ACTUATOR_STATE
 
 #include "actuator/passthrough.hpp"
+#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/process.hpp"
@@ -23,16 +24,7 @@ int DoMain(int argc, char** argv) {
         transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
             node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
             [&](const lagrange::control_command_t& m) {
-              const actuator::ActuatorOutput out = act.step(transport::toEigen(m.u));
-              lagrange::actuator_state_t a;
-              a.header = transport::makeHeader(m.header.tick, m.header.sim_time);
-              a.input_command_tick = m.header.tick;
-              a.num_joints = m.num_joints;
-              a.order = 0;
-              a.u_commanded = m.u;
-              a.tau_applied = transport::toStd(out.tau);
-              a.saturated.assign(out.saturated.data(), out.saturated.data() + out.saturated.size());
-              return a;
+              return transport::actuatorMessage(act.step(transport::toEigen(m.u)), m);
             });
         return transport::serveUntilPlantFinished(node, progress);
       });

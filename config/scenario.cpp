@@ -110,8 +110,8 @@ Scenario readScenario(MapReader root) {
   s.description = root.text("description", "");
   s.duration = root.positive("duration");
   s.mode = root.text("mode", s.mode);
-  if (s.mode != "lockstep")
-    root.fail("mode", "mode '" + s.mode + "' is not available in this version; expected: lockstep");
+  if (s.mode != "lockstep" && s.mode != "inproc")
+    root.fail("mode", "mode '" + s.mode + "' is not available in this version; expected: lockstep or inproc");
 
   s.robot = readRobot(root.map("robot"));
   const int n = s.dof();

@@ -13,6 +13,7 @@
 
 #include "controller/gain_report.hpp"
 #include "controller/theorem1.hpp"
+#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/process.hpp"
@@ -20,19 +21,6 @@
 
 namespace lagrange {
 namespace {
-
-lagrange::control_command_t toMessage(const controller::Theorem1Output& out, int64_t tick, double sim_time) {
-  lagrange::control_command_t m;
-  m.header = transport::makeHeader(tick, sim_time);
-  m.input_position_tick = tick;
-  m.num_joints = static_cast<int32_t>(out.u.size());
-  m.u = transport::toStd(out.u);
-  m.q_desired = transport::toStd(out.q_desired);
-  m.q_error = transport::toStd(out.q_error);
-  m.theta = transport::toStd(out.theta);
-  m.filter_state = transport::toStd(out.filter_state);
-  return m;
-}
 
 int DoMain(int argc, char** argv) {
   bool strict = false;
@@ -61,7 +49,7 @@ int DoMain(int argc, char** argv) {
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
             [&](const lagrange::plant_position_t& m) {
               const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q));
-              return toMessage(out, m.header.tick, m.header.sim_time);
+              return transport::commandMessage(out, m.header.tick, m.header.sim_time);
             });
         return transport::serveUntilPlantFinished(node, progress);
       });

@@ -18,6 +18,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "controller/gain_report.hpp"
+#include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
 #include "transport/channels.hpp"
@@ -28,30 +29,6 @@ namespace lagrange {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-class EventLog {
- public:
-  explicit EventLog(const std::string& path) : file_(path, "w") {
-    if (!file_.good())
-      throw std::runtime_error("cannot create the log '" + path + "'; expected a writable directory");
-  }
-  void write(const std::string& channel, const void* data, int size, int64_t utime) {
-    lcm::LogEvent ev;
-    ev.eventnum = events_;
-    ev.timestamp = utime;
-    ev.channel = channel;
-    ev.datalen = size;
-    ev.data = const_cast<void*>(data);
-    if (file_.writeEvent(&ev) != 0) throw std::runtime_error("writing the log failed (disk full?)");
-    ++events_;
-  }
-  void flush() { std::fflush(file_.getFilePtr()); }
-  long long events() const { return events_; }
-
- private:
-  lcm::LogFile file_;
-  long long events_ = 0;
-};
 
 int DoMain(int argc, char** argv) {
   std::string out_dir = ".";
@@ -67,7 +44,7 @@ int DoMain(int argc, char** argv) {
       [&](const config::Scenario& s, transport::LcmNode& node) {
         const auto wall_start = Clock::now();
         const std::string log_path = (std::filesystem::path(out_dir) / "run.lcm").string();
-        EventLog log(log_path);
+        logger::EventLog log(log_path);
         const std::string scenario_text = config::toYaml(s);
         log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
                   transport::nowUtime());

@@ -15,6 +15,7 @@
 #include <chrono>
 
 #include "plant/plant_sim.hpp"
+#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/process.hpp"
@@ -24,28 +25,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct Outputs {
-  lagrange::plant_position_t position;
-  lagrange::plant_truth_t truth;
-};
-
-Outputs sample(const plant::PlantSim& sim, int64_t tick, double sim_time,
-               const Eigen::VectorXd& tau_applied) {
+transport::PlantSample sample(const plant::PlantSim& sim, int64_t tick, double sim_time,
+                              const Eigen::VectorXd& tau_applied) {
   const plant::PlantState st = sim.state();
   const plant::PlantEnergy e = sim.energy();
-  Outputs o;
-  o.position.header = transport::makeHeader(tick, sim_time);
-  o.position.num_joints = sim.dof();
-  o.position.q = transport::toStd(st.q);
-  o.truth.header = o.position.header;
-  o.truth.num_joints = sim.dof();
-  o.truth.q = o.position.q;
-  o.truth.qdot = transport::toStd(st.qdot);
-  o.truth.tau_applied = transport::toStd(tau_applied);
-  o.truth.kinetic_energy = e.kinetic;
-  o.truth.potential_energy = e.potential;
-  o.truth.total_energy = e.total();
-  return o;
+  return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential);
 }
 
 int DoMain(int argc, char** argv) {
@@ -99,7 +83,7 @@ int DoMain(int argc, char** argv) {
             status.publish("interrupted", k - 1, t);
             return 0;
           }
-          const Outputs out = sample(sim, k, t, tau);
+          const transport::PlantSample out = sample(sim, k, t, tau);
           node.publish(transport::kPlantPosition, out.position);
           node.publish(transport::kPlantTruth, out.truth);
           if (Clock::now() >= next_status) {

@@ -41,6 +41,12 @@ int DoMain(int argc, char** argv) {
   run_cmd->add_option(
       "--set", run.overrides,
       "Override a config key: key=value, value in YAML (e.g. controller.kp=[100,20]); repeatable");
+  std::string mode;
+  run_cmd
+      ->add_option("--mode", mode,
+                   "Override the scenario's mode: lockstep (processes over LCM, deterministic) or "
+                   "inproc (the same cores in one process, no LCM)")
+      ->check(CLI::IsMember({"lockstep", "inproc"}));
   run_cmd->add_flag("--no-netns", no_netns,
                     "Use the machine's network instead of a private network namespace "
                     "(LCM traffic then reaches other processes on this host)");
@@ -64,6 +70,7 @@ int DoMain(int argc, char** argv) {
   }
   if (*run_cmd) {
     run.private_netns = !no_netns;
+    if (!mode.empty()) run.overrides.push_back("mode=" + mode);
     run.self_argv.assign(argv, argv + argc);
     run.self_argv[0] = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runScenario(run);

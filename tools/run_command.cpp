@@ -15,6 +15,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
+#include "tools/inproc_runner.hpp"
 #include "tools/netns.hpp"
 #include "tools/progress.hpp"
 #include "tools/supervisor.hpp"
@@ -52,6 +53,26 @@ std::string prepareOutDir(const std::string& dir) {
   return fs::absolute(dir).string();
 }
 
+// Prints the eq. (11) verdict; false when --strict forbids running.
+bool gainsAllowRun(const config::Scenario& scenario, const RunOptions& opt) {
+  const controller::GainReport gains = controller::checkGains(scenario);
+  if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
+  if (!gains.condition.holds && opt.strict) {
+    std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is violated\n";
+    return false;
+  }
+  return true;
+}
+
+std::string writeResolved(const config::Scenario& scenario, const std::string& source,
+                          const std::string& out_dir) {
+  const std::string path = (fs::path(out_dir) / "config.resolved.yaml").string();
+  std::ofstream out(path);
+  out << "# Resolved scenario of this run: defaults, the file " << source << " and --set overrides.\n"
+      << config::toYaml(scenario);
+  return path;
+}
+
 void printTail(const std::string& path, int lines) {
   std::ifstream in(path);
   std::vector<std::string> all;
@@ -85,7 +106,10 @@ void printResult(const std::string& out_dir) {
               j["gains"]["margin"].get<double>());
   std::printf("  sim %.2f s in %.2f s wall (%.1fx real time)\n", j["timing"]["sim_time"].get<double>(),
               j["timing"]["wall_time"].get<double>(), j["timing"]["realtime_factor"].get<double>());
-  std::printf("outputs in %s: run.lcm, config.resolved.yaml, summary.json, *.log\n", out_dir.c_str());
+  std::string files;
+  for (const auto& entry : fs::directory_iterator(out_dir))
+    files += (files.empty() ? "" : ", ") + entry.path().filename().string();
+  std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
 }  // namespace
 
@@ -98,6 +122,18 @@ int runScenario(const RunOptions& opt) {
   } catch (const config::ConfigError& e) {
     std::cerr << "lagrange run: " << e.what() << "\n";
     return 2;
+  }
+
+  if (scenario.mode == "inproc") {
+    if (!gainsAllowRun(scenario, opt)) return 2;
+    writeResolved(scenario, opt.config_path, out_dir);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    ProgressDisplay progress(scenario.duration, opt.quiet);
+    const int code = runInProcess(scenario, out_dir, progress, [] { return launcher_signal != 0; });
+    progress.finish();
+    if (code == 0 && !opt.quiet) printResult(out_dir);
+    return code;
   }
 
   if (opt.private_netns && !insidePrivateNetns()) {
@@ -113,20 +149,8 @@ int runScenario(const RunOptions& opt) {
       return 1;
     }
   }
-
-  const std::string resolved = (fs::path(out_dir) / "config.resolved.yaml").string();
-  {
-    std::ofstream out(resolved);
-    out << "# Resolved scenario of this run: defaults, the file " << opt.config_path
-        << " and --set overrides.\n"
-        << config::toYaml(scenario);
-  }
-  const controller::GainReport gains = controller::checkGains(scenario);
-  if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
-  if (!gains.condition.holds && opt.strict) {
-    std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is violated\n";
-    return 2;
-  }
+  if (!gainsAllowRun(scenario, opt)) return 2;
+  const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
 
   const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
   std::signal(SIGINT, onSignal);

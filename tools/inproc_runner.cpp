@@ -1,0 +1,87 @@
+#include "tools/inproc_runner.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "actuator/passthrough.hpp"
+#include "controller/gain_report.hpp"
+#include "controller/theorem1.hpp"
+#include "logger/event_log.hpp"
+#include "logger/summary.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "plant/plant_sim.hpp"
+#include "tools/progress.hpp"
+#include "transport/builders.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::tools {
+
+int runInProcess(const config::Scenario& s, const std::string& out_dir, ProgressDisplay& progress,
+                 bool (*stop_requested)()) {
+  namespace fs = std::filesystem;
+  const auto wall_start = std::chrono::steady_clock::now();
+  const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
+  logger::EventLog log(log_path);
+  const std::string scenario_text = config::toYaml(s);
+  log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
+            transport::nowUtime());
+
+  const model::PlanarChain chain(s.robot);
+  const model::Reference reference(s.reference);
+  plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
+  controller::Theorem1Controller ctl(chain, reference, s.controller.gains, s.controller.initial_filter_state);
+  const actuator::PassthroughActuator act(s.dof(), s.actuator.saturation);
+  logger::TrackingMetrics metrics(reference, s.metrics.tolerance);
+
+  // The lockstep order, tick by tick: plant sample -> controller -> actuator
+  // -> physics. Every value passes through the same message structs as over
+  // LCM, so both wirings compute with identical doubles.
+  Eigen::VectorXd tau = Eigen::VectorXd::Zero(s.dof());
+  const int64_t last_tick = s.lastTick();
+  int exit_code = 0;
+  for (int64_t k = 0; k <= last_tick; ++k) {
+    const double t = static_cast<double>(k) * s.tickPeriod();
+    const plant::PlantState st = sim.state();
+    const plant::PlantEnergy e = sim.energy();
+    const transport::PlantSample sample =
+        transport::plantSample(k, t, st.q, st.qdot, tau, e.kinetic, e.potential);
+    log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
+    log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
+    const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
+
+    const auto command = transport::commandMessage(
+        ctl.step(sample.position.header.sim_time, transport::toEigen(sample.position.q)), k,
+        sample.position.header.sim_time);
+    log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
+    const auto state = transport::actuatorMessage(act.step(transport::toEigen(command.u)), command);
+    log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
+    tau = transport::toEigen(state.tau_applied);
+    metrics.addTorque(tau);
+
+    if (k % 100 == 0) {
+      progress.update(t, error.value_or(std::nan("")));
+      progress.tick();
+      if (stop_requested()) {
+        exit_code = 130;
+        break;
+      }
+    }
+    if (k < last_tick) sim.step(tau, s.substepsPerTick());
+  }
+  log.flush();
+
+  logger::RunFacts facts;
+  facts.status = exit_code == 0 ? "completed" : "interrupted";
+  facts.log_path = log_path;
+  facts.log_events = log.events();
+  facts.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const auto summary = logger::makeSummary(s, metrics.summary(), controller::checkGains(s), facts);
+  std::ofstream out(fs::path(out_dir) / "summary.json");
+  out << summary.dump(2) << "\n";
+  if (!out) throw std::runtime_error("cannot write summary.json in " + out_dir);
+  return exit_code;
+}
+
+}  // namespace lagrange::tools

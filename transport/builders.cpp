@@ -1,0 +1,51 @@
+#include "transport/builders.hpp"
+
+#include "transport/messages.hpp"
+
+namespace lagrange::transport {
+
+PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                        const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy) {
+  PlantSample o;
+  o.position.header = makeHeader(tick, sim_time);
+  o.position.num_joints = static_cast<int32_t>(q.size());
+  o.position.q = toStd(q);
+  o.truth.header = o.position.header;
+  o.truth.num_joints = o.position.num_joints;
+  o.truth.q = o.position.q;
+  o.truth.qdot = toStd(qdot);
+  o.truth.tau_applied = toStd(tau_applied);
+  o.truth.kinetic_energy = kinetic_energy;
+  o.truth.potential_energy = potential_energy;
+  o.truth.total_energy = kinetic_energy + potential_energy;
+  return o;
+}
+
+lagrange::control_command_t commandMessage(const controller::Theorem1Output& out, int64_t position_tick,
+                                           double sim_time) {
+  lagrange::control_command_t m;
+  m.header = makeHeader(position_tick, sim_time);
+  m.input_position_tick = position_tick;
+  m.num_joints = static_cast<int32_t>(out.u.size());
+  m.u = toStd(out.u);
+  m.q_desired = toStd(out.q_desired);
+  m.q_error = toStd(out.q_error);
+  m.theta = toStd(out.theta);
+  m.filter_state = toStd(out.filter_state);
+  return m;
+}
+
+lagrange::actuator_state_t actuatorMessage(const actuator::ActuatorOutput& out,
+                                           const lagrange::control_command_t& command) {
+  lagrange::actuator_state_t a;
+  a.header = makeHeader(command.header.tick, command.header.sim_time);
+  a.input_command_tick = command.header.tick;
+  a.num_joints = command.num_joints;
+  a.order = 0;
+  a.u_commanded = command.u;
+  a.tau_applied = toStd(out.tau);
+  a.saturated.assign(out.saturated.data(), out.saturated.data() + out.saturated.size());
+  return a;
+}
+
+}  // namespace lagrange::transport

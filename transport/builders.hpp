@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// Building the messages the cores' outputs become. One place, used by the
+/// process mains and by the in-process runner alike, so both wirings publish
+/// exactly the same numbers.
+
+#include <Eigen/Dense>
+
+#include "actuator/passthrough.hpp"
+#include "controller/theorem1.hpp"
+#include "lagrange/actuator_state_t.hpp"
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_truth_t.hpp"
+
+namespace lagrange::transport {
+
+/// What the plant publishes for one tick.
+struct PlantSample {
+  lagrange::plant_position_t position;
+  lagrange::plant_truth_t truth;
+};
+
+/// tau_applied: the torque applied over the period that ended at this tick.
+PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                        const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy);
+
+lagrange::control_command_t commandMessage(const controller::Theorem1Output& out, int64_t position_tick,
+                                           double sim_time);
+
+lagrange::actuator_state_t actuatorMessage(const actuator::ActuatorOutput& out,
+                                           const lagrange::control_command_t& command);
+
+}  // namespace lagrange::transport
