@@ -10,6 +10,7 @@
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/process.hpp"
+#include "transport/realtime_responder.hpp"
 #include "transport/tick_responder.hpp"
 
 namespace lagrange {
@@ -20,12 +21,18 @@ int DoMain(int argc, char** argv) {
       "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).", argc, argv,
       nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
         const actuator::PassthroughActuator act(s.dof(), s.actuator.saturation);
-        transport::Progress progress;
-        transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
-            node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
+        const std::function<lagrange::actuator_state_t(const lagrange::control_command_t&)> compute =
             [&](const lagrange::control_command_t& m) {
               return transport::actuatorMessage(act.step(transport::toEigen(m.u)), m);
-            });
+            };
+        if (s.mode == "realtime") {
+          // Half a period after the plant: the controller has answered.
+          return transport::serveRealtime(node, transport::kControlCommand, transport::kActuatorState,
+                                          s.dof(), {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);
+        }
+        transport::Progress progress;
+        transport::respondPerTick(node, transport::kControlCommand, transport::kActuatorState, s.dof(),
+                                  progress, compute);
         return transport::serveUntilPlantFinished(node, progress);
       });
 }

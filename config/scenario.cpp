@@ -110,8 +110,8 @@ Scenario readScenario(MapReader root) {
   s.description = root.text("description", "");
   s.duration = root.positive("duration");
   s.mode = root.text("mode", s.mode);
-  if (s.mode != "lockstep" && s.mode != "inproc")
-    root.fail("mode", "mode '" + s.mode + "' is not available in this version; expected: lockstep or inproc");
+  if (s.mode != "lockstep" && s.mode != "inproc" && s.mode != "realtime")
+    root.fail("mode", "unknown mode '" + s.mode + "'; expected: lockstep, realtime or inproc");
 
   s.robot = readRobot(root.map("robot"));
   const int n = s.dof();
@@ -178,8 +178,20 @@ Scenario readScenario(MapReader root) {
     if (s.lockstep.logger_window < 1) l.fail("logger_window", "expected a whole number >= 1");
     l.finish({"retransmit_timeout", "logger_window"});
   }
+  if (root.has("realtime")) {
+    MapReader r = root.map("realtime");
+    s.realtime.max_torque_age = r.integer("max_torque_age", s.realtime.max_torque_age);
+    if (s.realtime.max_torque_age < 1) r.fail("max_torque_age", "expected a whole number of periods >= 1");
+    s.realtime.stale_torque = r.text("stale_torque", s.realtime.stale_torque);
+    if (s.realtime.stale_torque != "zero" && s.realtime.stale_torque != "hold")
+      r.fail("stale_torque", "unknown policy '" + s.realtime.stale_torque + "'; expected: zero or hold");
+    s.realtime.hold_periods = r.integer("hold_periods", s.realtime.hold_periods);
+    if (s.realtime.hold_periods < 0) r.fail("hold_periods", "expected a whole number >= 0");
+    s.realtime.max_input_age = r.positive("max_input_age", s.realtime.max_input_age);
+    r.finish({"max_torque_age", "stale_torque", "hold_periods", "max_input_age"});
+  }
   root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference", "plant",
-               "actuator", "controller", "metrics", "lockstep"});
+               "actuator", "controller", "metrics", "lockstep", "realtime"});
   return s;
 }
 
@@ -284,6 +296,13 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "lockstep" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "retransmit_timeout" << YAML::Value << s.lockstep.retransmit_timeout;
   out << YAML::Key << "logger_window" << YAML::Value << s.lockstep.logger_window;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "realtime" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "max_torque_age" << YAML::Value << s.realtime.max_torque_age;
+  out << YAML::Key << "stale_torque" << YAML::Value << s.realtime.stale_torque;
+  out << YAML::Key << "hold_periods" << YAML::Value << s.realtime.hold_periods;
+  out << YAML::Key << "max_input_age" << YAML::Value << s.realtime.max_input_age;
   out << YAML::EndMap;
 
   out << YAML::EndMap;

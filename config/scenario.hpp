@@ -55,6 +55,16 @@ struct LockstepConfig {
   int logger_window = 500;           ///< ticks the plant may run ahead of the logger
 };
 
+/// Realtime mode: every process on its own fixed-rate loop.
+struct RealtimeConfig {
+  /// Ticks a torque may lag the plant's current tick before it is stale
+  /// (its source position was published more than this many periods ago).
+  int max_torque_age = 2;
+  std::string stale_torque = "zero";  ///< "zero", or "hold" the last torque for hold_periods more
+  int hold_periods = 10;
+  double max_input_age = 0.005;  ///< controller and actuator skip inputs older than this [s]
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -68,6 +78,7 @@ struct Scenario {
   ControllerConfig controller;
   MetricsConfig metrics;
   LockstepConfig lockstep;
+  RealtimeConfig realtime;
 
   int dof() const { return static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }

@@ -17,6 +17,7 @@
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/process.hpp"
+#include "transport/realtime_responder.hpp"
 #include "transport/tick_responder.hpp"
 
 namespace lagrange {
@@ -44,13 +45,19 @@ int DoMain(int argc, char** argv) {
         const model::Reference reference(s.reference);
         controller::Theorem1Controller ctl(chain, reference, s.controller.gains,
                                            s.controller.initial_filter_state);
-        transport::Progress progress;
-        transport::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
-            node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
+        const std::function<lagrange::control_command_t(const lagrange::plant_position_t&)> compute =
             [&](const lagrange::plant_position_t& m) {
               const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q));
               return transport::commandMessage(out, m.header.tick, m.header.sim_time);
-            });
+            };
+        if (s.mode == "realtime") {
+          // A quarter period after the plant: its position has arrived.
+          return transport::serveRealtime(node, transport::kPlantPosition, transport::kControlCommand,
+                                          s.dof(), {s.tickPeriod(), 0.25, s.realtime.max_input_age}, compute);
+        }
+        transport::Progress progress;
+        transport::respondPerTick(node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
+                                  progress, compute);
         return transport::serveUntilPlantFinished(node, progress);
       });
 }

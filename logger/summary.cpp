@@ -50,6 +50,32 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     processes[name] = {
         {"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message}, {"channels", channels}};
   }
+  if (s.mode == "realtime") {
+    json loops = json::object();
+    json stale = json::object();
+    for (const auto& [name, st] : f.final_status) {
+      const auto& l = st.loop;
+      if (l.cycles == 0) continue;
+      loops[name] = {
+          {"period", l.period},
+          {"cycles", l.cycles},
+          {"achieved_rate", l.achieved_rate},
+          {"jitter", {{"p50", l.jitter_p50}, {"p99", l.jitter_p99}, {"max", l.jitter_max}}},
+          {"deadline_misses", l.deadline_misses},
+          {"on_time_fraction", 1.0 - static_cast<double>(l.deadline_misses) / static_cast<double>(l.cycles)},
+          {"longest_miss_run", l.longest_miss_run},
+          {"input_age", {{"p50", l.input_age_p50}, {"p99", l.input_age_p99}, {"max", l.input_age_max}}},
+      };
+      stale[name] = {{"missing_inputs", l.missing_inputs}, {"stale_inputs", l.stale_inputs}};
+      if (name == "plant") {
+        j["timing"]["latency"] = {{"p50", l.latency_p50}, {"p99", l.latency_p99}, {"max", l.latency_max}};
+        stale[name]["torque_held"] = l.torque_held;
+        stale[name]["torque_zeroed"] = l.torque_zeroed;
+      }
+    }
+    j["timing"]["loops"] = loops;
+    messages["stale"] = stale;
+  }
   j["messages"] = messages;
   j["processes"] = processes;
   j["log"] = {{"path", f.log_path}, {"events", f.log_events}};

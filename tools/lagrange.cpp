@@ -44,9 +44,10 @@ int DoMain(int argc, char** argv) {
   std::string mode;
   run_cmd
       ->add_option("--mode", mode,
-                   "Override the scenario's mode: lockstep (processes over LCM, deterministic) or "
-                   "inproc (the same cores in one process, no LCM)")
-      ->check(CLI::IsMember({"lockstep", "inproc"}));
+                   "Override the scenario's mode: lockstep (processes over LCM, deterministic), realtime "
+                   "(processes over LCM, each on its own fixed-rate loop) or inproc (the same cores in one "
+                   "process, no LCM)")
+      ->check(CLI::IsMember({"lockstep", "realtime", "inproc"}));
   run_cmd->add_flag("--no-netns", no_netns,
                     "Use the machine's network instead of a private network namespace "
                     "(LCM traffic then reaches other processes on this host)");

@@ -26,6 +26,12 @@ bool LcmNode::handle(int timeout_ms) {
   return errno == EINTR;  // a signal interrupted the wait: not an LCM failure
 }
 
+int LcmNode::drain(int max_messages) {
+  int handled = 0;
+  while (handled < max_messages && lcm_.handleTimeout(0) > 0) ++handled;
+  return handled;
+}
+
 void LcmNode::reject(const std::string& channel, const std::string& reason) {
   counters_[channel].rejected++;
   if (reported_.insert(channel + "\n" + reason).second)

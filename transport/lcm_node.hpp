@@ -54,6 +54,13 @@ class LcmNode {
   /// Process incoming messages for up to timeout_ms; returns false on an LCM error.
   bool handle(int timeout_ms);
 
+  /// Handle every message already waiting, without blocking (at most
+  /// max_messages, so a flood cannot hold the caller). Returns how many.
+  int drain(int max_messages = 1000);
+
+  /// Wall-clock receive time [us] of the message being handled.
+  int64_t lastReceiveUtime() const { return last_receive_utime_; }
+
   const std::map<std::string, ChannelCounters>& counters() const { return counters_; }
   std::vector<lagrange::channel_stats_t> channelStats() const;
   const std::string& processName() const { return process_name_; }
@@ -67,6 +74,7 @@ class LcmNode {
   lcm::LCM lcm_;
   std::map<std::string, ChannelCounters> counters_;
   std::set<std::string> reported_;  ///< channel/reason pairs already logged
+  int64_t last_receive_utime_ = 0;
 
   struct RawHandler {
     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;
@@ -91,6 +99,7 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
     const Rejection why = validate(msg);
     if (!why.empty()) return reject(channel, why);
     counters_[channel].received++;
+    last_receive_utime_ = rbuf->recv_utime;
     handle(msg);
   };
   subscribeRaw(channel, callback);

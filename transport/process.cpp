@@ -45,6 +45,7 @@ void StatusReporter::publish(const std::string& state, int64_t last_tick, double
     s.channels.push_back(c);
   }
   s.num_channels = static_cast<int32_t>(s.channels.size());
+  s.loop = loop_;
   node_.publish(kStatus, s);
 }
 

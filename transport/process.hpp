@@ -10,6 +10,7 @@
 #include <string>
 
 #include "config/scenario.hpp"
+#include "lagrange/loop_stats_t.hpp"
 #include "transport/lcm_node.hpp"
 
 namespace lagrange::transport {
@@ -27,8 +28,12 @@ class StatusReporter {
   void publish(const std::string& state, int64_t last_tick, double sim_time,
                double tracking_error = std::nan(""), const std::string& message = "");
 
+  /// Loop statistics included in every STATUS from now on (realtime mode).
+  void setLoopStats(const lagrange::loop_stats_t& loop) { loop_ = loop; }
+
  private:
   LcmNode& node_;
+  lagrange::loop_stats_t loop_{};
 };
 
 /// Progress of a reactive process: its last completed tick and that tick's sim time.

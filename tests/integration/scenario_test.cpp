@@ -354,6 +354,81 @@ TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
   EXPECT_EQ(j["tracking"]["samples"].get<size_t>(), truth.size());  // nothing recorded was lost
 }
 
+// Realtime: the same scenario on fixed-rate loops converges like lockstep,
+// and reports its timing. (Timing numbers are benchmarks, not asserted.)
+TEST_F(DefaultRun, RealtimeConvergesLikeLockstepAndReportsTiming) {
+  ASSERT_EQ(result_.exit_code, 0) << result_.output;
+  const std::string dir = freshDir("realtime");
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "-q --mode realtime");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir), lockstep = readSummary(dir_);
+  EXPECT_EQ(j["mode"], "realtime");
+  EXPECT_EQ(j["tracking"]["tolerance"], lockstep["tracking"]["tolerance"]);
+  ASSERT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
+  const double t_rt = j["tracking"]["convergence_time"], t_ls = lockstep["tracking"]["convergence_time"];
+  std::printf("convergence time: realtime %.4f s, lockstep %.4f s\n", t_rt, t_ls);
+  EXPECT_NEAR(t_rt, t_ls, 0.10 * t_ls);
+  for (const char* p : {"plant", "controller", "actuator"}) {
+    const auto& loop = j["timing"]["loops"][p];
+    EXPECT_GT(loop["cycles"].get<long long>(), 9000) << p;
+    for (const char* key : {"achieved_rate", "deadline_misses", "longest_miss_run", "on_time_fraction"})
+      EXPECT_TRUE(loop.contains(key)) << p << " " << key;
+    EXPECT_LE(loop["jitter"]["p50"].get<double>(), loop["jitter"]["max"].get<double>());
+  }
+  EXPECT_GT(j["timing"]["latency"]["p50"].get<double>(), 0.0);
+  EXPECT_TRUE(j["messages"]["stale"]["plant"].contains("torque_zeroed"));
+}
+
+// Stale inputs: a controller frozen for 300 ms (SIGSTOP) sends nothing; the
+// plant's policy zeroes (or holds) the torque and counts it, the controller
+// refuses the positions that aged while it was frozen, and the arm converges
+// again afterwards.
+class StaleTorquePolicy : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StaleTorquePolicy, TriggersWhenTheControllerStopsAndTheArmRecovers) {
+  const std::string dir = freshDir("stale");
+  std::atomic<bool> done{false};
+  RunResult r;
+  std::thread runner([&] {
+    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir,
+                    "-q --mode realtime --set duration=5 --set realtime.stale_torque=" + GetParam() +
+                        " --set realtime.hold_periods=100");
+    done = true;
+  });
+  bool frozen = false;
+  for (int i = 0; i < 200 && !frozen && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 600000) continue;
+    const pid_t pid = findProcess("lagrange-controller", dir);
+    if (pid > 0 && kill(pid, SIGSTOP) == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      kill(pid, SIGCONT);
+      frozen = true;
+    }
+  }
+  runner.join();
+  ASSERT_TRUE(frozen);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  const auto& plant = j["messages"]["stale"]["plant"];
+  const long long zeroed = plant["torque_zeroed"], held = plant["torque_held"];
+  const long long stale_positions = j["messages"]["stale"]["controller"]["stale_inputs"];
+  std::printf("policy %s: torque held %lld periods, zeroed %lld; controller refused %lld stale positions\n",
+              GetParam().c_str(), held, zeroed, stale_positions);
+  if (GetParam() == "hold") {
+    EXPECT_GE(held, 90);     // held for hold_periods = 100 ...
+    EXPECT_GE(zeroed, 100);  // ... then zeroed for the rest of the freeze
+  } else {
+    EXPECT_EQ(held, 0);
+    EXPECT_GE(zeroed, 200);
+  }
+  EXPECT_GT(stale_positions, 0);
+  EXPECT_GT(j["tracking"]["max_error"].get<double>(), 1e-2);    // the freeze really disturbed the arm
+  EXPECT_LT(j["tracking"]["final_error"].get<double>(), 1e-3);  // and it converged again
+}
+
+INSTANTIATE_TEST_SUITE_P(Policies, StaleTorquePolicy, ::testing::Values("zero", "hold"));
+
 // Malformed messages are rejected, counted, and the run still converges.
 TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   const std::string dir = freshDir("garbage");

@@ -88,7 +88,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"duration=-1"}, "duration: expected a positive number, got '-1'"},
         BadCase{{"duration=ten"}, "duration: expected a finite number, got 'ten'"},
         BadCase{{"plant.physics_step=0.0003"}, "must be a whole multiple of physics_step"},
-        BadCase{{"mode=warp"}, "mode: mode 'warp' is not available"},
+        BadCase{{"mode=warp"}, "mode: unknown mode 'warp'; expected: lockstep, realtime or inproc"},
         BadCase{{"controller.type=pid"}, "controller.type: unknown controller type 'pid'"},
         BadCase{{"reference.type=square"}, "reference.type: unknown reference type 'square'"},
         BadCase{{"robot.preset=puma"}, "robot.preset: unknown preset 'puma'"},

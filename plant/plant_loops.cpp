@@ -1,0 +1,211 @@
+#include "plant/plant_loops.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <array>
+#include <chrono>
+#include <optional>
+#include <set>
+
+#include "transport/builders.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+#include "transport/rate_loop.hpp"
+
+namespace lagrange::plant {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+transport::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time,
+                              const Eigen::VectorXd& tau_applied) {
+  const PlantState st = sim.state();
+  const PlantEnergy e = sim.energy();
+  return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential);
+}
+}  // namespace
+
+int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
+                transport::StatusReporter& status, double startup_timeout) {
+  const int n = s.dof();
+  const int substeps = s.substepsPerTick();
+  const int64_t last_tick = s.lastTick();
+  const auto retransmit = std::chrono::duration<double>(s.lockstep.retransmit_timeout);
+
+  int64_t awaited_tick = -1;
+  bool answered = false;
+  Eigen::VectorXd tau = Eigen::VectorXd::Zero(n);
+  node.subscribe<lagrange::actuator_state_t>(
+      transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
+      [&](const lagrange::actuator_state_t& m) {
+        if (m.header.tick != awaited_tick || answered) return;  // stale or duplicate
+        tau = transport::toEigen(m.tau_applied);
+        answered = true;
+      });
+  int64_t logger_tick = -2;  // -2: no logger heard yet
+  node.subscribe<lagrange::status_t>(
+      transport::kStatus, [](const auto& m) { return transport::validate(m); },
+      [&](const lagrange::status_t& m) {
+        if (m.process == "logger") logger_tick = std::max(logger_tick, m.last_tick);
+      });
+
+  status.publish("ready", -1, 0.0);
+  const auto startup_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
+  long long retransmits = 0;
+  auto next_status = Clock::now();
+  for (int64_t k = 0; k <= last_tick; ++k) {
+    const double t = static_cast<double>(k) * s.tickPeriod();
+    while (logger_tick == -2 || k - logger_tick > s.lockstep.logger_window) {
+      if (transport::stopRequested()) break;
+      if (logger_tick == -2 && Clock::now() > startup_deadline)
+        throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
+                                 " s; is it running on the same LCM URL?");
+      node.handle(20);
+    }
+    if (transport::stopRequested()) {
+      status.publish("interrupted", k - 1, t);
+      return 0;
+    }
+    const transport::PlantSample out = sample(sim, k, t, tau);
+    node.publish(transport::kPlantPosition, out.position);
+    node.publish(transport::kPlantTruth, out.truth);
+    if (Clock::now() >= next_status) {
+      status.publish("running", k, t);
+      next_status = Clock::now() + std::chrono::milliseconds(500);
+    }
+    awaited_tick = k;
+    answered = false;
+    auto resend_at = Clock::now() + retransmit;
+    while (!answered && !transport::stopRequested()) {
+      node.handle(5);
+      if (!answered && Clock::now() >= resend_at) {
+        node.publish(transport::kPlantPosition, out.position);
+        ++retransmits;
+        resend_at = Clock::now() + retransmit;
+      }
+    }
+    if (transport::stopRequested()) {
+      status.publish("interrupted", k, t);
+      return 0;
+    }
+    // The last tick's command is awaited too, so every message of the
+    // ring is delivered before the plant reports "finished".
+    if (k < last_tick) sim.step(tau, substeps);
+  }
+  if (retransmits > 0) spdlog::info("re-sent {} position samples after timeouts", retransmits);
+  status.publish("finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
+                 "retransmits=" + std::to_string(retransmits));
+  return 0;
+}
+
+namespace {
+// Waits for STATUS "ready" (or later) from every other process, so that no
+// tick of a realtime run passes unheard.
+void awaitPeers(transport::LcmNode& node, const std::set<std::string>& heard, double timeout) {
+  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout);
+  while (heard.size() < 3 && !transport::stopRequested()) {
+    if (Clock::now() > deadline)
+      throw std::runtime_error("logger, controller and actuator did not all report within " +
+                               std::to_string(timeout) + " s; are they running on the same LCM URL?");
+    node.handle(20);
+  }
+}
+}  // namespace
+
+int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
+                transport::StatusReporter& status, double startup_timeout) {
+  const int n = s.dof();
+  const int64_t last_tick = s.lastTick();
+  const int64_t max_age = s.realtime.max_torque_age;
+  const int64_t hold_limit = s.realtime.stale_torque == "hold" ? max_age + s.realtime.hold_periods : max_age;
+
+  // Publish times of recent position samples, for the end-to-end latency.
+  constexpr int64_t kRing = 4096;
+  std::array<int64_t, kRing> published_utime{};
+  std::vector<double> latencies, ages;
+
+  std::optional<lagrange::actuator_state_t> latest;
+  node.subscribe<lagrange::actuator_state_t>(
+      transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
+      [&](const lagrange::actuator_state_t& m) {
+        if (latest && m.header.tick <= latest->header.tick) return;
+        latest = m;
+        if (m.header.tick >= 0 && published_utime[m.header.tick % kRing] != 0)
+          latencies.push_back(
+              static_cast<double>(node.lastReceiveUtime() - published_utime[m.header.tick % kRing]) * 1e-6);
+      });
+  std::set<std::string> peers;
+  node.subscribe<lagrange::status_t>(
+      transport::kStatus, [](const auto& m) { return transport::validate(m); },
+      [&](const lagrange::status_t& m) {
+        if (m.process == "logger" || m.process == "controller" || m.process == "actuator")
+          peers.insert(m.process);
+      });
+
+  status.publish("ready", -1, 0.0);
+  awaitPeers(node, peers, startup_timeout);
+
+  transport::FixedRateLoop loop(s.tickPeriod(), 0.0);
+  int64_t used_tick = -1, missing = 0, held = 0, zeroed = 0;
+  auto stats = [&] {
+    lagrange::loop_stats_t st = loop.stats();
+    const auto a = transport::percentiles(ages), l = transport::percentiles(latencies);
+    st.input_age_p50 = a.p50;
+    st.input_age_p99 = a.p99;
+    st.input_age_max = a.max;
+    st.missing_inputs = missing;
+    st.stale_inputs = held + zeroed;
+    st.torque_held = held;
+    st.torque_zeroed = zeroed;
+    st.latency_p50 = l.p50;
+    st.latency_p99 = l.p99;
+    st.latency_max = l.max;
+    return st;
+  };
+
+  Eigen::VectorXd tau = Eigen::VectorXd::Zero(n);  // applied over the period ending at the sample
+  loop.start();
+  auto next_status = transport::monotonicNs() + 500'000'000LL;
+  for (int64_t k = 0; k <= last_tick && !transport::stopRequested(); ++k) {
+    loop.waitNext();
+    const double t = static_cast<double>(k) * s.tickPeriod();
+    const transport::PlantSample out = sample(sim, k, t, tau);
+    node.publish(transport::kPlantPosition, out.position);
+    node.publish(transport::kPlantTruth, out.truth);
+    published_utime[k % kRing] = out.position.header.publish_utime;
+    if (k == last_tick) break;
+
+    node.drain();
+    if (!latest || latest->header.tick <= used_tick) ++missing;
+    const int64_t age = latest ? k - latest->header.tick : k + 1;
+    if (latest && age <= max_age) {
+      tau = transport::toEigen(latest->tau_applied);
+      if (latest->header.tick > used_tick)
+        ages.push_back(static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6);
+      used_tick = latest->header.tick;
+    } else if (latest && age <= hold_limit) {
+      ++held;  // policy "hold": keep the last torque a little longer
+    } else {
+      if (k > 0) ++zeroed;  // nothing can have answered before the first sample
+      tau.setZero();
+    }
+    sim.step(tau, s.substepsPerTick());
+
+    if (transport::monotonicNs() >= next_status) {
+      status.setLoopStats(stats());
+      status.publish("running", k, t);
+      next_status += 500'000'000LL;
+    }
+  }
+  status.setLoopStats(stats());
+  if (transport::stopRequested()) {
+    status.publish("interrupted", used_tick, static_cast<double>(used_tick) * s.tickPeriod());
+    return 0;
+  }
+  if (held + zeroed > 0) spdlog::warn("stale torque: held {} periods, zeroed {} periods", held, zeroed);
+  status.publish("finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
+                 "torque_held=" + std::to_string(held) + " torque_zeroed=" + std::to_string(zeroed));
+  return 0;
+}
+
+}  // namespace lagrange::plant

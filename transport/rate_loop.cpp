@@ -1,0 +1,81 @@
+#include "transport/rate_loop.hpp"
+
+#include <sys/prctl.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <stdexcept>
+
+namespace lagrange::transport {
+
+int64_t monotonicNs() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
+}
+
+Percentiles percentiles(std::vector<double> samples) {
+  Percentiles p;
+  if (samples.empty()) return p;
+  std::sort(samples.begin(), samples.end());
+  auto at = [&](double q) {
+    const size_t i = static_cast<size_t>(std::ceil(q * static_cast<double>(samples.size()))) - 1;
+    return samples[std::min(i, samples.size() - 1)];
+  };
+  p.p50 = at(0.5);
+  p.p99 = at(0.99);
+  p.max = samples.back();
+  return p;
+}
+
+FixedRateLoop::FixedRateLoop(double period, double phase)
+    : period_ns_(static_cast<int64_t>(std::llround(period * 1e9))),
+      phase_ns_(static_cast<int64_t>(std::llround(phase * period * 1e9))) {
+  if (period_ns_ <= 0) throw std::invalid_argument("FixedRateLoop: period must be positive");
+  if (phase < 0.0 || phase >= 1.0) throw std::invalid_argument("FixedRateLoop: phase must be in [0, 1)");
+}
+
+void FixedRateLoop::start() {
+  // The kernel's default 50 us timer slack would show up as 50 us of jitter
+  // on every wake-up; a realtime loop asks for none.
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  start_ns_ = monotonicNs();
+  const int64_t k = (start_ns_ - phase_ns_) / period_ns_ + 1;
+  next_ns_ = k * period_ns_ + phase_ns_;
+}
+
+void FixedRateLoop::waitNext() {
+  const int64_t now = monotonicNs();
+  if (now > next_ns_) {
+    ++misses_;
+    longest_miss_run_ = std::max(longest_miss_run_, ++miss_run_);
+  } else {
+    miss_run_ = 0;
+    timespec deadline{static_cast<time_t>(next_ns_ / 1000000000LL),
+                      static_cast<long>(next_ns_ % 1000000000LL)};
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+    }
+  }
+  lateness_.push_back(static_cast<double>(std::max<int64_t>(0, monotonicNs() - next_ns_)) * 1e-9);
+  ++cycles_;
+  next_ns_ += period_ns_;
+}
+
+lagrange::loop_stats_t FixedRateLoop::stats() const {
+  lagrange::loop_stats_t s{};
+  s.period = static_cast<double>(period_ns_) * 1e-9;
+  s.cycles = cycles_;
+  const double elapsed = static_cast<double>(monotonicNs() - start_ns_) * 1e-9;
+  s.achieved_rate = elapsed > 0.0 ? static_cast<double>(cycles_) / elapsed : 0.0;
+  const Percentiles j = percentiles(lateness_);
+  s.jitter_p50 = j.p50;
+  s.jitter_p99 = j.p99;
+  s.jitter_max = j.max;
+  s.deadline_misses = misses_;
+  s.longest_miss_run = longest_miss_run_;
+  return s;
+}
+
+}  // namespace lagrange::transport

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// A fixed-rate loop on the monotonic clock with absolute deadlines (no
+/// drift), and the statistics a realtime process reports about it.
+///
+/// Deadlines sit at whole multiples of the period plus a phase, on
+/// CLOCK_MONOTONIC, which every process on one host shares: plant,
+/// controller and actuator, started at different moments, still wake in a
+/// fixed order within each period.
+
+#include <cstdint>
+#include <vector>
+
+#include "lagrange/loop_stats_t.hpp"
+
+namespace lagrange::transport {
+
+/// Median, 99th percentile and maximum of a sample (zeros when empty).
+struct Percentiles {
+  double p50 = 0.0, p99 = 0.0, max = 0.0;
+};
+Percentiles percentiles(std::vector<double> samples);
+
+class FixedRateLoop {
+ public:
+  /// period [s] > 0; phase in [0, 1) of a period.
+  FixedRateLoop(double period, double phase);
+
+  /// Sets the first deadline: the next one after now.
+  void start();
+
+  /// Sleeps until the next deadline (at once if it has passed, counting a
+  /// miss) and records the wake-up lateness.
+  void waitNext();
+
+  /// Deadline-related fields of the statistics (the rest stay zero).
+  lagrange::loop_stats_t stats() const;
+
+ private:
+  int64_t period_ns_, phase_ns_;
+  int64_t start_ns_ = 0, next_ns_ = 0;
+  int64_t cycles_ = 0, misses_ = 0, miss_run_ = 0, longest_miss_run_ = 0;
+  std::vector<double> lateness_;
+};
+
+int64_t monotonicNs();
+
+}  // namespace lagrange::transport

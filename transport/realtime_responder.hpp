@@ -1,0 +1,87 @@
+#pragma once
+/// @file
+/// The realtime loop of a reactive process (controller, actuator): wake at a
+/// fixed rate, take the newest input (latest-value semantics), act on it once
+/// if it is fresh, skip it (counted as stale) if it is older than
+/// max_input_age, and report loop statistics in STATUS until the plant
+/// finishes or a stop signal arrives.
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "transport/lcm_node.hpp"
+#include "transport/messages.hpp"
+#include "transport/process.hpp"
+#include "transport/rate_loop.hpp"
+
+namespace lagrange::transport {
+
+struct RealtimeSettings {
+  double period = 1e-3;         ///< [s]
+  double phase = 0.0;           ///< fraction of a period after the plant's deadlines
+  double max_input_age = 5e-3;  ///< [s]
+};
+
+template <class In, class Out>
+int serveRealtime(LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
+                  const RealtimeSettings& settings, const std::function<Out(const In&)>& compute) {
+  std::optional<In> latest;
+  node.subscribe<In>(
+      in_channel, [joints](const In& m) { return validate(m, joints); },
+      [&latest](const In& m) {
+        if (!latest || m.header.tick > latest->header.tick) latest = m;
+      });
+  bool plant_finished = false;
+  node.subscribe<lagrange::status_t>(
+      kStatus, [](const auto& m) { return validate(m); },
+      [&](const lagrange::status_t& m) {
+        if (m.process == "plant" && m.state == "finished") plant_finished = true;
+      });
+
+  StatusReporter status(node);
+  Progress progress;
+  std::vector<double> ages;
+  int64_t missing = 0, stale = 0;
+  auto stats = [&](const FixedRateLoop& loop) {
+    lagrange::loop_stats_t s = loop.stats();
+    const Percentiles a = percentiles(ages);
+    s.input_age_p50 = a.p50;
+    s.input_age_p99 = a.p99;
+    s.input_age_max = a.max;
+    s.missing_inputs = missing;
+    s.stale_inputs = stale;
+    return s;
+  };
+
+  FixedRateLoop loop(settings.period, settings.phase);
+  status.publish("ready", -1, 0.0);
+  loop.start();
+  auto next_status = monotonicNs() + 500'000'000LL;
+  while (!plant_finished && !stopRequested()) {
+    loop.waitNext();
+    node.drain();
+    if (!latest || latest->header.tick <= progress.last_tick) {
+      ++missing;
+    } else {
+      const double age = static_cast<double>(nowUtime() - latest->header.publish_utime) * 1e-6;
+      if (age > settings.max_input_age) {
+        ++stale;  // never act on an old sample
+      } else {
+        ages.push_back(age);
+        node.publish(out_channel, compute(*latest));
+      }
+      progress = {latest->header.tick, latest->header.sim_time};
+    }
+    if (monotonicNs() >= next_status) {
+      status.setLoopStats(stats(loop));
+      status.publish("running", progress.last_tick, progress.sim_time);
+      next_status += 500'000'000LL;
+    }
+  }
+  status.setLoopStats(stats(loop));
+  status.publish(plant_finished ? "finished" : "interrupted", progress.last_tick, progress.sim_time);
+  return 0;
+}
+
+}  // namespace lagrange::transport
