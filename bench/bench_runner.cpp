@@ -1,0 +1,230 @@
+/// @file
+/// `lagrange-bench`: runs every benchmark of docs/performance.md side by
+/// side, prints a table with each figure's target, writes JSON, and compares
+/// with a saved baseline. Ratios of figures measured in the same run are the
+/// headline numbers: absolute speeds drift on shared machines.
+
+#include <sys/wait.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/scenario.hpp"
+#include "plant/plant_sim.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string g_bin, g_configs, g_work;
+
+std::string capture(const std::string& cmd, int* exit_code = nullptr) {
+  std::string out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  if (exit_code) *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// A `lagrange run`; returns its summary.json.
+json run(const std::string& config, const std::string& args) {
+  const std::string dir = g_work + "/run";
+  fs::remove_all(dir);
+  int code = 0;
+  const std::string out = capture(g_bin + "/lagrange run " + config + " --out " + dir + " -q " + args + " 2>&1", &code);
+  if (code != 0) throw std::runtime_error("lagrange run failed: " + out);
+  std::ifstream in(dir + "/summary.json");
+  return json::parse(in);
+}
+
+double ticksPerSecond(const json& summary, double rate) {
+  return summary["timing"]["sim_time"].get<double>() * rate / summary["timing"]["wall_time"].get<double>();
+}
+
+// A uniform n-link chain with gentle gains, for the scaling figures.
+std::string chainConfig(int n) {
+  const std::string path = g_work + "/chain_" + std::to_string(n) + ".yaml";
+  std::ofstream out(path);
+  out << "name: chain_" << n << "\nduration: 5\nrobot:\n  gravity: 0\n  links:\n";
+  for (int i = 0; i < n; ++i) out << "    - {length: 0.1, com: 0.05, mass: 0.2, inertia: 1.7e-4}\n";
+  out << "initial_state:\n  q: 0.1\nreference: {type: sine, offset: 0.1, amplitude: 0.05, frequency: 1.0}\n"
+      << "plant: {physics_step: 1.0e-4, publish_rate: 1000}\n"
+      << "controller: {type: theorem1, kp: 0.5, kd: 0.05, a: 50, b: 50, initial_filter_state: bumpless}\n";
+  out.close();
+  // initial_state.q must be a list of n: rewrite it.
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  std::string q = "[";
+  for (int i = 0; i < n; ++i) q += (i ? ", " : "") + std::string("0.1");
+  q += "]";
+  text.replace(text.find("q: 0.1"), 6, "q: " + q);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Bare physics: PlantSim stepping with zero torque (dWorldStep, plus the
+// torque application and angle unwrapping every plant tick needs).
+double odeTicksPerSecond(const std::string& config, int ticks) {
+  const auto s = lagrange::config::loadScenario(config, {"plant.physics_step=1.0e-4"});
+  lagrange::plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
+  const Eigen::VectorXd tau = Eigen::VectorXd::Zero(s.dof());
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < ticks; ++k) sim.step(tau, s.substepsPerTick());
+  return ticks / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool holdsRealtime(const json& summary) {
+  for (const char* p : {"plant", "controller", "actuator"}) {
+    const auto& l = summary["timing"]["loops"][p];
+    if (l["on_time_fraction"].get<double>() < 0.999 || l["longest_miss_run"].get<long long>() >= 20) return false;
+  }
+  return true;
+}
+
+struct Row {
+  std::string name, value, target, verdict;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Runs the lagrange benchmarks and compares them with a baseline", "lagrange-bench"};
+  std::string out_path = "bench-results.json", baseline_path;
+  int repeats = 3;
+  double realtime_seconds = 60.0;
+  app.add_option("--bin", g_bin, "Directory of the lagrange binaries")->required();
+  app.add_option("--configs", g_configs, "Directory of the scenario files")->required();
+  app.add_option("--out", out_path, "JSON results file")->capture_default_str();
+  app.add_option("--baseline", baseline_path, "Baseline JSON to compare with");
+  app.add_option("--repeats", repeats, "Repetitions of each throughput figure (median)")->capture_default_str();
+  app.add_option("--realtime-seconds", realtime_seconds, "Length of the realtime run [s]")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  g_work = (fs::temp_directory_path() / ("lagrange-bench-" + std::to_string(getpid()))).string();
+  fs::create_directories(g_work);
+
+  json results;
+  std::vector<Row> rows;
+  auto fmt = [](double v, const char* f = "%.3g") {
+    char b[64];
+    std::snprintf(b, sizeof b, f, v);
+    return std::string(b);
+  };
+  const std::string rigid = g_configs + "/rigid_2dof.yaml";
+  const std::string at_default_step = "--set plant.physics_step=1.0e-4 --set duration=10";
+
+  std::fprintf(stderr, "1/5 lockstep vs bare LCM ring ...\n");
+  std::vector<double> ring, lockstep, inproc, ode;
+  for (int r = 0; r < repeats; ++r) {
+    ring.push_back(std::stod(capture(g_bin + "/lagrange-bench-ring --rounds 20000")));
+    lockstep.push_back(ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step), 1000));
+  }
+  results["lockstep_ticks_per_s"] = median(lockstep);
+  results["lcm_ring_rounds_per_s"] = median(ring);
+  results["lockstep_vs_ring"] = median(lockstep) / median(ring);
+  rows.push_back({"lockstep ticks/s / bare LCM ring rounds/s",
+                  fmt(median(lockstep), "%.0f") + " / " + fmt(median(ring), "%.0f") + " = " +
+                      fmt(results["lockstep_vs_ring"].get<double>(), "%.2f"),
+                  ">= 0.8", results["lockstep_vs_ring"].get<double>() >= 0.8 ? "met" : "MISSED"});
+
+  std::fprintf(stderr, "2/5 in-process vs bare ODE ...\n");
+  for (int r = 0; r < repeats; ++r) {
+    inproc.push_back(ticksPerSecond(run(rigid, "--mode inproc " + at_default_step), 1000));
+    ode.push_back(odeTicksPerSecond(rigid, 10000));
+  }
+  results["inproc_ticks_per_s"] = median(inproc);
+  results["ode_ticks_per_s"] = median(ode);
+  results["inproc_vs_ode"] = median(inproc) / median(ode);
+  rows.push_back({"in-process ticks/s / bare ODE ticks/s",
+                  fmt(median(inproc), "%.0f") + " / " + fmt(median(ode), "%.0f") + " = " +
+                      fmt(results["inproc_vs_ode"].get<double>(), "%.2f"),
+                  ">= 0.5", results["inproc_vs_ode"].get<double>() >= 0.5 ? "met" : "MISSED"});
+
+  std::fprintf(stderr, "3/5 realtime at 1 kHz for %.0f s ...\n", realtime_seconds);
+  const json rt = run(rigid, "--mode realtime --set plant.physics_step=1.0e-4 --set duration=" +
+                                 fmt(realtime_seconds, "%.0f"));
+  results["realtime"] = {{"loops", rt["timing"]["loops"]}, {"latency", rt["timing"]["latency"]}};
+  double worst_on_time = 1.0;
+  long long worst_run = 0;
+  for (const char* p : {"plant", "controller", "actuator"}) {
+    const auto& l = rt["timing"]["loops"][p];
+    worst_on_time = std::min(worst_on_time, l["on_time_fraction"].get<double>());
+    worst_run = std::max(worst_run, l["longest_miss_run"].get<long long>());
+    rows.push_back({std::string("realtime ") + p + ": on time, longest miss run, jitter p50/p99/max [us]",
+                    fmt(100 * l["on_time_fraction"].get<double>(), "%.3f") + " %, " +
+                        std::to_string(l["longest_miss_run"].get<long long>()) + ", " +
+                        fmt(1e6 * l["jitter"]["p50"].get<double>(), "%.0f") + "/" +
+                        fmt(1e6 * l["jitter"]["p99"].get<double>(), "%.0f") + "/" +
+                        fmt(1e6 * l["jitter"]["max"].get<double>(), "%.0f"),
+                    ">= 99.9 %, < 20", holdsRealtime(rt) ? "met" : "MISSED"});
+  }
+  rows.push_back({"realtime latency position -> torque at plant p50/p99/max [us]",
+                  fmt(1e6 * rt["timing"]["latency"]["p50"].get<double>(), "%.0f") + "/" +
+                      fmt(1e6 * rt["timing"]["latency"]["p99"].get<double>(), "%.0f") + "/" +
+                      fmt(1e6 * rt["timing"]["latency"]["max"].get<double>(), "%.0f"),
+                  "(reported)", ""});
+  results["realtime_on_time_fraction"] = worst_on_time;
+  results["realtime_longest_miss_run"] = worst_run;
+
+  std::fprintf(stderr, "4/5 scaling with joint count ...\n");
+  int largest_realtime_n = 0;
+  for (int n : {2, 5, 10, 20}) {
+    const std::string config = chainConfig(n);
+    const double ls = ticksPerSecond(run(config, "--mode lockstep"), 1000);
+    const double ip = ticksPerSecond(run(config, "--mode inproc"), 1000);
+    const json r = run(config, "--mode realtime --set duration=10");
+    const bool holds = holdsRealtime(r);
+    if (holds) largest_realtime_n = n;
+    results["scaling"][std::to_string(n)] = {{"lockstep_ticks_per_s", ls}, {"inproc_ticks_per_s", ip},
+                                             {"realtime_holds_1kHz", holds}};
+    rows.push_back({"n = " + std::to_string(n) + ": lockstep / in-process ticks/s, realtime 1 kHz",
+                    fmt(ls, "%.0f") + " / " + fmt(ip, "%.0f") + ", " + (holds ? "holds" : "fails"), "(reported)",
+                    ""});
+  }
+  results["largest_n_holding_realtime"] = largest_realtime_n;
+
+  std::fprintf(stderr, "5/5 micro-benchmarks ...\n");
+  const json micro = json::parse(capture(g_bin + "/lagrange-bench-micro --benchmark_format=json "
+                                                 "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "
+                                                 "2>/dev/null"));
+  for (const auto& b : micro["benchmarks"]) {
+    if (b["aggregate_name"] != "median") continue;
+    const std::string name = b["run_name"];
+    results["micro_ns"][name] = b["cpu_time"];
+    rows.push_back({"micro " + name + " [ns]", fmt(b["cpu_time"].get<double>(), "%.0f"), "(reported)", ""});
+  }
+
+  json baseline;
+  if (!baseline_path.empty() && fs::exists(baseline_path)) baseline = json::parse(std::ifstream(baseline_path));
+  std::printf("\n%-72s %-36s %-16s %s\n", "figure", "value", "target", "verdict");
+  for (const Row& r : rows)
+    std::printf("%-72s %-36s %-16s %s\n", r.name.c_str(), r.value.c_str(), r.target.c_str(), r.verdict.c_str());
+  if (!baseline.is_null()) {
+    std::printf("\nagainst the baseline (%s):\n", baseline_path.c_str());
+    for (const char* key : {"lockstep_vs_ring", "inproc_vs_ode", "realtime_on_time_fraction"})
+      if (baseline.contains(key))
+        std::printf("  %-28s now %.3f, baseline %.3f (ratio %.2f)\n", key, results[key].get<double>(),
+                    baseline[key].get<double>(), results[key].get<double>() / baseline[key].get<double>());
+  }
+  std::ofstream(out_path) << results.dump(2) << "\n";
+  std::printf("\nresults written to %s\n", out_path.c_str());
+  fs::remove_all(g_work);
+  return 0;
+}
