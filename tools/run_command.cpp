@@ -73,6 +73,20 @@ std::string writeResolved(const config::Scenario& scenario, const std::string& s
   return path;
 }
 
+// The logger wrote summary.json before the others were reaped; the launcher
+// adds what only it knows: each process's CPU time.
+void addCpuTimes(const std::string& out_dir, const nlohmann::json& cpu) {
+  const fs::path path = fs::path(out_dir) / "summary.json";
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(std::ifstream(path));
+  } catch (const std::exception&) {
+    return;  // printResult reports the unreadable summary
+  }
+  j["timing"]["cpu_seconds"] = cpu;
+  std::ofstream(path) << j.dump(2) << "\n";
+}
+
 void printTail(const std::string& path, int lines) {
   std::ifstream in(path);
   std::vector<std::string> all;
@@ -184,6 +198,7 @@ int runScenario(const RunOptions& opt) {
   for (const auto& s : specs) supervisor.start(s);
 
   int exit_code = 0;
+  nlohmann::json cpu = nlohmann::json::object();
   while (supervisor.anyRunning()) {
     node.handle(50);
     progress.tick();
@@ -195,6 +210,7 @@ int runScenario(const RunOptions& opt) {
       break;
     }
     for (const ChildExit& e : supervisor.reap()) {
+      cpu[e.name] = {{"user", e.cpu_user}, {"system", e.cpu_system}};
       if (!e.failed()) continue;
       progress.finish();
       std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
@@ -208,6 +224,7 @@ int runScenario(const RunOptions& opt) {
     }
   }
   progress.finish();
+  if (exit_code == 0) addCpuTimes(out_dir, cpu);
   if (exit_code == 0 && !opt.quiet) printResult(out_dir);
   if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";
   return exit_code;

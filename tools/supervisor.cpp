@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -55,13 +56,16 @@ std::vector<ChildExit> Supervisor::reap() {
   for (auto& c : children_) {
     if (!c.running) continue;
     int status = 0;
-    const pid_t r = waitpid(c.pid, &status, WNOHANG);
+    rusage usage{};
+    const pid_t r = wait4(c.pid, &status, WNOHANG, &usage);
     if (r != c.pid) continue;
     c.running = false;
     ChildExit e;
     e.name = c.spec.name;
     if (WIFSIGNALED(status)) e.signal = WTERMSIG(status);
     if (WIFEXITED(status)) e.exit_code = WEXITSTATUS(status);
+    e.cpu_user = static_cast<double>(usage.ru_utime.tv_sec) + 1e-6 * static_cast<double>(usage.ru_utime.tv_usec);
+    e.cpu_system = static_cast<double>(usage.ru_stime.tv_sec) + 1e-6 * static_cast<double>(usage.ru_stime.tv_usec);
     out.push_back(e);
   }
   return out;
