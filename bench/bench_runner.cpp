@@ -47,7 +47,8 @@ json run(const std::string& config, const std::string& args) {
   const std::string dir = g_work + "/run";
   fs::remove_all(dir);
   int code = 0;
-  const std::string out = capture(g_bin + "/lagrange run " + config + " --out " + dir + " -q " + args + " 2>&1", &code);
+  const std::string out =
+      capture(g_bin + "/lagrange run " + config + " --out " + dir + " -q " + args + " 2>&1", &code);
   if (code != 0) throw std::runtime_error("lagrange run failed: " + out);
   std::ifstream in(dir + "/summary.json");
   return json::parse(in);
@@ -94,7 +95,8 @@ double odeTicksPerSecond(const std::string& config, int ticks) {
 bool holdsRealtime(const json& summary) {
   for (const char* p : {"plant", "controller", "actuator"}) {
     const auto& l = summary["timing"]["loops"][p];
-    if (l["on_time_fraction"].get<double>() < 0.999 || l["longest_miss_run"].get<long long>() >= 20) return false;
+    if (l["on_time_fraction"].get<double>() < 0.999 || l["longest_miss_run"].get<long long>() >= 20)
+      return false;
   }
   return true;
 }
@@ -114,8 +116,10 @@ int main(int argc, char** argv) {
   app.add_option("--configs", g_configs, "Directory of the scenario files")->required();
   app.add_option("--out", out_path, "JSON results file")->capture_default_str();
   app.add_option("--baseline", baseline_path, "Baseline JSON to compare with");
-  app.add_option("--repeats", repeats, "Repetitions of each throughput figure (median)")->capture_default_str();
-  app.add_option("--realtime-seconds", realtime_seconds, "Length of the realtime run [s]")->capture_default_str();
+  app.add_option("--repeats", repeats, "Repetitions of each throughput figure (median)")
+      ->capture_default_str();
+  app.add_option("--realtime-seconds", realtime_seconds, "Length of the realtime run [s]")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   g_work = (fs::temp_directory_path() / ("lagrange-bench-" + std::to_string(getpid()))).string();
   fs::create_directories(g_work);
@@ -192,18 +196,19 @@ int main(int argc, char** argv) {
     const json r = run(config, "--mode realtime --set duration=10");
     const bool holds = holdsRealtime(r);
     if (holds) largest_realtime_n = n;
-    results["scaling"][std::to_string(n)] = {{"lockstep_ticks_per_s", ls}, {"inproc_ticks_per_s", ip},
-                                             {"realtime_holds_1kHz", holds}};
+    results["scaling"][std::to_string(n)] = {
+        {"lockstep_ticks_per_s", ls}, {"inproc_ticks_per_s", ip}, {"realtime_holds_1kHz", holds}};
     rows.push_back({"n = " + std::to_string(n) + ": lockstep / in-process ticks/s, realtime 1 kHz",
-                    fmt(ls, "%.0f") + " / " + fmt(ip, "%.0f") + ", " + (holds ? "holds" : "fails"), "(reported)",
-                    ""});
+                    fmt(ls, "%.0f") + " / " + fmt(ip, "%.0f") + ", " + (holds ? "holds" : "fails"),
+                    "(reported)", ""});
   }
   results["largest_n_holding_realtime"] = largest_realtime_n;
 
   std::fprintf(stderr, "5/5 micro-benchmarks ...\n");
-  const json micro = json::parse(capture(g_bin + "/lagrange-bench-micro --benchmark_format=json "
-                                                 "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "
-                                                 "2>/dev/null"));
+  const json micro =
+      json::parse(capture(g_bin + "/lagrange-bench-micro --benchmark_format=json "
+                                  "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "
+                                  "2>/dev/null"));
   for (const auto& b : micro["benchmarks"]) {
     if (b["aggregate_name"] != "median") continue;
     const std::string name = b["run_name"];
@@ -212,10 +217,12 @@ int main(int argc, char** argv) {
   }
 
   json baseline;
-  if (!baseline_path.empty() && fs::exists(baseline_path)) baseline = json::parse(std::ifstream(baseline_path));
+  if (!baseline_path.empty() && fs::exists(baseline_path))
+    baseline = json::parse(std::ifstream(baseline_path));
   std::printf("\n%-72s %-36s %-16s %s\n", "figure", "value", "target", "verdict");
   for (const Row& r : rows)
-    std::printf("%-72s %-36s %-16s %s\n", r.name.c_str(), r.value.c_str(), r.target.c_str(), r.verdict.c_str());
+    std::printf("%-72s %-36s %-16s %s\n", r.name.c_str(), r.value.c_str(), r.target.c_str(),
+                r.verdict.c_str());
   if (!baseline.is_null()) {
     std::printf("\nagainst the baseline (%s):\n", baseline_path.c_str());
     for (const char* key : {"lockstep_vs_ring", "inproc_vs_ode", "realtime_on_time_fraction"})

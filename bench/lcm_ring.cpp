@@ -4,13 +4,13 @@
 /// CONTROL_COMMAND, ACTUATOR_STATE), with no computation. Prints rounds per
 /// second. Run it inside a private network namespace (bench/run.sh does).
 
-#include <lcm/lcm-cpp.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <lcm/lcm-cpp.hpp>
 #include <vector>
 
 #include "controller/theorem1.hpp"
@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   const auto sample = lagrange::transport::plantSample(0, 0.0, zero, zero, zero, 0.0, 0.0);
   lagrange::controller::Theorem1Output out{zero, zero, zero, zero, zero};
   const auto command = lagrange::transport::commandMessage(out, 0, 0.0);
-  lagrange::actuator::ActuatorOutput act{zero, Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(joints, false)};
+  lagrange::actuator::ActuatorOutput act{zero,
+                                         Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(joints, false)};
   const auto state = lagrange::transport::actuatorMessage(act, command);
   const std::vector<uint8_t> pos = encode(sample.position), cmd = encode(command), st = encode(state);
 

@@ -188,7 +188,10 @@ Scenario readScenario(MapReader root) {
     s.realtime.hold_periods = r.integer("hold_periods", s.realtime.hold_periods);
     if (s.realtime.hold_periods < 0) r.fail("hold_periods", "expected a whole number >= 0");
     s.realtime.max_input_age = r.positive("max_input_age", s.realtime.max_input_age);
-    r.finish({"max_torque_age", "stale_torque", "hold_periods", "max_input_age"});
+    s.realtime.priority = r.integer("priority", s.realtime.priority);
+    if (s.realtime.priority < 0 || s.realtime.priority > 99)
+      r.fail("priority", "expected a SCHED_FIFO priority from 1 to 99, or 0 for the normal scheduler");
+    r.finish({"max_torque_age", "stale_torque", "hold_periods", "max_input_age", "priority"});
   }
   root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference", "plant",
                "actuator", "controller", "metrics", "lockstep", "realtime"});
@@ -303,6 +306,7 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "stale_torque" << YAML::Value << s.realtime.stale_torque;
   out << YAML::Key << "hold_periods" << YAML::Value << s.realtime.hold_periods;
   out << YAML::Key << "max_input_age" << YAML::Value << s.realtime.max_input_age;
+  out << YAML::Key << "priority" << YAML::Value << s.realtime.priority;
   out << YAML::EndMap;
 
   out << YAML::EndMap;

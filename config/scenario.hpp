@@ -60,9 +60,10 @@ struct RealtimeConfig {
   /// Ticks a torque may lag the plant's current tick before it is stale
   /// (its source position was published more than this many periods ago).
   int max_torque_age = 2;
-  std::string stale_torque = "zero";  ///< "zero", or "hold" the last torque for hold_periods more
-  int hold_periods = 10;
+  std::string stale_torque = "hold";  ///< "hold" the last torque for hold_periods more, or "zero"
+  int hold_periods = 20;
   double max_input_age = 0.005;  ///< controller and actuator skip inputs older than this [s]
+  int priority = 50;             ///< SCHED_FIFO priority of the loops, 0 for the normal scheduler
 };
 
 struct Scenario {

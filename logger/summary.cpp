@@ -58,6 +58,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       if (l.cycles == 0) continue;
       loops[name] = {
           {"period", l.period},
+          {"scheduler", l.scheduler},
           {"cycles", l.cycles},
           {"achieved_rate", l.achieved_rate},
           {"jitter", {{"p50", l.jitter_p50}, {"p99", l.jitter_p99}, {"max", l.jitter_max}}},

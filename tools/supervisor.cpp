@@ -64,8 +64,10 @@ std::vector<ChildExit> Supervisor::reap() {
     e.name = c.spec.name;
     if (WIFSIGNALED(status)) e.signal = WTERMSIG(status);
     if (WIFEXITED(status)) e.exit_code = WEXITSTATUS(status);
-    e.cpu_user = static_cast<double>(usage.ru_utime.tv_sec) + 1e-6 * static_cast<double>(usage.ru_utime.tv_usec);
-    e.cpu_system = static_cast<double>(usage.ru_stime.tv_sec) + 1e-6 * static_cast<double>(usage.ru_stime.tv_usec);
+    e.cpu_user =
+        static_cast<double>(usage.ru_utime.tv_sec) + 1e-6 * static_cast<double>(usage.ru_utime.tv_usec);
+    e.cpu_system =
+        static_cast<double>(usage.ru_stime.tv_sec) + 1e-6 * static_cast<double>(usage.ru_stime.tv_usec);
     out.push_back(e);
   }
   return out;

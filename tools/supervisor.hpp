@@ -18,8 +18,8 @@ struct ChildSpec {
 
 struct ChildExit {
   std::string name;
-  int exit_code = 0;  ///< valid when signal == 0
-  int signal = 0;     ///< the signal that killed it, or 0
+  int exit_code = 0;        ///< valid when signal == 0
+  int signal = 0;           ///< the signal that killed it, or 0
   double cpu_user = 0.0;    ///< CPU time in user mode [s]
   double cpu_system = 0.0;  ///< CPU time in the kernel [s]
   bool failed() const { return signal != 0 || exit_code != 0; }

@@ -9,6 +9,7 @@
 
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "transport/rate_loop.hpp"
 
 namespace lagrange::transport {
 
@@ -93,6 +94,13 @@ int runProcess(const std::string& name, const std::string& description, int argc
 
   try {
     const config::Scenario scenario = config::loadScenario(config_path, overrides);
+    // Before LCM starts its receive thread, so that the thread inherits it.
+    if (scenario.mode == "realtime" && enterRealtimeScheduling(scenario.realtime.priority) == "other" &&
+        scenario.realtime.priority > 0)
+      spdlog::warn(
+          "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
+          "the normal scheduler",
+          scenario.realtime.priority);
     LcmNode node(name, url);
     return body(scenario, node);
   } catch (const config::ConfigError& e) {

@@ -1,5 +1,7 @@
 #include "transport/rate_loop.hpp"
 
+#include <sched.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <time.h>
 
@@ -37,7 +39,19 @@ FixedRateLoop::FixedRateLoop(double period, double phase)
   if (phase < 0.0 || phase >= 1.0) throw std::invalid_argument("FixedRateLoop: phase must be in [0, 1)");
 }
 
+std::string enterRealtimeScheduling(int priority) {
+  if (priority <= 0) return "other";
+  sched_param param{};
+  param.sched_priority = priority;
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) return "other";
+  mlockall(MCL_CURRENT | MCL_FUTURE);  // no page faults inside the loops
+  return "fifo:" + std::to_string(priority);
+}
+
 void FixedRateLoop::start() {
+  sched_param param{};
+  sched_getparam(0, &param);
+  scheduler_ = sched_getscheduler(0) == SCHED_FIFO ? "fifo:" + std::to_string(param.sched_priority) : "other";
   // The kernel's default 50 us timer slack would show up as 50 us of jitter
   // on every wake-up; a realtime loop asks for none.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
@@ -66,6 +80,7 @@ void FixedRateLoop::waitNext() {
 lagrange::loop_stats_t FixedRateLoop::stats() const {
   lagrange::loop_stats_t s{};
   s.period = static_cast<double>(period_ns_) * 1e-9;
+  s.scheduler = scheduler_;
   s.cycles = cycles_;
   const double elapsed = static_cast<double>(monotonicNs() - start_ns_) * 1e-9;
   s.achieved_rate = elapsed > 0.0 ? static_cast<double>(cycles_) / elapsed : 0.0;

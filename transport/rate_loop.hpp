@@ -9,6 +9,7 @@
 /// fixed order within each period.
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "lagrange/loop_stats_t.hpp"
@@ -41,8 +42,17 @@ class FixedRateLoop {
   int64_t start_ns_ = 0, next_ns_ = 0;
   int64_t cycles_ = 0, misses_ = 0, miss_run_ = 0, longest_miss_run_ = 0;
   std::vector<double> lateness_;
+  std::string scheduler_;
 };
 
 int64_t monotonicNs();
+
+/// Asks for SCHED_FIFO at `priority` for this process and locks its memory
+/// (mlockall), as realtime robot software does. Call it before any thread is
+/// created (LCM's receive thread inherits the policy, so the thread that
+/// delivers inputs is not starved by the loop threads). Returns the policy in
+/// effect: "fifo:PRIORITY", or "other" where FIFO is not allowed (no root, no
+/// CAP_SYS_NICE) or priority is 0.
+std::string enterRealtimeScheduling(int priority);
 
 }  // namespace lagrange::transport
