@@ -11,6 +11,7 @@
 /// so a log describes itself.
 
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -33,6 +34,7 @@ using Clock = std::chrono::steady_clock;
 int DoMain(int argc, char** argv) {
   std::string out_dir = ".";
   double finish_grace = 2.0;
+  int progress_fd = -1;
   return transport::runProcess(
       "logger", "Records every LCM channel to run.lcm and writes summary.json.", argc, argv,
       [&](CLI::App& app) {
@@ -40,6 +42,9 @@ int DoMain(int argc, char** argv) {
         app.add_option("--finish-grace", finish_grace,
                        "Seconds to wait for the other processes' final STATUS after the plant finished")
             ->capture_default_str();
+        app.add_option("--progress-fd", progress_fd,
+                       "File descriptor to write progress lines to (\"SIM_TIME ERROR\" every 100 ms); "
+                       "the launcher uses it for its progress display");
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         const auto wall_start = Clock::now();
@@ -85,7 +90,7 @@ int DoMain(int argc, char** argv) {
             });
 
         auto report = [&](const char* state) {
-          status.publish(state, metrics.lastTick(), metrics.summary().sim_time, metrics.lastError());
+          status.publish(state, metrics.lastTick(), metrics.lastTime(), metrics.lastError());
         };
         // True when plant, controller and actuator have all reported `state`
         // (or, with state empty, any final state).
@@ -103,6 +108,7 @@ int DoMain(int argc, char** argv) {
         report("ready");
         auto next_flush = Clock::now() + std::chrono::milliseconds(100);
         auto next_status = Clock::now() + std::chrono::milliseconds(100);
+        auto next_progress_line = Clock::now();
         while (!transport::stopRequested()) {
           node.handle(20);
           const auto now = Clock::now();
@@ -112,6 +118,13 @@ int DoMain(int argc, char** argv) {
           }
           if (progress_due || now >= next_status) {
             report("running");
+            if (progress_fd >= 0 && now >= next_progress_line) {
+              next_progress_line = now + std::chrono::milliseconds(100);
+              // Best effort: a full pipe drops a line, never blocks the logger.
+              const std::string line =
+                  std::to_string(metrics.lastTime()) + " " + std::to_string(metrics.lastError()) + "\n";
+              [[maybe_unused]] const ssize_t written = write(progress_fd, line.data(), line.size());
+            }
             progress_due = false;
             next_status = now + std::chrono::milliseconds(100);
           }

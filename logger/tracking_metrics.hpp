@@ -36,6 +36,7 @@ class TrackingMetrics {
   TrackingSummary summary() const;
   long long lastTick() const { return last_tick_; }
   double lastError() const { return errors_.empty() ? std::nan("") : errors_.back(); }
+  double lastTime() const { return times_.empty() ? 0.0 : times_.back(); }
 
  private:
   model::Reference reference_;

@@ -1,15 +1,20 @@
 #include "tools/run_command.hpp"
 
+#include <fcntl.h>
+#include <poll.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -20,7 +25,6 @@
 #include "tools/progress.hpp"
 #include "tools/supervisor.hpp"
 #include "transport/channels.hpp"
-#include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
 
 namespace lagrange::tools {
@@ -86,6 +90,34 @@ void addCpuTimes(const std::string& out_dir, const nlohmann::json& cpu) {
   j["timing"]["cpu_seconds"] = cpu;
   std::ofstream(path) << j.dump(2) << "\n";
 }
+
+// Reads "sim_time tracking_error" lines from the logger's progress pipe.
+class ProgressReader {
+ public:
+  explicit ProgressReader(int fd) : fd_(fd) {}
+  /// Waits up to timeout_ms for data; returns the newest complete line's values.
+  std::optional<std::pair<double, double>> wait(int timeout_ms) {
+    pollfd p{fd_, POLLIN, 0};
+    if (poll(&p, 1, timeout_ms) <= 0) return std::nullopt;
+    char buf[4096];
+    const ssize_t got = read(fd_, buf, sizeof buf);
+    if (got <= 0) return std::nullopt;
+    pending_.append(buf, static_cast<size_t>(got));
+    const auto end = pending_.rfind('\n');
+    if (end == std::string::npos) return std::nullopt;
+    const auto previous = end == 0 ? std::string::npos : pending_.rfind('\n', end - 1);
+    const size_t begin = previous == std::string::npos ? 0 : previous + 1;
+    std::istringstream line(pending_.substr(begin, end - begin));
+    pending_.erase(0, end + 1);
+    double t = 0.0, error = 0.0;
+    if (!(line >> t >> error)) return std::nullopt;
+    return std::make_pair(t, error);
+  }
+
+ private:
+  int fd_;
+  std::string pending_;
+};
 
 void printTail(const std::string& path, int lines) {
   std::ifstream in(path);
@@ -171,13 +203,16 @@ int runScenario(const RunOptions& opt) {
   std::signal(SIGTERM, onSignal);
   std::signal(SIGPIPE, SIG_IGN);
 
-  transport::LcmNode node("launcher", url);
+  // Progress comes from the logger through a pipe (its --progress-fd), not
+  // over LCM: a launcher on the LCM URL would receive every message of the
+  // run for the sake of one line every 100 ms.
+  int progress_pipe[2];
+  if (pipe2(progress_pipe, O_CLOEXEC | O_NONBLOCK) != 0) {
+    std::cerr << "lagrange run: cannot create a pipe: " << std::strerror(errno) << "\n";
+    return 1;
+  }
   ProgressDisplay progress(scenario.duration, opt.quiet);
-  node.subscribe<lagrange::status_t>(
-      transport::kStatus, [](const auto& m) { return transport::validate(m); },
-      [&](const lagrange::status_t& m) {
-        if (m.process == "logger") progress.update(m.header.sim_time, m.tracking_error);
-      });
+  ProgressReader progress_reader(progress_pipe[0]);
 
   const std::string bin = executableDir();
   Supervisor supervisor;
@@ -191,16 +226,19 @@ int runScenario(const RunOptions& opt) {
   };
   // The logger first, so that it records from the first tick; the plant waits
   // for the logger's STATUS before it starts the clock anyway.
+  ChildSpec logger = spec("logger", {"--out", out_dir, "--progress-fd", "3"});
+  logger.pass_fd = progress_pipe[1];
   std::vector<ChildSpec> specs = {
-      spec("logger", {"--out", out_dir}),
+      logger,
       spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{}),
       spec("actuator", {}), spec("plant", {})};
   for (const auto& s : specs) supervisor.start(s);
+  close(progress_pipe[1]);
 
   int exit_code = 0;
   nlohmann::json cpu = nlohmann::json::object();
   while (supervisor.anyRunning()) {
-    node.handle(50);
+    if (const auto latest = progress_reader.wait(50)) progress.update(latest->first, latest->second);
     progress.tick();
     if (launcher_signal != 0) {
       progress.finish();
@@ -224,6 +262,7 @@ int runScenario(const RunOptions& opt) {
     }
   }
   progress.finish();
+  close(progress_pipe[0]);
   if (exit_code == 0) addCpuTimes(out_dir, cpu);
   if (exit_code == 0 && !opt.quiet) printResult(out_dir);
   if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";

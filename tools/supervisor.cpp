@@ -38,6 +38,7 @@ void Supervisor::start(const ChildSpec& spec) {
       dup2(fd, STDERR_FILENO);
       close(fd);
     }
+    if (spec.pass_fd >= 0) dup2(spec.pass_fd, 3);  // dup2 clears close-on-exec
     const int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, STDIN_FILENO);
     std::signal(SIGINT, SIG_IGN);  // Ctrl-C reaches the launcher, which stops us with SIGTERM

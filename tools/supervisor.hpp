@@ -14,6 +14,7 @@ struct ChildSpec {
   std::string name;               ///< "plant", ...
   std::vector<std::string> argv;  ///< argv[0] is the executable path
   std::string log_path;           ///< stdout and stderr go here
+  int pass_fd = -1;               ///< if >= 0, handed to the child as its file descriptor 3
 };
 
 struct ChildExit {
