@@ -66,12 +66,15 @@ int DoMain(int argc, char** argv) {
         node.subscribeRaw(".*", [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
           log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
         });
+        // Acknowledge progress often enough that the plant, allowed
+        // lockstep.logger_window ticks ahead, never waits for the logger.
+        const long long ack_every = std::max(1, s.lockstep.logger_window / 4);
         bool progress_due = false;
         node.subscribe<lagrange::plant_truth_t>(
             transport::kPlantTruth, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::plant_truth_t& m) {
               if (metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q)) &&
-                  m.header.tick % 50 == 0)
+                  m.header.tick % ack_every == 0)
                 progress_due = true;
             });
         node.subscribe<lagrange::actuator_state_t>(
