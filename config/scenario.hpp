@@ -52,7 +52,9 @@ struct MetricsConfig {
 
 struct LockstepConfig {
   double retransmit_timeout = 0.05;  ///< wall time before the plant re-sends a tick [s]
-  int logger_window = 500;           ///< ticks the plant may run ahead of the logger
+  /// Ticks the plant may run ahead of the logger. Small, so that what is in
+  /// flight (about 5 messages a tick) always fits the logger's socket buffer.
+  int logger_window = 20;
 };
 
 /// Realtime mode: every process on its own fixed-rate loop.

@@ -30,6 +30,7 @@ namespace lagrange {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr int kLoggerReceiveBuffer = 4 << 20;
 
 int DoMain(int argc, char** argv) {
   std::string out_dir = ".";
@@ -82,7 +83,7 @@ int DoMain(int argc, char** argv) {
             [&](const lagrange::actuator_state_t& m) {
               metrics.addTorque(transport::toEigen(m.tau_applied));
             });
-        std::optional<Clock::time_point> plant_finished_at;
+        std::optional<Clock::time_point> plant_finished_at, all_samples_at;
         node.subscribe<lagrange::status_t>(
             transport::kStatus, [](const auto& m) { return transport::validate(m); },
             [&](const lagrange::status_t& m) {
@@ -134,6 +135,12 @@ int DoMain(int argc, char** argv) {
           if (plant_finished_at && (all_reported("finished") ||
                                     now - *plant_finished_at > std::chrono::duration<double>(finish_grace)))
             break;
+          // The plant's final STATUS can be lost like any datagram: having
+          // every tick's sample is enough to finish, after the same grace.
+          if (metrics.lastTick() >= s.lastTick()) {
+            if (!all_samples_at) all_samples_at = now;
+            if (now - *all_samples_at > std::chrono::duration<double>(finish_grace)) break;
+          }
         }
         // Drain what is still queued, then close the log before the summary.
         // Bounded in time: other traffic on the URL (another publisher, a
@@ -147,8 +154,9 @@ int DoMain(int argc, char** argv) {
           const bool got = node.raw().handleTimeout(10) > 0;
           if (!got && (!transport::stopRequested() || all_reported(""))) break;
         }
-        facts.status = transport::stopRequested() ? "interrupted" : "completed";
-        if (!transport::stopRequested() && !all_reported("finished"))
+        // Completed means every tick was recorded, however the logger was stopped.
+        facts.status = metrics.lastTick() >= s.lastTick() ? "completed" : "interrupted";
+        if (facts.status == "completed" && !all_reported("finished"))
           spdlog::warn("not every process reported 'finished' within {} s of the plant", finish_grace);
         report(transport::stopRequested() ? "interrupted" : "finished");
         log.flush();
@@ -169,7 +177,9 @@ int DoMain(int argc, char** argv) {
         if (!out) throw std::runtime_error("cannot write '" + summary_path + "'");
         spdlog::info("wrote {} events to {} and {}", facts.log_events, log_path, summary_path);
         return 0;
-      });
+      },
+      // Every message of the run lands here: ask for a deep socket buffer.
+      kLoggerReceiveBuffer);
 }
 
 }  // namespace

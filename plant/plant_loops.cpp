@@ -149,12 +149,8 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   int64_t used_tick = -1, missing = 0, held = 0, zeroed = 0;
   auto stats = [&] {
     lagrange::loop_stats_t st = loop.stats();
-    const auto a = transport::percentiles(ages), l = transport::percentiles(latencies);
-    st.input_age_p50 = a.p50;
-    st.input_age_p99 = a.p99;
-    st.input_age_max = a.max;
-    st.missing_inputs = missing;
-    st.stale_inputs = held + zeroed;
+    transport::setInputStats(st, ages, missing, held + zeroed);
+    const auto l = transport::percentiles(latencies);
     st.torque_held = held;
     st.torque_zeroed = zeroed;
     st.latency_p50 = l.p50;

@@ -237,6 +237,11 @@ int runScenario(const RunOptions& opt) {
 
   int exit_code = 0;
   nlohmann::json cpu = nlohmann::json::object();
+  // After the plant has finished, the others get this long to follow (they
+  // normally need milliseconds); then they are stopped, so that a lost final
+  // STATUS can never hang a run.
+  constexpr double kFollowSeconds = 10.0;
+  std::optional<std::chrono::steady_clock::time_point> plant_done;
   while (supervisor.anyRunning()) {
     if (const auto latest = progress_reader.wait(50)) progress.update(latest->first, latest->second);
     progress.tick();
@@ -247,8 +252,20 @@ int runScenario(const RunOptions& opt) {
       exit_code = 130;
       break;
     }
+    if (plant_done &&
+        std::chrono::steady_clock::now() - *plant_done > std::chrono::duration<double>(kFollowSeconds)) {
+      progress.finish();
+      std::cerr << "lagrange run: warning: processes still running " << kFollowSeconds
+                << " s after the plant finished; stopping them\n";
+      for (const ChildExit& e : supervisor.stopAll(5.0)) {
+        cpu[e.name] = {{"user", e.cpu_user}, {"system", e.cpu_system}};
+        if (e.failed() && e.signal != SIGTERM) exit_code = 1;
+      }
+      break;
+    }
     for (const ChildExit& e : supervisor.reap()) {
       cpu[e.name] = {{"user", e.cpu_user}, {"system", e.cpu_system}};
+      if (e.name == "plant" && !e.failed()) plant_done = std::chrono::steady_clock::now();
       if (!e.failed()) continue;
       progress.finish();
       std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()

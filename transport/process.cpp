@@ -50,13 +50,17 @@ void StatusReporter::publish(const std::string& state, int64_t last_tick, double
   node_.publish(kStatus, s);
 }
 
-int serveUntilPlantFinished(LcmNode& node, const Progress& progress) {
-  bool plant_finished = false;
+void watchPlantFinished(LcmNode& node, bool& finished) {
   node.subscribe<lagrange::status_t>(
       kStatus, [](const auto& m) { return validate(m); },
-      [&](const lagrange::status_t& m) {
-        if (m.process == "plant" && m.state == "finished") plant_finished = true;
+      [&finished](const lagrange::status_t& m) {
+        if (m.process == "plant" && m.state == "finished") finished = true;
       });
+}
+
+int serveUntilPlantFinished(LcmNode& node, const Progress& progress) {
+  bool plant_finished = false;
+  watchPlantFinished(node, plant_finished);
   StatusReporter status(node);
   status.publish("ready", progress.last_tick, progress.sim_time);
   auto next_status = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
@@ -71,8 +75,15 @@ int serveUntilPlantFinished(LcmNode& node, const Progress& progress) {
   return 0;
 }
 
+std::string withReceiveBuffer(const std::string& url, int bytes) {
+  if (bytes <= 0 || url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos)
+    return url;
+  return url + (url.find('?') == std::string::npos ? "?" : "&") + "recv_buf_size=" + std::to_string(bytes);
+}
+
 int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
-               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body) {
+               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body,
+               int receive_buffer_bytes) {
   CLI::App app{description, "lagrange-" + name};
   std::string config_path;
   std::string url = kDefaultLcmUrl;
@@ -101,7 +112,7 @@ int runProcess(const std::string& name, const std::string& description, int argc
           "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
           "the normal scheduler",
           scenario.realtime.priority);
-    LcmNode node(name, url);
+    LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes));
     return body(scenario, node);
   } catch (const config::ConfigError& e) {
     spdlog::error("{}", e.what());

@@ -42,6 +42,10 @@ struct Progress {
   double sim_time = 0.0;
 };
 
+/// Sets `finished` (which must outlive the node) once the plant reports
+/// STATUS "finished".
+void watchPlantFinished(LcmNode& node, bool& finished);
+
 /// The loop of a process that only reacts to messages (controller, actuator):
 /// publishes STATUS "ready", handles messages with periodic "running" reports
 /// until the plant reports "finished" or a stop signal arrives, then
@@ -54,8 +58,14 @@ using ProcessBody = std::function<int(const config::Scenario&, LcmNode&)>;
 
 /// Parses the common options (plus those `add_options` adds), installs the
 /// signal handlers, loads the scenario, connects LCM and runs `body`,
-/// translating exceptions into messages and exit codes.
+/// translating exceptions into messages and exit codes. A positive
+/// receive_buffer_bytes asks the kernel for that UDP receive buffer
+/// (LCM's recv_buf_size; capped by net.core.rmem_max, and LCM warns then).
 int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
-               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body);
+               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body,
+               int receive_buffer_bytes = 0);
+
+/// The LCM URL with recv_buf_size=bytes added (udpm URLs without one only).
+std::string withReceiveBuffer(const std::string& url, int bytes);
 
 }  // namespace lagrange::transport

@@ -39,6 +39,16 @@ FixedRateLoop::FixedRateLoop(double period, double phase)
   if (phase < 0.0 || phase >= 1.0) throw std::invalid_argument("FixedRateLoop: phase must be in [0, 1)");
 }
 
+void setInputStats(lagrange::loop_stats_t& stats, const std::vector<double>& ages, int64_t missing,
+                   int64_t stale) {
+  const Percentiles a = percentiles(ages);
+  stats.input_age_p50 = a.p50;
+  stats.input_age_p99 = a.p99;
+  stats.input_age_max = a.max;
+  stats.missing_inputs = missing;
+  stats.stale_inputs = stale;
+}
+
 std::string enterRealtimeScheduling(int priority) {
   if (priority <= 0) return "other";
   sched_param param{};

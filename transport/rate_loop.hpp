@@ -47,6 +47,12 @@ class FixedRateLoop {
 
 int64_t monotonicNs();
 
+/// Fills the input-side fields of loop statistics: the age at use of the
+/// inputs acted on [s], and the counts of cycles without a new input and with
+/// a stale one.
+void setInputStats(lagrange::loop_stats_t& stats, const std::vector<double>& ages, int64_t missing,
+                   int64_t stale);
+
 /// Asks for SCHED_FIFO at `priority` for this process and locks its memory
 /// (mlockall), as realtime robot software does. Call it before any thread is
 /// created (LCM's receive thread inherits the policy, so the thread that

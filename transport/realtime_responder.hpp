@@ -33,11 +33,7 @@ int serveRealtime(LcmNode& node, const std::string& in_channel, const std::strin
         if (!latest || m.header.tick > latest->header.tick) latest = m;
       });
   bool plant_finished = false;
-  node.subscribe<lagrange::status_t>(
-      kStatus, [](const auto& m) { return validate(m); },
-      [&](const lagrange::status_t& m) {
-        if (m.process == "plant" && m.state == "finished") plant_finished = true;
-      });
+  watchPlantFinished(node, plant_finished);
 
   StatusReporter status(node);
   Progress progress;
@@ -45,12 +41,7 @@ int serveRealtime(LcmNode& node, const std::string& in_channel, const std::strin
   int64_t missing = 0, stale = 0;
   auto stats = [&](const FixedRateLoop& loop) {
     lagrange::loop_stats_t s = loop.stats();
-    const Percentiles a = percentiles(ages);
-    s.input_age_p50 = a.p50;
-    s.input_age_p99 = a.p99;
-    s.input_age_max = a.max;
-    s.missing_inputs = missing;
-    s.stale_inputs = stale;
+    setInputStats(s, ages, missing, stale);
     return s;
   };
 

@@ -251,6 +251,31 @@ TEST_P(InprocVsLockstep, TrajectoriesAreBitIdentical) {
 
 INSTANTIATE_TEST_SUITE_P(Configs, InprocVsLockstep, ::testing::ValuesIn(shippedConfigs()));
 
+// The log misses nothing when the machine is busy: the logger lags, the
+// plant waits for it (lockstep.logger_window) instead of overrunning its
+// socket buffer. Two busy threads compete with the run's four processes.
+TEST(Load, LockstepLogIsCompleteUnderCpuLoad) {
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> hogs;
+  for (int i = 0; i < 2; ++i)
+    hogs.emplace_back([&stop] {
+      volatile double x = 0.0;
+      while (!stop) x = x + 1.0;
+    });
+  const std::string dir = freshDir("load");
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "-q --set duration=5");
+  stop = true;
+  for (auto& h : hogs) h.join();
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto truth = readTruth(dir + "/run.lcm");
+  ASSERT_EQ(truth.size(), 5001u);
+  for (size_t i = 0; i < truth.size(); ++i) ASSERT_EQ(truth[i].tick, static_cast<long long>(i));
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["status"], "completed");
+  EXPECT_EQ(j["processes"]["logger"]["channels"]["PLANT_TRUTH"]["received"],
+            j["processes"]["plant"]["channels"]["PLANT_TRUTH"]["published"]);
+}
+
 TEST(LargeError, AnglesStayMultiTurnAndConverge) {
   const std::string dir = freshDir("large");
   const RunResult r = runScenario(kConfigs + "/rigid_2dof_large_error.yaml", dir, "-q --set duration=4");
