@@ -157,47 +157,10 @@ void printResult(const std::string& out_dir) {
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
   std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
-}  // namespace
-
-int runScenario(const RunOptions& opt) {
-  config::Scenario scenario;
-  std::string out_dir;
-  try {
-    scenario = config::loadScenario(opt.config_path, opt.overrides);
-    out_dir = prepareOutDir(opt.out_dir);
-  } catch (const config::ConfigError& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return 2;
-  }
-
-  if (scenario.mode == "inproc") {
-    if (!gainsAllowRun(scenario, opt)) return 2;
-    writeResolved(scenario, opt.config_path, out_dir);
-    std::signal(SIGINT, onSignal);
-    std::signal(SIGTERM, onSignal);
-    ProgressDisplay progress(scenario.duration, opt.quiet);
-    const int code = runInProcess(scenario, out_dir, progress, [] { return launcher_signal != 0; });
-    progress.finish();
-    if (code == 0 && !opt.quiet) printResult(out_dir);
-    return code;
-  }
-
-  if (opt.private_netns && !insidePrivateNetns()) {
-    const std::string why = reexecInPrivateNetns(opt.self_argv);
-    std::cerr << "lagrange run: " << why << "; install util-linux or run with --no-netns\n";
-    return 1;
-  }
-  if (opt.private_netns) {
-    try {
-      configureLoopbackMulticast();
-    } catch (const std::exception& e) {
-      std::cerr << "lagrange run: " << e.what() << "\n";
-      return 1;
-    }
-  }
-  if (!gainsAllowRun(scenario, opt)) return 2;
-  const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
-
+// Starts logger, controller, actuator and plant on a fresh LCM URL, shows
+// progress, and watches them until all have exited; returns the exit code.
+int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
+                       const std::string& resolved) {
   const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
@@ -284,6 +247,49 @@ int runScenario(const RunOptions& opt) {
   if (exit_code == 0 && !opt.quiet) printResult(out_dir);
   if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";
   return exit_code;
+}
+}  // namespace
+
+int runScenario(const RunOptions& opt) {
+  config::Scenario scenario;
+  std::string out_dir;
+  try {
+    scenario = config::loadScenario(opt.config_path, opt.overrides);
+    out_dir = prepareOutDir(opt.out_dir);
+  } catch (const config::ConfigError& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return 2;
+  }
+
+  if (scenario.mode == "inproc") {
+    if (!gainsAllowRun(scenario, opt)) return 2;
+    writeResolved(scenario, opt.config_path, out_dir);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    ProgressDisplay progress(scenario.duration, opt.quiet);
+    const int code = runInProcess(scenario, out_dir, progress, [] { return launcher_signal != 0; });
+    progress.finish();
+    if (code == 0 && !opt.quiet) printResult(out_dir);
+    return code;
+  }
+
+  if (opt.private_netns && !insidePrivateNetns()) {
+    const std::string why = reexecInPrivateNetns(opt.self_argv);
+    std::cerr << "lagrange run: " << why << "; install util-linux or run with --no-netns\n";
+    return 1;
+  }
+  if (opt.private_netns) {
+    try {
+      configureLoopbackMulticast();
+    } catch (const std::exception& e) {
+      std::cerr << "lagrange run: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  if (!gainsAllowRun(scenario, opt)) return 2;
+  const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
+
+  return superviseProcesses(scenario, opt, out_dir, resolved);
 }
 
 }  // namespace lagrange::tools
