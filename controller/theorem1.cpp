@@ -54,7 +54,7 @@ Theorem1Output Theorem1Controller::step(double t, const Eigen::VectorXd& q) {
       throw std::invalid_argument("Theorem1Controller: time must increase between steps");
     filter_.advance(previous_error_, t - previous_time_);
   }
-  const model::ReferenceSample ref = reference_.evaluate(t);
+  const model::ReferenceSample ref = reference_.evaluate(t, 2);
   out.q_desired = ref.q();
   out.q_error = q - out.q_desired;
   if (bumpless_ && !has_previous_) filter_.reset(-gains_.b.cwiseProduct(out.q_error));

@@ -83,9 +83,10 @@ double Reference::jointDerivative(int joint, int order, double t) const {
   return sum;
 }
 
-ReferenceSample Reference::evaluate(double t) const {
+ReferenceSample Reference::evaluate(double t, int max_order) const {
+  if (max_order < 0 || max_order > 4) throw std::invalid_argument("reference: max_order must be 0..4");
   ReferenceSample s;
-  for (int k = 0; k <= 4; ++k) {
+  for (int k = 0; k <= max_order; ++k) {
     s.derivative[k].resize(dof());
     for (int i = 0; i < dof(); ++i) s.derivative[k](i) = jointDerivative(i, k, t);
   }
