@@ -3,9 +3,9 @@
 /// robot. For order m = 0 the commanded torque passes through, optionally
 /// saturated.
 ///
-///   CONTROL_COMMAND -> validate -> PassthroughActuator::step -> ACTUATOR_STATE
+///   CONTROL_COMMAND -> validate -> IntegratorChain::step -> ACTUATOR_STATE
 
-#include "actuator/passthrough.hpp"
+#include "actuator/integrator_chain.hpp"
 #include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -20,10 +20,11 @@ int DoMain(int argc, char** argv) {
   return transport::runProcess(
       "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).", argc, argv,
       nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
-        const actuator::PassthroughActuator act(s.dof(), s.actuator.saturation);
+        actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
+                                      Eigen::MatrixXd::Zero(s.actuator.order, s.dof()));
         const std::function<lagrange::actuator_state_t(const lagrange::control_command_t&)> compute =
             [&](const lagrange::control_command_t& m) {
-              return transport::actuatorMessage(act.step(transport::toEigen(m.u)), m);
+              return transport::actuatorMessage(act.step(transport::toEigen(m.u), s.tickPeriod()), m);
             };
         if (s.mode == "realtime") {
           // Half a period after the plant: the controller has answered.

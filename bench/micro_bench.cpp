@@ -2,7 +2,7 @@
 // step, actuator step, for chains of 2 to 20 joints.
 #include <benchmark/benchmark.h>
 
-#include "actuator/passthrough.hpp"
+#include "actuator/integrator_chain.hpp"
 #include "controller/theorem1.hpp"
 #include "model/planar_chain.hpp"
 
@@ -51,9 +51,9 @@ void BM_ControllerStep(benchmark::State& state) {
 }
 void BM_ActuatorStep(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const lagrange::actuator::PassthroughActuator act(n, Eigen::VectorXd::Constant(n, 10.0));
+  lagrange::actuator::IntegratorChain act(n, 0, Eigen::VectorXd::Constant(n, 10.0), Eigen::MatrixXd(0, n));
   const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(n, -20.0, 20.0);
-  for (auto _ : state) benchmark::DoNotOptimize(act.step(u));
+  for (auto _ : state) benchmark::DoNotOptimize(act.step(u, 1e-3));
 }
 
 BENCHMARK(BM_Inertia)->Arg(2)->Arg(5)->Arg(10)->Arg(20);

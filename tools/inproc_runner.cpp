@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "actuator/passthrough.hpp"
+#include "actuator/integrator_chain.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/theorem1.hpp"
 #include "logger/event_log.hpp"
@@ -32,7 +32,8 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   const model::Reference reference(s.reference);
   plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
   controller::Theorem1Controller ctl(chain, reference, s.controller.gains, s.controller.initial_filter_state);
-  const actuator::PassthroughActuator act(s.dof(), s.actuator.saturation);
+  actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
+                                Eigen::MatrixXd::Zero(s.actuator.order, s.dof()));
   logger::TrackingMetrics metrics(reference, s.metrics.tolerance);
 
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
@@ -55,7 +56,8 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
         ctl.step(sample.position.header.sim_time, transport::toEigen(sample.position.q)), k,
         sample.position.header.sim_time);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
-    const auto state = transport::actuatorMessage(act.step(transport::toEigen(command.u)), command);
+    const auto state =
+        transport::actuatorMessage(act.step(transport::toEigen(command.u), s.tickPeriod()), command);
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
     metrics.addTorque(tau);

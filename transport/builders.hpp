@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "actuator/passthrough.hpp"
+#include "actuator/integrator_chain.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"

@@ -1,7 +1,6 @@
-// Tracking metrics and the pass-through actuator.
+// Tracking metrics.
 #include <gtest/gtest.h>
 
-#include "actuator/passthrough.hpp"
 #include "logger/tracking_metrics.hpp"
 
 namespace lagrange {
@@ -33,18 +32,6 @@ TEST(TrackingMetrics, NeverConvergedIsEmpty) {
   m.addSample(0, 0.0, Eigen::VectorXd::Constant(1, 0.01));
   m.addSample(1, 1.0, Eigen::VectorXd::Constant(1, 0.5));
   EXPECT_FALSE(m.summary().convergence_time.has_value());
-}
-
-TEST(PassthroughActuator, PassesOrSaturatesPerJoint) {
-  const actuator::PassthroughActuator free(2, std::nullopt);
-  EXPECT_EQ(free.step(Eigen::Vector2d(500, -3)).tau, Eigen::Vector2d(500, -3));
-  const actuator::PassthroughActuator limited(2, Eigen::Vector2d(10, 1));
-  const auto out = limited.step(Eigen::Vector2d(500, -3));
-  EXPECT_EQ(out.tau, Eigen::Vector2d(10, -1));
-  EXPECT_TRUE(out.saturated(0) && out.saturated(1));
-  EXPECT_FALSE(limited.step(Eigen::Vector2d(5, 0.5)).saturated.any());
-  EXPECT_THROW(actuator::PassthroughActuator(2, Eigen::Vector2d(1, 0)), std::invalid_argument);
-  EXPECT_THROW(limited.step(Eigen::Vector3d::Zero()), std::invalid_argument);
 }
 
 }  // namespace
