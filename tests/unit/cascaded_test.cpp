@@ -1,0 +1,215 @@
+// The cascaded controller of eq. (750): exact discretisation of its filters,
+// and its algebra against the paper's error equations (760) and the
+// recursion behind eq. (771), on the closed loop of the Pelican arm.
+#include "controller/cascaded.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "support/rk4.hpp"
+
+namespace lagrange::controller {
+namespace {
+
+CascadedGains gainsFor(int m, int n) {
+  CascadedGains g;
+  g.stage0 = {Eigen::VectorXd::Constant(n, 40.0), Eigen::VectorXd::Constant(n, 4.0),
+              Eigen::VectorXd::Constant(n, 60.0), Eigen::VectorXd::Constant(n, 50.0)};
+  for (int i = 0; i < m; ++i) {
+    // Different numbers per stage and joint, so an index mix-up shows.
+    StageGains s;
+    s.kp = Eigen::VectorXd::LinSpaced(n, 3.0 + i, 4.0 + i);
+    s.kd = Eigen::VectorXd::LinSpaced(n, 1.5 + 0.5 * i, 2.0 + 0.3 * i);
+    s.a = Eigen::VectorXd::LinSpaced(n, 20.0 + 5 * i, 30.0 + 5 * i);
+    s.b = Eigen::VectorXd::LinSpaced(n, 0.7 + 0.1 * i, 0.9 + 0.1 * i);
+    g.stages.push_back(s);
+  }
+  return g;
+}
+
+Eigen::MatrixXd randomMatrix(std::mt19937_64& rng, int rows, int cols, double scale) {
+  std::uniform_real_distribution<double> d(-scale, scale);
+  Eigen::MatrixXd x(rows, cols);
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j) x(i, j) = d(rng);
+  return x;
+}
+
+TEST(Cascade, SigmaIsZeroForTheFirstStageThenBTimesThePreviousKp) {
+  const CascadedGains g = gainsFor(3, 2);
+  EXPECT_EQ(cascadeSigma(g, 1), Eigen::Vector2d::Zero());
+  EXPECT_EQ(cascadeSigma(g, 2), g.stages[1].b.cwiseProduct(g.stages[0].kp));
+  EXPECT_EQ(cascadeSigma(g, 3), g.stages[2].b.cwiseProduct(g.stages[1].kp));
+}
+
+class CascadeOrder : public ::testing::TestWithParam<int> {};
+
+// advanceCascade equals RK4 of eqs. (750c, 750d) with xi* and xit held.
+TEST_P(CascadeOrder, AdvanceIsExactForHeldSignals) {
+  const int m = GetParam(), n = 2;
+  const CascadedGains g = gainsFor(m, n);
+  std::mt19937_64 rng(m);
+  CascadeSignals held;
+  held.xi_star = randomMatrix(rng, m, n, 3.0);
+  held.xi_error = randomMatrix(rng, m, n, 2.0);
+  CascadeState exact{randomMatrix(rng, m, n, 1.0), randomMatrix(rng, m, n, 1.0)};
+  CascadeState start = exact;
+  const double dt = 0.02;  // a dt up to 0.8: far from Euler's regime
+  advanceCascade(g, held, dt, exact);
+
+  // Pack (qc, zeta) and integrate with theta recomputed from the state.
+  auto pack = [&](const CascadeState& s) {
+    Eigen::VectorXd v(2 * m * n);
+    v << Eigen::Map<const Eigen::VectorXd>(s.qc.data(), m * n),
+        Eigen::Map<const Eigen::VectorXd>(s.zeta.data(), m * n);
+    return v;
+  };
+  auto f = [&](double, const Eigen::VectorXd& v) {
+    CascadeState s{Eigen::Map<const Eigen::MatrixXd>(v.data(), m, n),
+                   Eigen::Map<const Eigen::MatrixXd>(v.data() + m * n, m, n)};
+    CascadeSignals sig = held;
+    sig.theta.resize(m, n);
+    for (int i = 0; i < m; ++i)
+      sig.theta.row(i) = s.qc.row(i) +
+                         g.stages[i].b.cwiseProduct(held.xi_star.row(i).transpose()).transpose() +
+                         s.zeta.row(i);
+    return pack(cascadeDerivative(g, sig));
+  };
+  Eigen::VectorXd v = pack(start);
+  for (int k = 0; k < 2000; ++k) v = testing::rk4Step(f, 0.0, v, dt / 2000);
+  EXPECT_LT((pack(exact) - v).norm(), 1e-10 * (1 + v.norm()));
+}
+
+// The closed loop of eqs. (600), (610a), (750) in continuous time, state
+// X = [q, q', qc0, xi (m x n), qc (m x n), zeta (m x n)]; the derivatives of
+// xit_i, theta_i and xi_i* along it are taken by central differences and
+// compared with eqs. (760a), (760b) and the recursion for xi*_{i+1}' (771).
+TEST_P(CascadeOrder, AlgebraMatchesTheErrorEquations760) {
+  const int m = GetParam(), n = 2;
+  const model::PlanarChain chain(model::pelicanParams());
+  model::ReferenceParams rp;
+  rp.type = model::ReferenceType::kSine;
+  rp.offset = Eigen::Vector2d(0.3, -0.2);
+  rp.amplitude = Eigen::Vector2d(0.4, 0.3);
+  rp.frequency = Eigen::Vector2d(1.5, 2.0);
+  rp.phase = Eigen::Vector2d(0.1, 0.4);
+  const model::Reference reference(rp);
+  const CascadedGains g = gainsFor(m, n);
+  const Theorem1Controller law(chain, reference, g.stage0, std::nullopt);
+  const int size = 3 * n + 3 * m * n;
+
+  struct Unpacked {
+    Eigen::VectorXd q, v, qc0;
+    Eigen::MatrixXd xi;
+    CascadeState cascade;
+  };
+  auto unpack = [&](const Eigen::VectorXd& x) {
+    Unpacked u;
+    u.q = x.segment(0, n);
+    u.v = x.segment(n, n);
+    u.qc0 = x.segment(2 * n, n);
+    u.xi = Eigen::Map<const Eigen::MatrixXd>(x.data() + 3 * n, m, n);
+    u.cascade.qc = Eigen::Map<const Eigen::MatrixXd>(x.data() + 3 * n + m * n, m, n);
+    u.cascade.zeta = Eigen::Map<const Eigen::MatrixXd>(x.data() + 3 * n + 2 * m * n, m, n);
+    return u;
+  };
+  auto signals = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd* theta0 = nullptr) {
+    const Unpacked u = unpack(x);
+    const model::ReferenceSample r = reference.evaluate(t, 2);
+    const Eigen::VectorXd th0 = u.qc0 + g.stage0.b.cwiseProduct(u.q - r.q());
+    if (theta0) *theta0 = th0;
+    return evaluateCascade(g, law.law(r, u.q, th0), u.xi, u.cascade);
+  };
+  auto field = [&](double t, const Eigen::VectorXd& x) {
+    const Unpacked u = unpack(x);
+    Eigen::VectorXd theta0;
+    const CascadeSignals s = signals(t, x, &theta0);
+    const CascadeState d = cascadeDerivative(g, s);
+    Eigen::VectorXd dx(size);
+    dx.segment(0, n) = u.v;
+    dx.segment(n, n) = chain.acceleration(u.q, u.v, u.xi.row(0).transpose());
+    dx.segment(2 * n, n) = -g.stage0.a.cwiseProduct(theta0);
+    Eigen::MatrixXd dxi(m, n);
+    for (int i = 0; i + 1 < m; ++i) dxi.row(i) = u.xi.row(i + 1);
+    dxi.row(m - 1) = s.u.transpose();
+    dx.segment(3 * n, m * n) = Eigen::Map<const Eigen::VectorXd>(dxi.data(), m * n);
+    dx.segment(3 * n + m * n, m * n) = Eigen::Map<const Eigen::VectorXd>(d.qc.data(), m * n);
+    dx.segment(3 * n + 2 * m * n, m * n) = Eigen::Map<const Eigen::VectorXd>(d.zeta.data(), m * n);
+    return dx;
+  };
+
+  std::mt19937_64 rng(100 + m);
+  for (int trial = 0; trial < 5; ++trial) {
+    const double t = 0.3 + trial;
+    const Eigen::VectorXd x = randomMatrix(rng, size, 1, 1.0).col(0);
+    const Eigen::VectorXd fx = field(t, x);
+    const double h = 1e-6;
+    const CascadeSignals now = signals(t, x), ahead = signals(t + h, x + h * fx),
+                         back = signals(t - h, x - h * fx);
+    auto rate = [&](const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) -> Eigen::MatrixXd {
+      return (a - b) / (2 * h);
+    };
+    const Eigen::MatrixXd xit_dot = rate(ahead.xi_error, back.xi_error);
+    const Eigen::MatrixXd theta_dot = rate(ahead.theta, back.theta);
+    const Eigen::MatrixXd star_dot = rate(ahead.xi_star, back.xi_star);
+    for (int i = 0; i < m; ++i) {
+      const StageGains& s = g.stages[i];
+      const Eigen::VectorXd xit = now.xi_error.row(i).transpose(), th = now.theta.row(i).transpose();
+      const Eigen::VectorXd sd = star_dot.row(i).transpose();
+      Eigen::VectorXd e760a = -s.kp.cwiseProduct(xit) + s.kd.cwiseProduct(th) - sd;
+      if (i + 1 < m) e760a += now.xi_error.row(i + 1).transpose();
+      const Eigen::VectorXd e760b =
+          -s.a.cwiseProduct(th) - (s.kd - cascadeSigma(g, i + 1)).cwiseProduct(xit) + s.b.cwiseProduct(sd);
+      const double tol = 1e-5 * (1 + fx.norm());
+      EXPECT_LT((xit_dot.row(i).transpose() - e760a).norm(), tol) << "eq. (760a), stage " << i + 1;
+      EXPECT_LT((theta_dot.row(i).transpose() - e760b).norm(), tol) << "eq. (760b), stage " << i + 1;
+      if (i + 1 < m) {
+        // xi*_{i+1}' = [kp^2 - kd^2 + kd sigma] xit_i - kd (kp + a) theta_i - kp xit_{i+1} + (kp + kd b)
+        // xi_i*'
+        const Eigen::VectorXd sigma = cascadeSigma(g, i + 1);
+        const Eigen::VectorXd recursion =
+            (s.kp.array().square() - s.kd.array().square() + s.kd.array() * sigma.array())
+                .matrix()
+                .cwiseProduct(xit) -
+            s.kd.cwiseProduct(s.kp + s.a).cwiseProduct(th) -
+            s.kp.cwiseProduct(now.xi_error.row(i + 1).transpose()) +
+            (s.kp + s.kd.cwiseProduct(s.b)).cwiseProduct(sd);
+        EXPECT_LT((star_dot.row(i + 1).transpose() - recursion).norm(), tol)
+            << "recursion (771), stage " << i + 1;
+      }
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Orders, CascadeOrder, ::testing::Values(1, 2, 3, 4));
+
+TEST(CascadedController, StepAdvancesTheFiltersThenEvaluatesAndChecksSizes) {
+  const model::PlanarChain chain(model::pelicanParams());
+  model::ReferenceParams rp;
+  rp.type = model::ReferenceType::kSine;
+  rp.offset = rp.amplitude = rp.frequency = rp.phase = Eigen::Vector2d::Zero();
+  const model::Reference reference(rp);
+  const CascadedGains g = gainsFor(2, 2);
+  CascadedController ctl(chain, reference, g, std::nullopt);
+  const Eigen::MatrixXd xi = Eigen::MatrixXd::Constant(2, 2, 0.5);
+  const auto first = ctl.step(0.0, Eigen::Vector2d(0.2, -0.1), xi);
+  EXPECT_EQ(ctl.state().qc, Eigen::MatrixXd::Zero(2, 2));  // nothing to advance yet
+  CascadeState expected = ctl.state();
+  advanceCascade(g, first.cascade, 0.001, expected);
+  const auto second = ctl.step(0.001, Eigen::Vector2d(0.2, -0.1), xi);
+  EXPECT_LT((ctl.state().qc - expected.qc).norm(), 1e-15);
+  EXPECT_LT((ctl.state().zeta - expected.zeta).norm(), 1e-15);
+  EXPECT_LT((second.cascade.xi_star.row(0).transpose() - second.stage0.u).norm(),
+            1e-15);  // xi_1* = eq. (610a)
+  EXPECT_THROW(ctl.step(0.002, Eigen::Vector2d::Zero(), Eigen::MatrixXd::Zero(3, 2)), std::invalid_argument);
+  CascadedGains none = g;
+  none.stages.clear();
+  EXPECT_THROW(CascadedController(chain, reference, none, std::nullopt), std::invalid_argument);
+  CascadedGains bad = g;
+  bad.stages[1].kd(0) = 0.0;
+  EXPECT_THROW(CascadedController(chain, reference, bad, std::nullopt), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lagrange::controller
