@@ -21,10 +21,11 @@ int DoMain(int argc, char** argv) {
       "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).", argc, argv,
       nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
         actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
-                                      Eigen::MatrixXd::Zero(s.actuator.order, s.dof()));
+                                      s.actuator.initial_state);
         const std::function<lagrange::actuator_state_t(const lagrange::control_command_t&)> compute =
             [&](const lagrange::control_command_t& m) {
-              return transport::actuatorMessage(act.step(transport::toEigen(m.u), s.tickPeriod()), m);
+              const actuator::ActuatorOutput out = act.step(transport::toEigen(m.u), s.tickPeriod());
+              return transport::actuatorMessage(out, act.state(), m);
             };
         if (s.mode == "realtime") {
           // Half a period after the plant: the controller has answered.
@@ -32,8 +33,9 @@ int DoMain(int argc, char** argv) {
                                           s.dof(), {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);
         }
         transport::Progress progress;
-        transport::respondPerTick(node, transport::kControlCommand, transport::kActuatorState, s.dof(),
-                                  progress, compute);
+        transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
+            node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
+            [&](const lagrange::control_command_t& m) { return std::optional(compute(m)); });
         return transport::serveUntilPlantFinished(node, progress);
       });
 }

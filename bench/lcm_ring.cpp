@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   const auto command = lagrange::transport::commandMessage(out, 0, 0.0);
   lagrange::actuator::ActuatorOutput act{zero,
                                          Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(joints, false)};
-  const auto state = lagrange::transport::actuatorMessage(act, command);
+  const auto state = lagrange::transport::actuatorMessage(act, Eigen::MatrixXd(0, joints), command);
   const std::vector<uint8_t> pos = encode(sample.position), cmd = encode(command), st = encode(state);
 
   // Two forwarders: POS -> CMD and CMD -> ACT.

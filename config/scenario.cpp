@@ -140,17 +140,52 @@ Scenario readScenario(MapReader root) {
   if (root.has("actuator")) {
     MapReader act = root.map("actuator");
     s.actuator.order = act.integer("order", 0);
-    if (s.actuator.order != 0)
-      act.fail("order", "order " + std::to_string(s.actuator.order) +
-                            " is not available in this version; expected: 0 (torque passes through)");
+    if (s.actuator.order < 0 || s.actuator.order > 4)
+      act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to 4, got " +
+                            std::to_string(s.actuator.order));
     s.actuator.saturation = act.optionalVector("saturation", n, true, true);
-    act.finish({"order", "saturation"});
+    s.actuator.initial_state = Eigen::MatrixXd::Zero(s.actuator.order, n);
+    if (act.has("initial_state")) {
+      YAML::Node rows = act.child("initial_state");
+      if (!rows.IsSequence() || static_cast<int>(rows.size()) != s.actuator.order)
+        act.fail("initial_state", "expected a list of " + std::to_string(s.actuator.order) +
+                                      " rows (xi_1 .. xi_m), each a list of " + std::to_string(n) +
+                                      " numbers");
+      for (int i = 0; i < s.actuator.order; ++i) {
+        YAML::Node wrapper;
+        wrapper["row"] = rows[i];
+        MapReader row(wrapper, act.keyPath("initial_state") + "[" + std::to_string(i) + "]");
+        s.actuator.initial_state.row(i) = row.vector("row", n, true, false).transpose();
+      }
+    }
+    act.finish({"order", "saturation", "initial_state"});
   }
 
   MapReader ctl = root.map("controller");
   s.controller.type = ctl.text("type");
-  if (s.controller.type != "theorem1")
-    ctl.fail("type", "unknown controller type '" + s.controller.type + "'; expected: theorem1");
+  if (s.controller.type != "theorem1" && s.controller.type != "cascaded")
+    ctl.fail("type", "unknown controller type '" + s.controller.type + "'; expected: theorem1 or cascaded");
+  if (s.controller.type == "theorem1" && s.actuator.order != 0)
+    ctl.fail("type",
+             "the theorem1 controller drives torque directly (actuator.order 0), but actuator.order is " +
+                 std::to_string(s.actuator.order) + "; expected: type cascaded for an integrator chain");
+  if (s.controller.type == "cascaded") {
+    if (s.actuator.order < 1)
+      ctl.fail("type",
+               "the cascaded controller needs an integrator chain; expected actuator.order from 1 to 4");
+    YAML::Node stages = ctl.child("stages");
+    if (!stages.IsSequence() || static_cast<int>(stages.size()) != s.actuator.order)
+      ctl.fail("stages", "expected a list of " + std::to_string(s.actuator.order) +
+                             " stages (one per integrator, actuator.order), each {kp, kd, a, b}");
+    for (size_t i = 0; i < stages.size(); ++i) {
+      MapReader st(stages[i], ctl.keyPath("stages") + "[" + std::to_string(i) + "]");
+      s.controller.stages.push_back({st.vector("kp", n, true, true), st.vector("kd", n, true, true),
+                                     st.vector("a", n, true, true), st.vector("b", n, true, true)});
+      st.finish({"kp", "kd", "a", "b"});
+    }
+  } else if (ctl.has("stages")) {
+    ctl.fail("stages", "only the cascaded controller has stages");
+  }
   s.controller.gains.kp = ctl.vector("kp", n, true, true);
   s.controller.gains.kd = ctl.vector("kd", n, true, true);
   s.controller.gains.a = ctl.vector("a", n, true, true);
@@ -163,7 +198,7 @@ Scenario readScenario(MapReader root) {
   } else {
     s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
   }
-  ctl.finish({"type", "kp", "kd", "a", "b", "initial_filter_state"});
+  ctl.finish({"type", "kp", "kd", "a", "b", "initial_filter_state", "stages"});
 
   if (root.has("metrics")) {
     MapReader m = root.map("metrics");
@@ -277,6 +312,15 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "order" << YAML::Value << s.actuator.order;
   if (s.actuator.saturation) emitVector(out, "saturation", *s.actuator.saturation);
+  if (s.actuator.order > 0) {
+    out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginSeq;
+    for (int i = 0; i < s.actuator.order; ++i) {
+      out << YAML::Flow << YAML::BeginSeq;
+      for (int j = 0; j < s.actuator.initial_state.cols(); ++j) out << s.actuator.initial_state(i, j);
+      out << YAML::EndSeq;
+    }
+    out << YAML::EndSeq;
+  }
   out << YAML::EndMap;
 
   out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
@@ -289,6 +333,18 @@ std::string toYaml(const Scenario& s) {
     emitVector(out, "initial_filter_state", *s.controller.initial_filter_state);
   else
     out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
+  if (!s.controller.stages.empty()) {
+    out << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
+    for (const auto& st : s.controller.stages) {
+      out << YAML::BeginMap;
+      emitVector(out, "kp", st.kp);
+      emitVector(out, "kd", st.kd);
+      emitVector(out, "a", st.a);
+      emitVector(out, "b", st.b);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
   out << YAML::EndMap;
 
   out << YAML::Key << "metrics" << YAML::Value << YAML::BeginMap;

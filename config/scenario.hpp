@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "controller/cascaded.hpp"
 #include "controller/theorem1.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
@@ -34,13 +35,15 @@ struct PlantConfig {
 };
 
 struct ActuatorConfig {
-  int order = 0;                              ///< m: integrator-chain order (only 0 so far)
+  int order = 0;                              ///< m: integrator-chain order, 0..4
   std::optional<Eigen::VectorXd> saturation;  ///< per-joint |tau| limit [N m]
+  Eigen::MatrixXd initial_state;              ///< m x n: xi_1(0) .. xi_m(0)
 };
 
 struct ControllerConfig {
-  std::string type = "theorem1";
-  controller::Theorem1Gains gains;
+  std::string type = "theorem1";               ///< "theorem1" (m = 0) or "cascaded" (m >= 1)
+  controller::Theorem1Gains gains;             ///< stage 0 (kp0, kd0, a0, b0 for "cascaded")
+  std::vector<controller::StageGains> stages;  ///< "cascaded": stages 1..m
   /// qc(0); empty means "bumpless": qc(0) = -b q~(0), so theta(0) = 0.
   std::optional<Eigen::VectorXd> initial_filter_state;
 };

@@ -12,11 +12,13 @@ GainReport checkGains(const config::Scenario& s) {
   r.kdelta = model::referenceBound(model::Reference(s.reference));
   r.condition = model::theorem1Condition(s.controller.gains.kd, s.controller.gains.a, s.controller.gains.b,
                                          r.kc, r.kdelta);
+  if (s.controller.type == "cascaded")
+    r.condition.name += ", stage 0 only (the conditions of Theorems 2 and 3 are not evaluated by this version)";
   return r;
 }
 
 std::string describe(const GainReport& r) {
-  char line[512];
+  char line[768];
   std::snprintf(
       line, sizeof line, "gain condition %s %s: %s  [%.6g > %.6g, margin %.6g; k_c = %.6g, k_delta = %.6g]",
       r.condition.name.c_str(), r.condition.holds ? "HOLDS" : "VIOLATED", r.condition.expression.c_str(),

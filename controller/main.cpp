@@ -12,7 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "controller/gain_report.hpp"
-#include "controller/theorem1.hpp"
+#include "controller/scenario_controller.hpp"
 #include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -26,7 +26,8 @@ namespace {
 int DoMain(int argc, char** argv) {
   bool strict = false;
   return transport::runProcess(
-      "controller", "Theorem 1 position-feedback tracking controller (eq. 90) over LCM.", argc, argv,
+      "controller",
+      "Position-feedback tracking controller over LCM: Theorem 1 (eq. 90) or cascaded (eq. 750).", argc, argv,
       [&](CLI::App& app) {
         app.add_flag("--strict", strict, "Refuse to start when the gain condition eq. (11) is violated");
       },
@@ -41,23 +42,47 @@ int DoMain(int argc, char** argv) {
           spdlog::warn("{} (running anyway; --strict makes this an error)", controller::describe(gains));
         }
 
-        const model::PlanarChain chain(s.robot);
-        const model::Reference reference(s.reference);
-        controller::Theorem1Controller ctl(chain, reference, s.controller.gains,
-                                           s.controller.initial_filter_state);
-        const std::function<lagrange::control_command_t(const lagrange::plant_position_t&)> compute =
-            [&](const lagrange::plant_position_t& m) {
-              const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q));
-              return transport::commandMessage(out, m.header.tick, m.header.sim_time);
-            };
-        if (s.mode == "realtime") {
-          // A quarter period after the plant: its position has arrived.
-          return transport::serveRealtime(node, transport::kPlantPosition, transport::kControlCommand,
-                                          s.dof(), {s.tickPeriod(), 0.25, s.realtime.max_input_age}, compute);
+        controller::ScenarioController ctl(s);
+        // The actuator chain's state (cascaded controller): ACTUATOR_STATE of
+        // tick k carries xi at t_{k+1}, what position k+1 is answered with.
+        Eigen::MatrixXd xi = s.actuator.initial_state;
+        int64_t xi_valid_for = 0;  // the position tick xi belongs to
+        if (ctl.order() > 0) {
+          node.subscribe<lagrange::actuator_state_t>(
+              transport::kActuatorState,
+              [&](const lagrange::actuator_state_t& a) {
+                const std::string why = transport::validate(a, s.dof());
+                if (!why.empty() || a.order == ctl.order()) return why;
+                return "actuator order is " + std::to_string(a.order) + ", expected " +
+                       std::to_string(ctl.order());
+              },
+              [&](const lagrange::actuator_state_t& a) {
+                if (a.header.tick + 1 <= xi_valid_for) return;  // not newer than what we have
+                for (int i = 0; i < ctl.order(); ++i) xi.row(i) = transport::toEigen(a.xi[i]).transpose();
+                xi_valid_for = a.header.tick + 1;
+              });
         }
+        auto command = [&](const lagrange::plant_position_t& m) {
+          const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q), xi);
+          return transport::commandMessage(out, m.header.tick, m.header.sim_time);
+        };
+        if (s.mode == "realtime") {
+          // A quarter period after the plant: its position has arrived. The
+          // newest chain state is used (latest-value semantics).
+          return transport::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
+              node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
+              {s.tickPeriod(), 0.25, s.realtime.max_input_age}, command);
+        }
+        // Lockstep: answer position k only with the chain state of t_k; if
+        // ACTUATOR_STATE k-1 has not arrived yet, stay silent: the plant
+        // re-sends position k and it is answered then.
         transport::Progress progress;
-        transport::respondPerTick(node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
-                                  progress, compute);
+        transport::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
+            node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
+            [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
+              if (ctl.order() > 0 && xi_valid_for != m.header.tick) return std::nullopt;
+              return command(m);
+            });
         return transport::serveUntilPlantFinished(node, progress);
       });
 }

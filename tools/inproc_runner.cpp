@@ -6,7 +6,7 @@
 
 #include "actuator/integrator_chain.hpp"
 #include "controller/gain_report.hpp"
-#include "controller/theorem1.hpp"
+#include "controller/scenario_controller.hpp"
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
@@ -28,13 +28,10 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
             transport::nowUtime());
 
-  const model::PlanarChain chain(s.robot);
-  const model::Reference reference(s.reference);
   plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
-  controller::Theorem1Controller ctl(chain, reference, s.controller.gains, s.controller.initial_filter_state);
-  actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
-                                Eigen::MatrixXd::Zero(s.actuator.order, s.dof()));
-  logger::TrackingMetrics metrics(reference, s.metrics.tolerance);
+  controller::ScenarioController ctl(s);
+  actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
+  logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance);
 
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
   // -> physics. Every value passes through the same message structs as over
@@ -53,11 +50,11 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
 
     const auto command = transport::commandMessage(
-        ctl.step(sample.position.header.sim_time, transport::toEigen(sample.position.q)), k,
+        ctl.step(sample.position.header.sim_time, transport::toEigen(sample.position.q), act.state()), k,
         sample.position.header.sim_time);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
-    const auto state =
-        transport::actuatorMessage(act.step(transport::toEigen(command.u), s.tickPeriod()), command);
+    const actuator::ActuatorOutput applied = act.step(transport::toEigen(command.u), s.tickPeriod());
+    const auto state = transport::actuatorMessage(applied, act.state(), command);
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
     metrics.addTorque(tau);

@@ -36,12 +36,14 @@ lagrange::control_command_t commandMessage(const controller::Theorem1Output& out
 }
 
 lagrange::actuator_state_t actuatorMessage(const actuator::ActuatorOutput& out,
+                                           const Eigen::MatrixXd& xi_next,
                                            const lagrange::control_command_t& command) {
   lagrange::actuator_state_t a;
   a.header = makeHeader(command.header.tick, command.header.sim_time);
   a.input_command_tick = command.header.tick;
   a.num_joints = command.num_joints;
-  a.order = 0;
+  a.order = static_cast<int32_t>(xi_next.rows());
+  for (int i = 0; i < xi_next.rows(); ++i) a.xi.push_back(toStd(xi_next.row(i).transpose()));
   a.u_commanded = command.u;
   a.tau_applied = toStd(out.tau);
   a.saturated.assign(out.saturated.data(), out.saturated.data() + out.saturated.size());

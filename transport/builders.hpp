@@ -28,7 +28,10 @@ PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q,
 lagrange::control_command_t commandMessage(const controller::Theorem1Output& out, int64_t position_tick,
                                            double sim_time);
 
+/// xi_next: the chain state at the end of the period (m x n), what the
+/// controller measures at the next tick.
 lagrange::actuator_state_t actuatorMessage(const actuator::ActuatorOutput& out,
+                                           const Eigen::MatrixXd& xi_next,
                                            const lagrange::control_command_t& command);
 
 }  // namespace lagrange::transport

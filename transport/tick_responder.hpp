@@ -3,7 +3,9 @@
 /// The lockstep rule of a reactive process (controller, actuator): one output
 /// per input tick. A repeated tick (the plant re-sending after a timeout) is
 /// answered with the cached output, so no core ever steps twice on one
-/// sample; an older tick is ignored.
+/// sample; an older tick is ignored. `compute` may decline (empty result)
+/// when another input of the tick is still missing; the tick is then
+/// answered when the plant re-sends it.
 
 #include <functional>
 #include <memory>
@@ -18,7 +20,7 @@ namespace lagrange::transport {
 
 template <class In, class Out>
 void respondPerTick(LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
-                    Progress& progress, std::function<Out(const In&)> compute) {
+                    Progress& progress, std::function<std::optional<Out>(const In&)> compute) {
   auto cached = std::make_shared<std::optional<Out>>();
   node.subscribe<In>(
       in_channel, [joints](const In& m) { return validate(m, joints); },
@@ -27,7 +29,9 @@ void respondPerTick(LcmNode& node, const std::string& in_channel, const std::str
           if (m.header.tick == progress.last_tick && *cached) node.publish(out_channel, **cached);
           return;
         }
-        *cached = compute(m);
+        std::optional<Out> out = compute(m);
+        if (!out) return;  // not ready: the sender re-sends this tick
+        *cached = std::move(out);
         node.publish(out_channel, **cached);
         progress = {m.header.tick, m.header.sim_time};
       });

@@ -202,7 +202,9 @@ TEST_P(ShippedConfig, MeetsItsStatedMetric) {
   for (const auto& sample : truth) ASSERT_TRUE(sample.q.allFinite() && sample.qdot.allFinite());
 }
 
-INSTANTIATE_TEST_SUITE_P(Configs, ShippedConfig, ::testing::Values("rigid_2dof_large_error", "rigid_5link"));
+INSTANTIATE_TEST_SUITE_P(Configs, ShippedConfig,
+                         ::testing::Values("rigid_2dof_large_error", "rigid_5link", "chain_m1", "chain_m2",
+                                           "chain_m3"));
 
 std::vector<std::string> shippedConfigs() {
   std::vector<std::string> names;

@@ -93,7 +93,24 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{{"reference.type=square"}, "reference.type: unknown reference type 'square'"},
         BadCase{{"robot.preset=puma"}, "robot.preset: unknown preset 'puma'"},
         BadCase{{"actuator.saturation=[1, 0]"}, "actuator.saturation: entry 2"},
-        BadCase{{"controller.kp"}, "--set 'controller.kp': expected key=value"}));
+        BadCase{{"controller.kp"}, "--set 'controller.kp': expected key=value"},
+        BadCase{{"actuator.order=1"}, "controller.type: the theorem1 controller drives torque directly"},
+        BadCase{{"actuator.order=5"}, "actuator.order: expected an integrator-chain order from 0"},
+        BadCase{{"controller.type=cascaded"}, "the cascaded controller needs an integrator chain"},
+        BadCase{{"controller.type=cascaded", "actuator.order=2",
+                 "controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]"},
+                "controller.stages: expected a list of 2 stages"},
+        BadCase{{"controller.type=cascaded", "actuator.order=1",
+                 "controller.stages=[{kp: 1, kd: -1, a: 1, b: 1}]"},
+                "controller.stages[0].kd: expected a list of 2 positive numbers"},
+        BadCase{{"controller.type=cascaded", "actuator.order=1",
+                 "controller.stages=[{kp: 1, kd: 1, a: 1, b: 1, c: 2}]"},
+                "controller.stages[0].c: unknown key"},
+        BadCase{{"controller.type=cascaded", "actuator.order=1",
+                 "controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]", "actuator.initial_state=[[1, 2, 3]]"},
+                "actuator.initial_state[0].row: expected a list of 2 numbers"},
+        BadCase{{"controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]"},
+                "only the cascaded controller has stages"}));
 
 TEST(Scenario, MissingKeyIsNamed) {
   std::string text = readFile(kConfigs + "/rigid_2dof.yaml");
