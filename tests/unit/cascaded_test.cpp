@@ -1,6 +1,7 @@
 // The cascaded controller of eq. (750): exact discretisation of its filters,
-// and its algebra against the paper's error equations (760) and the
-// recursion behind eq. (771), on the closed loop of the Pelican arm.
+// and its algebra against the paper's error equations (760), the recursion
+// for xi*_{i+1}' and the Appendix's closed form (771) with eta_ik, mu_ik and
+// beta_j, on the closed loop of the Pelican arm, m = 1..4.
 #include "controller/cascaded.hpp"
 
 #include <gtest/gtest.h>
@@ -178,6 +179,33 @@ TEST_P(CascadeOrder, AlgebraMatchesTheErrorEquations760) {
         EXPECT_LT((star_dot.row(i + 1).transpose() - recursion).norm(), tol)
             << "recursion (771), stage " << i + 1;
       }
+    }
+    // The Appendix's closed form, for i = 2..m (1-based):
+    //   xi_i*' = -kp_{i-1} xit_i + sum_{k<i} (eta_ik xit_k - mu_ik theta_k) + prod_{j<i} beta_j xi_1*'
+    //   beta_j = kp_j + b_j kd_j,  P_ik = prod_{j=k+1}^{i-1} beta_j,
+    //   eta_ik = P_ik [kp_k^2 - kd_k^2 - kp_k kp_{k-1} sgn(k-1)],  mu_ik = P_ik kd_k (kp_k + a_k).
+    // (eq. 771: beta_j^sgn(i-j) makes the j = i factor 1.)
+    auto stage = [&](int k) -> const StageGains& { return g.stages[k - 1]; };
+    auto beta = [&](int j) {
+      return Eigen::ArrayXd(stage(j).kp.array() + stage(j).b.array() * stage(j).kd.array());
+    };
+    for (int i = 2; i <= m; ++i) {
+      Eigen::ArrayXd closed = -stage(i - 1).kp.array() * now.xi_error.row(i - 1).transpose().array();
+      for (int k = 1; k < i; ++k) {
+        Eigen::ArrayXd p = Eigen::ArrayXd::Ones(n);
+        for (int j = k + 1; j <= i - 1; ++j) p *= beta(j);
+        Eigen::ArrayXd bracket = stage(k).kp.array().square() - stage(k).kd.array().square();
+        if (k > 1) bracket -= stage(k).kp.array() * stage(k - 1).kp.array();
+        const Eigen::ArrayXd eta = p * bracket;
+        const Eigen::ArrayXd mu = p * stage(k).kd.array() * (stage(k).kp.array() + stage(k).a.array());
+        closed +=
+            eta * now.xi_error.row(k - 1).transpose().array() - mu * now.theta.row(k - 1).transpose().array();
+      }
+      Eigen::ArrayXd product = Eigen::ArrayXd::Ones(n);
+      for (int j = 1; j < i; ++j) product *= beta(j);
+      closed += product * star_dot.row(0).transpose().array();
+      EXPECT_LT((star_dot.row(i - 1).transpose() - closed.matrix()).norm(), 1e-5 * (1 + fx.norm()))
+          << "Appendix closed form (771), i = " << i;
     }
   }
 }
