@@ -1,29 +1,65 @@
 #include "controller/gain_report.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "model/bounds.hpp"
 
 namespace lagrange::controller {
 
+bool GainReport::holds() const {
+  return condition.holds && std::all_of(chain.begin(), chain.end(), [](const auto& c) { return c.holds; });
+}
+
+double GainReport::margin() const {
+  double m = condition.margin();
+  for (const auto& c : chain) m = std::min(m, c.margin());
+  return m;
+}
+
 GainReport checkGains(const config::Scenario& s) {
   GainReport r;
-  r.kc = model::coriolisBound(model::PlanarChain(s.robot));
-  r.kdelta = model::referenceBound(model::Reference(s.reference));
-  r.condition = model::theorem1Condition(s.controller.gains.kd, s.controller.gains.a, s.controller.gains.b,
-                                         r.kc, r.kdelta);
-  if (s.controller.type == "cascaded")
-    r.condition.name += ", stage 0 only (the conditions of Theorems 2 and 3 are not evaluated by this version)";
+  const model::PlanarChain chain(s.robot);
+  const model::Reference reference(s.reference);
+  r.kc = model::coriolisBound(chain);
+  r.kdelta = model::referenceBound(reference);
+  const Theorem1Gains& g0 = s.controller.gains;
+  r.condition = model::theorem1Condition(g0.kd, g0.a, g0.b, r.kc, r.kdelta);
+  if (s.controller.type == "cascaded") {
+    if (s.actuator.order == 1) {
+      r.eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
+      const StageGains& g1 = s.controller.stages.at(0);
+      r.chain = model::theorem2Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, g1.kp, g1.a, g1.b);
+    } else {
+      r.unchecked = "the conditions of Theorem 3 for m = " + std::to_string(s.actuator.order) +
+                    " ((lego), (794), (795), (786)) are not evaluated by this version";
+    }
+  }
   return r;
 }
 
+namespace {
+std::string line(const model::ConditionReport& c) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "gain condition %s %s: %s  [%.6g > %.6g, margin %.6g]", c.name.c_str(),
+                c.holds ? "HOLDS" : "VIOLATED", c.expression.c_str(), c.lhs, c.rhs, c.margin());
+  return buf;
+}
+}  // namespace
+
 std::string describe(const GainReport& r) {
-  char line[768];
-  std::snprintf(
-      line, sizeof line, "gain condition %s %s: %s  [%.6g > %.6g, margin %.6g; k_c = %.6g, k_delta = %.6g]",
-      r.condition.name.c_str(), r.condition.holds ? "HOLDS" : "VIOLATED", r.condition.expression.c_str(),
-      r.condition.lhs, r.condition.rhs, r.condition.margin(), r.kc, r.kdelta);
-  return line;
+  char constants[256];
+  std::snprintf(constants, sizeof constants, "k_c = %.6g, k_delta = %.6g", r.kc, r.kdelta);
+  std::string out = line(r.condition) + "  [" + constants + "]";
+  if (r.eta) {
+    char eta[256];
+    std::snprintf(eta, sizeof eta, "\nestimated eta_1 = %.6g, eta_2 = %.6g, eta_3 = %.6g (bound 650)",
+                  r.eta->eta1, r.eta->eta2, r.eta->eta3);
+    out += eta;
+  }
+  for (const auto& c : r.chain) out += "\n" + line(c);
+  if (!r.unchecked.empty()) out += "\nnote: " + r.unchecked;
+  return out;
 }
 
 }  // namespace lagrange::controller

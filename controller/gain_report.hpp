@@ -1,11 +1,17 @@
 #pragma once
 /// @file
-/// The Theorem 1 gain check for a scenario: k_c and k_delta from the
-/// configured robot and reference, then eq. (11).
+/// The gain check of a scenario: k_c and k_delta from the configured robot
+/// and reference, then eq. (11) (Theorem 1) and, for the cascaded controller
+/// with m = 1, eq. (632) (Theorem 2) with the estimated eta_1..eta_3. The
+/// conditions of Theorem 3 (m >= 2) are not evaluated by this version; the
+/// report says so.
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "config/scenario.hpp"
+#include "model/chain_conditions.hpp"
 #include "model/gain_conditions.hpp"
 
 namespace lagrange::controller {
@@ -13,12 +19,20 @@ namespace lagrange::controller {
 struct GainReport {
   double kc = 0.0;
   double kdelta = 0.0;
-  model::ConditionReport condition;
+  model::ConditionReport condition;           ///< eq. (11), on the stage-0 gains
+  std::vector<model::ConditionReport> chain;  ///< eq. (632a-c) for m = 1
+  std::optional<model::EtaEstimate> eta;      ///< for m = 1
+  std::string unchecked;                      ///< conditions this version does not evaluate, if any
+
+  /// Every evaluated condition holds.
+  bool holds() const;
+  /// The smallest margin among the evaluated conditions.
+  double margin() const;
 };
 
 GainReport checkGains(const config::Scenario& scenario);
 
-/// One line a person reads: verdict, both sides and the margin.
+/// Lines a person reads: each condition's verdict, both sides and margin.
 std::string describe(const GainReport& report);
 
 }  // namespace lagrange::controller

@@ -25,11 +25,26 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"expression", g.condition.expression},
       {"lhs", g.condition.lhs},
       {"rhs", g.condition.rhs},
-      {"condition_holds", g.condition.holds},
-      {"margin", g.condition.margin()},
+      {"condition_holds", g.holds()},
+      {"margin", g.margin()},
       {"k_c", g.kc},
       {"k_delta", g.kdelta},
   };
+  json conditions = json::array();
+  for (const model::ConditionReport* c : [&] {
+         std::vector<const model::ConditionReport*> all{&g.condition};
+         for (const auto& x : g.chain) all.push_back(&x);
+         return all;
+       }())
+    conditions.push_back({{"name", c->name},
+                          {"expression", c->expression},
+                          {"lhs", c->lhs},
+                          {"rhs", c->rhs},
+                          {"holds", c->holds},
+                          {"margin", c->margin()}});
+  j["gains"]["conditions"] = conditions;
+  if (g.eta) j["gains"]["eta"] = {{"eta1", g.eta->eta1}, {"eta2", g.eta->eta2}, {"eta3", g.eta->eta3}};
+  if (!g.unchecked.empty()) j["gains"]["unchecked"] = g.unchecked;
   j["timing"] = {
       {"sim_time", t.sim_time},
       {"wall_time", f.wall_time},

@@ -61,7 +61,7 @@ std::string prepareOutDir(const std::string& dir) {
 bool gainsAllowRun(const config::Scenario& scenario, const RunOptions& opt) {
   const controller::GainReport gains = controller::checkGains(scenario);
   if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
-  if (!gains.condition.holds && opt.strict) {
+  if (!gains.holds() && opt.strict) {
     std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is violated\n";
     return false;
   }

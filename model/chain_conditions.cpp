@@ -1,0 +1,101 @@
+#include "model/chain_conditions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace lagrange::model {
+
+namespace {
+Eigen::VectorXd h(const PlanarChain& chain, const Reference& reference, double t, const Eigen::VectorXd& q) {
+  const ReferenceSample r = reference.evaluate(t, 2);
+  return chain.inertia(q) * r.qdd() + chain.coriolis(q, r.qd()) * r.qd() + chain.gravity(q);
+}
+
+Eigen::MatrixXd dhdq(const PlanarChain& chain, const Reference& reference, double t,
+                     const Eigen::VectorXd& q) {
+  const int n = chain.dof();
+  const double step = 1e-6;
+  Eigen::MatrixXd j(n, n);
+  for (int k = 0; k < n; ++k) {
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, k) * step;
+    j.col(k) = (h(chain, reference, t, q + e) - h(chain, reference, t, q - e)) / (2 * step);
+  }
+  return j;
+}
+
+double horizon(const Reference& reference) {
+  const ReferenceParams& p = reference.params();
+  double longest = 0.0, settle = 0.0;
+  for (int i = 0; i < reference.dof(); ++i) {
+    if (p.frequency(i) > 0.0) longest = std::max(longest, 2.0 * M_PI / p.frequency(i));
+    if (p.type == ReferenceType::kSmoothSine)
+      settle = std::max(settle, std::cbrt(std::log(1e12) / p.alpha(i)));
+  }
+  return std::max(10.0, 2.0 * longest + settle);
+}
+
+ConditionReport report(const std::string& name, const std::string& expression, double lhs, double rhs) {
+  ConditionReport r;
+  r.name = name;
+  r.expression = expression;
+  r.lhs = lhs;
+  r.rhs = rhs;
+  r.holds = lhs > rhs;
+  return r;
+}
+}  // namespace
+
+EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, const Eigen::VectorXd& kp0,
+                        const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0, const Eigen::VectorXd& b0) {
+  const int n = chain.dof();
+  EtaEstimate eta;
+  eta.eta3 = (kd0.array() * a0.array()).maxCoeff();
+  const Eigen::MatrixXd damping = (kp0.array() + kd0.array() * b0.array()).matrix().asDiagonal();
+  std::mt19937_64 rng(632);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+  const double t_max = horizon(reference), dt = 1e-6;
+  for (int it = 0; it < 400; ++it) {
+    const double t = t_max * it / 399.0 + dt;
+    const ReferenceSample r = reference.evaluate(t, 1);
+    for (double radius : {1e-2, 1e-1, 1.0, 10.0}) {
+      for (int d = 0; d < 4; ++d) {
+        Eigen::VectorXd dir(n);
+        for (int i = 0; i < n; ++i) dir(i) = normal(rng);
+        const Eigen::VectorXd q = r.q() + radius * dir.normalized();
+        const Eigen::MatrixXd j = dhdq(chain, reference, t, q);
+        eta.eta2 = std::max(eta.eta2, (j - damping).jacobiSvd().singularValues()(0));
+        const Eigen::VectorXd dhdt =
+            (h(chain, reference, t + dt, q) - h(chain, reference, t - dt, q)) / (2 * dt);
+        eta.eta1 = std::max(eta.eta1, (j * r.qd() + dhdt).norm() / std::min(radius, 1.0));
+      }
+    }
+    for (int d = 0; d < 4; ++d) {
+      Eigen::VectorXd q(n);
+      for (int i = 0; i < n; ++i) q(i) = angle(rng);
+      eta.eta2 = std::max(eta.eta2, (dhdq(chain, reference, t, q) - damping).jacobiSvd().singularValues()(0));
+    }
+  }
+  eta.eta1 *= 1.1;
+  eta.eta2 *= 1.1;
+  return eta;
+}
+
+std::vector<ConditionReport> theorem2Conditions(double kc, double kdelta, const EtaEstimate& eta,
+                                                const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0,
+                                                const Eigen::VectorXd& b0, const Eigen::VectorXd& kp1,
+                                                const Eigen::VectorXd& a1, const Eigen::VectorXd& b1) {
+  const double ratio_low = a0.minCoeff() / b0.maxCoeff(), ratio_high = a0.maxCoeff() / b0.minCoeff();
+  const double e2 = eta.eta2 * eta.eta2, e3 = eta.eta3 * eta.eta3;
+  return {
+      report("eq. (632a)",
+             "kd0_min (a0_min / (4 b0_max) - 1) > 3/2 + (k_c k_delta + 3/2) (a0_max / b0_min)^2",
+             kd0.minCoeff() * (ratio_low / 4.0 - 1.0), 1.5 + (kc * kdelta + 1.5) * ratio_high * ratio_high),
+      report("eq. (632b)", "kp1_min > (eta_2^2 + eta_3^2) / 2 + 2", kp1.minCoeff(), 0.5 * (e2 + e3) + 2.0),
+      report("eq. (632c)", "a1_min > (eta_2^2 + eta_3^2 b1_max^2 + 1) / 2", a1.minCoeff(),
+             0.5 * (e2 + e3 * b1.maxCoeff() * b1.maxCoeff() + 1.0)),
+  };
+}
+
+}  // namespace lagrange::model

@@ -1,0 +1,61 @@
+// Theorem 2's gain conditions (632a-c) and the eta estimates of bound (650).
+#include "model/chain_conditions.hpp"
+
+#include <gtest/gtest.h>
+
+namespace lagrange::model {
+namespace {
+
+Eigen::VectorXd v2(double a, double b) { return Eigen::Vector2d(a, b); }
+
+TEST(Theorem2Conditions, EachPassesOrFailsByItsOwnInequality) {
+  const EtaEstimate eta{5.0, 2.0, 3.0};
+  // A gain set that satisfies all three: a0/b0 = 40 and kd0 = 300 (the right side of
+  // (632a) is 1.5 + 1.52 * 40^2 = 2433.5), kp1 and a1 above their bounds.
+  auto all = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(10, 12),
+                                v2(60, 70), v2(2, 2));
+  ASSERT_EQ(all.size(), 3u);
+  for (const auto& c : all) EXPECT_TRUE(c.holds) << c.name << " " << c.lhs << " > " << c.rhs;
+  EXPECT_DOUBLE_EQ(all[1].rhs, 0.5 * (4.0 + 9.0) + 2.0);        // (632b)
+  EXPECT_DOUBLE_EQ(all[2].rhs, 0.5 * (4.0 + 9.0 * 4.0 + 1.0));  // (632c) with b1_max = 2
+  EXPECT_DOUBLE_EQ(all[0].lhs, 300.0 * (400.0 / 40.0 - 1.0));   // (632a): kd0_min (a0/(4 b0) - 1)
+
+  // Violate one at a time.
+  auto a = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(20, 400), v2(10, 10), v2(10, 12), v2(60, 70),
+                              v2(2, 2));
+  EXPECT_FALSE(a[0].holds);  // a0_min / (4 b0_max) = 0.5: the bracket is negative
+  EXPECT_EQ(a[0].name, "eq. (632a)");
+  EXPECT_TRUE(a[1].holds && a[2].holds);
+  auto b = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(8.4, 12), v2(60, 70),
+                              v2(2, 2));
+  EXPECT_FALSE(b[1].holds);  // kp1_min = 8.4 < 8.5
+  EXPECT_EQ(b[1].name, "eq. (632b)");
+  EXPECT_TRUE(b[0].holds && b[2].holds);
+  auto c = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(10, 12),
+                              v2(20.4, 70), v2(2, 2));
+  EXPECT_FALSE(c[2].holds);  // a1_min = 20.4 < 20.5
+  EXPECT_EQ(c[2].name, "eq. (632c)");
+  EXPECT_LT(c[2].margin(), 0.0);
+}
+
+TEST(EtaEstimate, Eta3IsExactAndEta2BoundsTheJacobianTerm) {
+  const PlanarChain chain(pelicanParams());
+  ReferenceParams p;
+  p.type = ReferenceType::kSine;
+  p.offset = v2(0.3, 0.2);
+  p.amplitude = v2(0.2, 0.1);
+  p.frequency = v2(2.0, 3.0);
+  p.phase = v2(0.0, 0.0);
+  const Reference reference(p);
+  const Eigen::VectorXd kp0 = v2(40, 10), kd0 = v2(5, 1), a0 = v2(60, 30), b0 = v2(50, 20);
+  const EtaEstimate eta = estimateEta(chain, reference, kp0, kd0, a0, b0);
+  EXPECT_DOUBLE_EQ(eta.eta3, 300.0);  // max(kd0 a0)
+  // eta_2 >= ||dh/dq - diag(kp0 + kd0 b0)|| >= its value without dh/dq's help at
+  // a point where dh/dq is small relative to the damping: 290 - ||dh/dq||.
+  EXPECT_GT(eta.eta2, 250.0);
+  EXPECT_LT(eta.eta2, 400.0);  // and not uselessly loose: dh/dq of the Pelican is a few N m/rad
+  EXPECT_GT(eta.eta1, 0.0);
+}
+
+}  // namespace
+}  // namespace lagrange::model
