@@ -26,6 +26,11 @@ GainReport checkGains(const config::Scenario& s) {
   const Theorem1Gains& g0 = s.controller.gains;
   r.condition = model::theorem1Condition(g0.kd, g0.a, g0.b, r.kc, r.kdelta);
   if (s.controller.type == "cascaded") {
+    // Every reference this version generates is a sinusoid, not a solution of
+    // D(q_d) q_d'' + C(q_d, q_d') q_d' + g(q_d) = 0.
+    r.warnings.push_back("the reference (" + std::string(model::toString(s.reference.type)) +
+                         ") is not a free motion of the arm: Assumption 2, a hypothesis of Theorems 2 and 3, "
+                         "does not hold, so their guarantee does not apply to this run");
     if (s.actuator.order == 1) {
       r.eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
       const StageGains& g1 = s.controller.stages.at(0);
@@ -59,6 +64,7 @@ std::string describe(const GainReport& r) {
   }
   for (const auto& c : r.chain) out += "\n" + line(c);
   if (!r.unchecked.empty()) out += "\nnote: " + r.unchecked;
+  for (const auto& w : r.warnings) out += "\nwarning: " + w;
   return out;
 }
 

@@ -23,6 +23,7 @@ struct GainReport {
   std::vector<model::ConditionReport> chain;  ///< eq. (632a-c) for m = 1
   std::optional<model::EtaEstimate> eta;      ///< for m = 1
   std::string unchecked;                      ///< conditions this version does not evaluate, if any
+  std::vector<std::string> warnings;          ///< hypotheses of the theorems that do not hold
 
   /// Every evaluated condition holds.
   bool holds() const;

@@ -45,6 +45,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   j["gains"]["conditions"] = conditions;
   if (g.eta) j["gains"]["eta"] = {{"eta1", g.eta->eta1}, {"eta2", g.eta->eta2}, {"eta3", g.eta->eta3}};
   if (!g.unchecked.empty()) j["gains"]["unchecked"] = g.unchecked;
+  if (!g.warnings.empty()) j["gains"]["warnings"] = g.warnings;
   j["timing"] = {
       {"sim_time", t.sim_time},
       {"wall_time", f.wall_time},
