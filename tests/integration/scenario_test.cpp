@@ -21,6 +21,7 @@
 
 #include "controller/cascaded.hpp"
 #include "controller/theorem1.hpp"
+#include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "logger/tracking_metrics.hpp"
@@ -526,41 +527,59 @@ TEST_P(StaleTorquePolicy, TriggersWhenTheControllerStopsAndTheArmRecovers) {
 INSTANTIATE_TEST_SUITE_P(Policies, StaleTorquePolicy, ::testing::Values("zero", "hold"));
 
 // Malformed messages are rejected, counted, and the run still converges.
-TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
-  const std::string dir = freshDir("garbage");
-  const std::string url = "udpm://239.255.76.67:7671?ttl=0";
+template <class Msg>
+std::vector<uint8_t> encoded(const Msg& m) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Runs a scenario on the machine's network (inside the test's namespace) at
+// `url` while publishing `payloads` on `channel` every 5 ms for the whole run.
+// Returns the run's result and how many bad messages were sent.
+std::pair<RunResult, int> runUnderBadTraffic(const std::string& config, const std::string& dir,
+                                             const std::string& url, const std::string& channel,
+                                             const std::vector<std::vector<uint8_t>>& payloads) {
   std::atomic<bool> done{false};
   RunResult r;
   std::thread runner([&] {
-    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--no-netns -q --lcm-url '" + url + "'");
+    r = runScenario(config, dir, "--no-netns -q --lcm-url '" + url + "'");
     done = true;
   });
   lcm_t* lcm = lcm_create(url.c_str());
-  ASSERT_NE(lcm, nullptr);
+  int sent = 0;
+  while (!done && lcm) {
+    for (const auto& p : payloads)
+      lcm_publish(lcm, channel.c_str(), p.data(), static_cast<unsigned>(p.size()));
+    sent += static_cast<int>(payloads.size());
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  runner.join();
+  if (lcm) lcm_destroy(lcm);
+  return {r, sent};
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  return {(std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()};
+}
+
+// Malformed messages are rejected, counted, and the run still converges; the
+// run must neither crash nor stall (a logger that drained "until quiet" once
+// never finished).
+TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
+  const std::string dir = freshDir("garbage");
   lagrange::plant_position_t wrong_size;  // decodes, but 3 joints on a 2-joint robot
   wrong_size.header = transport::makeHeader(5, 0.005);
   wrong_size.num_joints = 3;
   wrong_size.q = {1, 2, 3};
-  std::vector<uint8_t> wrong(wrong_size.getEncodedSize());
-  wrong_size.encode(wrong.data(), 0, static_cast<int>(wrong.size()));
   lagrange::plant_position_t nan_msg = wrong_size;
   nan_msg.num_joints = 2;
   nan_msg.q = {std::nan(""), 0.0};
-  std::vector<uint8_t> nan_bytes(nan_msg.getEncodedSize());
-  nan_msg.encode(nan_bytes.data(), 0, static_cast<int>(nan_bytes.size()));
-  const uint8_t garbage[] = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
-  // Bad messages every 5 ms for the whole run: the run must neither crash
-  // nor stall (a logger that drained "until quiet" once never finished).
-  int sent = 0;
-  while (!done) {
-    lcm_publish(lcm, "PLANT_POSITION", garbage, sizeof garbage);
-    lcm_publish(lcm, "PLANT_POSITION", wrong.data(), static_cast<unsigned>(wrong.size()));
-    lcm_publish(lcm, "PLANT_POSITION", nan_bytes.data(), static_cast<unsigned>(nan_bytes.size()));
-    sent += 3;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  runner.join();
-  lcm_destroy(lcm);
+  const std::vector<uint8_t> garbage = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
+  const auto [r, sent] =
+      runUnderBadTraffic(kConfigs + "/rigid_2dof.yaml", dir, "udpm://239.255.76.67:7671?ttl=0",
+                         "PLANT_POSITION", {garbage, encoded(wrong_size), encoded(nan_msg)});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir);
   const long long rejected = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected"];
@@ -568,11 +587,42 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   EXPECT_GE(rejected, 3);                         // the fault happened ...
   EXPECT_TRUE(j["tracking"]["met"].get<bool>());  // ... and the run coped
   EXPECT_LT(j["timing"]["wall_time"].get<double>(), 30.0) << "the run stalled under bad traffic";
-  std::ifstream log(dir + "/controller.log");
-  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  const std::string text = readText(dir + "/controller.log");
   EXPECT_NE(text.find("undecodable"), std::string::npos);
   EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
   EXPECT_NE(text.find("non-finite"), std::string::npos);
+}
+
+// An ACTUATOR_STATE of the wrong chain order or size reaching the cascaded
+// controller is rejected with the reason, and the m = 1 run converges.
+TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
+  const std::string dir = freshDir("badchain");
+  lagrange::actuator_state_t wrong_order;  // tick far in the future: the plant ignores it
+  wrong_order.header = transport::makeHeader(1000000000, 1e6);
+  wrong_order.input_command_tick = wrong_order.header.tick;
+  wrong_order.num_joints = 2;
+  wrong_order.order = 2;
+  wrong_order.u_commanded = wrong_order.tau_applied = {0.0, 0.0};
+  wrong_order.saturated = {0, 0};
+  wrong_order.xi = {{1.0, 1.0}, {1.0, 1.0}};
+  lagrange::actuator_state_t wrong_size = wrong_order;
+  wrong_size.order = 1;
+  wrong_size.num_joints = 3;
+  wrong_size.u_commanded = wrong_size.tau_applied = {0.0, 0.0, 0.0};
+  wrong_size.saturated = {0, 0, 0};
+  wrong_size.xi = {{1.0, 1.0, 1.0}};
+  const auto [r, sent] =
+      runUnderBadTraffic(kConfigs + "/chain_m1.yaml", dir, "udpm://239.255.76.67:7672?ttl=0",
+                         "ACTUATOR_STATE", {encoded(wrong_order), encoded(wrong_size)});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  const long long rejected = j["processes"]["controller"]["channels"]["ACTUATOR_STATE"]["rejected"];
+  std::printf("sent %d bad actuator states; the controller rejected %lld\n", sent, rejected);
+  EXPECT_GE(rejected, 2);
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>());
+  const std::string text = readText(dir + "/controller.log");
+  EXPECT_NE(text.find("actuator order is 2, expected 1"), std::string::npos);
+  EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
 }
 
 }  // namespace
