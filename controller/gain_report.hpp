@@ -2,9 +2,8 @@
 /// @file
 /// The gain check of a scenario: k_c and k_delta from the configured robot
 /// and reference, then eq. (11) (Theorem 1) and, for the cascaded controller
-/// with m = 1, eq. (632) (Theorem 2) with the estimated eta_1..eta_3. The
-/// conditions of Theorem 3 (m >= 2) are not evaluated by this version; the
-/// report says so.
+/// with m = 1, eq. (632) (Theorem 2), with m >= 2 Theorem 3's (A Hurwitz,
+/// (lego), (786)), using the estimated eta_1..eta_3.
 
 #include <optional>
 #include <string>
@@ -20,7 +19,7 @@ struct GainReport {
   double kc = 0.0;
   double kdelta = 0.0;
   model::ConditionReport condition;           ///< eq. (11), on the stage-0 gains
-  std::vector<model::ConditionReport> chain;  ///< eq. (632a-c) for m = 1
+  std::vector<model::ConditionReport> chain;  ///< eq. (632a-c) for m = 1, Theorem 3's for m >= 2
   std::optional<model::EtaEstimate> eta;      ///< for m = 1
   std::string unchecked;                      ///< conditions this version does not evaluate, if any
   std::vector<std::string> warnings;          ///< hypotheses of the theorems that do not hold

@@ -23,6 +23,9 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
   } catch (const config::ConfigError& e) {
     std::cerr << "lagrange check-gains: " << e.what() << "\n";
     return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange check-gains: cannot evaluate the gain conditions: " << e.what() << "\n";
+    return 2;
   }
 }
 
@@ -52,15 +55,16 @@ int DoMain(int argc, char** argv) {
                     "Use the machine's network instead of a private network namespace "
                     "(LCM traffic then reaches other processes on this host)");
   run_cmd->add_option("--lcm-url", run.lcm_url, "LCM URL for the run (default: a fresh udpm port, TTL 0)");
-  run_cmd->add_flag("--strict", run.strict, "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
+  run_cmd->add_flag("--strict", run.strict,
+                    "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
 
   std::string gains_config;
   std::vector<std::string> gains_overrides;
-  CLI::App* gains_cmd =
-      app.add_subcommand("check-gains",
-                         "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; eta and eq. 632 for m = 1) without running it; "
-                         "exit 1 if it is violated");
+  CLI::App* gains_cmd = app.add_subcommand("check-gains",
+                                           "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; "
+                                           "eta and eq. 632 for m = 1) without running it; "
+                                           "exit 1 if it is violated");
   gains_cmd->add_option("config", gains_config, "Scenario YAML file")->required()->check(CLI::ExistingFile);
   gains_cmd->add_option("--set", gains_overrides, "Override a config key: key=value; repeatable");
 

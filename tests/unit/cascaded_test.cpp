@@ -8,6 +8,7 @@
 
 #include <random>
 
+#include "model/theorem3.hpp"
 #include "support/rk4.hpp"
 
 namespace lagrange::controller {
@@ -206,6 +207,18 @@ TEST_P(CascadeOrder, AlgebraMatchesTheErrorEquations760) {
       closed += product * star_dot.row(0).transpose().array();
       EXPECT_LT((star_dot.row(i - 1).transpose() - closed.matrix()).norm(), 1e-5 * (1 + fx.norm()))
           << "Appendix closed form (771), i = " << i;
+    }
+    // Eq. (787): chi' = A chi + B xi_1*' per joint, chi = [xit_1..m, theta_1..m],
+    // with Theorem 3's A and B (model/theorem3.hpp).
+    for (int j = 0; j < n; ++j) {
+      std::vector<model::ScalarStage> scalar;
+      for (const auto& st : g.stages) scalar.push_back({st.kp(j), st.kd(j), st.a(j), st.b(j)});
+      Eigen::VectorXd chi(2 * m), chi_dot(2 * m);
+      chi << now.xi_error.col(j), now.theta.col(j);
+      chi_dot << xit_dot.col(j), theta_dot.col(j);
+      const Eigen::VectorXd predicted =
+          model::theorem3A(scalar) * chi + model::theorem3B(scalar) * star_dot(0, j);
+      EXPECT_LT((chi_dot - predicted).norm(), 1e-5 * (1 + fx.norm())) << "eq. (787), joint " << j;
     }
   }
 }

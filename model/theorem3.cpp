@@ -1,0 +1,149 @@
+#include "model/theorem3.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <stdexcept>
+
+namespace lagrange::model {
+
+namespace {
+// beta_j = kp_j + b_j kd_j (1-based j).
+double beta(const std::vector<ScalarStage>& s, int j) { return s[j - 1].kp + s[j - 1].b * s[j - 1].kd; }
+
+// prod_{j=k+1}^{i-1} beta_j.
+double betaProduct(const std::vector<ScalarStage>& s, int from, int to) {
+  double p = 1.0;
+  for (int j = from; j <= to; ++j) p *= beta(s, j);
+  return p;
+}
+
+double eta(const std::vector<ScalarStage>& s, int i, int k) {
+  double bracket = s[k - 1].kp * s[k - 1].kp - s[k - 1].kd * s[k - 1].kd;
+  if (k > 1) bracket -= s[k - 1].kp * s[k - 2].kp;
+  return betaProduct(s, k + 1, i - 1) * bracket;
+}
+
+double mu(const std::vector<ScalarStage>& s, int i, int k) {
+  return betaProduct(s, k + 1, i - 1) * s[k - 1].kd * (s[k - 1].kp + s[k - 1].a);
+}
+}  // namespace
+
+Eigen::MatrixXd theorem3A(const std::vector<ScalarStage>& s) {
+  const int m = static_cast<int>(s.size());
+  Eigen::MatrixXd kp = Eigen::MatrixXd::Zero(m, m), g1 = Eigen::MatrixXd::Zero(m, m),
+                  g2 = Eigen::MatrixXd::Zero(m, m);
+  Eigen::VectorXd kd(m), sigma(m), b(m), af(m);
+  for (int i = 1; i <= m; ++i) {
+    kp(i - 1, i - 1) = s[i - 1].kp;
+    if (i < m) kp(i - 1, i) = -1.0;
+    kd(i - 1) = s[i - 1].kd;
+    b(i - 1) = s[i - 1].b;
+    af(i - 1) = s[i - 1].a;
+    sigma(i - 1) = i == 1 ? 0.0 : s[i - 1].b * s[i - 2].kp;
+    if (i >= 2) {
+      g1(i - 1, i - 1) = -s[i - 2].kp;
+      for (int k = 1; k < i; ++k) {
+        g1(i - 1, k - 1) = eta(s, i, k);
+        g2(i - 1, k - 1) = -mu(s, i, k);
+      }
+    }
+  }
+  Eigen::MatrixXd a(2 * m, 2 * m);
+  a.topLeftCorner(m, m) = -(kp + g1);
+  a.topRightCorner(m, m) = Eigen::MatrixXd(kd.asDiagonal()) - g2;
+  a.bottomLeftCorner(m, m) = -Eigen::MatrixXd((kd - sigma).asDiagonal()) + b.asDiagonal() * g1;
+  a.bottomRightCorner(m, m) = -Eigen::MatrixXd(af.asDiagonal()) + b.asDiagonal() * g2;
+  return a;
+}
+
+Eigen::VectorXd theorem3B(const std::vector<ScalarStage>& s) {
+  const int m = static_cast<int>(s.size());
+  Eigen::VectorXd out(2 * m);
+  for (int i = 1; i <= m; ++i) {
+    const double g3 = betaProduct(s, 1, i - 1);  // 1, beta_1, beta_1 beta_2, ...
+    out(i - 1) = -g3;
+    out(m + i - 1) = s[i - 1].b * g3;
+  }
+  return out;
+}
+
+Eigen::MatrixXd solveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q) {
+  const int n = static_cast<int>(a.rows());
+  // vec(A^T P + P A) = (I (x) A^T + A^T (x) I) vec(P).
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n * n, n * n);
+  const Eigen::MatrixXd at = a.transpose(), eye = Eigen::MatrixXd::Identity(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      k.block(i * n, j * n, n, n) += eye(i, j) * at;
+      k.block(i * n, j * n, n, n) += at(i, j) * eye;
+    }
+  const Eigen::VectorXd rhs = -Eigen::Map<const Eigen::VectorXd>(q.data(), n * n);
+  // The gains make A badly scaled (its entries span many decades), so judge
+  // the solution by its residual, not by a rank threshold.
+  const Eigen::VectorXd p = k.fullPivLu().solve(rhs);
+  const Eigen::MatrixXd pm = Eigen::Map<const Eigen::MatrixXd>(p.data(), n, n);
+  const Eigen::MatrixXd sym = 0.5 * (pm + pm.transpose());
+  const double residual = (at * sym + sym * a + q).norm() / q.norm();
+  if (!sym.allFinite() || residual > 1e-6)
+    throw std::runtime_error("the Lyapunov equation A^T P + P A = -Q has no accurate solution (residual " +
+                             std::to_string(residual) + ")");
+  return sym;
+}
+
+std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const EtaEstimate& eta_estimate,
+                                                const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0,
+                                                const Eigen::VectorXd& b0,
+                                                const std::vector<StageVectors>& stages) {
+  const int m = static_cast<int>(stages.size());
+  const int joints = static_cast<int>(kd0.size());
+  const double e = eta_estimate.eta2 * eta_estimate.eta2 + eta_estimate.eta3 * eta_estimate.eta3;
+  double hurwitz = 1e300, lyapunov = 1e300;
+  bool unsolved = false;
+  for (int j = 0; j < joints; ++j) {
+    std::vector<ScalarStage> s;
+    for (const auto& st : stages) s.push_back({st.kp(j), st.kd(j), st.a(j), st.b(j)});
+    const Eigen::MatrixXd a = theorem3A(s);
+    hurwitz = std::min(hurwitz, -Eigen::EigenSolver<Eigen::MatrixXd>(a).eigenvalues().real().maxCoeff());
+    if (hurwitz <= 0.0) continue;
+    const Eigen::MatrixXd q = Eigen::MatrixXd::Identity(2 * m, 2 * m);
+    Eigen::MatrixXd p;
+    try {
+      p = solveLyapunov(a, q);
+    } catch (const std::runtime_error&) {
+      lyapunov = std::min(lyapunov, -1.0);  // no accurate P: the condition cannot be shown to hold
+      unsolved = true;
+      continue;
+    }
+    const Eigen::VectorXd pb = p * theorem3B(s);
+    const Eigen::MatrixXd reduced = q - e * Eigen::MatrixXd(pb.cwiseAbs2().asDiagonal());
+    lyapunov =
+        std::min(lyapunov, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(reduced).eigenvalues().minCoeff());
+  }
+  auto make = [](const std::string& name, const std::string& expression, double lhs, double rhs) {
+    ConditionReport r;
+    r.name = name;
+    r.expression = expression;
+    r.lhs = lhs;
+    r.rhs = rhs;
+    r.holds = lhs > rhs;
+    return r;
+  };
+  const double low = a0.minCoeff() / b0.maxCoeff(), high = a0.maxCoeff() / b0.minCoeff();
+  const double half = (m + 2) / 2.0;
+  std::vector<ConditionReport> out;
+  out.push_back(make("A Hurwitz (Theorem 3)", "-max Re eig(A) > 0 (worst joint)", hurwitz, 0.0));
+  out.push_back(
+      make("eq. (lego)",
+           "kd0_min (a0_min / (4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max / b0_min)^2",
+           kd0.minCoeff() * (low / 4.0 - m), half + (kc * kdelta + half) * high * high));
+  if (hurwitz > 0.0)
+    out.push_back(
+        make("eq. (786)",
+             std::string("lambda_min(Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2}) > 0, Q = I (worst joint)") +
+                 (unsolved ? "; P could not be computed accurately for this A" : ""),
+             lyapunov, 0.0));
+  else
+    out.push_back(make("eq. (786)", "needs A Hurwitz first", -1.0, 0.0));
+  return out;
+}
+
+}  // namespace lagrange::model
