@@ -9,17 +9,24 @@
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
+#include "controller/gain_suggestion.hpp"
 #include "tools/run_command.hpp"
 
 namespace lagrange {
 namespace {
 
-int checkGains(const std::string& path, const std::vector<std::string>& overrides) {
+int checkGains(const std::string& path, const std::vector<std::string>& overrides, bool suggest) {
   try {
     const config::Scenario s = config::loadScenario(path, overrides);
     const controller::GainReport r = controller::checkGains(s);
     std::cout << controller::describe(r) << "\n";
-    return r.holds() ? 0 : 1;
+    if (!suggest) return r.holds() ? 0 : 1;
+    const config::Scenario suggested = controller::suggestGains(s);
+    const controller::GainReport check = controller::checkGains(suggested);
+    std::cout << "\nsuggested gains (the paper's constructive rules; other keys unchanged):\n"
+              << controller::controllerYaml(suggested) << "\nwith them:\n"
+              << controller::describe(check) << "\n";
+    return check.holds() ? 0 : 1;
   } catch (const config::ConfigError& e) {
     std::cerr << "lagrange check-gains: " << e.what() << "\n";
     return 2;
@@ -67,6 +74,11 @@ int DoMain(int argc, char** argv) {
                                            "exit 1 if it is violated");
   gains_cmd->add_option("config", gains_config, "Scenario YAML file")->required()->check(CLI::ExistingFile);
   gains_cmd->add_option("--set", gains_overrides, "Override a config key: key=value; repeatable");
+  bool suggest = false;
+  gains_cmd->add_flag(
+      "--suggest", suggest,
+      "Also propose gains that satisfy the conditions (eq. 11; lego/632a, 794, 795 for chains) "
+      "and check them; exit 0 if the suggestion passes");
 
   try {
     app.parse(argc, argv);
@@ -80,7 +92,7 @@ int DoMain(int argc, char** argv) {
     run.self_argv[0] = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runScenario(run);
   }
-  return checkGains(gains_config, gains_overrides);
+  return checkGains(gains_config, gains_overrides, suggest);
 }
 
 }  // namespace
