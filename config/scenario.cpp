@@ -80,15 +80,26 @@ model::ChainParams readRobot(MapReader robot) {
   return params;
 }
 
-model::ReferenceParams readReference(MapReader ref, int n) {
+model::ReferenceParams readReference(MapReader ref, const model::ChainParams& robot, double duration) {
+  const int n = static_cast<int>(robot.links.size());
   model::ReferenceParams p;
   const std::string type = ref.text("type");
   if (type == "sine") {
     p.type = model::ReferenceType::kSine;
   } else if (type == "smooth_sine") {
     p.type = model::ReferenceType::kSmoothSine;
+  } else if (type == "free_motion") {
+    // The unforced motion of this very arm (Assumption 2), over the run and a second more.
+    p.type = model::ReferenceType::kFreeMotion;
+    p.initial_q = ref.vector("initial_q", n, false, false);
+    p.initial_qdot =
+        ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
+    p.chain = robot;
+    p.horizon = duration + 1.0;
+    ref.finish({"type", "initial_q", "initial_qdot"});
+    return p;
   } else {
-    ref.fail("type", "unknown reference type '" + type + "'; expected: sine or smooth_sine");
+    ref.fail("type", "unknown reference type '" + type + "'; expected: sine, smooth_sine or free_motion");
   }
   p.offset = ref.vector("offset", n, true, false);
   p.amplitude = ref.vector("amplitude", n, true, false);
@@ -121,7 +132,7 @@ Scenario readScenario(MapReader root) {
   s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false) : Eigen::VectorXd::Zero(n);
   init.finish({"q", "qdot"});
 
-  s.reference = readReference(root.map("reference"), n);
+  s.reference = readReference(root.map("reference"), s.robot, s.duration);
 
   if (root.has("plant")) {
     MapReader plant = root.map("plant");
@@ -297,10 +308,15 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "reference" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << model::toString(s.reference.type);
-  emitVector(out, "offset", s.reference.offset);
-  emitVector(out, "amplitude", s.reference.amplitude);
-  emitVector(out, "frequency", s.reference.frequency);
-  emitVector(out, "phase", s.reference.phase);
+  if (s.reference.type == model::ReferenceType::kFreeMotion) {
+    emitVector(out, "initial_q", s.reference.initial_q);
+    emitVector(out, "initial_qdot", s.reference.initial_qdot);
+  } else {
+    emitVector(out, "offset", s.reference.offset);
+    emitVector(out, "amplitude", s.reference.amplitude);
+    emitVector(out, "frequency", s.reference.frequency);
+    emitVector(out, "phase", s.reference.phase);
+  }
   if (s.reference.type == model::ReferenceType::kSmoothSine) emitVector(out, "alpha", s.reference.alpha);
   out << YAML::EndMap;
 

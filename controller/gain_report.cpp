@@ -29,9 +29,11 @@ GainReport checkGains(const config::Scenario& s) {
   if (s.controller.type == "cascaded") {
     // Every reference this version generates is a sinusoid, not a solution of
     // D(q_d) q_d'' + C(q_d, q_d') q_d' + g(q_d) = 0.
-    r.warnings.push_back("the reference (" + std::string(model::toString(s.reference.type)) +
-                         ") is not a free motion of the arm: Assumption 2, a hypothesis of Theorems 2 and 3, "
-                         "does not hold, so their guarantee does not apply to this run");
+    if (s.reference.type != model::ReferenceType::kFreeMotion)
+      r.warnings.push_back(
+          "the reference (" + std::string(model::toString(s.reference.type)) +
+          ") is not a free motion of the arm: Assumption 2, a hypothesis of Theorems 2 and 3, "
+          "does not hold, so their guarantee does not apply to this run");
     r.eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
     if (s.actuator.order == 1) {
       const StageGains& g1 = s.controller.stages.at(0);

@@ -26,6 +26,7 @@ Eigen::MatrixXd dhdq(const PlanarChain& chain, const Reference& reference, doubl
 
 double horizon(const Reference& reference) {
   const ReferenceParams& p = reference.params();
+  if (p.type == ReferenceType::kFreeMotion) return p.horizon;  // all of it
   double longest = 0.0, settle = 0.0;
   for (int i = 0; i < reference.dof(); ++i) {
     if (p.frequency(i) > 0.0) longest = std::max(longest, 2.0 * M_PI / p.frequency(i));

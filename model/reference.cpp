@@ -6,9 +6,26 @@
 
 namespace lagrange::model {
 
-const char* toString(ReferenceType type) { return type == ReferenceType::kSine ? "sine" : "smooth_sine"; }
+const char* toString(ReferenceType type) {
+  switch (type) {
+    case ReferenceType::kSine:
+      return "sine";
+    case ReferenceType::kSmoothSine:
+      return "smooth_sine";
+    default:
+      return "free_motion";
+  }
+}
+
+namespace {
+constexpr double kFreeStep = 1e-4;
+}  // namespace
 
 Reference::Reference(ReferenceParams params) : params_(std::move(params)) {
+  if (params_.type == ReferenceType::kFreeMotion) {
+    integrateFreeMotion();
+    return;
+  }
   const auto n = params_.offset.size();
   if (n < 1) throw std::invalid_argument("reference: offset must have at least one entry");
   auto check = [n](const Eigen::VectorXd& v, const char* name) {
@@ -69,8 +86,65 @@ constexpr int kBinomial[5][5] = {
     {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
 }  // namespace
 
+void Reference::integrateFreeMotion() {
+  if (!params_.chain) throw std::invalid_argument("reference: free_motion needs the robot's parameters");
+  chain_.emplace(*params_.chain);
+  const int n = chain_->dof();
+  if (params_.initial_q.size() != n || params_.initial_qdot.size() != n)
+    throw std::invalid_argument("reference: free_motion initial_q and initial_qdot need " +
+                                std::to_string(n) + " entries");
+  if (!params_.initial_q.allFinite() || !params_.initial_qdot.allFinite() || !(params_.horizon > 0.0))
+    throw std::invalid_argument("reference: free_motion needs a finite initial state and a positive horizon");
+  Eigen::VectorXd x(2 * n);
+  x << params_.initial_q, params_.initial_qdot;
+  const long steps = static_cast<long>(std::ceil(params_.horizon / kFreeStep)) + 1;
+  nodes_.reserve(static_cast<size_t>(steps) + 1);
+  free_bounds_.assign(n, {0.0, 0.0, 0.0});
+  auto f = [this, n](const Eigen::VectorXd& s) {
+    Eigen::VectorXd d(2 * n);
+    d << s.tail(n), chain_->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
+    return d;
+  };
+  for (long k = 0; k <= steps; ++k) {
+    nodes_.push_back(x);
+    const Eigen::VectorXd d = f(x);
+    for (int i = 0; i < n; ++i) {
+      free_bounds_[i][0] = std::max(free_bounds_[i][0], std::abs(x(i)));
+      free_bounds_[i][1] = std::max(free_bounds_[i][1], std::abs(x(n + i)));
+      free_bounds_[i][2] = std::max(free_bounds_[i][2], std::abs(d(n + i)));
+    }
+    const Eigen::VectorXd k1 = d, k2 = f(x + kFreeStep / 2 * k1), k3 = f(x + kFreeStep / 2 * k2),
+                          k4 = f(x + kFreeStep * k3);
+    x += kFreeStep / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+  }
+}
+
+Eigen::VectorXd Reference::freeState(double t) const {
+  const double last = static_cast<double>(nodes_.size() - 1) * kFreeStep;
+  if (!(t >= 0.0) || t > last)
+    throw std::invalid_argument("reference: free_motion was integrated over [0, " + std::to_string(last) +
+                                "] s, asked for t = " + std::to_string(t));
+  const size_t i = std::min(nodes_.size() - 1, static_cast<size_t>(t / kFreeStep));
+  const double h = t - static_cast<double>(i) * kFreeStep;
+  const Eigen::VectorXd& x = nodes_[i];
+  if (h <= 0.0) return x;
+  const int n = chain_->dof();
+  auto f = [this, n](const Eigen::VectorXd& s) {
+    Eigen::VectorXd d(2 * n);
+    d << s.tail(n), chain_->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
+    return d;
+  };
+  const Eigen::VectorXd k1 = f(x), k2 = f(x + h / 2 * k1), k3 = f(x + h / 2 * k2), k4 = f(x + h * k3);
+  return x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+}
+
 double Reference::jointDerivative(int joint, int order, double t) const {
   if (order < 0 || order > 4) throw std::invalid_argument("reference: derivative order must be 0..4");
+  if (params_.type == ReferenceType::kFreeMotion) {
+    if (order > 2) throw std::invalid_argument("reference: free_motion provides derivatives up to the 2nd");
+    const ReferenceSample s = evaluate(t, order);
+    return s.derivative[order](joint);
+  }
   const double b = params_.offset(joint), c = params_.amplitude(joint);
   const double w = params_.frequency(joint), p = params_.phase(joint);
   if (params_.type == ReferenceType::kSine) return sineDerivative(b, c, w, p, order, t);
@@ -86,6 +160,17 @@ double Reference::jointDerivative(int joint, int order, double t) const {
 ReferenceSample Reference::evaluate(double t, int max_order) const {
   if (max_order < 0 || max_order > 4) throw std::invalid_argument("reference: max_order must be 0..4");
   ReferenceSample s;
+  if (params_.type == ReferenceType::kFreeMotion) {
+    if (max_order > 2)
+      throw std::invalid_argument("reference: free_motion provides derivatives up to the 2nd");
+    const int n = dof();
+    const Eigen::VectorXd x = freeState(t);
+    s.derivative[0] = x.head(n);
+    if (max_order >= 1) s.derivative[1] = x.tail(n);
+    if (max_order >= 2)
+      s.derivative[2] = chain_->acceleration(x.head(n), x.tail(n), Eigen::VectorXd::Zero(n));
+    return s;
+  }
   for (int k = 0; k <= max_order; ++k) {
     s.derivative[k].resize(dof());
     for (int i = 0; i < dof(); ++i) s.derivative[k](i) = jointDerivative(i, k, t);
@@ -94,6 +179,10 @@ ReferenceSample Reference::evaluate(double t, int max_order) const {
 }
 
 double Reference::jointBound(int joint, int order) const {
+  if (params_.type == ReferenceType::kFreeMotion) {
+    if (order > 2) throw std::invalid_argument("reference: free_motion provides derivatives up to the 2nd");
+    return 1.02 * free_bounds_[joint][order];  // sampled at every 1e-4 s node
+  }
   const double b = params_.offset(joint), c = params_.amplitude(joint);
   const double w = params_.frequency(joint);
   const double stationary = (order == 0 ? std::abs(b) : 0.0) + std::abs(c) * std::pow(w, order);

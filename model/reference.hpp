@@ -7,14 +7,23 @@
 ///   smooth_sine:  q_d,i(t) = (1 - exp(-alpha_i t^3)) (b_i + c_i sin(w_i t + p_i))
 /// The smooth-start sinusoid is the reference of Kelly, Santibanez and Loria's
 /// book: it starts at rest at zero, with zero derivatives up to the 2nd.
+///   free_motion:  q_d solves D(q_d)q_d'' + C(q_d,q_d')q_d' + g(q_d) = 0 from a
+///                 given state (Assumption 2). Integrated once by RK4 with a
+///                 1e-4 s step over [0, horizon]; between nodes the state is
+///                 one further RK4 step from the node before t, and q_d'' comes
+///                 from the model. Derivatives up to the 2nd only.
 
 #include <Eigen/Dense>
 #include <array>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "model/planar_chain.hpp"
 
 namespace lagrange::model {
 
-enum class ReferenceType { kSine, kSmoothSine };
+enum class ReferenceType { kSine, kSmoothSine, kFreeMotion };
 
 /// Per-joint parameters of a reference.
 struct ReferenceParams {
@@ -24,6 +33,12 @@ struct ReferenceParams {
   Eigen::VectorXd frequency;  ///< w [rad/s]
   Eigen::VectorXd phase;      ///< p [rad]
   Eigen::VectorXd alpha;      ///< smooth-start rate [1/s^3]; smooth_sine only
+
+  // free_motion: the unforced motion D(q)q'' + C(q,q')q' + g(q) = 0 of the
+  // arm `chain` from (initial_q, initial_qdot) -- Assumption 2 of the paper.
+  Eigen::VectorXd initial_q, initial_qdot;  ///< [rad], [rad/s]
+  std::optional<ChainParams> chain;         ///< the arm whose free motion it is
+  double horizon = 0.0;                     ///< integrated over [0, horizon] [s]
 };
 
 /// q_d and its derivatives at one instant; derivative[k] is d^k q_d / dt^k.
@@ -40,7 +55,10 @@ class Reference {
   ///         a frequency is negative, or (smooth_sine) an alpha is not positive.
   explicit Reference(ReferenceParams params);
 
-  int dof() const { return static_cast<int>(params_.offset.size()); }
+  int dof() const {
+    return static_cast<int>(params_.type == ReferenceType::kFreeMotion ? params_.initial_q.size()
+                                                                       : params_.offset.size());
+  }
   const ReferenceParams& params() const { return params_; }
 
   /// q_d and its derivatives up to max_order (0..4) at t; higher orders are
@@ -58,7 +76,15 @@ class Reference {
   double jointBound(int joint, int order) const;
 
  private:
+  void integrateFreeMotion();
+  /// [q; q'] of the free motion at t.
+  Eigen::VectorXd freeState(double t) const;
+
   ReferenceParams params_;
+  // free_motion only: nodes every kFreeStep seconds, and sampled bounds.
+  std::vector<Eigen::VectorXd> nodes_;
+  std::vector<std::array<double, 3>> free_bounds_;  ///< per joint, orders 0..2
+  std::optional<PlanarChain> chain_;
 };
 
 const char* toString(ReferenceType type);

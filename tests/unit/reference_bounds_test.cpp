@@ -95,3 +95,45 @@ TEST(Bounds, PelicanKcIsSqrt3TimesM2L1Lc2) {
 
 }  // namespace
 }  // namespace lagrange::model
+
+namespace lagrange::model {
+namespace {
+
+TEST(FreeMotionReference, SolvesTheUnforcedDynamicsAndConservesEnergy) {
+  ReferenceParams p;
+  p.type = ReferenceType::kFreeMotion;
+  p.initial_q = Eigen::Vector2d(0.5, 0.3);
+  p.initial_qdot = Eigen::Vector2d(0.0, 1.0);
+  p.chain = pelicanParams();
+  p.horizon = 3.0;
+  const Reference ref(p);
+  const PlanarChain chain(pelicanParams());
+  const double e0 = chain.kineticEnergy(p.initial_q, p.initial_qdot) + chain.potentialEnergy(p.initial_q);
+  for (double t : {0.0, 0.00013, 0.5, 1.23456, 2.9}) {
+    const ReferenceSample s = ref.evaluate(t, 2);
+    // D q'' + C q' + g = 0 (Assumption 2).
+    EXPECT_LT((chain.inertia(s.q()) * s.qdd() + chain.coriolis(s.q(), s.qd()) * s.qd() + chain.gravity(s.q()))
+                  .norm(),
+              1e-9);
+    EXPECT_NEAR(chain.kineticEnergy(s.q(), s.qd()) + chain.potentialEnergy(s.q()), e0,
+                1e-9 * std::abs(e0) + 1e-12);
+    // q' is the derivative of q, also between integration nodes.
+    const double h = 1e-6;
+    if (t > h) {
+      const Eigen::VectorXd fd = (ref.evaluate(t + h, 0).q() - ref.evaluate(t - h, 0).q()) / (2 * h);
+      EXPECT_LT((fd - s.qd()).norm(), 1e-6);
+    }
+  }
+  EXPECT_THROW(ref.evaluate(10.0, 0), std::invalid_argument);  // beyond the integrated horizon
+  EXPECT_THROW(ref.evaluate(1.0, 3), std::invalid_argument);   // derivatives up to the 2nd only
+  // k_delta dominates what the trajectory reaches.
+  double reached = 0.0;
+  for (double t = 0.0; t < 3.0; t += 1e-3) {
+    const ReferenceSample s = ref.evaluate(t, 2);
+    reached = std::max({reached, s.q().norm(), s.qd().norm(), s.qdd().norm()});
+  }
+  EXPECT_GE(referenceBound(ref), reached);
+}
+
+}  // namespace
+}  // namespace lagrange::model
