@@ -215,7 +215,8 @@ Scenario readScenario(MapReader root) {
     MapReader m = root.map("metrics");
     s.metrics.tolerance = m.positive("tolerance", s.metrics.tolerance);
     s.metrics.convergence_deadline = m.positive("convergence_deadline", s.metrics.convergence_deadline);
-    m.finish({"tolerance", "convergence_deadline"});
+    s.metrics.xi_tolerance = m.positive("xi_tolerance", s.metrics.xi_tolerance);
+    m.finish({"tolerance", "convergence_deadline", "xi_tolerance"});
   }
   if (root.has("lockstep")) {
     MapReader l = root.map("lockstep");
@@ -366,6 +367,7 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "metrics" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "tolerance" << YAML::Value << s.metrics.tolerance;
   out << YAML::Key << "convergence_deadline" << YAML::Value << s.metrics.convergence_deadline;
+  out << YAML::Key << "xi_tolerance" << YAML::Value << s.metrics.xi_tolerance;
   out << YAML::EndMap;
 
   out << YAML::Key << "lockstep" << YAML::Value << YAML::BeginMap;

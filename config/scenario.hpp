@@ -51,6 +51,7 @@ struct ControllerConfig {
 struct MetricsConfig {
   double tolerance = 1e-3;            ///< on ||q~|| [rad]
   double convergence_deadline = 5.0;  ///< stated metric: converged by this sim time [s]
+  double xi_tolerance = 1e-2;         ///< on each ||xit_i|| of the cascaded controller [N m / s^(i-1)]
 };
 
 struct LockstepConfig {

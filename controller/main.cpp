@@ -29,7 +29,9 @@ int DoMain(int argc, char** argv) {
       "controller",
       "Position-feedback tracking controller over LCM: Theorem 1 (eq. 90) or cascaded (eq. 750).", argc, argv,
       [&](CLI::App& app) {
-        app.add_flag("--strict", strict, "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
+        app.add_flag(
+            "--strict", strict,
+            "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         const controller::GainReport gains = controller::checkGains(s);

@@ -17,6 +17,7 @@ Theorem1Output ScenarioController::step(double t, const Eigen::VectorXd& q, cons
   const CascadedController::Output out = cascaded_->step(t, q, xi);
   Theorem1Output command = out.stage0;
   command.u = out.cascade.u;
+  command.xi_error = out.cascade.xi_error;
   return command;
 }
 

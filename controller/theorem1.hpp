@@ -31,6 +31,8 @@ struct Theorem1Output {
   Eigen::VectorXd q_error;       ///< q~ [rad]
   Eigen::VectorXd theta;         ///< filter output
   Eigen::VectorXd filter_state;  ///< qc used for this output (before the update)
+  /// Cascaded controller only: xit_i = xi_i - xi_i*, m x n (empty otherwise).
+  Eigen::MatrixXd xi_error;
 };
 
 class Theorem1Controller {

@@ -56,7 +56,8 @@ int DoMain(int argc, char** argv) {
                   transport::nowUtime());
 
         const controller::GainReport gains = controller::checkGains(s);
-        logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance);
+        logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance,
+                                        s.metrics.xi_tolerance);
         transport::StatusReporter status(node);
         logger::RunFacts facts;
         facts.log_path = log_path;
@@ -77,6 +78,11 @@ int DoMain(int argc, char** argv) {
               if (metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q)) &&
                   m.header.tick % ack_every == 0)
                 progress_due = true;
+            });
+        node.subscribe<lagrange::control_command_t>(
+            transport::kControlCommand, [n](const auto& m) { return transport::validate(m, n); },
+            [&](const lagrange::control_command_t& m) {
+              metrics.addChainErrors(m.header.tick, m.header.sim_time, m.xi_error);
             });
         node.subscribe<lagrange::actuator_state_t>(
             transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },

@@ -16,9 +16,29 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"convergence_time", t.convergence_time ? json(*t.convergence_time) : json(nullptr)},
       {"rms_last_second", t.rms_last_second},
       {"convergence_deadline", s.metrics.convergence_deadline},
-      {"met", t.convergence_time.has_value() && *t.convergence_time <= s.metrics.convergence_deadline},
+      {"met",
+       [&] {
+         auto by_deadline = [&](const std::optional<double>& ct) {
+           return ct.has_value() && *ct <= s.metrics.convergence_deadline;
+         };
+         bool met = by_deadline(t.convergence_time);
+         for (const auto& c : t.chain) met = met && by_deadline(c.convergence_time);
+         return met;
+       }()},
       {"samples", t.samples},
   };
+  if (!t.chain.empty()) {
+    json chain = json::array();
+    for (size_t i = 0; i < t.chain.size(); ++i) {
+      const auto& c = t.chain[i];
+      chain.push_back({{"stage", i + 1},
+                       {"tolerance", c.tolerance},
+                       {"final_error", c.final_error},
+                       {"max_error", c.max_error},
+                       {"convergence_time", c.convergence_time ? json(*c.convergence_time) : json(nullptr)}});
+    }
+    j["tracking"]["chain"] = chain;
+  }
   j["torque"] = {{"max_abs", t.max_abs_torque}};
   j["gains"] = {
       {"condition", g.condition.name},

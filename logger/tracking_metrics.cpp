@@ -4,8 +4,41 @@
 
 namespace lagrange::logger {
 
-TrackingMetrics::TrackingMetrics(model::Reference reference, double tolerance)
-    : reference_(std::move(reference)), tolerance_(tolerance) {}
+TrackingMetrics::TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance)
+    : reference_(std::move(reference)), tolerance_(tolerance), xi_tolerance_(xi_tolerance) {}
+
+namespace {
+// Final, max and convergence time of one error history.
+ErrorSummary summarize(const std::vector<double>& times, const std::vector<double>& errors,
+                       double tolerance) {
+  ErrorSummary s;
+  s.tolerance = tolerance;
+  if (errors.empty()) return s;
+  s.final_error = errors.back();
+  std::optional<size_t> last_violation;
+  for (size_t i = errors.size(); i-- > 0;) {
+    s.max_error = std::max(s.max_error, errors[i]);
+    if (!last_violation && errors[i] >= tolerance) last_violation = i;
+  }
+  if (!last_violation)
+    s.convergence_time = times.front();
+  else if (*last_violation + 1 < errors.size())
+    s.convergence_time = times[*last_violation + 1];
+  return s;
+}
+}  // namespace
+
+void TrackingMetrics::addChainErrors(long long tick, double t,
+                                     const std::vector<std::vector<double>>& xi_error) {
+  if (tick <= last_chain_tick_ || xi_error.empty()) return;
+  last_chain_tick_ = tick;
+  chain_errors_.resize(xi_error.size());
+  chain_times_.push_back(t);
+  for (size_t i = 0; i < xi_error.size(); ++i)
+    chain_errors_[i].push_back(
+        Eigen::Map<const Eigen::VectorXd>(xi_error[i].data(), static_cast<Eigen::Index>(xi_error[i].size()))
+            .norm());
+}
 
 std::optional<double> TrackingMetrics::addSample(long long tick, double t, const Eigen::VectorXd& q) {
   if (tick <= last_tick_) return std::nullopt;
@@ -44,6 +77,7 @@ TrackingSummary TrackingMetrics::summary() const {
     }
   }
   s.rms_last_second = std::sqrt(sum_sq / static_cast<double>(in_window));
+  for (const auto& errors : chain_errors_) s.chain.push_back(summarize(chain_times_, errors, xi_tolerance_));
   if (!last_violation) {
     s.convergence_time = times_.front();
   } else if (*last_violation + 1 < errors_.size()) {

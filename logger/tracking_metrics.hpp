@@ -11,6 +11,13 @@
 
 namespace lagrange::logger {
 
+/// One error signal's history: ||e|| per sample, against a tolerance.
+struct ErrorSummary {
+  double tolerance = 0.0;
+  double final_error = 0.0, max_error = 0.0;
+  std::optional<double> convergence_time;  ///< first time after which ||e|| < tolerance to the end
+};
+
 struct TrackingSummary {
   double tolerance = 0.0;
   double final_error = 0.0;  ///< ||q~(T)|| [rad]
@@ -21,17 +28,22 @@ struct TrackingSummary {
   double rms_last_second = 0.0;  ///< RMS of ||q~|| over t >= T - 1 s [rad]
   double max_abs_torque = 0.0;   ///< max |tau_i| applied [N m]
   long long samples = 0;
-  double sim_time = 0.0;  ///< time of the last sample [s]
+  double sim_time = 0.0;            ///< time of the last sample [s]
+  std::vector<ErrorSummary> chain;  ///< ||xit_i|| per stage i (cascaded controller)
 };
 
 class TrackingMetrics {
  public:
-  TrackingMetrics(model::Reference reference, double tolerance);
+  TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance = 1e-2);
 
   /// A plant sample. Ticks must increase; a repeated or older tick is ignored
   /// (returns false). Returns ||q~||.
   std::optional<double> addSample(long long tick, double t, const Eigen::VectorXd& q);
   void addTorque(const Eigen::VectorXd& tau);
+
+  /// The cascaded controller's chain errors xit_i at a tick (rows = stages),
+  /// judged against xi_tolerance. Repeated or older ticks are ignored.
+  void addChainErrors(long long tick, double t, const std::vector<std::vector<double>>& xi_error);
 
   TrackingSummary summary() const;
   long long lastTick() const { return last_tick_; }
@@ -44,6 +56,10 @@ class TrackingMetrics {
   long long last_tick_ = -1;
   std::vector<double> times_, errors_;
   double max_abs_torque_ = 0.0;
+  double xi_tolerance_;
+  long long last_chain_tick_ = -1;
+  std::vector<double> chain_times_;
+  std::vector<std::vector<double>> chain_errors_;  ///< [stage][sample]
 };
 
 }  // namespace lagrange::logger

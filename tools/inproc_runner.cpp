@@ -31,7 +31,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
   controller::ScenarioController ctl(s);
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
-  logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance);
+  logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
 
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
   // -> physics. Every value passes through the same message structs as over
@@ -53,6 +53,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
         ctl.step(sample.position.header.sim_time, transport::toEigen(sample.position.q), act.state()), k,
         sample.position.header.sim_time);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
+    metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied = act.step(transport::toEigen(command.u), s.tickPeriod());
     const auto state = transport::actuatorMessage(applied, act.state(), command);
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);

@@ -32,6 +32,8 @@ lagrange::control_command_t commandMessage(const controller::Theorem1Output& out
   m.q_error = toStd(out.q_error);
   m.theta = toStd(out.theta);
   m.filter_state = toStd(out.filter_state);
+  m.chain_order = static_cast<int32_t>(out.xi_error.rows());
+  for (int i = 0; i < out.xi_error.rows(); ++i) m.xi_error.push_back(toStd(out.xi_error.row(i).transpose()));
   return m;
 }
 

@@ -60,9 +60,13 @@ std::string validate(const lagrange::plant_truth_t& m, int joints) {
 
 std::string validate(const lagrange::control_command_t& m, int joints) {
   std::string why = checkHeader(m.header);
-  return why.empty()
-             ? checkArrays(m.num_joints, joints, {&m.u, &m.q_desired, &m.q_error, &m.theta, &m.filter_state})
-             : why;
+  if (why.empty())
+    why = checkArrays(m.num_joints, joints, {&m.u, &m.q_desired, &m.q_error, &m.theta, &m.filter_state});
+  if (why.empty() && (m.chain_order < 0 || static_cast<int>(m.xi_error.size()) != m.chain_order))
+    why = "xi_error rows differ from chain_order";
+  for (const auto& row : m.xi_error)
+    if (why.empty()) why = checkArrays(m.num_joints, joints, {&row});
+  return why;
 }
 
 std::string validate(const lagrange::actuator_state_t& m, int joints) {

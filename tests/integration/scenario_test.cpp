@@ -111,7 +111,11 @@ TEST_F(DefaultRun, ConvergesAndLeavesEveryOutput) {
   EXPECT_EQ(channels.front(), "SCENARIO");
   EXPECT_EQ(readTruth(dir_ + "/run.lcm").size(), 10001u);
   EXPECT_EQ(j["messages"]["PLANT_POSITION"]["rejected"], 0);
-  EXPECT_EQ(j["messages"]["CONTROL_COMMAND"]["published"], j["messages"]["CONTROL_COMMAND"]["received"]);
+  // Every command reached both of its subscribers, the actuator and the logger.
+  EXPECT_EQ(j["processes"]["actuator"]["channels"]["CONTROL_COMMAND"]["received"],
+            j["processes"]["controller"]["channels"]["CONTROL_COMMAND"]["published"]);
+  EXPECT_EQ(j["processes"]["logger"]["channels"]["CONTROL_COMMAND"]["received"],
+            j["processes"]["controller"]["channels"]["CONTROL_COMMAND"]["published"]);
 }
 
 // (a) The analytic model integrated by RK4 under the same sampled controller

@@ -34,5 +34,20 @@ TEST(TrackingMetrics, NeverConvergedIsEmpty) {
   EXPECT_FALSE(m.summary().convergence_time.has_value());
 }
 
+TEST(TrackingMetrics, ChainErrorsAreJudgedPerStage) {
+  logger::TrackingMetrics m(zeroReference(), 0.1, 0.5);
+  m.addSample(0, 0.0, Eigen::VectorXd::Constant(1, 0.0));
+  m.addChainErrors(0, 0.0, {{3.0}, {4.0}});
+  m.addChainErrors(1, 1.0, {{0.1}, {0.6}});
+  m.addChainErrors(1, 1.0, {{9.0}, {9.0}});  // repeated tick ignored
+  m.addChainErrors(2, 2.0, {{0.2}, {0.3}});
+  const auto s = m.summary();
+  ASSERT_EQ(s.chain.size(), 2u);
+  EXPECT_DOUBLE_EQ(*s.chain[0].convergence_time, 1.0);
+  EXPECT_DOUBLE_EQ(*s.chain[1].convergence_time, 2.0);
+  EXPECT_DOUBLE_EQ(s.chain[1].max_error, 4.0);
+  EXPECT_DOUBLE_EQ(s.chain[0].final_error, 0.2);
+}
+
 }  // namespace
 }  // namespace lagrange
