@@ -36,15 +36,6 @@ double horizon(const Reference& reference) {
   return std::max(10.0, 2.0 * longest + settle);
 }
 
-ConditionReport report(const std::string& name, const std::string& expression, double lhs, double rhs) {
-  ConditionReport r;
-  r.name = name;
-  r.expression = expression;
-  r.lhs = lhs;
-  r.rhs = rhs;
-  r.holds = lhs > rhs;
-  return r;
-}
 }  // namespace
 
 EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, const Eigen::VectorXd& kp0,
@@ -90,12 +81,13 @@ std::vector<ConditionReport> theorem2Conditions(double kc, double kdelta, const 
   const double ratio_low = a0.minCoeff() / b0.maxCoeff(), ratio_high = a0.maxCoeff() / b0.minCoeff();
   const double e2 = eta.eta2 * eta.eta2, e3 = eta.eta3 * eta.eta3;
   return {
-      report("eq. (632a)",
-             "kd0_min (a0_min / (4 b0_max) - 1) > 3/2 + (k_c k_delta + 3/2) (a0_max / b0_min)^2",
-             kd0.minCoeff() * (ratio_low / 4.0 - 1.0), 1.5 + (kc * kdelta + 1.5) * ratio_high * ratio_high),
-      report("eq. (632b)", "kp1_min > (eta_2^2 + eta_3^2) / 2 + 2", kp1.minCoeff(), 0.5 * (e2 + e3) + 2.0),
-      report("eq. (632c)", "a1_min > (eta_2^2 + eta_3^2 b1_max^2 + 1) / 2", a1.minCoeff(),
-             0.5 * (e2 + e3 * b1.maxCoeff() * b1.maxCoeff() + 1.0)),
+      makeCondition(
+          "eq. (632a)", "kd0_min (a0_min / (4 b0_max) - 1) > 3/2 + (k_c k_delta + 3/2) (a0_max / b0_min)^2",
+          kd0.minCoeff() * (ratio_low / 4.0 - 1.0), 1.5 + (kc * kdelta + 1.5) * ratio_high * ratio_high),
+      makeCondition("eq. (632b)", "kp1_min > (eta_2^2 + eta_3^2) / 2 + 2", kp1.minCoeff(),
+                    0.5 * (e2 + e3) + 2.0),
+      makeCondition("eq. (632c)", "a1_min > (eta_2^2 + eta_3^2 b1_max^2 + 1) / 2", a1.minCoeff(),
+                    0.5 * (e2 + e3 * b1.maxCoeff() * b1.maxCoeff() + 1.0)),
   };
 }
 

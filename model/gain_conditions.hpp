@@ -19,6 +19,9 @@ struct ConditionReport {
   double margin() const { return lhs - rhs; }
 };
 
+/// A report of "lhs > rhs".
+ConditionReport makeCondition(const std::string& name, const std::string& expression, double lhs, double rhs);
+
 /// eq. (11) for per-joint gains kd, a, b (all positive) and the constants k_c, k_delta.
 ConditionReport theorem1Condition(const Eigen::VectorXd& kd, const Eigen::VectorXd& a,
                                   const Eigen::VectorXd& b, double kc, double kdelta);

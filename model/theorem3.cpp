@@ -118,31 +118,22 @@ std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const 
     lyapunov =
         std::min(lyapunov, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(reduced).eigenvalues().minCoeff());
   }
-  auto make = [](const std::string& name, const std::string& expression, double lhs, double rhs) {
-    ConditionReport r;
-    r.name = name;
-    r.expression = expression;
-    r.lhs = lhs;
-    r.rhs = rhs;
-    r.holds = lhs > rhs;
-    return r;
-  };
   const double low = a0.minCoeff() / b0.maxCoeff(), high = a0.maxCoeff() / b0.minCoeff();
   const double half = (m + 2) / 2.0;
   std::vector<ConditionReport> out;
-  out.push_back(make("A Hurwitz (Theorem 3)", "-max Re eig(A) > 0 (worst joint)", hurwitz, 0.0));
-  out.push_back(
-      make("eq. (lego)",
-           "kd0_min (a0_min / (4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max / b0_min)^2",
-           kd0.minCoeff() * (low / 4.0 - m), half + (kc * kdelta + half) * high * high));
+  out.push_back(makeCondition("A Hurwitz (Theorem 3)", "-max Re eig(A) > 0 (worst joint)", hurwitz, 0.0));
+  out.push_back(makeCondition(
+      "eq. (lego)",
+      "kd0_min (a0_min / (4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max / b0_min)^2",
+      kd0.minCoeff() * (low / 4.0 - m), half + (kc * kdelta + half) * high * high));
   if (hurwitz > 0.0)
-    out.push_back(
-        make("eq. (786)",
-             std::string("lambda_min(Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2}) > 0, Q = I (worst joint)") +
-                 (unsolved ? "; P could not be computed accurately for this A" : ""),
-             lyapunov, 0.0));
+    out.push_back(makeCondition(
+        "eq. (786)",
+        std::string("lambda_min(Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2}) > 0, Q = I (worst joint)") +
+            (unsolved ? "; P could not be computed accurately for this A" : ""),
+        lyapunov, 0.0));
   else
-    out.push_back(make("eq. (786)", "needs A Hurwitz first", -1.0, 0.0));
+    out.push_back(makeCondition("eq. (786)", "needs A Hurwitz first", -1.0, 0.0));
   return out;
 }
 
