@@ -4,12 +4,18 @@
 #include <cstdio>
 
 #include "model/bounds.hpp"
+#include "model/proposition1.hpp"
 #include "model/theorem3.hpp"
 
 namespace lagrange::controller {
 
 bool GainReport::holds() const {
   return condition.holds && std::all_of(chain.begin(), chain.end(), [](const auto& c) { return c.holds; });
+}
+
+bool GainReport::propositionHolds() const {
+  return !proposition.empty() &&
+         std::all_of(proposition.begin(), proposition.end(), [](const auto& c) { return c.holds; });
 }
 
 double GainReport::margin() const {
@@ -42,9 +48,9 @@ GainReport checkGains(const config::Scenario& s) {
       std::vector<model::StageVectors> stages;
       for (const auto& st : s.controller.stages) stages.push_back({st.kp, st.kd, st.a, st.b});
       r.chain = model::theorem3Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, stages);
-      r.unchecked =
-          "Proposition 1's constructive conditions (794), (795) are not evaluated by this version "
-          "(they are sufficient for Theorem 3's, which are)";
+      const StageGains& g1 = s.controller.stages.at(0);
+      r.proposition = model::theorem2Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, g1.kp, g1.a, g1.b);
+      for (auto& c : model::proposition1Conditions(*r.eta, stages)) r.proposition.push_back(std::move(c));
     }
   }
   return r;
@@ -70,7 +76,11 @@ std::string describe(const GainReport& r) {
     out += eta;
   }
   for (const auto& c : r.chain) out += "\n" + line(c);
-  if (!r.unchecked.empty()) out += "\nnote: " + r.unchecked;
+  if (!r.proposition.empty()) {
+    out += std::string("\nProposition 1 (constructive, sufficient for Theorem 3) ") +
+           (r.propositionHolds() ? "HOLDS:" : "does not hold:");
+    for (const auto& c : r.proposition) out += "\n  " + line(c);
+  }
   for (const auto& w : r.warnings) out += "\nwarning: " + w;
   return out;
 }

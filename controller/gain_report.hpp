@@ -3,7 +3,9 @@
 /// The gain check of a scenario: k_c and k_delta from the configured robot
 /// and reference, then eq. (11) (Theorem 1) and, for the cascaded controller
 /// with m = 1, eq. (632) (Theorem 2), with m >= 2 Theorem 3's (A Hurwitz,
-/// (lego), (786)), using the estimated eta_1..eta_3.
+/// (lego), (786)), using the estimated eta_1..eta_3. For m >= 2 Proposition 1's
+/// constructive conditions are reported too; they are sufficient for
+/// Theorem 3's, which alone decide holds().
 
 #include <optional>
 #include <string>
@@ -18,16 +20,18 @@ namespace lagrange::controller {
 struct GainReport {
   double kc = 0.0;
   double kdelta = 0.0;
-  model::ConditionReport condition;           ///< eq. (11), on the stage-0 gains
-  std::vector<model::ConditionReport> chain;  ///< eq. (632a-c) for m = 1, Theorem 3's for m >= 2
-  std::optional<model::EtaEstimate> eta;      ///< for m = 1
-  std::string unchecked;                      ///< conditions this version does not evaluate, if any
-  std::vector<std::string> warnings;          ///< hypotheses of the theorems that do not hold
+  model::ConditionReport condition;                 ///< eq. (11), on the stage-0 gains
+  std::vector<model::ConditionReport> chain;        ///< eq. (632a-c) for m = 1, Theorem 3's for m >= 2
+  std::vector<model::ConditionReport> proposition;  ///< m >= 2: (632a-c), (794), (795), Q - diag Q / 2 >= 0
+  std::optional<model::EtaEstimate> eta;            ///< cascaded controller
+  std::vector<std::string> warnings;                ///< hypotheses of the theorems that do not hold
 
   /// Every evaluated condition holds.
   bool holds() const;
   /// The smallest margin among the evaluated conditions.
   double margin() const;
+  /// Every condition of Proposition 1 holds (false when it does not apply).
+  bool propositionHolds() const;
 };
 
 GainReport checkGains(const config::Scenario& scenario);

@@ -1,10 +1,14 @@
 #include "controller/gain_suggestion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "model/bounds.hpp"
 #include "model/chain_conditions.hpp"
+#include "model/proposition1.hpp"
 
 namespace lagrange::controller {
 
@@ -30,22 +34,51 @@ config::Scenario suggestGains(const config::Scenario& in) {
   const model::EtaEstimate eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
   const double e = eta.eta2 * eta.eta2 + eta.eta3 * eta.eta3;
 
-  s.controller.stages.assign(m, StageGains{});
-  double kp_prev = 0.0, beta_product = 1.0;
-  for (int i = 1; i <= m; ++i) {
-    double kp = 0.0, kd = 0.0, a = 0.0;
-    const double b = 1.0;
-    if (i == 1) {
-      kp = kd = a = 1.1 * e + 2.0;
-    } else {
-      kp = 1.1 * (e * beta_product * beta_product + kp_prev);
-      kd = kp * (kp - kp_prev);
-      a = 1.1 * e * (b * beta_product) * (b * beta_product);
+  // Proposition 1: (794a) kp1 = kd1 with kp1, a1 above (794b), (632b), (632c);
+  // for i >= 2, kp_i and a_i above (795b), (795c) by a factor f_i, and kd_i
+  // from (795a) read with kd_i^2 (see model/proposition1.hpp), which zeroes
+  // every eta_ik. Those bounds do not imply Q - diag(Q)/2 >= 0 ("strengthened
+  // if necessary", says the proof). Stage i's rows couple to the earlier ones
+  // through mu_ik, which do not depend on stage i's gains, so after scaling by
+  // Q's diagonal the couplings fall like 1 / sqrt(f_i): f_i doubles until the
+  // first i stages meet the matrix condition with room for the stages after.
+  std::vector<double> factors(m, 1.1);
+  auto build = [&](int count) {
+    std::vector<StageGains> stages(count);
+    double kp_prev = 0.0, beta_product = 1.0;
+    for (int i = 1; i <= count; ++i) {
+      const double b = 1.0, f = factors[i - 1];
+      double kp = f * e + 2.0, kd = kp, a = kp;
+      if (i > 1) {
+        kp = f * (e * beta_product * beta_product + kp_prev);
+        kd = std::sqrt(kp * (kp - kp_prev));
+        a = f * e * (b * beta_product) * (b * beta_product);
+      }
+      stages[i - 1] = {Eigen::VectorXd::Constant(n, kp), Eigen::VectorXd::Constant(n, kd),
+                       Eigen::VectorXd::Constant(n, a), Eigen::VectorXd::Constant(n, b)};
+      beta_product *= kp + b * kd;
+      kp_prev = kp;
     }
-    s.controller.stages[i - 1] = {Eigen::VectorXd::Constant(n, kp), Eigen::VectorXd::Constant(n, kd),
-                                  Eigen::VectorXd::Constant(n, a), Eigen::VectorXd::Constant(n, b)};
-    beta_product *= kp + b * kd;
-    kp_prev = kp;
+    return stages;
+  };
+  auto meets = [&](const std::vector<StageGains>& stages, double matrix_target) {
+    std::vector<model::StageVectors> vectors;
+    for (const auto& st : stages) vectors.push_back({st.kp, st.kd, st.a, st.b});
+    const auto conditions = model::proposition1Conditions(eta, vectors);
+    return std::all_of(conditions.begin(), conditions.end(), [](const auto& c) { return c.holds; }) &&
+           conditions.back().lhs > matrix_target;
+  };
+  for (int i = 2; i <= m; ++i)
+    while (!meets(build(i), 0.5 + 0.1 * (m - i)) && factors[i - 1] < 1e12) factors[i - 1] *= 2.0;
+  s.controller.stages = build(m);
+  for (int i = 1; i <= m; ++i) {
+    const StageGains& g = s.controller.stages[i - 1];
+    if (!(g.kp.allFinite() && g.kd.allFinite() && g.a.allFinite()))
+      throw std::range_error(
+          "Proposition 1's constructive gains for m = " + std::to_string(m) + " overflow " +
+          "double precision at stage " + std::to_string(i) +
+          " (they grow like (eta_2^2 + eta_3^2)^(2^i)); expected m <= " + std::to_string(i - 1) +
+          " for this rule, or gains checked against Theorem 3 directly");
   }
   return s;
 }

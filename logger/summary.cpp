@@ -2,6 +2,13 @@
 
 namespace lagrange::logger {
 
+namespace {
+nlohmann::json conditionJson(const model::ConditionReport& c) {
+  return {{"name", c.name}, {"expression", c.expression}, {"lhs", c.lhs},
+          {"rhs", c.rhs},   {"holds", c.holds},           {"margin", c.margin()}};
+}
+}  // namespace
+
 nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                            const controller::GainReport& g, const RunFacts& f) {
   using nlohmann::json;
@@ -50,21 +57,16 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"k_c", g.kc},
       {"k_delta", g.kdelta},
   };
-  json conditions = json::array();
-  for (const model::ConditionReport* c : [&] {
-         std::vector<const model::ConditionReport*> all{&g.condition};
-         for (const auto& x : g.chain) all.push_back(&x);
-         return all;
-       }())
-    conditions.push_back({{"name", c->name},
-                          {"expression", c->expression},
-                          {"lhs", c->lhs},
-                          {"rhs", c->rhs},
-                          {"holds", c->holds},
-                          {"margin", c->margin()}});
+  json conditions = json::array({conditionJson(g.condition)});
+  for (const auto& c : g.chain) conditions.push_back(conditionJson(c));
   j["gains"]["conditions"] = conditions;
   if (g.eta) j["gains"]["eta"] = {{"eta1", g.eta->eta1}, {"eta2", g.eta->eta2}, {"eta3", g.eta->eta3}};
-  if (!g.unchecked.empty()) j["gains"]["unchecked"] = g.unchecked;
+  if (!g.proposition.empty()) {
+    json proposition = json::array();
+    for (const auto& c : g.proposition) proposition.push_back(conditionJson(c));
+    j["gains"]["proposition1"] = proposition;
+    j["gains"]["proposition1_holds"] = g.propositionHolds();
+  }
   if (!g.warnings.empty()) j["gains"]["warnings"] = g.warnings;
   j["timing"] = {
       {"sim_time", t.sim_time},

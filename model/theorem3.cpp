@@ -1,31 +1,35 @@
 #include "model/theorem3.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <stdexcept>
+
+#include "model/definiteness.hpp"
 
 namespace lagrange::model {
 
 namespace {
-// beta_j = kp_j + b_j kd_j (1-based j).
-double beta(const std::vector<ScalarStage>& s, int j) { return s[j - 1].kp + s[j - 1].b * s[j - 1].kd; }
-
-// prod_{j=k+1}^{i-1} beta_j.
+// prod_{j=from}^{to} beta_j.
 double betaProduct(const std::vector<ScalarStage>& s, int from, int to) {
   double p = 1.0;
-  for (int j = from; j <= to; ++j) p *= beta(s, j);
+  for (int j = from; j <= to; ++j) p *= appendixBeta(s, j);
   return p;
 }
+}  // namespace
 
-double eta(const std::vector<ScalarStage>& s, int i, int k) {
+double appendixBeta(const std::vector<ScalarStage>& s, int j) {
+  return s[j - 1].kp + s[j - 1].b * s[j - 1].kd;
+}
+
+double appendixEta(const std::vector<ScalarStage>& s, int i, int k) {
   double bracket = s[k - 1].kp * s[k - 1].kp - s[k - 1].kd * s[k - 1].kd;
   if (k > 1) bracket -= s[k - 1].kp * s[k - 2].kp;
   return betaProduct(s, k + 1, i - 1) * bracket;
 }
 
-double mu(const std::vector<ScalarStage>& s, int i, int k) {
+double appendixMu(const std::vector<ScalarStage>& s, int i, int k) {
   return betaProduct(s, k + 1, i - 1) * s[k - 1].kd * (s[k - 1].kp + s[k - 1].a);
 }
-}  // namespace
 
 Eigen::MatrixXd theorem3A(const std::vector<ScalarStage>& s) {
   const int m = static_cast<int>(s.size());
@@ -42,8 +46,8 @@ Eigen::MatrixXd theorem3A(const std::vector<ScalarStage>& s) {
     if (i >= 2) {
       g1(i - 1, i - 1) = -s[i - 2].kp;
       for (int k = 1; k < i; ++k) {
-        g1(i - 1, k - 1) = eta(s, i, k);
-        g2(i - 1, k - 1) = -mu(s, i, k);
+        g1(i - 1, k - 1) = appendixEta(s, i, k);
+        g2(i - 1, k - 1) = -appendixMu(s, i, k);
       }
     }
   }
@@ -89,6 +93,15 @@ Eigen::MatrixXd solveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q
   return sym;
 }
 
+namespace {
+// (786)'s left side for one (P, Q) pair, Jacobi-scaled by Q's diagonal:
+// lambda_min(D (Q - e diag{|[P B]_i|^2}) D), D = diag(Q)^(-1/2); same sign as unscaled.
+double condition786(const Eigen::MatrixXd& p, const Eigen::MatrixXd& q, const Eigen::VectorXd& b, double e) {
+  const Eigen::VectorXd pb = p * b;
+  return scaledMinEigenvalue(q - e * Eigen::MatrixXd(pb.cwiseAbs2().asDiagonal()), q);
+}
+}  // namespace
+
 std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const EtaEstimate& eta_estimate,
                                                 const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0,
                                                 const Eigen::VectorXd& b0,
@@ -97,39 +110,56 @@ std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const 
   const int joints = static_cast<int>(kd0.size());
   const double e = eta_estimate.eta2 * eta_estimate.eta2 + eta_estimate.eta3 * eta_estimate.eta3;
   double hurwitz = 1e300, lyapunov = 1e300;
-  bool unsolved = false;
+  bool all_hurwitz = true, certified = false, unsolved = false;
   for (int j = 0; j < joints; ++j) {
     std::vector<ScalarStage> s;
     for (const auto& st : stages) s.push_back({st.kp(j), st.kd(j), st.a(j), st.b(j)});
     const Eigen::MatrixXd a = theorem3A(s);
-    hurwitz = std::min(hurwitz, -Eigen::EigenSolver<Eigen::MatrixXd>(a).eigenvalues().real().maxCoeff());
-    if (hurwitz <= 0.0) continue;
-    const Eigen::MatrixXd q = Eigen::MatrixXd::Identity(2 * m, 2 * m);
-    Eigen::MatrixXd p;
-    try {
-      p = solveLyapunov(a, q);
-    } catch (const std::runtime_error&) {
-      lyapunov = std::min(lyapunov, -1.0);  // no accurate P: the condition cannot be shown to hold
-      unsolved = true;
+    const Eigen::VectorXd b = theorem3B(s);
+    // P = I is a Lyapunov matrix when Q = -(A + A^T) > 0: Proposition 1's choice,
+    // which also proves A Hurwitz without trusting an eigenvalue solver.
+    const Eigen::MatrixXd q_identity_p = -(a + a.transpose());
+    const bool identity_works = scaledMinEigenvalue(q_identity_p, q_identity_p) > 0.0;
+    const double eig = hurwitzMargin(a);
+    hurwitz = std::min(hurwitz, eig);
+    certified = certified || (identity_works && eig <= 0.0);
+    if (eig <= 0.0 && !identity_works) {
+      all_hurwitz = false;
       continue;
     }
-    const Eigen::VectorXd pb = p * theorem3B(s);
-    const Eigen::MatrixXd reduced = q - e * Eigen::MatrixXd(pb.cwiseAbs2().asDiagonal());
-    lyapunov =
-        std::min(lyapunov, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(reduced).eigenvalues().minCoeff());
+    double best = -1e300;
+    if (identity_works) best = condition786(Eigen::MatrixXd::Identity(2 * m, 2 * m), q_identity_p, b, e);
+    const Eigen::MatrixXd q = Eigen::MatrixXd::Identity(2 * m, 2 * m);
+    try {
+      const Eigen::MatrixXd p = solveLyapunov(a, q);
+      if (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff() > 0.0)
+        best = std::max(best, condition786(p, q, b, e));
+    } catch (const std::runtime_error&) {
+      unsolved = !identity_works;
+    }
+    if (best == -1e300) best = -1.0;  // no usable P: the condition cannot be shown to hold
+    lyapunov = std::min(lyapunov, best);
   }
   const double low = a0.minCoeff() / b0.maxCoeff(), high = a0.maxCoeff() / b0.minCoeff();
   const double half = (m + 2) / 2.0;
   std::vector<ConditionReport> out;
-  out.push_back(makeCondition("A Hurwitz (Theorem 3)", "-max Re eig(A) > 0 (worst joint)", hurwitz, 0.0));
+  ConditionReport hurwitz_report = makeCondition(
+      "A Hurwitz (Theorem 3)",
+      std::string("-max Re eig(A) > 0 (balanced A, worst joint)") +
+          (certified ? "; the eigenvalues are inaccurate here, but -(A + A^T) > 0 proves A Hurwitz" : ""),
+      hurwitz, 0.0);
+  hurwitz_report.holds = all_hurwitz;
+  out.push_back(hurwitz_report);
   out.push_back(makeCondition(
       "eq. (lego)",
       "kd0_min (a0_min / (4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max / b0_min)^2",
       kd0.minCoeff() * (low / 4.0 - m), half + (kc * kdelta + half) * high * high));
-  if (hurwitz > 0.0)
+  if (all_hurwitz)
     out.push_back(makeCondition(
         "eq. (786)",
-        std::string("lambda_min(Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2}) > 0, Q = I (worst joint)") +
+        std::string("lambda_min(D (Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2}) D) > 0, D = diag(Q)^-1/2, "
+                    "the better of P = I with Q = -(A + A^T) and Q = I with P from the Lyapunov equation "
+                    "(worst joint)") +
             (unsolved ? "; P could not be computed accurately for this A" : ""),
         lyapunov, 0.0));
   else

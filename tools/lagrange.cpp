@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
@@ -21,7 +22,13 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
     const controller::GainReport r = controller::checkGains(s);
     std::cout << controller::describe(r) << "\n";
     if (!suggest) return r.holds() ? 0 : 1;
-    const config::Scenario suggested = controller::suggestGains(s);
+    config::Scenario suggested;
+    try {
+      suggested = controller::suggestGains(s);
+    } catch (const std::range_error& e) {
+      std::cout << "\nno suggestion: " << e.what() << "\n";
+      return 1;
+    }
     const controller::GainReport check = controller::checkGains(suggested);
     std::cout << "\nsuggested gains (the paper's constructive rules; other keys unchanged):\n"
               << controller::controllerYaml(suggested) << "\nwith them:\n"
@@ -70,8 +77,8 @@ int DoMain(int argc, char** argv) {
   std::vector<std::string> gains_overrides;
   CLI::App* gains_cmd = app.add_subcommand("check-gains",
                                            "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; "
-                                           "eta and eq. 632 for m = 1) without running it; "
-                                           "exit 1 if it is violated");
+                                           "eta and eq. 632 for m = 1; Theorem 3 and Proposition 1 "
+                                           "for m >= 2) without running it; exit 1 if one is violated");
   gains_cmd->add_option("config", gains_config, "Scenario YAML file")->required()->check(CLI::ExistingFile);
   gains_cmd->add_option("--set", gains_overrides, "Override a config key: key=value; repeatable");
   bool suggest = false;

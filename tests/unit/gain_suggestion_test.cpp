@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "controller/gain_report.hpp"
 
 namespace lagrange::controller {
@@ -28,6 +30,46 @@ TEST(GainSuggestion, MeetsTheorem2ForOneIntegrator) {
   const config::Scenario g = suggestGains(s);
   EXPECT_EQ(g.controller.stages[0].kp, g.controller.stages[0].kd);
   EXPECT_NE(controllerYaml(g).find("stages:"), std::string::npos);
+}
+
+// m >= 2: Proposition 1's rules, with (795a) read with kd_i^2 and the later
+// stages strengthened, meet Theorem 3 and every condition of the proposition,
+// although the gains reach 1e30 and beyond (the checks scale their matrices).
+config::Scenario withOrder(int m) {
+  config::Scenario s = config::loadScenario(kConfigs + "/chain_m3.yaml");
+  s.actuator.order = m;
+  s.controller.stages.resize(m, s.controller.stages.back());
+  return s;
+}
+
+TEST(GainSuggestion, MeetsTheorem3AndProposition1ForTwoAndThreeIntegrators) {
+  for (int m = 2; m <= 3; ++m) {
+    const config::Scenario s = withOrder(m);
+    const GainReport before = checkGains(s);
+    EXPECT_FALSE(before.holds());
+    EXPECT_FALSE(before.propositionHolds());
+    const config::Scenario g = suggestGains(s);
+    ASSERT_EQ(g.controller.stages.size(), static_cast<size_t>(m));
+    const GainReport r = checkGains(g);
+    ASSERT_EQ(r.chain.size(), 3u);
+    for (const auto& c : r.chain)
+      EXPECT_TRUE(c.holds) << "m = " << m << ", " << c.name << ": " << c.lhs << " > " << c.rhs;
+    ASSERT_EQ(r.proposition.size(), 9u);  // (632a-c), (794a-b), (795a-c), the matrix
+    for (const auto& c : r.proposition)
+      EXPECT_TRUE(c.holds) << "m = " << m << ", " << c.name << ": " << c.lhs << " > " << c.rhs;
+    EXPECT_GT(g.controller.stages.back().kp(0), 1e30);
+  }
+}
+
+TEST(GainSuggestion, SaysWhenTheConstructiveGainsOverflowDouble) {
+  // m = 4: stage 4's kp would be ~(1e11 * 1e12^2 * 1e41^2 * 1e125^2), beyond 1.8e308.
+  try {
+    suggestGains(withOrder(4));
+    FAIL() << "expected std::range_error";
+  } catch (const std::range_error& e) {
+    EXPECT_NE(std::string(e.what()).find("overflow double precision at stage 4"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
