@@ -24,15 +24,8 @@ IntegratorChain::IntegratorChain(int dof, int order, std::optional<Eigen::Vector
   }
 }
 
-ActuatorOutput IntegratorChain::clip(const Eigen::VectorXd& tau) const {
-  ActuatorOutput out;
-  out.tau = tau;
-  out.saturated = Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(dof_, false);
-  if (saturation_) {
-    out.tau = tau.cwiseMax(-*saturation_).cwiseMin(*saturation_);
-    out.saturated = out.tau.array() != tau.array();
-  }
-  return out;
+Eigen::VectorXd IntegratorChain::clip(const Eigen::VectorXd& tau) const {
+  return saturation_ ? Eigen::VectorXd(tau.cwiseMax(-*saturation_).cwiseMin(*saturation_)) : tau;
 }
 
 void IntegratorChain::advance(const Eigen::VectorXd& u, double dt) {
@@ -53,12 +46,21 @@ void IntegratorChain::advance(const Eigen::VectorXd& u, double dt) {
   }
 }
 
-ActuatorOutput IntegratorChain::step(const Eigen::VectorXd& u, double dt) {
+ActuatorOutput IntegratorChain::step(const Eigen::VectorXd& u, double dt, int steps) {
   if (u.size() != dof_)
     throw std::invalid_argument("actuator: command has " + std::to_string(u.size()) + " entries, expected " +
                                 std::to_string(dof_));
-  const ActuatorOutput out = clip(order_ == 0 ? u : Eigen::VectorXd(xi_.row(0).transpose()));
-  if (order_ > 0) advance(u, dt);
+  if (steps < 1) throw std::invalid_argument("actuator: steps per period must be at least 1");
+  ActuatorOutput out;
+  out.tau.resize(steps, dof_);
+  out.saturated = Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(dof_, false);
+  for (int s = 0; s < steps; ++s) {
+    const Eigen::VectorXd raw = order_ == 0 ? u : Eigen::VectorXd(xi_.row(0).transpose());
+    const Eigen::VectorXd applied = clip(raw);
+    out.tau.row(s) = applied.transpose();
+    out.saturated = out.saturated || (applied.array() != raw.array());
+    if (order_ > 0) advance(u, dt / steps);
+  }
   return out;
 }
 

@@ -8,10 +8,13 @@
 ///   xi_i(t + T) = sum_{j=i..m} xi_j(t) T^(j-i) / (j-i)! + u T^(m-i+1) / (m-i+1)!
 /// Order m = 0 is the pass-through: the torque is u itself.
 ///
-/// The torque the plant applies over a period is xi_1 at the start of the
-/// period (held; for m = 0, the u of the period), optionally clipped to the
-/// per-joint saturation limits. Clipping acts on the applied torque only; the
-/// chain's state is not clipped. Pure: no I/O, no clock.
+/// The actuator updates its output `steps` times per control period T (its
+/// rate is steps / T): the torque over step s, [t + s T/steps, t + (s+1) T/steps),
+/// is xi_1 at the start of that step (held; for m = 0, the u of the period),
+/// optionally clipped to the per-joint saturation limits. As steps grows the
+/// plant sees the chain's continuous xi_1(t) more and more closely. Clipping
+/// acts on the applied torque only; the chain's state is not clipped. Pure:
+/// no I/O, no clock.
 
 #include <Eigen/Dense>
 #include <optional>
@@ -19,8 +22,8 @@
 namespace lagrange::actuator {
 
 struct ActuatorOutput {
-  Eigen::VectorXd tau;                              ///< torque applied over the period [N m]
-  Eigen::Array<bool, Eigen::Dynamic, 1> saturated;  ///< where tau was clipped
+  Eigen::MatrixXd tau;                              ///< steps x dof: row s held over step s [N m]
+  Eigen::Array<bool, Eigen::Dynamic, 1> saturated;  ///< per joint: a row of tau was clipped
 };
 
 class IntegratorChain {
@@ -32,9 +35,10 @@ class IntegratorChain {
   ///         non-finite values or non-positive saturation limits.
   IntegratorChain(int dof, int order, std::optional<Eigen::VectorXd> saturation, Eigen::MatrixXd initial);
 
-  /// The torque over the coming period (xi_1 now, or u for m = 0), then
-  /// advances the chain by dt > 0 with u held.
-  ActuatorOutput step(const Eigen::VectorXd& u, double dt);
+  /// The torque over the coming period of length dt > 0 in `steps` >= 1
+  /// equal steps (xi_1 at the start of each, or u for m = 0), advancing the
+  /// chain by dt with u held.
+  ActuatorOutput step(const Eigen::VectorXd& u, double dt, int steps = 1);
 
   /// Advances the chain exactly by dt with u held, without producing a torque.
   void advance(const Eigen::VectorXd& u, double dt);
@@ -44,7 +48,7 @@ class IntegratorChain {
   int dof() const { return dof_; }
 
  private:
-  ActuatorOutput clip(const Eigen::VectorXd& tau) const;
+  Eigen::VectorXd clip(const Eigen::VectorXd& tau) const;
 
   int dof_, order_;
   std::optional<Eigen::VectorXd> saturation_;

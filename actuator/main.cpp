@@ -24,7 +24,8 @@ int DoMain(int argc, char** argv) {
                                       s.actuator.initial_state);
         const std::function<lagrange::actuator_state_t(const lagrange::control_command_t&)> compute =
             [&](const lagrange::control_command_t& m) {
-              const actuator::ActuatorOutput out = act.step(transport::toEigen(m.u), s.tickPeriod());
+              const actuator::ActuatorOutput out =
+                  act.step(transport::toEigen(m.u), s.tickPeriod(), s.torqueStepsPerTick());
               return transport::actuatorMessage(out, act.state(), m);
             };
         if (s.mode == "realtime") {

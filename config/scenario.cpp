@@ -14,6 +14,10 @@ int Scenario::substepsPerTick() const {
   return static_cast<int>(std::llround(tickPeriod() / plant.physics_step));
 }
 
+int Scenario::torqueStepsPerTick() const {
+  return actuator.rate > 0.0 ? static_cast<int>(std::llround(actuator.rate / plant.publish_rate)) : 1;
+}
+
 long long Scenario::lastTick() const { return std::llround(duration * plant.publish_rate); }
 
 namespace {
@@ -148,9 +152,21 @@ Scenario readScenario(MapReader root) {
   if (std::abs(ticks - std::round(ticks)) > 1e-6)
     root.fail("duration", "expected a whole number of publish periods (duration * plant.publish_rate)");
 
+  s.actuator.rate = s.plant.publish_rate;
   if (root.has("actuator")) {
     MapReader act = root.map("actuator");
     s.actuator.order = act.integer("order", 0);
+    s.actuator.rate = act.positive("rate", s.plant.publish_rate);
+    const double steps = s.actuator.rate / s.plant.publish_rate;
+    const double per_step = static_cast<double>(s.substepsPerTick()) / std::round(steps);
+    if (steps < 1.0 - 1e-9 || std::abs(steps - std::round(steps)) > 1e-6 * steps)
+      act.fail("rate", "expected a whole multiple of plant.publish_rate (" +
+                           std::to_string(s.plant.publish_rate) + " Hz), got " +
+                           std::to_string(s.actuator.rate) + " Hz");
+    if (std::abs(per_step - std::round(per_step)) > 1e-9)
+      act.fail("rate", "the actuator period 1/rate must be a whole multiple of plant.physics_step (" +
+                           std::to_string(s.plant.physics_step) +
+                           " s), so that the torque changes on a physics step");
     if (s.actuator.order < 0 || s.actuator.order > 4)
       act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to 4, got " +
                             std::to_string(s.actuator.order));
@@ -169,7 +185,7 @@ Scenario readScenario(MapReader root) {
         s.actuator.initial_state.row(i) = row.vector("row", n, true, false).transpose();
       }
     }
-    act.finish({"order", "saturation", "initial_state"});
+    act.finish({"order", "rate", "saturation", "initial_state"});
   }
 
   MapReader ctl = root.map("controller");
@@ -328,6 +344,7 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "order" << YAML::Value << s.actuator.order;
+  out << YAML::Key << "rate" << YAML::Value << s.actuator.rate;
   if (s.actuator.saturation) emitVector(out, "saturation", *s.actuator.saturation);
   if (s.actuator.order > 0) {
     out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginSeq;

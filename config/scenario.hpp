@@ -35,7 +35,10 @@ struct PlantConfig {
 };
 
 struct ActuatorConfig {
-  int order = 0;                              ///< m: integrator-chain order, 0..4
+  int order = 0;  ///< m: integrator-chain order, 0..4
+  /// Output updates per second [Hz]; a whole multiple of plant.publish_rate
+  /// (0 in a fresh struct: resolved to plant.publish_rate when loaded).
+  double rate = 0.0;
   std::optional<Eigen::VectorXd> saturation;  ///< per-joint |tau| limit [N m]
   Eigen::MatrixXd initial_state;              ///< m x n: xi_1(0) .. xi_m(0)
 };
@@ -90,6 +93,8 @@ struct Scenario {
   int dof() const { return static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }
   int substepsPerTick() const;
+  /// Actuator output updates per plant period: actuator.rate / plant.publish_rate.
+  int torqueStepsPerTick() const;
   long long lastTick() const;  ///< ticks run from 0 to lastTick() inclusive
 };
 

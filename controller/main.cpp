@@ -11,6 +11,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "controller/chain_state_buffer.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/scenario_controller.hpp"
 #include "transport/builders.hpp"
@@ -47,25 +48,29 @@ int DoMain(int argc, char** argv) {
         controller::ScenarioController ctl(s);
         // The actuator chain's state (cascaded controller): ACTUATOR_STATE of
         // tick k carries xi at t_{k+1}, what position k+1 is answered with.
+        // Lockstep looks states up by tick; realtime uses the newest.
+        controller::ChainStateBuffer by_tick(s.actuator.initial_state);
         Eigen::MatrixXd xi = s.actuator.initial_state;
-        int64_t xi_valid_for = 0;  // the position tick xi belongs to
+        int64_t xi_valid_for = 0;  // the position tick the newest xi belongs to
         if (ctl.order() > 0) {
           node.subscribe<lagrange::actuator_state_t>(
               transport::kActuatorState,
               [&](const lagrange::actuator_state_t& a) {
-                const std::string why = transport::validate(a, s.dof());
+                const std::string why = transport::validate(a, s.dof(), s.torqueStepsPerTick());
                 if (!why.empty() || a.order == ctl.order()) return why;
                 return "actuator order is " + std::to_string(a.order) + ", expected " +
                        std::to_string(ctl.order());
               },
               [&](const lagrange::actuator_state_t& a) {
+                const Eigen::MatrixXd state = transport::toEigen(a.xi);
+                by_tick.put(a.header.tick + 1, state);
                 if (a.header.tick + 1 <= xi_valid_for) return;  // not newer than what we have
-                for (int i = 0; i < ctl.order(); ++i) xi.row(i) = transport::toEigen(a.xi[i]).transpose();
+                xi = state;
                 xi_valid_for = a.header.tick + 1;
               });
         }
-        auto command = [&](const lagrange::plant_position_t& m) {
-          const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q), xi);
+        auto command = [&](const lagrange::plant_position_t& m, const Eigen::MatrixXd& chain_state) {
+          const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q), chain_state);
           return transport::commandMessage(out, m.header.tick, m.header.sim_time);
         };
         if (s.mode == "realtime") {
@@ -73,7 +78,8 @@ int DoMain(int argc, char** argv) {
           // newest chain state is used (latest-value semantics).
           return transport::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
               node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
-              {s.tickPeriod(), 0.25, s.realtime.max_input_age}, command);
+              {s.tickPeriod(), 0.25, s.realtime.max_input_age},
+              [&](const lagrange::plant_position_t& m) { return command(m, xi); });
         }
         // Lockstep: answer position k only with the chain state of t_k; if
         // ACTUATOR_STATE k-1 has not arrived yet, stay silent: the plant
@@ -82,8 +88,10 @@ int DoMain(int argc, char** argv) {
         transport::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
             [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
-              if (ctl.order() > 0 && xi_valid_for != m.header.tick) return std::nullopt;
-              return command(m);
+              if (ctl.order() == 0) return command(m, xi);
+              const std::optional<Eigen::MatrixXd> state = by_tick.take(m.header.tick);
+              if (!state) return std::nullopt;
+              return command(m, *state);
             });
         return transport::serveUntilPlantFinished(node, progress);
       });

@@ -51,7 +51,7 @@ std::optional<double> TrackingMetrics::addSample(long long tick, double t, const
   return e;
 }
 
-void TrackingMetrics::addTorque(const Eigen::VectorXd& tau) {
+void TrackingMetrics::addTorque(const Eigen::MatrixXd& tau) {
   if (tau.size() > 0) max_abs_torque_ = std::max(max_abs_torque_, tau.cwiseAbs().maxCoeff());
 }
 

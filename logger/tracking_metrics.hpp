@@ -39,7 +39,7 @@ class TrackingMetrics {
   /// A plant sample. Ticks must increase; a repeated or older tick is ignored
   /// (returns false). Returns ||q~||.
   std::optional<double> addSample(long long tick, double t, const Eigen::VectorXd& q);
-  void addTorque(const Eigen::VectorXd& tau);
+  void addTorque(const Eigen::MatrixXd& tau);
 
   /// The cascaded controller's chain errors xit_i at a tick (rows = stages),
   /// judged against xi_tolerance. Repeated or older ticks are ignored.

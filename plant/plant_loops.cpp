@@ -32,11 +32,13 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   const int64_t last_tick = s.lastTick();
   const auto retransmit = std::chrono::duration<double>(s.lockstep.retransmit_timeout);
 
+  const int torque_steps = s.torqueStepsPerTick();
   int64_t awaited_tick = -1;
   bool answered = false;
-  Eigen::VectorXd tau = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(torque_steps, n);  // row j: held over step j of the period
   node.subscribe<lagrange::actuator_state_t>(
-      transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
+      transport::kActuatorState,
+      [n, torque_steps](const auto& m) { return transport::validate(m, n, torque_steps); },
       [&](const lagrange::actuator_state_t& m) {
         if (m.header.tick != awaited_tick || answered) return;  // stale or duplicate
         tau = transport::toEigen(m.tau_applied);
@@ -66,7 +68,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       status.publish("interrupted", k - 1, t);
       return 0;
     }
-    const transport::PlantSample out = sample(sim, k, t, tau);
+    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose());
     node.publish(transport::kPlantPosition, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     if (Clock::now() >= next_status) {
@@ -90,7 +92,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
     // The last tick's command is awaited too, so every message of the
     // ring is delivered before the plant reports "finished".
-    if (k < last_tick) sim.step(tau, substeps);
+    if (k < last_tick) sim.stepProfile(tau, substeps);
   }
   if (retransmits > 0) spdlog::info("re-sent {} position samples after timeouts", retransmits);
   status.publish("finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
@@ -124,9 +126,11 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   std::array<int64_t, kRing> published_utime{};
   std::vector<double> latencies, ages;
 
+  const int torque_steps = s.torqueStepsPerTick();
   std::optional<lagrange::actuator_state_t> latest;
   node.subscribe<lagrange::actuator_state_t>(
-      transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
+      transport::kActuatorState,
+      [n, torque_steps](const auto& m) { return transport::validate(m, n, torque_steps); },
       [&](const lagrange::actuator_state_t& m) {
         if (latest && m.header.tick <= latest->header.tick) return;
         latest = m;
@@ -159,13 +163,14 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     return st;
   };
 
-  Eigen::VectorXd tau = Eigen::VectorXd::Zero(n);  // applied over the period ending at the sample
+  Eigen::MatrixXd tau =
+      Eigen::MatrixXd::Zero(torque_steps, n);  // applied over the period ending at the sample
   loop.start();
   auto next_status = transport::monotonicNs() + 500'000'000LL;
   for (int64_t k = 0; k <= last_tick && !transport::stopRequested(); ++k) {
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const transport::PlantSample out = sample(sim, k, t, tau);
+    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose());
     node.publish(transport::kPlantPosition, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     published_utime[k % kRing] = out.position.header.publish_utime;
@@ -180,12 +185,13 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         ages.push_back(static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6);
       used_tick = latest->header.tick;
     } else if (latest && age <= hold_limit) {
-      ++held;  // policy "hold": keep the last torque a little longer
+      ++held;  // policy "hold": keep the last torque a little longer (its final step, held flat)
+      tau.rowwise() = Eigen::RowVectorXd(tau.row(torque_steps - 1));
     } else {
       if (k > 0) ++zeroed;  // nothing can have answered before the first sample
       tau.setZero();
     }
-    sim.step(tau, s.substepsPerTick());
+    sim.stepProfile(tau, s.substepsPerTick());
 
     if (transport::monotonicNs() >= next_status) {
       status.setLoopStats(stats());

@@ -141,6 +141,14 @@ void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
   }
 }
 
+void PlantSim::stepProfile(const Eigen::MatrixXd& tau, int substeps) {
+  const int parts = static_cast<int>(tau.rows());
+  if (parts < 1 || substeps % parts != 0)
+    throw std::invalid_argument("plant: " + std::to_string(parts) + " torque steps do not divide " +
+                                std::to_string(substeps) + " physics steps");
+  for (int s = 0; s < parts; ++s) step(Eigen::VectorXd(tau.row(s).transpose()), substeps / parts);
+}
+
 PlantState PlantSim::state() const {
   PlantState s;
   s.q = q_;

@@ -41,6 +41,11 @@ class PlantSim {
 
   /// Advance by `substeps` physics steps with joint torques tau held constant.
   void step(const Eigen::VectorXd& tau, int substeps);
+  /// Advance by `substeps` physics steps cut into tau.rows() equal parts, row
+  /// s of tau (joint torques) held over part s: the actuator's output when it
+  /// updates tau.rows() times a period. @throws std::invalid_argument unless
+  /// tau.rows() divides substeps.
+  void stepProfile(const Eigen::MatrixXd& tau, int substeps);
 
   PlantState state() const;
   PlantEnergy energy() const;

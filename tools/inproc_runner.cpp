@@ -36,7 +36,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
   // -> physics. Every value passes through the same message structs as over
   // LCM, so both wirings compute with identical doubles.
-  Eigen::VectorXd tau = Eigen::VectorXd::Zero(s.dof());
+  Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());  // row j: step j of a period
   const int64_t last_tick = s.lastTick();
   int exit_code = 0;
   for (int64_t k = 0; k <= last_tick; ++k) {
@@ -44,7 +44,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
     const plant::PlantState st = sim.state();
     const plant::PlantEnergy e = sim.energy();
     const transport::PlantSample sample =
-        transport::plantSample(k, t, st.q, st.qdot, tau, e.kinetic, e.potential);
+        transport::plantSample(k, t, st.q, st.qdot, tau.row(0).transpose(), e.kinetic, e.potential);
     log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
     log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
@@ -54,7 +54,8 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
         sample.position.header.sim_time);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
-    const actuator::ActuatorOutput applied = act.step(transport::toEigen(command.u), s.tickPeriod());
+    const actuator::ActuatorOutput applied =
+        act.step(transport::toEigen(command.u), s.tickPeriod(), s.torqueStepsPerTick());
     const auto state = transport::actuatorMessage(applied, act.state(), command);
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
@@ -68,7 +69,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
         break;
       }
     }
-    if (k < last_tick) sim.step(tau, s.substepsPerTick());
+    if (k < last_tick) sim.stepProfile(tau, s.substepsPerTick());
   }
   log.flush();
 

@@ -47,7 +47,8 @@ lagrange::actuator_state_t actuatorMessage(const actuator::ActuatorOutput& out,
   a.order = static_cast<int32_t>(xi_next.rows());
   for (int i = 0; i < xi_next.rows(); ++i) a.xi.push_back(toStd(xi_next.row(i).transpose()));
   a.u_commanded = command.u;
-  a.tau_applied = toStd(out.tau);
+  a.torque_steps = static_cast<int32_t>(out.tau.rows());
+  for (int s = 0; s < out.tau.rows(); ++s) a.tau_applied.push_back(toStd(out.tau.row(s).transpose()));
   a.saturated.assign(out.saturated.data(), out.saturated.data() + out.saturated.size());
   return a;
 }

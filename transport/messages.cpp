@@ -24,6 +24,13 @@ Eigen::VectorXd toEigen(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
+Eigen::MatrixXd toEigen(const std::vector<std::vector<double>>& rows) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()),
+                    rows.empty() ? 0 : static_cast<Eigen::Index>(rows[0].size()));
+  for (size_t i = 0; i < rows.size(); ++i) m.row(static_cast<Eigen::Index>(i)) = toEigen(rows[i]).transpose();
+  return m;
+}
+
 std::vector<double> toStd(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 namespace {
@@ -69,9 +76,16 @@ std::string validate(const lagrange::control_command_t& m, int joints) {
   return why;
 }
 
-std::string validate(const lagrange::actuator_state_t& m, int joints) {
+std::string validate(const lagrange::actuator_state_t& m, int joints, int torque_steps) {
   std::string why = checkHeader(m.header);
-  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.u_commanded, &m.tau_applied});
+  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.u_commanded});
+  if (why.empty() && (m.torque_steps < 1 || static_cast<int>(m.tau_applied.size()) != m.torque_steps))
+    why = "tau_applied rows differ from torque_steps (expected at least 1)";
+  if (why.empty() && torque_steps > 0 && m.torque_steps != torque_steps)
+    why = "torque_steps is " + std::to_string(m.torque_steps) + ", expected " + std::to_string(torque_steps) +
+          " (actuator.rate / plant.publish_rate)";
+  for (const auto& row : m.tau_applied)
+    if (why.empty()) why = checkArrays(m.num_joints, joints, {&row});
   if (why.empty() && static_cast<int>(m.saturated.size()) != joints)
     why = "array size differs from num_joints";
   if (why.empty() && (m.order < 0 || static_cast<int>(m.xi.size()) != m.order))

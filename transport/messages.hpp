@@ -22,6 +22,8 @@ int64_t nowUtime();
 lagrange::header_t makeHeader(int64_t tick, double sim_time);
 
 Eigen::VectorXd toEigen(const std::vector<double>& v);
+/// Rows of equal length as a matrix (e.g. ACTUATOR_STATE's tau_applied).
+Eigen::MatrixXd toEigen(const std::vector<std::vector<double>>& rows);
 std::vector<double> toStd(const Eigen::VectorXd& v);
 
 /// Each returns "" if the message is usable by a process that expects
@@ -30,7 +32,8 @@ std::vector<double> toStd(const Eigen::VectorXd& v);
 std::string validate(const lagrange::plant_position_t& m, int joints);
 std::string validate(const lagrange::plant_truth_t& m, int joints);
 std::string validate(const lagrange::control_command_t& m, int joints);
-std::string validate(const lagrange::actuator_state_t& m, int joints);
+/// torque_steps > 0 also demands that many rows of tau_applied (0: any count >= 1).
+std::string validate(const lagrange::actuator_state_t& m, int joints, int torque_steps = 0);
 std::string validate(const lagrange::status_t& m);
 
 }  // namespace lagrange::transport

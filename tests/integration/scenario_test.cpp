@@ -296,15 +296,10 @@ TEST(Load, LockstepLogIsCompleteUnderCpuLoad) {
             j["processes"]["plant"]["channels"]["PLANT_TRUTH"]["published"]);
 }
 
-// The m = 1 chain against the continuous-time closed loop of eqs. (600),
-// (610a), (624): state [q, q', qc0, xi_1, qc_1, zeta_1] integrated by RK4.
-// The lockstep run's convergence time agrees within 5 %.
-TEST(ChainM1, MatchesTheContinuousTimeClosedLoop) {
-  const std::string dir = freshDir("chain1");
-  const RunResult r = runScenario(kConfigs + "/chain_m1.yaml", dir, "-q");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const config::Scenario s = config::loadScenario(dir + "/config.resolved.yaml");
-  ASSERT_EQ(s.actuator.order, 1);
+// The continuous-time closed loop of eqs. (600), (610a), (624) for m = 1:
+// state [q, q', qc0, xi_1, qc_1, zeta_1] integrated by RK4 (step 0.1 ms);
+// q at every tick of the scenario.
+std::vector<Eigen::VectorXd> continuousChainM1(const config::Scenario& s) {
   const model::PlanarChain chain(s.robot);
   const model::Reference reference(s.reference);
   const controller::CascadedGains g{s.controller.gains, s.controller.stages};
@@ -332,16 +327,34 @@ TEST(ChainM1, MatchesTheContinuousTimeClosedLoop) {
   x << s.initial_state.q, s.initial_state.qdot,
       s.controller.initial_filter_state.value_or(-g.stage0.b.cwiseProduct(qt0)),
       s.actuator.initial_state.row(0).transpose(), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n);
+  std::vector<Eigen::VectorXd> q;
+  const int per_tick = static_cast<int>(std::lround(s.tickPeriod() / 1e-4));
+  const double h = s.tickPeriod() / per_tick;
+  for (long long k = 0; k <= s.lastTick(); ++k) {
+    const double t = k * s.tickPeriod();
+    q.push_back(x.head(n));
+    if (k == s.lastTick()) break;
+    for (int i = 0; i < per_tick; ++i) x = rk4Step(field, t + i * h, x, h);
+  }
+  return q;
+}
+
+// The m = 1 lockstep run against the continuous closed loop: convergence
+// times agree within 5 %.
+TEST(ChainM1, MatchesTheContinuousTimeClosedLoop) {
+  const std::string dir = freshDir("chain1");
+  const RunResult r = runScenario(kConfigs + "/chain_m1.yaml", dir, "-q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const config::Scenario s = config::loadScenario(dir + "/config.resolved.yaml");
+  ASSERT_EQ(s.actuator.order, 1);
+  const std::vector<Eigen::VectorXd> x = continuousChainM1(s);
+  const model::Reference reference(s.reference);
   logger::TrackingMetrics metrics(reference, s.metrics.tolerance);
   const auto truth = readTruth(dir + "/run.lcm");
   double worst = 0.0;
-  const double h = 1e-4;
   for (long long k = 0; k <= s.lastTick(); ++k) {
-    const double t = k * s.tickPeriod();
-    metrics.addSample(k, t, x.head(n));
-    worst = std::max(worst, (truth[k].q - x.head(n)).cwiseAbs().maxCoeff());
-    if (k == s.lastTick()) break;  // x stays at the last sample's time
-    for (int i = 0; i < 10; ++i) x = rk4Step(field, t + i * h, x, h);
+    metrics.addSample(k, k * s.tickPeriod(), x[k]);
+    worst = std::max(worst, (truth[k].q - x[k]).cwiseAbs().maxCoeff());
   }
   const auto continuous = metrics.summary().convergence_time;
   ASSERT_TRUE(continuous.has_value());
@@ -351,7 +364,33 @@ TEST(ChainM1, MatchesTheContinuousTimeClosedLoop) {
   EXPECT_NEAR(lockstep, *continuous, 0.05 * *continuous);
   // The transients differ by up to ~0.1 rad (a 1 kHz controller, and xi_1 held
   // over each period, against a continuous one); after convergence both track.
-  EXPECT_LT((truth.back().q - x.head(n)).norm(), s.metrics.tolerance);
+  EXPECT_LT((truth.back().q - x.back()).norm(), s.metrics.tolerance);
+}
+
+// actuator.rate: the torque the plant sees converges to the chain's
+// continuous xi_1(t) as the actuator updates more often. With 40 updates a
+// period (one per physics step of chain_m1.yaml) as the reference, 10 updates
+// come much closer to it than one (the hold error is O(1 / rate)).
+TEST(ChainM1, AFasterActuatorConvergesToTheContinuousTorque) {
+  auto trajectory = [](const std::string& rate) {
+    const std::string dir = freshDir("actrate" + rate);
+    const RunResult run =
+        runScenario(kConfigs + "/chain_m1.yaml", dir, "-q --mode inproc --set actuator.rate=" + rate);
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    return readTruth(dir + "/run.lcm");
+  };
+  const auto reference = trajectory("40000"), once = trajectory("1000"), tenfold = trajectory("10000");
+  ASSERT_EQ(once.size(), reference.size());
+  ASSERT_EQ(tenfold.size(), reference.size());
+  double gap_once = 0.0, gap_tenfold = 0.0;
+  for (size_t k = 0; k < reference.size(); ++k) {
+    gap_once = std::max(gap_once, (once[k].q - reference[k].q).cwiseAbs().maxCoeff());
+    gap_tenfold = std::max(gap_tenfold, (tenfold[k].q - reference[k].q).cwiseAbs().maxCoeff());
+  }
+  std::printf("max |q - q(40 kHz actuator)|: actuator at 1 kHz %.3e rad, at 10 kHz %.3e rad\n", gap_once,
+              gap_tenfold);
+  EXPECT_GT(gap_once, 0.0);
+  EXPECT_LT(gap_tenfold, 0.3 * gap_once);
 }
 
 // Assumption 2 in action: with a free-motion reference the m = 1 chain
@@ -613,7 +652,8 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
 }
 
 // An ACTUATOR_STATE of the wrong chain order or size reaching the cascaded
-// controller is rejected with the reason, and the m = 1 run converges.
+// controller is rejected with the reason, one with the wrong number of torque
+// steps is rejected by the plant, and the m = 1 run converges.
 TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
   const std::string dir = freshDir("badchain");
   lagrange::actuator_state_t wrong_order;  // tick far in the future: the plant ignores it
@@ -621,18 +661,26 @@ TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
   wrong_order.input_command_tick = wrong_order.header.tick;
   wrong_order.num_joints = 2;
   wrong_order.order = 2;
-  wrong_order.u_commanded = wrong_order.tau_applied = {0.0, 0.0};
+  wrong_order.u_commanded = {0.0, 0.0};
+  wrong_order.torque_steps = 1;
+  wrong_order.tau_applied = {{0.0, 0.0}};
   wrong_order.saturated = {0, 0};
   wrong_order.xi = {{1.0, 1.0}, {1.0, 1.0}};
   lagrange::actuator_state_t wrong_size = wrong_order;
   wrong_size.order = 1;
   wrong_size.num_joints = 3;
-  wrong_size.u_commanded = wrong_size.tau_applied = {0.0, 0.0, 0.0};
+  wrong_size.u_commanded = {0.0, 0.0, 0.0};
+  wrong_size.tau_applied = {{0.0, 0.0, 0.0}};
   wrong_size.saturated = {0, 0, 0};
   wrong_size.xi = {{1.0, 1.0, 1.0}};
+  lagrange::actuator_state_t wrong_steps = wrong_order;  // chain_m1.yaml updates once a period
+  wrong_steps.order = 1;
+  wrong_steps.xi = {{1.0, 1.0}};
+  wrong_steps.torque_steps = 2;
+  wrong_steps.tau_applied = {{0.0, 0.0}, {0.0, 0.0}};
   const auto [r, sent] =
       runUnderBadTraffic(kConfigs + "/chain_m1.yaml", dir, "udpm://239.255.76.67:7672?ttl=0",
-                         "ACTUATOR_STATE", {encoded(wrong_order), encoded(wrong_size)});
+                         "ACTUATOR_STATE", {encoded(wrong_order), encoded(wrong_size), encoded(wrong_steps)});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir);
   const long long rejected = j["processes"]["controller"]["channels"]["ACTUATOR_STATE"]["rejected"];
@@ -642,6 +690,8 @@ TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
   const std::string text = readText(dir + "/controller.log");
   EXPECT_NE(text.find("actuator order is 2, expected 1"), std::string::npos);
   EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
+  EXPECT_GE(j["processes"]["plant"]["channels"]["ACTUATOR_STATE"]["rejected"].get<long long>(), 2);
+  EXPECT_NE(readText(dir + "/plant.log").find("torque_steps is 2, expected 1"), std::string::npos);
 }
 
 }  // namespace

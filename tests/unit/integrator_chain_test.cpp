@@ -59,6 +59,34 @@ TEST_P(NonTrivialChainOrder, MatchesRk4UnderAZeroOrderHeldInput) {
   for (int i = 0; i < m; ++i) EXPECT_NEAR(chain.state()(i, 0), x(i), 1e-12 * (1 + std::abs(x(i))));
 }
 
+// actuator.rate: S updates a period. Row s of the torque is the closed-form
+// xi_1 at t + s T/S, and the chain ends the period where one step of T puts it.
+TEST_P(ChainOrder, UpdatesTheTorqueSeveralTimesAPeriodExactly) {
+  const int m = GetParam(), n = 2, steps = 8;
+  Eigen::MatrixXd xi0(m, n);
+  for (int i = 0; i < m; ++i) xi0.row(i) = Eigen::RowVector2d(1.0 + i, -0.5 * i);
+  const Eigen::Vector2d u(3.0, -7.0);
+  const double period = 0.02;
+  IntegratorChain fine(n, m, std::nullopt, xi0), coarse(n, m, std::nullopt, xi0);
+  const ActuatorOutput out = fine.step(u, period, steps);
+  const ActuatorOutput once = coarse.step(u, period);
+  ASSERT_EQ(out.tau.rows(), steps);
+  EXPECT_EQ(out.tau.row(0), once.tau.row(0));
+  for (int s = 0; s < steps; ++s) {
+    const double t = s * period / steps;
+    Eigen::Vector2d expected = m == 0 ? Eigen::Vector2d(u) : Eigen::Vector2d::Zero();
+    if (m > 0) {
+      for (int j = 0; j < m; ++j) expected += xi0.row(j).transpose() * std::pow(t, j) / factorial(j);
+      expected += u * std::pow(t, m) / factorial(m);
+    }
+    EXPECT_LT((out.tau.row(s).transpose() - expected).norm(), 1e-12 * (1 + expected.norm())) << "step " << s;
+  }
+  if (m > 0) {
+    EXPECT_LT((fine.state() - coarse.state()).norm(), 1e-12 * (1 + coarse.state().norm()));
+  }
+  EXPECT_THROW(fine.step(u, period, 0), std::invalid_argument);
+}
+
 INSTANTIATE_TEST_SUITE_P(Orders, ChainOrder, ::testing::Values(0, 1, 2, 3, 4));
 INSTANTIATE_TEST_SUITE_P(Orders, NonTrivialChainOrder, ::testing::Values(1, 2, 3, 4));
 
@@ -67,20 +95,26 @@ TEST(IntegratorChain, AppliesXi1HeldOverThePeriodAndClipsOnlyTheTorque) {
   xi0 << 5.0, 100.0;  // xi_1 = 5 N m, rising at 100 N m/s
   IntegratorChain chain(1, 2, Eigen::VectorXd::Constant(1, 6.0), xi0);
   const ActuatorOutput first = chain.step(Eigen::VectorXd::Zero(1), 0.02);
-  EXPECT_DOUBLE_EQ(first.tau(0), 5.0);  // the torque at the start of the period
+  ASSERT_EQ(first.tau.rows(), 1);
+  EXPECT_DOUBLE_EQ(first.tau(0, 0), 5.0);  // the torque at the start of the period
   EXPECT_FALSE(first.saturated(0));
   EXPECT_DOUBLE_EQ(chain.state()(0, 0), 7.0);  // 5 + 100 * 0.02: state not clipped
   const ActuatorOutput second = chain.step(Eigen::VectorXd::Zero(1), 0.02);
-  EXPECT_DOUBLE_EQ(second.tau(0), 6.0);  // clipped to the limit
+  EXPECT_DOUBLE_EQ(second.tau(0, 0), 6.0);  // clipped to the limit
   EXPECT_TRUE(second.saturated(0));
+  // Four updates a period: 9, 9.5, 10, 10.5 N m, each clipped to 6 N m.
+  const ActuatorOutput profile = chain.step(Eigen::VectorXd::Zero(1), 0.02, 4);
+  EXPECT_EQ(profile.tau, Eigen::MatrixXd::Constant(4, 1, 6.0));
+  EXPECT_TRUE(profile.saturated(0));
+  EXPECT_DOUBLE_EQ(chain.state()(0, 0), 11.0);
 }
 
 TEST(IntegratorChain, OrderZeroPassesTheCommandThroughOrSaturatesPerJoint) {
   IntegratorChain free(2, 0, std::nullopt, Eigen::MatrixXd(0, 2));
-  EXPECT_EQ(free.step(Eigen::Vector2d(500, -3), 1e-3).tau, Eigen::Vector2d(500, -3));
+  EXPECT_EQ(free.step(Eigen::Vector2d(500, -3), 1e-3).tau.row(0).transpose(), Eigen::Vector2d(500, -3));
   IntegratorChain limited(2, 0, Eigen::Vector2d(10, 1), Eigen::MatrixXd(0, 2));
   const auto out = limited.step(Eigen::Vector2d(500, -3), 1e-3);
-  EXPECT_EQ(out.tau, Eigen::Vector2d(10, -1));
+  EXPECT_EQ(out.tau.row(0).transpose(), Eigen::Vector2d(10, -1));
   EXPECT_TRUE(out.saturated(0) && out.saturated(1));
   EXPECT_FALSE(limited.step(Eigen::Vector2d(5, 0.5), 1e-3).saturated.any());
   EXPECT_THROW(IntegratorChain(2, 0, Eigen::Vector2d(1, 0), Eigen::MatrixXd(0, 2)), std::invalid_argument);

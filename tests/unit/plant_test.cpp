@@ -125,6 +125,24 @@ TEST(PlantSim, RejectsBadInput) {
                std::invalid_argument);
   PlantSim sim(model::pelicanParams(), {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}, 1e-4);
   EXPECT_THROW(sim.step(Eigen::Vector3d::Zero(), 1), std::invalid_argument);
+  EXPECT_THROW(sim.stepProfile(Eigen::MatrixXd::Zero(3, 2), 10),
+               std::invalid_argument);  // 3 does not divide 10
+}
+
+// A torque profile (actuator.rate above the publish rate) applies row s over
+// part s of the period: the same as stepping each part with that torque.
+TEST(PlantSim, TorqueProfileAppliesEachRowOverItsPartOfThePeriod) {
+  const PlantState start{Eigen::Vector2d(0.3, -0.2), Eigen::Vector2d(0.1, 0.0)};
+  PlantSim profiled(model::pelicanParams(), start, 1e-4), stepped(model::pelicanParams(), start, 1e-4),
+      held(model::pelicanParams(), start, 1e-4);
+  Eigen::MatrixXd tau(4, 2);
+  tau << 1, -1, 2, -2, 3, -3, 4, -4;
+  profiled.stepProfile(tau, 20);
+  for (int s = 0; s < 4; ++s) stepped.step(Eigen::VectorXd(tau.row(s).transpose()), 5);
+  held.step(Eigen::Vector2d(1, -1), 20);
+  EXPECT_EQ(profiled.state().q, stepped.state().q);
+  EXPECT_EQ(profiled.state().qdot, stepped.state().qdot);
+  EXPECT_GT((profiled.state().qdot - held.state().qdot).norm(), 1e-4);  // the later rows did act
 }
 
 }  // namespace
