@@ -38,6 +38,7 @@ double wrapToNearest(double wrapped, double predicted) {
 struct PlantSim::Ode {
   dWorldID world = nullptr;
   std::vector<dBodyID> bodies;
+  std::vector<dBodyID> rotors;  // flexible joints only
   std::vector<dJointID> joints;
   std::vector<double> mass, inertia;
   ~Ode() {
@@ -45,9 +46,21 @@ struct PlantSim::Ode {
   }
 };
 
-PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step)
-    : dof_(static_cast<int>(params.links.size())), physics_step_(physics_step), gravity_(params.gravity) {
+PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step,
+                   std::optional<model::FlexibleParams> flexible)
+    : dof_(static_cast<int>(params.links.size())),
+      physics_step_(physics_step),
+      gravity_(params.gravity),
+      flexible_(std::move(flexible)) {
   model::PlanarChain validated(params);  // validates the parameters
+  if (flexible_) {
+    model::validateFlexible(*flexible_, dof_);
+    if (initial.motor_q.size() != dof_ || initial.motor_qdot.size() != dof_)
+      throw std::invalid_argument("plant: flexible joints need " + std::to_string(dof_) +
+                                  " initial motor angles and rates");
+    if (!initial.motor_q.allFinite() || !initial.motor_qdot.allFinite())
+      throw std::invalid_argument("plant: initial motor state must be finite");
+  }
   if (!(physics_step > 0.0) || !std::isfinite(physics_step))
     throw std::invalid_argument("plant: physics_step must be positive and finite");
   if (initial.q.size() != dof_ || initial.qdot.size() != dof_)
@@ -106,6 +119,30 @@ PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial, 
     parent = body;
   }
   q_ = initial.q;
+
+  if (flexible_) {
+    // Rotors on the base's z axis, below the plane of the links (no geoms:
+    // nothing collides), each turning freely about its hinge.
+    for (int i = 0; i < dof_; ++i) {
+      dBodyID rotor = dBodyCreate(ode_->world);
+      dMass m;
+      const double j = flexible_->rotor_inertia(i);
+      dMassSetParameters(&m, 1.0, 0, 0, 0, j, j, j, 0, 0, 0);  // mass irrelevant: the hinge holds it
+      dBodySetMass(rotor, &m);
+      dBodySetPosition(rotor, 0.0, 0.0, -0.1 * (i + 1));
+      dMatrix3 rot;
+      dRFromAxisAndAngle(rot, 0, 0, 1, initial.motor_q(i));
+      dBodySetRotation(rotor, rot);
+      dBodySetAngularVel(rotor, 0, 0, initial.motor_qdot(i));
+      dBodySetGyroscopicMode(rotor, 1);
+      dJointID hinge = dJointCreateHinge(ode_->world, nullptr);
+      dJointAttach(hinge, rotor, nullptr);
+      dJointSetHingeAnchor(hinge, 0.0, 0.0, -0.1 * (i + 1));
+      dJointSetHingeAxis(hinge, 0, 0, 1);
+      ode_->rotors.push_back(rotor);
+    }
+    motor_q_ = initial.motor_q;
+  }
 }
 
 PlantSim::~PlantSim() {
@@ -126,17 +163,29 @@ void PlantSim::updateJointAngles() {
   }
 }
 
+void PlantSim::updateMotorAngles() {
+  for (int i = 0; i < dof_; ++i) {
+    const double rate = dBodyGetAngularVel(ode_->rotors[i])[2];
+    motor_q_(i) = wrapToNearest(bodyAngle(ode_->rotors[i]), motor_q_(i) + rate * physics_step_);
+  }
+}
+
 void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
   if (tau.size() != dof_)
     throw std::invalid_argument("plant: torque has " + std::to_string(tau.size()) + " entries, expected " +
                                 std::to_string(dof_));
   for (int s = 0; s < substeps; ++s) {
+    // Joint torques: the input (rigid) or the springs' (flexible).
+    const Eigen::VectorXd joint =
+        flexible_ ? Eigen::VectorXd(flexible_->stiffness.cwiseProduct(motor_q_ - q_)) : tau;
     for (int i = 0; i < dof_; ++i) {
-      dBodyAddTorque(ode_->bodies[i], 0, 0, tau(i));
-      if (i > 0) dBodyAddTorque(ode_->bodies[i - 1], 0, 0, -tau(i));
+      dBodyAddTorque(ode_->bodies[i], 0, 0, joint(i));
+      if (i > 0) dBodyAddTorque(ode_->bodies[i - 1], 0, 0, -joint(i));
+      if (flexible_) dBodyAddTorque(ode_->rotors[i], 0, 0, tau(i) - joint(i));
     }
     dWorldStep(ode_->world, physics_step_);
     updateJointAngles();
+    if (flexible_) updateMotorAngles();
     time_ += physics_step_;
   }
 }
@@ -159,6 +208,11 @@ PlantState PlantSim::state() const {
     s.qdot(i) = abs_rate - previous_rate;
     previous_rate = abs_rate;
   }
+  if (flexible_) {
+    s.motor_q = motor_q_;
+    s.motor_qdot.resize(dof_);
+    for (int i = 0; i < dof_; ++i) s.motor_qdot(i) = dBodyGetAngularVel(ode_->rotors[i])[2];
+  }
   return s;
 }
 
@@ -171,6 +225,13 @@ PlantEnergy PlantSim::energy() const {
     e.kinetic += 0.5 * ode_->mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
                  0.5 * ode_->inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
     e.potential += ode_->mass[i] * gravity_ * p[1];
+  }
+  if (flexible_) {
+    for (int i = 0; i < dof_; ++i) {
+      const double w = dBodyGetAngularVel(ode_->rotors[i])[2], twist = motor_q_(i) - q_(i);
+      e.kinetic += 0.5 * flexible_->rotor_inertia(i) * w * w;
+      e.potential += 0.5 * flexible_->stiffness(i) * twist * twist;
+    }
   }
   return e;
 }

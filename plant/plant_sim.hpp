@@ -11,35 +11,50 @@
 /// orientations and kept continuous (multi-turn): each sub-step the wrapped
 /// angle is unwrapped towards the angle predicted from the joint rate, so
 /// turns are counted correctly as long as the rate is below pi / physics_step.
+///
+/// Flexible joints (model/flexible_joint.hpp): one more body per joint, the
+/// rotor, hinged to the base on the z axis with inertia J_i about it. Each
+/// sub-step the spring torque K_i (q2_i - q1_i) acts as joint torque on joint
+/// i (+ on link i, - on link i-1) and opposite on rotor i, and the input tau_i
+/// acts on rotor i; the stator reaction goes to the base. No damping.
 
 #include <Eigen/Dense>
 #include <memory>
+#include <optional>
 
+#include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 
 namespace lagrange::plant {
 
 struct PlantState {
-  Eigen::VectorXd q;     ///< joint angles [rad], continuous
-  Eigen::VectorXd qdot;  ///< joint rates [rad/s]
+  Eigen::VectorXd q;           ///< joint (link) angles [rad], continuous
+  Eigen::VectorXd qdot;        ///< joint rates [rad/s]
+  Eigen::VectorXd motor_q{};     ///< flexible joints: motor angles q2 [rad], continuous; else empty
+  Eigen::VectorXd motor_qdot{};  ///< flexible joints: motor rates q2' [rad/s]; else empty
 };
 
 struct PlantEnergy {
   double kinetic = 0.0;    ///< [J], from the bodies' velocities
-  double potential = 0.0;  ///< [J], from the bodies' heights
+  double potential = 0.0;  ///< [J], from the bodies' heights, plus the springs' for flexible joints
   double total() const { return kinetic + potential; }
 };
 
 class PlantSim {
  public:
   /// @param physics_step ODE step [s], > 0.
-  /// @throws std::invalid_argument on a size mismatch, non-finite state or a bad step.
-  PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step);
+  /// @param flexible elastic joints with rotors; then `initial` needs motor_q, motor_qdot
+  ///        and the torques of step() act on the rotors.
+  /// @throws std::invalid_argument on a size mismatch, non-finite state, a bad step
+  ///         or bad flexible parameters.
+  PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step,
+           std::optional<model::FlexibleParams> flexible = std::nullopt);
   ~PlantSim();
   PlantSim(const PlantSim&) = delete;
   PlantSim& operator=(const PlantSim&) = delete;
 
-  /// Advance by `substeps` physics steps with joint torques tau held constant.
+  /// Advance by `substeps` physics steps with torques tau held constant (joint
+  /// torques, or motor torques for flexible joints).
   void step(const Eigen::VectorXd& tau, int substeps);
   /// Advance by `substeps` physics steps cut into tau.rows() equal parts, row
   /// s of tau (joint torques) held over part s: the actuator's output when it
@@ -56,13 +71,17 @@ class PlantSim {
  private:
   struct Ode;
   void updateJointAngles();
+  void updateMotorAngles();
+  bool flexible() const { return flexible_.has_value(); }
 
   int dof_;
   double physics_step_;
   double time_ = 0.0;
   double gravity_;
   std::unique_ptr<Ode> ode_;
-  Eigen::VectorXd q_;  ///< continuous joint angles
+  Eigen::VectorXd q_;        ///< continuous joint angles
+  Eigen::VectorXd motor_q_;  ///< continuous motor angles (flexible joints)
+  std::optional<model::FlexibleParams> flexible_;
 };
 
 }  // namespace lagrange::plant
