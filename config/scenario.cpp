@@ -18,6 +18,12 @@ int Scenario::torqueStepsPerTick() const {
   return actuator.rate > 0.0 ? static_cast<int>(std::llround(actuator.rate / plant.publish_rate)) : 1;
 }
 
+model::ChainParams Scenario::controlModel() const {
+  model::ChainParams p = robot;
+  if (flexible) p.joint_stiffness = flexible->params.stiffness;
+  return p;
+}
+
 long long Scenario::lastTick() const { return std::llround(duration * plant.publish_rate); }
 
 namespace {
@@ -80,8 +86,19 @@ model::ChainParams readRobot(MapReader robot) {
   }
   params.gravity = robot.number("gravity", params.gravity);
   if (params.gravity < 0.0) robot.fail("gravity", "expected a number >= 0 [m/s^2]");
-  robot.finish({"preset", "links", "gravity"});
+  robot.finish({"preset", "links", "gravity", "flexible"});
   return params;
+}
+
+std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
+  if (!robot.has("flexible")) return std::nullopt;
+  MapReader f = robot.map("flexible");
+  FlexibleConfig c;
+  c.params.stiffness = f.vector("stiffness", n, true, true);
+  c.params.rotor_inertia = f.vector("rotor_inertia", n, true, true);
+  c.rate_sensor = f.boolean("rate_sensor", false);
+  f.finish({"stiffness", "rotor_inertia", "rate_sensor"});
+  return c;
 }
 
 model::ReferenceParams readReference(MapReader ref, const model::ChainParams& robot, double duration) {
@@ -130,13 +147,27 @@ Scenario readScenario(MapReader root) {
 
   s.robot = readRobot(root.map("robot"));
   const int n = s.dof();
+  s.flexible = readFlexible(root.map("robot"), n);
 
   MapReader init = root.map("initial_state");
   s.initial_state.q = init.vector("q", n, false, false);
   s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false) : Eigen::VectorXd::Zero(n);
-  init.finish({"q", "qdot"});
+  if (s.flexible) {
+    // Default: each spring's twist K^-1 g(q) holds the links at rest against gravity.
+    s.initial_state.motor_q =
+        init.has("motor_q")
+            ? init.vector("motor_q", n, false, false)
+            : Eigen::VectorXd(s.initial_state.q + model::PlanarChain(s.robot)
+                                                      .gravity(s.initial_state.q)
+                                                      .cwiseQuotient(s.flexible->params.stiffness));
+    s.initial_state.motor_qdot =
+        init.has("motor_qdot") ? init.vector("motor_qdot", n, false, false) : s.initial_state.qdot;
+  } else if (init.has("motor_q") || init.has("motor_qdot")) {
+    init.fail(init.has("motor_q") ? "motor_q" : "motor_qdot", "only an arm with robot.flexible has motors");
+  }
+  init.finish({"q", "qdot", "motor_q", "motor_qdot"});
 
-  s.reference = readReference(root.map("reference"), s.robot, s.duration);
+  s.reference = readReference(root.map("reference"), s.controlModel(), s.duration);
 
   if (root.has("plant")) {
     MapReader plant = root.map("plant");
@@ -190,20 +221,58 @@ Scenario readScenario(MapReader root) {
 
   MapReader ctl = root.map("controller");
   s.controller.type = ctl.text("type");
-  if (s.controller.type != "theorem1" && s.controller.type != "cascaded")
-    ctl.fail("type", "unknown controller type '" + s.controller.type + "'; expected: theorem1 or cascaded");
+  if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible")
+    ctl.fail("type",
+             "unknown controller type '" + s.controller.type + "'; expected: theorem1, cascaded or flexible");
+  if (s.flexible && s.controller.type != "flexible")
+    ctl.fail("type",
+             "robot.flexible has elastic joints, which only the flexible controller (eq. 830) "
+             "drives; expected: type flexible");
+  if (s.controller.type == "flexible") {
+    if (!s.flexible)
+      ctl.fail("type",
+               "the flexible controller needs an arm with elastic joints; expected a robot.flexible "
+               "section (stiffness, rotor_inertia)");
+    if (s.actuator.order != 0)
+      ctl.fail("type",
+               "the flexible controller commands the motor torque itself; expected actuator.order 0, got " +
+                   std::to_string(s.actuator.order));
+    if (!ctl.has("motor_rate"))
+      ctl.fail("motor_rate",
+               "missing; the paper does not say where q2' comes from: expected measured (the "
+               "motor's rate sensor, robot.flexible.rate_sensor: true) or filtered (a dirty "
+               "derivative of q2)");
+    s.controller.motor_rate = ctl.text("motor_rate");
+    if (s.controller.motor_rate != "measured" && s.controller.motor_rate != "filtered")
+      ctl.fail("motor_rate",
+               "unknown choice '" + s.controller.motor_rate + "'; expected: measured or filtered");
+    if (s.controller.motor_rate == "measured" && !s.flexible->rate_sensor)
+      ctl.fail("motor_rate",
+               "measured needs a motor rate sensor; expected robot.flexible.rate_sensor: true, "
+               "or motor_rate: filtered");
+    if (s.controller.motor_rate == "filtered")
+      s.controller.motor_rate_pole = ctl.has("motor_rate_pole") ? ctl.vector("motor_rate_pole", n, true, true)
+                                                                : Eigen::VectorXd::Constant(n, 300.0);
+    else if (ctl.has("motor_rate_pole"))
+      ctl.fail("motor_rate_pole", "only motor_rate: filtered has a filter pole");
+  } else if (ctl.has("motor_rate") || ctl.has("motor_rate_pole")) {
+    ctl.fail(ctl.has("motor_rate") ? "motor_rate" : "motor_rate_pole", "only the flexible controller has it");
+  }
   if (s.controller.type == "theorem1" && s.actuator.order != 0)
     ctl.fail("type",
              "the theorem1 controller drives torque directly (actuator.order 0), but actuator.order is " +
                  std::to_string(s.actuator.order) + "; expected: type cascaded for an integrator chain");
-  if (s.controller.type == "cascaded") {
-    if (s.actuator.order < 1)
+  if (s.controller.type == "cascaded" || s.controller.type == "flexible") {
+    if (s.controller.type == "cascaded" && s.actuator.order < 1)
       ctl.fail("type",
                "the cascaded controller needs an integrator chain; expected actuator.order from 1 to 4");
+    const int count = s.controller.type == "flexible" ? 2 : s.actuator.order;
     YAML::Node stages = ctl.child("stages");
-    if (!stages.IsSequence() || static_cast<int>(stages.size()) != s.actuator.order)
-      ctl.fail("stages", "expected a list of " + std::to_string(s.actuator.order) +
-                             " stages (one per integrator, actuator.order), each {kp, kd, a, b}");
+    if (!stages.IsSequence() || static_cast<int>(stages.size()) != count)
+      ctl.fail("stages", "expected a list of " + std::to_string(count) +
+                             (s.controller.type == "flexible"
+                                  ? " stages (xi_1 = K q2, xi_2 = K q2': m = 2), each {kp, kd, a, b}"
+                                  : " stages (one per integrator, actuator.order), each {kp, kd, a, b}"));
     for (size_t i = 0; i < stages.size(); ++i) {
       MapReader st(stages[i], ctl.keyPath("stages") + "[" + std::to_string(i) + "]");
       s.controller.stages.push_back({st.vector("kp", n, true, true), st.vector("kd", n, true, true),
@@ -211,7 +280,7 @@ Scenario readScenario(MapReader root) {
       st.finish({"kp", "kd", "a", "b"});
     }
   } else if (ctl.has("stages")) {
-    ctl.fail("stages", "only the cascaded controller has stages");
+    ctl.fail("stages", "only the cascaded and flexible controllers have stages");
   }
   s.controller.gains.kp = ctl.vector("kp", n, true, true);
   s.controller.gains.kd = ctl.vector("kd", n, true, true);
@@ -225,7 +294,8 @@ Scenario readScenario(MapReader root) {
   } else {
     s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
   }
-  ctl.finish({"type", "kp", "kd", "a", "b", "initial_filter_state", "stages"});
+  ctl.finish(
+      {"type", "kp", "kd", "a", "b", "initial_filter_state", "stages", "motor_rate", "motor_rate_pole"});
 
   if (root.has("metrics")) {
     MapReader m = root.map("metrics");
@@ -316,11 +386,22 @@ std::string toYaml(const Scenario& s) {
         << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value << l.mass << YAML::Key
         << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
   }
-  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+  if (s.flexible) {
+    out << YAML::Key << "flexible" << YAML::Value << YAML::BeginMap;
+    emitVector(out, "stiffness", s.flexible->params.stiffness);
+    emitVector(out, "rotor_inertia", s.flexible->params.rotor_inertia);
+    out << YAML::Key << "rate_sensor" << YAML::Value << s.flexible->rate_sensor << YAML::EndMap;
+  }
+  out << YAML::EndMap;
 
   out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginMap;
   emitVector(out, "q", s.initial_state.q);
   emitVector(out, "qdot", s.initial_state.qdot);
+  if (s.flexible) {
+    emitVector(out, "motor_q", s.initial_state.motor_q);
+    emitVector(out, "motor_qdot", s.initial_state.motor_qdot);
+  }
   out << YAML::EndMap;
 
   out << YAML::Key << "reference" << YAML::Value << YAML::BeginMap;
@@ -359,6 +440,10 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << s.controller.type;
+  if (!s.controller.motor_rate.empty())
+    out << YAML::Key << "motor_rate" << YAML::Value << s.controller.motor_rate;
+  if (s.controller.motor_rate_pole.size() > 0)
+    emitVector(out, "motor_rate_pole", s.controller.motor_rate_pole);
   emitVector(out, "kp", s.controller.gains.kp);
   emitVector(out, "kd", s.controller.gains.kd);
   emitVector(out, "a", s.controller.gains.a);

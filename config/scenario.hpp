@@ -13,6 +13,7 @@
 
 #include "controller/cascaded.hpp"
 #include "controller/theorem1.hpp"
+#include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
 
@@ -25,8 +26,16 @@ class ConfigError : public std::runtime_error {
 };
 
 struct InitialState {
-  Eigen::VectorXd q;     ///< joint angles [rad]
-  Eigen::VectorXd qdot;  ///< joint rates [rad/s]
+  Eigen::VectorXd q;           ///< joint angles [rad]
+  Eigen::VectorXd qdot;        ///< joint rates [rad/s]
+  Eigen::VectorXd motor_q;     ///< flexible joints: q2(0) [rad] (default: the springs hold the links at rest)
+  Eigen::VectorXd motor_qdot;  ///< flexible joints: q2'(0) [rad/s] (default: qdot)
+};
+
+/// robot.flexible: elastic joints driven by base-mounted rotors (eq. 595).
+struct FlexibleConfig {
+  model::FlexibleParams params;  ///< stiffness K, rotor_inertia J
+  bool rate_sensor = false;      ///< the plant publishes q2' on PLANT_MOTOR
 };
 
 struct PlantConfig {
@@ -44,7 +53,12 @@ struct ActuatorConfig {
 };
 
 struct ControllerConfig {
-  std::string type = "theorem1";               ///< "theorem1" (m = 0) or "cascaded" (m >= 1)
+  /// "theorem1" (m = 0), "cascaded" (m >= 1) or "flexible" (the Corollary, eq. 830)
+  std::string type = "theorem1";
+  /// "flexible": where q2' comes from: "measured" (the motor's rate sensor) or
+  /// "filtered" (dirty derivative a s / (s + a) of q2 with a = motor_rate_pole).
+  std::string motor_rate;
+  Eigen::VectorXd motor_rate_pole;             ///< [1/s], "filtered" only
   controller::Theorem1Gains gains;             ///< stage 0 (kp0, kd0, a0, b0 for "cascaded")
   std::vector<controller::StageGains> stages;  ///< "cascaded": stages 1..m
   /// qc(0); empty means "bumpless": qc(0) = -b q~(0), so theta(0) = 0.
@@ -81,6 +95,7 @@ struct Scenario {
   double duration = 10.0;  ///< simulated time [s]
   std::string mode = "lockstep";
   model::ChainParams robot;
+  std::optional<FlexibleConfig> flexible;  ///< robot.flexible
   InitialState initial_state;
   model::ReferenceParams reference;
   PlantConfig plant;
@@ -96,6 +111,9 @@ struct Scenario {
   /// Actuator output updates per plant period: actuator.rate / plant.publish_rate.
   int torqueStepsPerTick() const;
   long long lastTick() const;  ///< ticks run from 0 to lastTick() inclusive
+  /// The arm as the controller models it: the robot, plus joint springs K q
+  /// for flexible joints (g(q1) + K q1 of Example 1; eq. 830c, 608).
+  model::ChainParams controlModel() const;
 };
 
 /// Parse and validate YAML text. `overrides` are "dotted.key=value" strings

@@ -86,6 +86,14 @@ std::string MapReader::text(const std::string& key) {
   return node_[key].Scalar();
 }
 
+bool MapReader::boolean(const std::string& key, bool fallback) {
+  if (!has(key)) return fallback;
+  const YAML::Node value = node_[key];
+  if (value.IsScalar() && (value.Scalar() == "true" || value.Scalar() == "false"))
+    return value.Scalar() == "true";
+  fail(key, "expected true or false, got " + show(value));
+}
+
 std::string MapReader::text(const std::string& key, const std::string& fallback) {
   return has(key) ? text(key) : fallback;
 }

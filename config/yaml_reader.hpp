@@ -27,6 +27,7 @@ class MapReader {
   double positive(const std::string& key);
   double positive(const std::string& key, double fallback);
   int integer(const std::string& key, int fallback);
+  bool boolean(const std::string& key, bool fallback);  ///< optional: true or false
   std::string text(const std::string& key);
   std::string text(const std::string& key, const std::string& fallback);
 

@@ -21,6 +21,8 @@ class ChainStateBuffer {
  public:
   static constexpr size_t kCapacity = 256;
 
+  /// Empty: every tick's state comes from a message (e.g. PLANT_MOTOR samples).
+  ChainStateBuffer() = default;
   /// xi(0): the configured initial chain state belongs to position tick 0.
   explicit ChainStateBuffer(const Eigen::MatrixXd& initial) { states_[0] = initial; }
 

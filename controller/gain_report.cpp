@@ -26,22 +26,24 @@ double GainReport::margin() const {
 
 GainReport checkGains(const config::Scenario& s) {
   GainReport r;
-  const model::PlanarChain chain(s.robot);
+  // For flexible joints the links as the chain (600) sees them: g(q1) + K q1.
+  const model::PlanarChain chain(s.controlModel());
   const model::Reference reference(s.reference);
   r.kc = model::coriolisBound(chain);
   r.kdelta = model::referenceBound(reference);
   const Theorem1Gains& g0 = s.controller.gains;
   r.condition = model::theorem1Condition(g0.kd, g0.a, g0.b, r.kc, r.kdelta);
-  if (s.controller.type == "cascaded") {
-    // Every reference this version generates is a sinusoid, not a solution of
-    // D(q_d) q_d'' + C(q_d, q_d') q_d' + g(q_d) = 0.
+  if (s.controller.type == "cascaded" || s.controller.type == "flexible") {
+    // Only free_motion solves D(q_d) q_d'' + C(q_d, q_d') q_d' + g(q_d) = 0
+    // (for flexible joints with g + K q: eq. 608).
     if (s.reference.type != model::ReferenceType::kFreeMotion)
       r.warnings.push_back(
           "the reference (" + std::string(model::toString(s.reference.type)) +
-          ") is not a free motion of the arm: Assumption 2, a hypothesis of Theorems 2 and 3, "
-          "does not hold, so their guarantee does not apply to this run");
+          ") is not a free motion of the " + (s.flexible ? "arm with its springs (eq. 608)" : "arm") +
+          ": Assumption 2, a hypothesis of Theorems 2 and 3" + (s.flexible ? " and the Corollary" : "") +
+          ", does not hold, so their guarantee does not apply to this run");
     r.eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
-    if (s.actuator.order == 1) {
+    if (s.controller.stages.size() == 1) {
       const StageGains& g1 = s.controller.stages.at(0);
       r.chain = model::theorem2Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, g1.kp, g1.a, g1.b);
     } else {

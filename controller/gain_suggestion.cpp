@@ -14,13 +14,13 @@ namespace lagrange::controller {
 
 config::Scenario suggestGains(const config::Scenario& in) {
   config::Scenario s = in;
-  const model::PlanarChain chain(s.robot);
+  const model::PlanarChain chain(s.controlModel());
   const model::Reference reference(s.reference);
   const double kc = model::coriolisBound(chain), kdelta = model::referenceBound(reference);
   Theorem1Gains& g0 = s.controller.gains;
   const int n = s.dof();
-  const int m = s.actuator.order;
-  if (s.controller.type != "cascaded") {
+  const int m = static_cast<int>(s.controller.stages.size());
+  if (m == 0) {
     // eq. (11): (kd_min / 2)(b_min / a_max) > k_c k_delta.
     const double kd = 1.1 * 2.0 * kc * kdelta * g0.a.maxCoeff() / g0.b.minCoeff();
     g0.kd = g0.kd.cwiseMax(Eigen::VectorXd::Constant(n, kd));

@@ -69,8 +69,38 @@ int DoMain(int argc, char** argv) {
                 xi_valid_for = a.header.tick + 1;
               });
         }
-        auto command = [&](const lagrange::plant_position_t& m, const Eigen::MatrixXd& chain_state) {
-          const auto out = ctl.step(m.header.sim_time, transport::toEigen(m.q), chain_state);
+        // Flexible joints: PLANT_MOTOR of tick k goes with PLANT_POSITION k.
+        // Kept by tick as rows [q2; q2'] (q2' only with a rate sensor).
+        controller::ChainStateBuffer motor_by_tick;
+        std::optional<Eigen::MatrixXd> newest_motor;
+        int64_t newest_motor_tick = -1;
+        if (ctl.flexible()) {
+          const bool rates = s.flexible->rate_sensor;
+          // Realtime, before the first PLANT_MOTOR: the configured initial motor state.
+          newest_motor = Eigen::MatrixXd(rates ? 2 : 1, s.dof());
+          newest_motor->row(0) = s.initial_state.motor_q.transpose();
+          if (rates) newest_motor->row(1) = s.initial_state.motor_qdot.transpose();
+          node.subscribe<lagrange::plant_motor_t>(
+              transport::kPlantMotor,
+              [&, rates](const auto& m) { return transport::validate(m, s.dof(), rates); },
+              [&, rates](const lagrange::plant_motor_t& m) {
+                Eigen::MatrixXd sample(rates ? 2 : 1, s.dof());
+                sample.row(0) = transport::toEigen(m.q).transpose();
+                if (rates) sample.row(1) = transport::toEigen(m.qdot).transpose();
+                motor_by_tick.put(m.header.tick, sample);
+                if (m.header.tick > newest_motor_tick)
+                  newest_motor = sample, newest_motor_tick = m.header.tick;
+              });
+        }
+        auto command = [&](const lagrange::plant_position_t& m, const Eigen::MatrixXd& chain_state,
+                           const Eigen::MatrixXd* motor) {
+          const Eigen::VectorXd q = transport::toEigen(m.q);
+          const auto out =
+              motor ? ctl.stepFlexible(m.header.sim_time, q, motor->row(0).transpose(),
+                                       motor->rows() > 1
+                                           ? std::optional(Eigen::VectorXd(motor->row(1).transpose()))
+                                           : std::nullopt)
+                    : ctl.step(m.header.sim_time, q, chain_state);
           return transport::commandMessage(out, m.header.tick, m.header.sim_time);
         };
         if (s.mode == "realtime") {
@@ -78,8 +108,9 @@ int DoMain(int argc, char** argv) {
           // newest chain state is used (latest-value semantics).
           return transport::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
               node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
-              {s.tickPeriod(), 0.25, s.realtime.max_input_age},
-              [&](const lagrange::plant_position_t& m) { return command(m, xi); });
+              {s.tickPeriod(), 0.25, s.realtime.max_input_age}, [&](const lagrange::plant_position_t& m) {
+                return command(m, xi, ctl.flexible() ? &*newest_motor : nullptr);
+              });
         }
         // Lockstep: answer position k only with the chain state of t_k; if
         // ACTUATOR_STATE k-1 has not arrived yet, stay silent: the plant
@@ -88,10 +119,15 @@ int DoMain(int argc, char** argv) {
         transport::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
             [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
-              if (ctl.order() == 0) return command(m, xi);
+              if (ctl.flexible()) {
+                const std::optional<Eigen::MatrixXd> motor = motor_by_tick.take(m.header.tick);
+                if (!motor) return std::nullopt;  // PLANT_MOTOR k not here yet: the plant re-sends both
+                return command(m, xi, &*motor);
+              }
+              if (ctl.order() == 0) return command(m, xi, nullptr);
               const std::optional<Eigen::MatrixXd> state = by_tick.take(m.header.tick);
               if (!state) return std::nullopt;
-              return command(m, *state);
+              return command(m, *state, nullptr);
             });
         return transport::serveUntilPlantFinished(node, progress);
       });

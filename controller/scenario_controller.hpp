@@ -10,6 +10,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/cascaded.hpp"
+#include "controller/flexible.hpp"
 #include "controller/theorem1.hpp"
 
 namespace lagrange::controller {
@@ -26,7 +27,13 @@ class ScenarioController {
   /// derivative of q~).
   Theorem1Output step(double t, const Eigen::VectorXd& q, const Eigen::MatrixXd& xi);
 
+  /// The flexible controller (eq. 830): u is the motor torque tau, from the link
+  /// angles q, the motor angles q2 and, when motor_rate is measured, q2'.
+  Theorem1Output stepFlexible(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& q2,
+                              const std::optional<Eigen::VectorXd>& q2dot);
+
   int order() const { return order_; }
+  bool flexible() const { return flexible_.has_value(); }
 
  private:
   model::PlanarChain chain_;
@@ -34,6 +41,7 @@ class ScenarioController {
   int order_;
   std::optional<Theorem1Controller> theorem1_;
   std::optional<CascadedController> cascaded_;
+  std::optional<FlexibleController> flexible_;
 };
 
 }  // namespace lagrange::controller

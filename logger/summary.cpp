@@ -15,6 +15,14 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   json j;
   j["scenario"] = s.name;
   j["mode"] = s.mode;
+  j["controller"] = {{"type", s.controller.type}};
+  if (s.controller.type == "flexible") {
+    j["controller"]["motor_rate"] = s.controller.motor_rate;
+    if (s.controller.motor_rate == "filtered")
+      j["controller"]["motor_rate_pole"] =
+          std::vector<double>(s.controller.motor_rate_pole.data(),
+                              s.controller.motor_rate_pole.data() + s.controller.motor_rate_pole.size());
+  }
   j["status"] = f.status;
   j["tracking"] = {
       {"tolerance", t.tolerance},

@@ -28,6 +28,11 @@ PlanarChain::PlanarChain(ChainParams params) : params_(std::move(params)) {
     if (!(l.com >= 0.0) || !std::isfinite(l.com))
       throw std::invalid_argument(which + "com must be non-negative and finite");
   }
+  if (params_.joint_stiffness.size() != 0 &&
+      (params_.joint_stiffness.size() != n || !(params_.joint_stiffness.array() > 0.0).all() ||
+       !params_.joint_stiffness.allFinite()))
+    throw std::invalid_argument("PlanarChain: joint_stiffness must be empty or " + std::to_string(n) +
+                                " positive finite numbers");
   if (!std::isfinite(params_.gravity)) throw std::invalid_argument("PlanarChain: gravity must be finite");
 
   // c(i, a): lever arm of absolute angle a in the centre of mass of link i.
@@ -131,6 +136,7 @@ Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {
     suffix += params_.gravity * s_(a) * std::sin(phi(a));
     out(a) = suffix;
   }
+  if (params_.joint_stiffness.size() > 0) out += params_.joint_stiffness.cwiseProduct(q);
   return out;
 }
 
@@ -139,6 +145,7 @@ double PlanarChain::potentialEnergy(const Eigen::VectorXd& q) const {
   const Eigen::VectorXd phi = absoluteAngles(q);
   double u = 0.0;
   for (int a = 0; a < dof(); ++a) u -= params_.gravity * s_(a) * std::cos(phi(a));
+  if (params_.joint_stiffness.size() > 0) u += 0.5 * q.dot(params_.joint_stiffness.cwiseProduct(q));
   return u;
 }
 

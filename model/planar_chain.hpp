@@ -33,6 +33,11 @@ struct LinkParams {
 struct ChainParams {
   std::vector<LinkParams> links;  ///< base to tip
   double gravity = 9.81;          ///< g [m/s^2], acting downwards in the plane of motion
+  /// Torsional springs from each joint to its zero angle [N m / rad] (empty:
+  /// none): they add K q to g(q) and q^T K q / 2 to the potential energy. Not a
+  /// plant part: this is how the flexible-joint model (595) looks from its links
+  /// once written as the chain (600) (Example 1: g(q1) + K q1).
+  Eigen::VectorXd joint_stiffness;
 };
 
 /// The 2-DOF "Pelican" arm of Kelly, Santibanez and Loria, "Control of Robot

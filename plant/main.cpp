@@ -30,7 +30,10 @@ int DoMain(int argc, char** argv) {
             ->capture_default_str();
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
+        plant::PlantSim sim(
+            s.robot,
+            {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
+            s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt);
         transport::StatusReporter status(node);
         return s.mode == "realtime" ? plant::runRealtime(s, node, sim, status, startup_timeout)
                                     : plant::runLockstep(s, node, sim, status, startup_timeout);

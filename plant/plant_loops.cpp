@@ -23,6 +23,19 @@ transport::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time
   const PlantEnergy e = sim.energy();
   return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential);
 }
+
+// PLANT_POSITION with, for flexible joints, PLANT_MOTOR of the same tick
+// first, so a controller woken by the position finds the motor sample there.
+void publishMeasurements(transport::LcmNode& node, const config::Scenario& s, const PlantSim& sim,
+                         const lagrange::plant_position_t& position) {
+  if (s.flexible) {
+    const PlantState st = sim.state();
+    node.publish(transport::kPlantMotor,
+                 transport::motorMessage(position.header.tick, position.header.sim_time, st.motor_q,
+                                         st.motor_qdot, s.flexible->rate_sensor));
+  }
+  node.publish(transport::kPlantPosition, position);
+}
 }  // namespace
 
 int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
@@ -69,7 +82,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       return 0;
     }
     const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose());
-    node.publish(transport::kPlantPosition, out.position);
+    publishMeasurements(node, s, sim, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     if (Clock::now() >= next_status) {
       status.publish("running", k, t);
@@ -81,7 +94,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     while (!answered && !transport::stopRequested()) {
       node.handle(5);
       if (!answered && Clock::now() >= resend_at) {
-        node.publish(transport::kPlantPosition, out.position);
+        publishMeasurements(node, s, sim, out.position);
         ++retransmits;
         resend_at = Clock::now() + retransmit;
       }
@@ -171,7 +184,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
     const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose());
-    node.publish(transport::kPlantPosition, out.position);
+    publishMeasurements(node, s, sim, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     published_utime[k % kRing] = out.position.header.publish_utime;
     if (k == last_tick) break;

@@ -28,7 +28,9 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
             transport::nowUtime());
 
-  plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
+  plant::PlantSim sim(
+      s.robot, {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
+      s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt);
   controller::ScenarioController ctl(s);
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
   logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
@@ -49,9 +51,17 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
     log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
 
-    const auto command = transport::commandMessage(
-        ctl.step(sample.position.header.sim_time, transport::toEigen(sample.position.q), act.state()), k,
-        sample.position.header.sim_time);
+    const double sample_time = sample.position.header.sim_time;
+    const Eigen::VectorXd q = transport::toEigen(sample.position.q);
+    std::optional<controller::Theorem1Output> out;
+    if (s.flexible) {
+      const auto motor = transport::motorMessage(k, t, st.motor_q, st.motor_qdot, s.flexible->rate_sensor);
+      log.writeMessage(transport::kPlantMotor, motor, motor.header.publish_utime);
+      out = ctl.stepFlexible(sample_time, q, transport::toEigen(motor.q), transport::motorRates(motor));
+    } else {
+      out = ctl.step(sample_time, q, act.state());
+    }
+    const auto command = transport::commandMessage(*out, k, sample_time);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied =

@@ -37,6 +37,22 @@ lagrange::control_command_t commandMessage(const controller::Theorem1Output& out
   return m;
 }
 
+lagrange::plant_motor_t motorMessage(int64_t tick, double sim_time, const Eigen::VectorXd& motor_q,
+                                     const Eigen::VectorXd& motor_qdot, bool with_rates) {
+  lagrange::plant_motor_t m;
+  m.header = makeHeader(tick, sim_time);
+  m.num_joints = static_cast<int32_t>(motor_q.size());
+  m.q = toStd(motor_q);
+  m.num_rates = with_rates ? m.num_joints : 0;
+  if (with_rates) m.qdot = toStd(motor_qdot);
+  return m;
+}
+
+std::optional<Eigen::VectorXd> motorRates(const lagrange::plant_motor_t& m) {
+  if (m.num_rates == 0) return std::nullopt;
+  return toEigen(m.qdot);
+}
+
 lagrange::actuator_state_t actuatorMessage(const actuator::ActuatorOutput& out,
                                            const Eigen::MatrixXd& xi_next,
                                            const lagrange::control_command_t& command) {

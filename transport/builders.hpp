@@ -5,11 +5,13 @@
 /// exactly the same numbers.
 
 #include <Eigen/Dense>
+#include <optional>
 
 #include "actuator/integrator_chain.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 
@@ -24,6 +26,13 @@ struct PlantSample {
 /// tau_applied: the torque applied over the period that ended at this tick.
 PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                         const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy);
+
+/// PLANT_MOTOR of a flexible-joint arm; motor_qdot is sent only when with_rates.
+lagrange::plant_motor_t motorMessage(int64_t tick, double sim_time, const Eigen::VectorXd& motor_q,
+                                     const Eigen::VectorXd& motor_qdot, bool with_rates);
+
+/// q2' of a PLANT_MOTOR message, if it carries rates.
+std::optional<Eigen::VectorXd> motorRates(const lagrange::plant_motor_t& m);
 
 lagrange::control_command_t commandMessage(const controller::Theorem1Output& out, int64_t position_tick,
                                            double sim_time);

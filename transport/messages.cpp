@@ -65,6 +65,18 @@ std::string validate(const lagrange::plant_truth_t& m, int joints) {
   return why;
 }
 
+std::string validate(const lagrange::plant_motor_t& m, int joints, bool with_rates) {
+  std::string why = checkHeader(m.header);
+  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.q});
+  const int rates = with_rates ? joints : 0;
+  if (why.empty() && (m.num_rates != rates || static_cast<int>(m.qdot.size()) != rates))
+    why = "num_rates is " + std::to_string(m.num_rates) + ", expected " + std::to_string(rates) +
+          (with_rates ? " (robot.flexible.rate_sensor is true)" : " (no motor rate sensor)");
+  for (double x : m.qdot)
+    if (why.empty() && !std::isfinite(x)) why = "non-finite value (NaN or Inf)";
+  return why;
+}
+
 std::string validate(const lagrange::control_command_t& m, int joints) {
   std::string why = checkHeader(m.header);
   if (why.empty())

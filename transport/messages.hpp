@@ -10,6 +10,7 @@
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/header_t.hpp"
+#include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "lagrange/status_t.hpp"
@@ -31,6 +32,8 @@ std::vector<double> toStd(const Eigen::VectorXd& v);
 /// numbers, negative tick.
 std::string validate(const lagrange::plant_position_t& m, int joints);
 std::string validate(const lagrange::plant_truth_t& m, int joints);
+/// with_rates: the scenario's motors have rate sensors (num_rates must be joints, else 0).
+std::string validate(const lagrange::plant_motor_t& m, int joints, bool with_rates);
 std::string validate(const lagrange::control_command_t& m, int joints);
 /// torque_steps > 0 also demands that many rows of tau_applied (0: any count >= 1).
 std::string validate(const lagrange::actuator_state_t& m, int joints, int torque_steps = 0);

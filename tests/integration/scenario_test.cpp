@@ -211,10 +211,17 @@ TEST_P(ShippedConfig, MeetsItsStatedMetric) {
     EXPECT_EQ(j["gains"]["conditions"].size(), 4u);
     EXPECT_FALSE(j["gains"]["condition_holds"].get<bool>());
     EXPECT_TRUE(j["gains"].contains("eta"));
-    if (GetParam().find("free_motion") == std::string::npos)
+    const bool free_motion = GetParam().find("free_motion") != std::string::npos ||
+                             GetParam().rfind("flexible", 0) == 0;  // the flexible configs follow (608)
+    if (!free_motion)
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("not a free motion"), std::string::npos);
     else
       EXPECT_FALSE(j["gains"].contains("warnings"));
+  }
+  if (GetParam().rfind("flexible", 0) == 0) {  // the motor side is recorded, and said how q2' was had
+    EXPECT_EQ(j["messages"]["PLANT_MOTOR"]["published"], j["messages"]["PLANT_POSITION"]["published"]);
+    EXPECT_EQ(j["controller"]["motor_rate"].get<std::string>(),
+              GetParam().find("filtered") == std::string::npos ? "measured" : "filtered");
   }
   const auto truth = readTruth(dir + "/run.lcm");
   for (const auto& sample : truth) ASSERT_TRUE(sample.q.allFinite() && sample.qdot.allFinite());
@@ -222,7 +229,8 @@ TEST_P(ShippedConfig, MeetsItsStatedMetric) {
 
 INSTANTIATE_TEST_SUITE_P(Configs, ShippedConfig,
                          ::testing::Values("rigid_2dof_large_error", "rigid_5link", "chain_m1", "chain_m2",
-                                           "chain_m3", "chain_m1_free_motion"));
+                                           "chain_m3", "chain_m1_free_motion", "flexible_1dof",
+                                           "flexible_2dof", "flexible_2dof_filtered_rate"));
 
 std::vector<std::string> shippedConfigs() {
   std::vector<std::string> names;

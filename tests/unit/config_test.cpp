@@ -115,7 +115,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]", "actuator.initial_state=[[1, 2, 3]]"},
                 "actuator.initial_state[0].row: expected a list of 2 numbers"},
         BadCase{{"controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]"},
-                "only the cascaded controller has stages"}));
+                "only the cascaded and flexible controllers have stages"}));
 
 TEST(Scenario, MissingKeyIsNamed) {
   std::string text = readFile(kConfigs + "/rigid_2dof.yaml");
@@ -138,6 +138,65 @@ TEST(Scenario, UnreadableFileIsNamed) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("cannot read '/nonexistent/x.yaml'"), std::string::npos);
   }
+}
+
+// Flexible joints (robot.flexible, controller type flexible): bad input is
+// named before anything starts.
+class BadFlexibleScenario : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadFlexibleScenario, NamesTheKeyAndWhatWasExpected) {
+  const std::string base = readFile(kConfigs + "/flexible_2dof.yaml");
+  const std::string error = errorOf(base, GetParam().overrides);
+  EXPECT_NE(error.find(GetParam().fragment), std::string::npos) << "got: " << error;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadFlexibleScenario,
+    ::testing::Values(
+        BadCase{{"robot.flexible.stiffness=[100, 0]"},
+                "robot.flexible.stiffness: entry 2: expected a positive number, got '0'"},
+        BadCase{{"robot.flexible.stiffness=[100, -30]"},
+                "robot.flexible.stiffness: entry 2: expected a positive"},
+        BadCase{{"robot.flexible.rotor_inertia=[0.05, 0]"},
+                "robot.flexible.rotor_inertia: entry 2: expected a positive number"},
+        BadCase{{"robot.flexible.rotor_inertia=-1"},
+                "robot.flexible.rotor_inertia: expected a list of 2 positive"},
+        BadCase{{"robot.flexible.rate_sensor=maybe"}, "robot.flexible.rate_sensor: expected true or false"},
+        BadCase{{"controller.motor_rate=null"},
+                "controller.motor_rate: missing; the paper does not say where q2'"},
+        BadCase{{"controller.motor_rate=observer"}, "controller.motor_rate: unknown choice 'observer'"},
+        BadCase{{"robot.flexible.rate_sensor=false"},
+                "controller.motor_rate: measured needs a motor rate sensor"},
+        BadCase{{"controller.motor_rate_pole=300"}, "only motor_rate: filtered has a filter pole"},
+        BadCase{{"robot.flexible=null"},
+                "controller.type: the flexible controller needs an arm with elastic joints"},
+        BadCase{{"controller.type=cascaded"}, "controller.type: robot.flexible has elastic joints"},
+        BadCase{{"actuator.order=2"},
+                "controller.type: the flexible controller commands the motor torque itself"},
+        BadCase{{"controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]"},
+                "controller.stages: expected a list of 2 stages"},
+        BadCase{{"initial_state.motor_q=[1, 2, 3]"}, "initial_state.motor_q: expected a list of 2 numbers"}));
+
+TEST(Scenario, MotorStateOnARigidArmIsRefused) {
+  const std::string error =
+      errorOf(readFile(kConfigs + "/rigid_2dof.yaml"), {"initial_state.motor_q=[0, 0]"});
+  EXPECT_NE(error.find("initial_state.motor_q: only an arm with robot.flexible has motors"),
+            std::string::npos)
+      << error;
+}
+
+TEST(Scenario, FlexibleDefaultsHoldTheLinksAtRestAndRoundTrip) {
+  const Scenario s = loadScenario(kConfigs + "/flexible_2dof.yaml");
+  ASSERT_TRUE(s.flexible.has_value());
+  // q2(0) = q + K^-1 g(q): the springs' torque K (q2 - q) balances gravity.
+  const model::PlanarChain links(s.robot);
+  const Eigen::VectorXd spring =
+      s.flexible->params.stiffness.cwiseProduct(s.initial_state.motor_q - s.initial_state.q);
+  EXPECT_LT((spring - links.gravity(s.initial_state.q)).norm(), 1e-12);
+  EXPECT_EQ(s.controlModel().joint_stiffness, s.flexible->params.stiffness);
+  const Scenario again = parseScenario(toYaml(s), "resolved");
+  EXPECT_EQ(toYaml(again), toYaml(s));
+  EXPECT_EQ(again.initial_state.motor_q, s.initial_state.motor_q);
 }
 
 }  // namespace

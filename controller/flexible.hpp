@@ -1,0 +1,53 @@
+#pragma once
+/// @file
+/// The flexible-joint controller of the Corollary, eq. (830): the cascaded
+/// controller (750) with m = 2 on xi_1 = K q2, xi_2 = K q2', its xi_1* from
+/// eq. (830c) -- the Theorem 1 law on the link model whose g is g(q1) + K q1
+/// (model::ChainParams::joint_stiffness) -- and the motor torque
+///   tau = K (q2 - q1) + J K^-1 u          (830a),
+/// which makes xi_2' = K q2'' = u exactly on the plant (595).
+///
+/// q2' is either measured (a motor rate sensor) or, as the paper leaves open,
+/// estimated by the dirty derivative a s / (s + a) of q2, discretised exactly
+/// and started bumpless (estimate 0 at t = 0). Pure: no I/O.
+
+#include <Eigen/Dense>
+#include <optional>
+
+#include "controller/cascaded.hpp"
+#include "controller/dirty_derivative.hpp"
+#include "model/flexible_joint.hpp"
+
+namespace lagrange::controller {
+
+class FlexibleController {
+ public:
+  /// @param link_model the links with joint_stiffness = K (see file comment).
+  /// @param rate_pole empty: q2' is measured; else the dirty derivative's pole a [1/s].
+  /// @throws std::invalid_argument unless gains.stages has 2 stages and sizes match.
+  FlexibleController(const model::PlanarChain& link_model, const model::Reference& reference,
+                     CascadedGains gains, std::optional<Eigen::VectorXd> qc0, model::FlexibleParams params,
+                     std::optional<Eigen::VectorXd> rate_pole);
+
+  struct Output {
+    CascadedController::Output cascade;
+    Eigen::VectorXd tau;         ///< motor torque (830a) [N m]
+    Eigen::VectorXd motor_rate;  ///< the q2' used (measured or estimated) [rad/s]
+  };
+
+  /// At time t from the link angles q1, motor angles q2 and, when measured, q2'.
+  /// @throws std::invalid_argument when q2' is measured but not given.
+  Output step(double t, const Eigen::VectorXd& q1, const Eigen::VectorXd& q2,
+              const std::optional<Eigen::VectorXd>& q2dot);
+
+ private:
+  CascadedController cascade_;
+  model::FlexibleParams params_;
+  std::optional<DirtyDerivativeFilter> rate_filter_;
+  Eigen::VectorXd rate_pole_;
+  bool has_previous_ = false;
+  double previous_time_ = 0.0;
+  Eigen::VectorXd previous_q2_;
+};
+
+}  // namespace lagrange::controller
