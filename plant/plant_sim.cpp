@@ -2,6 +2,7 @@
 
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
@@ -163,6 +164,19 @@ void PlantSim::updateJointAngles() {
   }
 }
 
+void PlantSim::checkBounded() const {
+  // An unstable closed loop drives the rates up without bound; ODE aborts the
+  // process once its rotations cannot be normalised. Stop well before that.
+  auto rate = [](dBodyID b) { return std::abs(dBodyGetAngularVel(b)[2]); };
+  double worst = 0.0;
+  for (dBodyID b : ode_->bodies) worst = std::max(worst, rate(b));
+  for (dBodyID b : ode_->rotors) worst = std::max(worst, rate(b));
+  if (!(worst < kMaxRate))
+    throw std::runtime_error("plant: the simulation diverged at t = " + std::to_string(time_) +
+                             " s: a body turns at " + std::to_string(worst) + " rad/s (limit " +
+                             std::to_string(kMaxRate) + "); the closed loop is unstable");
+}
+
 void PlantSim::updateMotorAngles() {
   for (int i = 0; i < dof_; ++i) {
     const double rate = dBodyGetAngularVel(ode_->rotors[i])[2];
@@ -187,6 +201,7 @@ void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
     updateJointAngles();
     if (flexible_) updateMotorAngles();
     time_ += physics_step_;
+    checkBounded();
   }
 }
 

@@ -28,8 +28,8 @@
 namespace lagrange::plant {
 
 struct PlantState {
-  Eigen::VectorXd q;           ///< joint (link) angles [rad], continuous
-  Eigen::VectorXd qdot;        ///< joint rates [rad/s]
+  Eigen::VectorXd q;             ///< joint (link) angles [rad], continuous
+  Eigen::VectorXd qdot;          ///< joint rates [rad/s]
   Eigen::VectorXd motor_q{};     ///< flexible joints: motor angles q2 [rad], continuous; else empty
   Eigen::VectorXd motor_qdot{};  ///< flexible joints: motor rates q2' [rad/s]; else empty
 };
@@ -42,6 +42,9 @@ struct PlantEnergy {
 
 class PlantSim {
  public:
+  /// Above this angular rate [rad/s] of any body the run is declared diverged.
+  static constexpr double kMaxRate = 1e4;
+
   /// @param physics_step ODE step [s], > 0.
   /// @param flexible elastic joints with rotors; then `initial` needs motor_q, motor_qdot
   ///        and the torques of step() act on the rotors.
@@ -55,6 +58,8 @@ class PlantSim {
 
   /// Advance by `substeps` physics steps with torques tau held constant (joint
   /// torques, or motor torques for flexible joints).
+  /// @throws std::runtime_error when a body turns faster than kMaxRate (the
+  ///         closed loop diverged), before ODE itself would abort.
   void step(const Eigen::VectorXd& tau, int substeps);
   /// Advance by `substeps` physics steps cut into tau.rows() equal parts, row
   /// s of tau (joint torques) held over part s: the actuator's output when it
@@ -72,6 +77,7 @@ class PlantSim {
   struct Ode;
   void updateJointAngles();
   void updateMotorAngles();
+  void checkBounded() const;
   bool flexible() const { return flexible_.has_value(); }
 
   int dof_;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 #include "actuator/integrator_chain.hpp"
 #include "controller/gain_report.hpp"
@@ -79,12 +80,20 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
         break;
       }
     }
-    if (k < last_tick) sim.stepProfile(tau, s.substepsPerTick());
+    if (k < last_tick) {
+      try {
+        sim.stepProfile(tau, s.substepsPerTick());
+      } catch (const std::runtime_error& diverged) {  // the closed loop diverged: keep what was recorded
+        std::cerr << "lagrange run: " << diverged.what() << "\n";
+        exit_code = 1;
+        break;
+      }
+    }
   }
   log.flush();
 
   logger::RunFacts facts;
-  facts.status = exit_code == 0 ? "completed" : "interrupted";
+  facts.status = exit_code == 0 ? "completed" : exit_code == 1 ? "diverged" : "interrupted";
   facts.log_path = log_path;
   facts.log_events = log.events();
   facts.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -401,6 +401,30 @@ TEST(ChainM1, AFasterActuatorConvergesToTheContinuousTorque) {
   EXPECT_LT(gap_tenfold, 0.3 * gap_once);
 }
 
+// motor_rate: filtered -- the estimate's pole decides. At 1 kHz, a = 300 1/s
+// tracks as well as the rate sensor; a = 1000 does not converge.
+TEST(Flexible, FilteredMotorRateConvergesWithItsPoleAndNotWithAFastOne) {
+  const std::string measured = freshDir("flexmeas"), slow = freshDir("flexslow"), fast = freshDir("flexfast");
+  ASSERT_EQ(runScenario(kConfigs + "/flexible_2dof.yaml", measured, "-q --mode inproc").exit_code, 0);
+  ASSERT_EQ(runScenario(kConfigs + "/flexible_2dof_filtered_rate.yaml", slow, "-q --mode inproc").exit_code,
+            0);
+  // Diverges: the plant stops it, the run exits 1 and keeps what it recorded.
+  const RunResult r_fast = runScenario(kConfigs + "/flexible_2dof_filtered_rate.yaml", fast,
+                                       "-q --mode inproc --set controller.motor_rate_pole=1000");
+  EXPECT_EQ(r_fast.exit_code, 1) << r_fast.output;
+  EXPECT_NE(r_fast.output.find("the simulation diverged"), std::string::npos) << r_fast.output;
+  const double e_measured = readSummary(measured)["tracking"]["final_error"];
+  const double e_slow = readSummary(slow)["tracking"]["final_error"];
+  const auto j_fast = readSummary(fast);
+  std::printf("final ||q~||: measured rate %.3e, filtered a = 300 %.3e, a = 1000 %.3e rad\n", e_measured,
+              e_slow, j_fast["tracking"]["final_error"].get<double>());
+  EXPECT_LT(e_slow, 2.0 * e_measured + 1e-6);
+  EXPECT_EQ(j_fast["status"], "diverged");
+  EXPECT_FALSE(j_fast["tracking"]["met"].get<bool>());
+  EXPECT_GT(j_fast["tracking"]["samples"].get<long long>(), 1000);  // recorded up to the divergence
+  EXPECT_GT(j_fast["tracking"]["final_error"].get<double>(), 100.0 * e_slow);
+}
+
 // Assumption 2 in action: with a free-motion reference the m = 1 chain
 // converges exactly (the error keeps shrinking); with a sinusoid it settles at
 // a small residual, because xi_1* does not vanish on the reference.

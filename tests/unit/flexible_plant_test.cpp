@@ -152,5 +152,17 @@ TEST(FlexiblePlant, RejectsBadParameters) {
                std::invalid_argument);
 }
 
+// A diverging loop stops with a named error instead of ODE's abort.
+TEST(FlexiblePlant, DivergenceIsReportedBeforeOdeAborts) {
+  PlantSim sim(model::pelicanParams(), start(), 1e-4, flexibleParams(100.0));
+  try {
+    for (int k = 0; k < 1000; ++k)
+      sim.step(Eigen::Vector2d(1e6, -1e6), 10);  // spins everything up without bound
+    FAIL() << "expected the divergence to be reported";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the simulation diverged"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace lagrange::plant
