@@ -93,7 +93,7 @@ int DoMain(int argc, char** argv) {
               });
         }
         auto command = [&](const lagrange::plant_position_t& m, const Eigen::MatrixXd& chain_state,
-                           const Eigen::MatrixXd* motor) {
+                           const Eigen::MatrixXd* motor, transport::InputTicks inputs) {
           const Eigen::VectorXd q = transport::toEigen(m.q);
           const auto out =
               motor ? ctl.stepFlexible(m.header.sim_time, q, motor->row(0).transpose(),
@@ -101,7 +101,7 @@ int DoMain(int argc, char** argv) {
                                            ? std::optional(Eigen::VectorXd(motor->row(1).transpose()))
                                            : std::nullopt)
                     : ctl.step(m.header.sim_time, q, chain_state);
-          return transport::commandMessage(out, m.header.tick, m.header.sim_time);
+          return transport::commandMessage(out, m.header.tick, m.header.sim_time, inputs);
         };
         if (s.mode == "realtime") {
           // A quarter period after the plant: its position has arrived. The
@@ -109,7 +109,9 @@ int DoMain(int argc, char** argv) {
           return transport::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
               node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
               {s.tickPeriod(), 0.25, s.realtime.max_input_age}, [&](const lagrange::plant_position_t& m) {
-                return command(m, xi, ctl.flexible() ? &*newest_motor : nullptr);
+                const transport::InputTicks inputs{ctl.order() > 0 ? xi_valid_for - 1 : -1,
+                                                   ctl.flexible() ? newest_motor_tick : -1};
+                return command(m, xi, ctl.flexible() ? &*newest_motor : nullptr, inputs);
               });
         }
         // Lockstep: answer position k only with the chain state of t_k; if
@@ -122,12 +124,12 @@ int DoMain(int argc, char** argv) {
               if (ctl.flexible()) {
                 const std::optional<Eigen::MatrixXd> motor = motor_by_tick.take(m.header.tick);
                 if (!motor) return std::nullopt;  // PLANT_MOTOR k not here yet: the plant re-sends both
-                return command(m, xi, &*motor);
+                return command(m, xi, &*motor, {-1, m.header.tick});
               }
-              if (ctl.order() == 0) return command(m, xi, nullptr);
+              if (ctl.order() == 0) return command(m, xi, nullptr, {});
               const std::optional<Eigen::MatrixXd> state = by_tick.take(m.header.tick);
               if (!state) return std::nullopt;
-              return command(m, *state, nullptr);
+              return command(m, *state, nullptr, {m.header.tick - 1, -1});  // tick 0: the initial state
             });
         return transport::serveUntilPlantFinished(node, progress);
       });

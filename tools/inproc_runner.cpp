@@ -62,7 +62,8 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
     } else {
       out = ctl.step(sample_time, q, act.state());
     }
-    const auto command = transport::commandMessage(*out, k, sample_time);
+    const transport::InputTicks inputs{ctl.order() > 0 ? k - 1 : -1, s.flexible ? k : -1};
+    const auto command = transport::commandMessage(*out, k, sample_time, inputs);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied =

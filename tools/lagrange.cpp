@@ -11,6 +11,7 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
+#include "tools/replay.hpp"
 #include "tools/run_command.hpp"
 
 namespace lagrange {
@@ -39,6 +40,24 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "lagrange check-gains: cannot evaluate the gain conditions: " << e.what() << "\n";
+    return 2;
+  }
+}
+
+int replay(const std::string& log_path, const std::vector<std::string>& overrides) {
+  try {
+    const tools::ReplayResult r = tools::replayController(log_path, overrides);
+    for (const auto& w : r.warnings) std::cerr << "lagrange replay: warning: " << w << "\n";
+    if (r.divergence) {
+      std::cout << "lagrange replay: DIVERGED after " << r.commands << " commands at " << *r.divergence
+                << "\n";
+      return 1;
+    }
+    std::cout << "lagrange replay: controller reproduced all " << r.commands
+              << " recorded commands bit for bit (" << r.events << " events read)\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange replay: " << e.what() << "\n";
     return 2;
   }
 }
@@ -87,6 +106,21 @@ int DoMain(int argc, char** argv) {
       "Also propose gains that satisfy the conditions (eq. 11; lego/632a, 794, 795 for chains) "
       "and check them; exit 0 if the suggestion passes");
 
+  std::string replay_log, component = "controller";
+  std::vector<std::string> replay_overrides;
+  CLI::App* replay_cmd = app.add_subcommand(
+      "replay",
+      "Feed a component's recorded inputs from an LCM log into its core and compare every output with the "
+      "recorded one; print the first divergence (tick, time, field, both values); exit 1 on any");
+  replay_cmd->add_option("log", replay_log, "LCM log written by lagrange run (run.lcm)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  replay_cmd->add_option("--component", component, "Component to replay (this version: controller)")
+      ->check(CLI::IsMember({"controller"}));
+  replay_cmd->add_option("--set", replay_overrides,
+                         "Override a key of the logged scenario before replaying (e.g. to check that a "
+                         "changed gain is caught); repeatable");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -99,6 +133,7 @@ int DoMain(int argc, char** argv) {
     run.self_argv[0] = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runScenario(run);
   }
+  if (*replay_cmd) return replay(replay_log, replay_overrides);
   return checkGains(gains_config, gains_overrides, suggest);
 }
 

@@ -22,10 +22,12 @@ PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q,
 }
 
 lagrange::control_command_t commandMessage(const controller::Theorem1Output& out, int64_t position_tick,
-                                           double sim_time) {
+                                           double sim_time, InputTicks inputs) {
   lagrange::control_command_t m;
   m.header = makeHeader(position_tick, sim_time);
   m.input_position_tick = position_tick;
+  m.input_actuator_tick = inputs.actuator;
+  m.input_motor_tick = inputs.motor;
   m.num_joints = static_cast<int32_t>(out.u.size());
   m.u = toStd(out.u);
   m.q_desired = toStd(out.q_desired);

@@ -34,8 +34,14 @@ lagrange::plant_motor_t motorMessage(int64_t tick, double sim_time, const Eigen:
 /// q2' of a PLANT_MOTOR message, if it carries rates.
 std::optional<Eigen::VectorXd> motorRates(const lagrange::plant_motor_t& m);
 
+/// The ticks of the inputs a command was computed from (-1: a configured initial state, or none).
+struct InputTicks {
+  int64_t actuator = -1;
+  int64_t motor = -1;
+};
+
 lagrange::control_command_t commandMessage(const controller::Theorem1Output& out, int64_t position_tick,
-                                           double sim_time);
+                                           double sim_time, InputTicks inputs = {});
 
 /// xi_next: the chain state at the end of the period (m x n), what the
 /// controller measures at the next tick.

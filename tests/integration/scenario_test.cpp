@@ -25,6 +25,7 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "logger/tracking_metrics.hpp"
+#include "support/launch.hpp"
 #include "support/rk4.hpp"
 #include "support/run_log.hpp"
 
@@ -32,33 +33,7 @@ namespace lagrange::testing {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kBin = LAGRANGE_BIN_DIR;
 const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
-
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-std::string freshDir(const std::string& tag) {
-  static std::mt19937_64 rng(std::random_device{}());
-  const fs::path dir =
-      fs::temp_directory_path() / ("lagrange-test-" + tag + "-" + std::to_string(rng() % 1000000000));
-  fs::remove_all(dir);
-  return dir.string();
-}
-
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-RunResult lagrange(const std::string& args) {
-  RunResult r;
-  FILE* pipe = popen((kBin + "/lagrange " + args + " 2>&1").c_str(), "r");
-  char buf[4096];
-  while (size_t got = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, got);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 // The pid of a process whose argv[0] ends with `name` and whose command line
 // mentions `needle`, or -1.
@@ -74,10 +49,6 @@ pid_t findProcess(const std::string& name, const std::string& needle) {
       return static_cast<pid_t>(std::stol(pid));
   }
   return -1;
-}
-
-RunResult runScenario(const std::string& config, const std::string& out, const std::string& extra = "") {
-  return lagrange("run " + quote(config) + " --out " + quote(out) + " " + extra);
 }
 
 // One lockstep run of the default scenario, shared by the cross-checks.

@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// Running the `lagrange` front end from integration tests: a fresh output
+/// directory per run, the command's exit code and its combined output.
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+namespace lagrange::testing {
+
+inline const std::string kBin = LAGRANGE_BIN_DIR;
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;
+};
+
+inline std::string freshDir(const std::string& tag) {
+  static std::mt19937_64 rng(std::random_device{}());
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("lagrange-test-" + tag + "-" + std::to_string(rng() % 1000000000));
+  std::filesystem::remove_all(dir);
+  return dir.string();
+}
+
+inline std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+inline RunResult lagrange(const std::string& args) {
+  RunResult r;
+  FILE* pipe = popen((kBin + "/lagrange " + args + " 2>&1").c_str(), "r");
+  char buf[4096];
+  while (size_t got = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, got);
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+inline RunResult runScenario(const std::string& config, const std::string& out,
+                             const std::string& extra = "") {
+  return lagrange("run " + quote(config) + " --out " + quote(out) + " " + extra);
+}
+
+}  // namespace lagrange::testing

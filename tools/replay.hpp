@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// `lagrange replay LOG --component controller`: feeds the controller's
+/// recorded inputs -- PLANT_POSITION, and ACTUATOR_STATE / PLANT_MOTOR where
+/// the scenario has them -- into a fresh controller core built from the
+/// log's own SCENARIO, in the order the commands were recorded, and compares
+/// every field of every recorded CONTROL_COMMAND bit for bit. Each command
+/// names the ticks of the inputs it was computed from (input_position_tick,
+/// input_actuator_tick, input_motor_tick), so lockstep and realtime logs
+/// replay alike. Only the first copy of each tick is used (lockstep answers
+/// a re-sent position from a cache, identically).
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lagrange::tools {
+
+/// A log that cannot be replayed: unreadable, no SCENARIO, or an input a
+/// command names is missing. The message says what was still read.
+class ReplayError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ReplayResult {
+  long long events = 0;                   ///< log events read
+  long long commands = 0;                 ///< commands replayed and compared
+  std::optional<std::string> divergence;  ///< the first mismatch: tick, time, field, both values
+  std::vector<std::string> warnings;      ///< e.g. undecodable events skipped
+};
+
+/// @param overrides "key=value" applied to the logged scenario (to test the test).
+ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides = {});
+
+}  // namespace lagrange::tools
