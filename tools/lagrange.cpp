@@ -44,17 +44,19 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
   }
 }
 
-int replay(const std::string& log_path, const std::vector<std::string>& overrides) {
+int replay(const std::string& log_path, const std::string& component,
+           const std::vector<std::string>& overrides) {
   try {
-    const tools::ReplayResult r = tools::replayController(log_path, overrides);
+    const tools::ReplayResult r = component == "actuator" ? tools::replayActuator(log_path, overrides)
+                                                          : tools::replayController(log_path, overrides);
     for (const auto& w : r.warnings) std::cerr << "lagrange replay: warning: " << w << "\n";
     if (r.divergence) {
-      std::cout << "lagrange replay: DIVERGED after " << r.commands << " commands at " << *r.divergence
-                << "\n";
+      std::cout << "lagrange replay: " << component << " DIVERGED after " << r.commands << " outputs at "
+                << *r.divergence << "\n";
       return 1;
     }
-    std::cout << "lagrange replay: controller reproduced all " << r.commands
-              << " recorded commands bit for bit (" << r.events << " events read)\n";
+    std::cout << "lagrange replay: " << component << " reproduced all " << r.commands
+              << " recorded outputs bit for bit (" << r.events << " events read)\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "lagrange replay: " << e.what() << "\n";
@@ -115,8 +117,10 @@ int DoMain(int argc, char** argv) {
   replay_cmd->add_option("log", replay_log, "LCM log written by lagrange run (run.lcm)")
       ->required()
       ->check(CLI::ExistingFile);
-  replay_cmd->add_option("--component", component, "Component to replay (this version: controller)")
-      ->check(CLI::IsMember({"controller"}));
+  replay_cmd
+      ->add_option("--component", component,
+                   "Component to replay: controller (default; CONTROL_COMMAND) or actuator (ACTUATOR_STATE)")
+      ->check(CLI::IsMember({"controller", "actuator"}));
   replay_cmd->add_option("--set", replay_overrides,
                          "Override a key of the logged scenario before replaying (e.g. to check that a "
                          "changed gain is caught); repeatable");
@@ -133,7 +137,7 @@ int DoMain(int argc, char** argv) {
     run.self_argv[0] = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runScenario(run);
   }
-  if (*replay_cmd) return replay(replay_log, replay_overrides);
+  if (*replay_cmd) return replay(replay_log, component, replay_overrides);
   return checkGains(gains_config, gains_overrides, suggest);
 }
 

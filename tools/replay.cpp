@@ -4,6 +4,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 
+#include "actuator/integrator_chain.hpp"
 #include "config/scenario.hpp"
 #include "controller/scenario_controller.hpp"
 #include "lagrange/actuator_state_t.hpp"
@@ -24,6 +25,8 @@ struct Recorded {
   std::map<int64_t, lagrange::actuator_state_t> actuator;
   std::map<int64_t, lagrange::plant_motor_t> motor;
   std::vector<lagrange::control_command_t> commands;  // first copy of each tick, in log order
+  std::vector<lagrange::actuator_state_t> states;     // likewise
+  std::map<int64_t, lagrange::control_command_t> commands_by_tick;
   long long events = 0, undecodable = 0;
 };
 
@@ -36,7 +39,7 @@ Recorded readLog(const std::string& path) {
   lcm::LogFile log(path, "r");
   if (!log.good()) throw ReplayError("cannot open " + path + " as an LCM log");
   Recorded r;
-  std::map<int64_t, bool> commanded;
+  std::map<int64_t, bool> commanded, stated;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     ++r.events;
     const std::string& ch = ev->channel;
@@ -48,7 +51,11 @@ Recorded readLog(const std::string& path) {
       if ((ok = decode(*ev, m))) r.positions.emplace(m.header.tick, m);
     } else if (ch == transport::kActuatorState) {
       lagrange::actuator_state_t m;
-      if ((ok = decode(*ev, m))) r.actuator.emplace(m.header.tick, m);
+      if ((ok = decode(*ev, m)) && !stated[m.header.tick]) {
+        stated[m.header.tick] = true;
+        r.actuator.emplace(m.header.tick, m);
+        r.states.push_back(m);
+      }
     } else if (ch == transport::kPlantMotor) {
       lagrange::plant_motor_t m;
       if ((ok = decode(*ev, m))) r.motor.emplace(m.header.tick, m);
@@ -57,6 +64,7 @@ Recorded readLog(const std::string& path) {
       if ((ok = decode(*ev, m)) && !commanded[m.input_position_tick]) {
         commanded[m.input_position_tick] = true;
         r.commands.push_back(m);
+        r.commands_by_tick.emplace(m.header.tick, m);
       }
     }
     if (!ok) ++r.undecodable;
@@ -113,11 +121,20 @@ const typename Map::mapped_type& input(const Map& m, int64_t tick, const char* c
   return it->second;
 }
 
-}  // namespace
-
-ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides) {
-  const Recorded rec = readLog(log_path);
+// The log, its scenario (with overrides) and the warnings so far.
+struct Opened {
+  Recorded rec;
+  config::Scenario scenario;
   ReplayResult result;
+};
+
+// `outputs`: the channel whose recorded messages will be compared; none is an error.
+Opened openLog(const std::string& log_path, const std::vector<std::string>& overrides,
+               const std::string& outputs) {
+  Opened o;
+  o.rec = readLog(log_path);
+  const Recorded& rec = o.rec;
+  ReplayResult& result = o.result;
   result.events = rec.events;
   if (rec.undecodable > 0)
     result.warnings.push_back(std::to_string(rec.undecodable) +
@@ -126,15 +143,31 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
     throw ReplayError(log_path + ": no SCENARIO channel among " + std::to_string(rec.events) +
                       " events; expected a log written by lagrange run (its first event is the scenario)" +
                       (result.warnings.empty() ? "" : "; " + result.warnings.front()));
-  config::Scenario s;
   try {
-    s = config::parseScenario(*rec.scenario, log_path + ":SCENARIO", overrides);
+    o.scenario = config::parseScenario(*rec.scenario, log_path + ":SCENARIO", overrides);
   } catch (const config::ConfigError& e) {
     throw ReplayError(std::string("the log's SCENARIO is not a valid scenario: ") + e.what());
   }
-  if (rec.commands.empty())
-    throw ReplayError(log_path + ": no CONTROL_COMMAND among " + std::to_string(rec.events) +
+  const size_t count = outputs == transport::kActuatorState ? rec.states.size() : rec.commands.size();
+  if (count == 0)
+    throw ReplayError(log_path + ": no " + outputs + " among " + std::to_string(rec.events) +
                       " events: nothing to compare");
+  return o;
+}
+
+std::string at(int64_t tick, double t, const char* channel) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "tick %lld (t = %.6f s): %s.", static_cast<long long>(tick), t, channel);
+  return buf;
+}
+
+}  // namespace
+
+ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides) {
+  const Opened o = openLog(log_path, overrides, transport::kControlCommand);
+  const Recorded& rec = o.rec;
+  const config::Scenario& s = o.scenario;
+  ReplayResult result = o.result;
   controller::ScenarioController ctl(s);
   for (const auto& cmd : rec.commands) {
     const int64_t k = cmd.input_position_tick;
@@ -161,10 +194,41 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
     ++result.commands;
     const std::string d = firstDifference(cmd, out);
     if (!d.empty()) {
-      char at[96];
-      std::snprintf(at, sizeof at, "tick %lld (t = %.6f s): CONTROL_COMMAND.", static_cast<long long>(k),
-                    position.header.sim_time);
-      result.divergence = at + d;
+      result.divergence = at(k, position.header.sim_time, transport::kControlCommand) + d;
+      break;
+    }
+  }
+  return result;
+}
+
+ReplayResult replayActuator(const std::string& log_path, const std::vector<std::string>& overrides) {
+  const Opened o = openLog(log_path, overrides, transport::kActuatorState);
+  const Recorded& rec = o.rec;
+  const config::Scenario& s = o.scenario;
+  ReplayResult result = o.result;
+  actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
+  for (const auto& state : rec.states) {
+    const int64_t k = state.input_command_tick;
+    const auto& cmd = input(rec.commands_by_tick, k, transport::kControlCommand, state.header.tick);
+    const actuator::ActuatorOutput out =
+        act.step(transport::toEigen(cmd.u), s.tickPeriod(), s.torqueStepsPerTick());
+    ++result.commands;
+    std::string d = compare("u_commanded", state.u_commanded, transport::toEigen(cmd.u));
+    if (d.empty() && static_cast<Eigen::Index>(state.tau_applied.size()) != out.tau.rows())
+      d = "tau_applied: recorded " + std::to_string(state.tau_applied.size()) + " steps, replayed " +
+          std::to_string(out.tau.rows());
+    for (size_t i = 0; d.empty() && i < state.tau_applied.size(); ++i)
+      d = compare(("tau_applied[" + std::to_string(i) + "]").c_str(), state.tau_applied[i],
+                  out.tau.row(static_cast<Eigen::Index>(i)).transpose());
+    for (size_t i = 0; d.empty() && i < state.xi.size(); ++i)
+      d = compare(("xi[" + std::to_string(i) + "]").c_str(), state.xi[i],
+                  act.state().row(static_cast<Eigen::Index>(i)).transpose());
+    for (size_t j = 0; d.empty() && j < state.saturated.size(); ++j)
+      if (state.saturated[j] != static_cast<int8_t>(out.saturated(static_cast<Eigen::Index>(j))))
+        d = "saturated[" + std::to_string(j) + "]: recorded " + std::to_string(state.saturated[j]) +
+            ", replayed " + std::to_string(out.saturated(static_cast<Eigen::Index>(j)));
+    if (!d.empty()) {
+      result.divergence = at(state.header.tick, state.header.sim_time, transport::kActuatorState) + d;
       break;
     }
   }

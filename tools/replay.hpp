@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `lagrange replay LOG --component controller`: feeds the controller's
+/// `lagrange replay LOG --component controller|actuator`. The controller: feeds its
 /// recorded inputs -- PLANT_POSITION, and ACTUATOR_STATE / PLANT_MOTOR where
 /// the scenario has them -- into a fresh controller core built from the
 /// log's own SCENARIO, in the order the commands were recorded, and compares
@@ -33,5 +33,10 @@ struct ReplayResult {
 
 /// @param overrides "key=value" applied to the logged scenario (to test the test).
 ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides = {});
+
+/// The actuator: each recorded ACTUATOR_STATE from the CONTROL_COMMAND it
+/// names (input_command_tick), through a fresh IntegratorChain; compares
+/// u_commanded, every torque step, the chain state xi and the saturation flags.
+ReplayResult replayActuator(const std::string& log_path, const std::vector<std::string>& overrides = {});
 
 }  // namespace lagrange::tools

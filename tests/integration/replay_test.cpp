@@ -33,11 +33,21 @@ class Recorded : public ::testing::Test {
 std::string Recorded::chain_, Recorded::flexible_, Recorded::realtime_;
 
 TEST_F(Recorded, LockstepAndRealtimeLogsReplayExactly) {
-  for (const std::string& log : {chain_, flexible_, realtime_}) {
-    const RunResult r = lagrange("replay " + quote(log));
-    EXPECT_EQ(r.exit_code, 0) << log << ": " << r.output;
-    EXPECT_NE(r.output.find("reproduced all"), std::string::npos) << r.output;
-  }
+  for (const std::string& log : {chain_, flexible_, realtime_})
+    for (const std::string component : {"controller", "actuator"}) {
+      const RunResult r = lagrange("replay " + quote(log) + " --component " + component);
+      EXPECT_EQ(r.exit_code, 0) << log << ": " << r.output;
+      EXPECT_NE(r.output.find(component + " reproduced all"), std::string::npos) << r.output;
+    }
+}
+
+// The actuator's replay has teeth too: a saturation limit it did not have
+// clips the first torque step that exceeds it.
+TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {
+  const RunResult r =
+      lagrange("replay " + quote(chain_) + " --component actuator --set actuator.saturation=5");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("ACTUATOR_STATE.tau_applied[0]"), std::string::npos) << r.output;
 }
 
 // The replay test has teeth: a changed gain fails at the first tick it can
@@ -65,7 +75,7 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
   const RunResult r = lagrange("replay " + quote(cut));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("reproduced all"), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("1001 recorded commands"), std::string::npos)
+  EXPECT_EQ(r.output.find("1001 recorded outputs"), std::string::npos)
       << r.output;  // fewer than the full run
 }
 
