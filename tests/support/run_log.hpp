@@ -41,6 +41,21 @@ inline std::vector<TruthSample> readTruth(const std::string& log_path) {
   return out;
 }
 
+/// Samples present in both a and b, matched by tick (a comparison that a
+/// sample lost by a logger does not misalign; completeness is tested apart).
+template <class F>
+inline size_t forCommonTicks(const std::vector<TruthSample>& a, const std::vector<TruthSample>& b, F each) {
+  std::map<long long, const TruthSample*> in_b;
+  for (const auto& s : b) in_b[s.tick] = &s;
+  size_t common = 0;
+  for (const auto& s : a)
+    if (const auto it = in_b.find(s.tick); it != in_b.end()) {
+      each(s, *it->second);
+      ++common;
+    }
+  return common;
+}
+
 /// Every event's channel, in log order.
 inline std::vector<std::string> readChannels(const std::string& log_path) {
   lcm::LogFile log(log_path, "r");
