@@ -11,6 +11,7 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
+#include "tools/csv_export.hpp"
 #include "tools/replay.hpp"
 #include "tools/run_command.hpp"
 
@@ -60,6 +61,28 @@ int replay(const std::string& log_path, const std::string& component,
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "lagrange replay: " << e.what() << "\n";
+    return 2;
+  }
+}
+
+int report(const std::string& target, std::string out_dir) {
+  namespace fs = std::filesystem;
+  const std::string log_path = fs::is_directory(target) ? (fs::path(target) / "run.lcm").string() : target;
+  if (out_dir.empty()) out_dir = (fs::path(log_path).parent_path() / "csv").string();
+  try {
+    const auto rows = tools::exportCsv(log_path, out_dir);
+    if (rows.empty()) {
+      std::cerr << "lagrange report: " << log_path
+                << " holds no message of this project (PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR, "
+                   "CONTROL_COMMAND, ACTUATOR_STATE); expected a log written by lagrange run\n";
+      return 2;
+    }
+    for (const auto& [channel, n] : rows)
+      std::cout << "lagrange report: " << n << " rows -> "
+                << (fs::path(out_dir) / (channel + ".csv")).string() << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange report: " << e.what() << "\n";
     return 2;
   }
 }
@@ -125,6 +148,17 @@ int DoMain(int argc, char** argv) {
                          "Override a key of the logged scenario before replaying (e.g. to check that a "
                          "changed gain is caught); repeatable");
 
+  std::string report_target, report_out;
+  CLI::App* report_cmd = app.add_subcommand(
+      "report",
+      "Write one CSV file per channel of a run's log (rows: first copy of each tick; columns: the "
+      "message fields per joint). Plots are not made by this version");
+  report_cmd->add_option("target", report_target, "A run directory (its run.lcm) or an LCM log file")
+      ->required()
+      ->check(CLI::ExistingPath);
+  report_cmd->add_option("-o,--out", report_out,
+                         "Directory for the CSV files (default: csv/ next to the log)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -138,6 +172,7 @@ int DoMain(int argc, char** argv) {
     return tools::runScenario(run);
   }
   if (*replay_cmd) return replay(replay_log, component, replay_overrides);
+  if (*report_cmd) return report(report_target, report_out);
   return checkGains(gains_config, gains_overrides, suggest);
 }
 

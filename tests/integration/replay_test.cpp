@@ -79,6 +79,32 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
       << r.output;  // fewer than the full run
 }
 
+// lagrange report: a CSV per channel, one row per tick, values exact.
+TEST_F(Recorded, ReportWritesOneCsvPerChannelWithEveryTick) {
+  const std::string out = freshDir("csv");
+  const RunResult r =
+      lagrange("report " + quote(std::filesystem::path(chain_).parent_path().string()) + " -o " + quote(out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream truth(out + "/PLANT_TRUTH.csv");
+  std::string header, first;
+  std::getline(truth, header);
+  std::getline(truth, first);
+  EXPECT_EQ(header.rfind("tick,sim_time,q[0],q[1],qdot[0],qdot[1],tau_applied[0]", 0), 0u) << header;
+  EXPECT_EQ(first.rfind("0,0,2,-1.5,", 0), 0u) << first;  // chain_m2.yaml starts at q = (2, -1.5)
+  long long lines = 2;
+  for (std::string line; std::getline(truth, line);) ++lines;
+  EXPECT_EQ(lines, 1 + 1001);  // header + ticks 0..1000
+  std::ifstream command(out + "/CONTROL_COMMAND.csv");
+  std::getline(command, header);
+  EXPECT_NE(header.find("xi_error[1][0]"), std::string::npos) << header;  // m = 2 chain errors
+
+  const std::string text = freshDir("notalog") + ".txt";
+  std::ofstream(text) << "hello\n";
+  const RunResult bad = lagrange("report " + quote(text));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("holds no message of this project"), std::string::npos) << bad.output;
+}
+
 TEST(ReplayBadInput, ALogWithoutScenarioOrNotALogIsNamed) {
   const std::string no_scenario = freshDir("noscenario") + ".lcm";
   {
