@@ -69,10 +69,12 @@ int DoMain(int argc, char** argv) {
         // then lets it consume the queue count of a '.*' subscription, which
         // then silently skips the next counted message -- the first samples of
         // a run went missing from run.lcm that way (one run in ~50).
-        node.subscribeRaw(
-            "(?!LCM_SELF_TEST$).*", [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-              log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
-            });
+        // SCENARIO too is left out: the log starts with it (above), and the
+        // copies this logger publishes for stock loggers need no recording.
+        node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$).*", [&](const lcm::ReceiveBuffer* rbuf,
+                                                                const std::string& channel) {
+          log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
+        });
         // Acknowledge progress often enough that the plant, allowed
         // lockstep.logger_window ticks ahead, never waits for the logger.
         const long long ack_every = std::max(1, s.lockstep.logger_window / 4);
@@ -121,12 +123,19 @@ int DoMain(int argc, char** argv) {
         };
 
         report("ready");
+        // The scenario on LCM, now and every second: a stock lcm-logger
+        // started before or during the run records it, so its log replays.
+        auto next_scenario = Clock::now();
         auto next_flush = Clock::now() + std::chrono::milliseconds(100);
         auto next_status = Clock::now() + std::chrono::milliseconds(100);
         auto next_progress_line = Clock::now();
         while (!transport::stopRequested()) {
           node.handle(20);
           const auto now = Clock::now();
+          if (now >= next_scenario) {
+            node.publishBytes(transport::kScenario, scenario_text);
+            next_scenario = now + std::chrono::seconds(1);
+          }
           if (now >= next_flush) {
             log.flush();
             next_flush = now + std::chrono::milliseconds(100);

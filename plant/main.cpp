@@ -9,7 +9,7 @@
 #include <chrono>
 
 #include "plant/plant_loops.hpp"
-#include "plant/plant_sim.hpp"
+#include "plant/scenario_plant.hpp"
 #include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -30,10 +30,7 @@ int DoMain(int argc, char** argv) {
             ->capture_default_str();
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        plant::PlantSim sim(
-            s.robot,
-            {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
-            s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt);
+        plant::PlantSim sim = plant::plantFor(s);
         transport::StatusReporter status(node);
         return s.mode == "realtime" ? plant::runRealtime(s, node, sim, status, startup_timeout)
                                     : plant::runLockstep(s, node, sim, status, startup_timeout);

@@ -18,10 +18,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 transport::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time,
-                              const Eigen::VectorXd& tau_applied) {
+                              const Eigen::VectorXd& tau_applied, transport::TorqueInput input) {
   const PlantState st = sim.state();
   const PlantEnergy e = sim.energy();
-  return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential);
+  return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input);
 }
 
 // PLANT_POSITION with, for flexible joints, PLANT_MOTOR of the same tick
@@ -81,7 +81,10 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       status.publish("interrupted", k - 1, t);
       return 0;
     }
-    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose());
+    const transport::TorqueInput input =
+        k == 0 ? transport::TorqueInput{}
+               : transport::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED};
+    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose(), input);
     publishMeasurements(node, s, sim, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     if (Clock::now() >= next_status) {
@@ -178,12 +181,13 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
 
   Eigen::MatrixXd tau =
       Eigen::MatrixXd::Zero(torque_steps, n);  // applied over the period ending at the sample
+  transport::TorqueInput applied;              // where tau came from
   loop.start();
   auto next_status = transport::monotonicNs() + 500'000'000LL;
   for (int64_t k = 0; k <= last_tick && !transport::stopRequested(); ++k) {
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose());
+    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose(), applied);
     publishMeasurements(node, s, sim, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     published_utime[k % kRing] = out.position.header.publish_utime;
@@ -194,15 +198,18 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     const int64_t age = latest ? k - latest->header.tick : k + 1;
     if (latest && age <= max_age) {
       tau = transport::toEigen(latest->tau_applied);
+      applied = {latest->header.tick, lagrange::plant_truth_t::TORQUE_COMMANDED};
       if (latest->header.tick > used_tick)
         ages.push_back(static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6);
       used_tick = latest->header.tick;
     } else if (latest && age <= hold_limit) {
       ++held;  // policy "hold": keep the last torque a little longer (its final step, held flat)
       tau.rowwise() = Eigen::RowVectorXd(tau.row(torque_steps - 1));
+      applied.source = lagrange::plant_truth_t::TORQUE_HELD;
     } else {
       if (k > 0) ++zeroed;  // nothing can have answered before the first sample
       tau.setZero();
+      applied = {};
     }
     sim.stepProfile(tau, s.substepsPerTick());
 

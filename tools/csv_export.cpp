@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <lcm/lcm-cpp.hpp>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -13,6 +13,7 @@
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
+#include "tools/log_reader.hpp"
 #include "transport/channels.hpp"
 
 namespace lagrange::tools {
@@ -46,15 +47,6 @@ class Row {
   std::vector<std::string> names_, values_;
 };
 
-template <class Msg>
-bool decode(const lcm::LogEvent& ev, Msg& m) {
-  try {
-    return m.decode(ev.data, 0, static_cast<int>(ev.datalen)) == static_cast<int>(ev.datalen);
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
 void headerColumns(Row& row, const lagrange::header_t& h) {
   row.add("tick", static_cast<double>(h.tick));
   row.add("sim_time", h.sim_time);
@@ -65,34 +57,36 @@ bool rowOf(const lcm::LogEvent& ev, Row& row, int64_t& tick) {
   const std::string& ch = ev.channel;
   if (ch == transport::kPlantTruth) {
     lagrange::plant_truth_t m;
-    if (!decode(ev, m)) return false;
+    if (!decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
     row.add("q", m.q), row.add("qdot", m.qdot), row.add("tau_applied", m.tau_applied);
     row.add("kinetic_energy", m.kinetic_energy), row.add("potential_energy", m.potential_energy);
     row.add("total_energy", m.total_energy);
+    row.add("input_actuator_tick", static_cast<double>(m.input_actuator_tick));
+    row.add("torque_source", m.torque_source);
     tick = m.header.tick;
   } else if (ch == transport::kPlantPosition) {
     lagrange::plant_position_t m;
-    if (!decode(ev, m)) return false;
+    if (!decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
     row.add("q", m.q);
     tick = m.header.tick;
   } else if (ch == transport::kPlantMotor) {
     lagrange::plant_motor_t m;
-    if (!decode(ev, m)) return false;
+    if (!decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
     row.add("q", m.q), row.add("qdot", m.qdot);
     tick = m.header.tick;
   } else if (ch == transport::kControlCommand) {
     lagrange::control_command_t m;
-    if (!decode(ev, m)) return false;
+    if (!decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
     row.add("u", m.u), row.add("q_desired", m.q_desired), row.add("q_error", m.q_error);
     row.add("theta", m.theta), row.add("filter_state", m.filter_state), row.add("xi_error", m.xi_error);
     tick = m.header.tick;
   } else if (ch == transport::kActuatorState) {
     lagrange::actuator_state_t m;
-    if (!decode(ev, m)) return false;
+    if (!decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
     row.add("u_commanded", m.u_commanded), row.add("tau_applied", m.tau_applied), row.add("xi", m.xi);
     tick = m.header.tick;
@@ -102,31 +96,83 @@ bool rowOf(const lcm::LogEvent& ev, Row& row, int64_t& tick) {
   return true;
 }
 
+// Wall-clock publish times by tick, for the timing of a realtime run.
+struct PublishTimes {
+  std::map<int64_t, int64_t> position, command, actuator;
+};
+
+void notePublishTime(const lcm::LogEvent& ev, PublishTimes& times) {
+  const std::string& ch = ev.channel;
+  if (ch == transport::kPlantPosition) {
+    lagrange::plant_position_t m;
+    if (decodeEvent(ev, m)) times.position.emplace(m.header.tick, m.header.publish_utime);
+  } else if (ch == transport::kControlCommand) {
+    lagrange::control_command_t m;
+    if (decodeEvent(ev, m)) times.command.emplace(m.input_position_tick, m.header.publish_utime);
+  } else if (ch == transport::kActuatorState) {
+    lagrange::actuator_state_t m;
+    if (decodeEvent(ev, m)) times.actuator.emplace(m.header.tick, m.header.publish_utime);
+  }
+}
+
+// TIMING.csv: per tick, the plant's period error and the latencies from its
+// sample to the command and to the actuator state answering it [us].
+long long writeTiming(const PublishTimes& times, double period, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << "tick,period_error_us,command_latency_us,actuator_latency_us\n";
+  long long rows = 0;
+  const auto after = [&](const std::map<int64_t, int64_t>& m, int64_t tick, int64_t published) {
+    const auto it = m.find(tick);
+    return it == m.end() ? std::string() : std::to_string(it->second - published);
+  };
+  std::optional<std::pair<int64_t, int64_t>> previous;
+  for (const auto& [tick, published] : times.position) {
+    std::string period_error;
+    if (previous && previous->first == tick - 1)
+      period_error = std::to_string(static_cast<double>(published - previous->second) - period * 1e6);
+    out << tick << "," << period_error << "," << after(times.command, tick, published) << ","
+        << after(times.actuator, tick, published) << "\n";
+    previous = {tick, published};
+    ++rows;
+  }
+  if (!out.flush()) throw std::runtime_error("writing " + path + " failed");
+  return rows;
+}
+
 }  // namespace
 
-std::map<std::string, long long> exportCsv(const std::string& log_path, const std::string& out_dir) {
-  lcm::LogFile log(log_path, "r");
-  if (!log.good()) throw std::runtime_error("cannot open " + log_path + " as an LCM log");
+CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
   std::filesystem::create_directories(out_dir);
+  CsvExport result;
   std::map<std::string, std::ofstream> files;
   std::map<std::string, std::set<int64_t>> seen;
-  std::map<std::string, long long> rows;
-  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+  result.scan = readLog(log_path, [&](const lcm::LogEvent& ev) {
+    if (ev.channel == transport::kScenario && !result.scenario)
+      result.scenario = std::string(static_cast<const char*>(ev.data), ev.datalen);
     Row row;
     int64_t tick = 0;
-    if (!rowOf(*ev, row, tick) || !seen[ev->channel].insert(tick).second) continue;
-    auto [it, fresh] = files.try_emplace(ev->channel);
+    if (!rowOf(ev, row, tick) || !seen[ev.channel].insert(tick).second) return;
+    auto [it, fresh] = files.try_emplace(ev.channel);
     if (fresh) {
-      it->second.open(std::filesystem::path(out_dir) / (ev->channel + ".csv"));
-      if (!it->second) throw std::runtime_error("cannot write " + out_dir + "/" + ev->channel + ".csv");
+      it->second.open(std::filesystem::path(out_dir) / (ev.channel + ".csv"));
+      if (!it->second) throw std::runtime_error("cannot write " + out_dir + "/" + ev.channel + ".csv");
       it->second << row.header() << "\n";
     }
     it->second << row.line() << "\n";
-    ++rows[ev->channel];
-  }
+    ++result.rows[ev.channel];
+  });
   for (auto& [channel, file] : files)
     if (!file.flush()) throw std::runtime_error("writing " + out_dir + "/" + channel + ".csv failed");
-  return rows;
+  return result;
+}
+
+long long exportTiming(const std::string& log_path, double period, const std::string& out_dir) {
+  PublishTimes times;
+  readLog(log_path, [&](const lcm::LogEvent& ev) { notePublishTime(ev, times); });
+  if (times.position.empty()) return 0;
+  return writeTiming(times, period,
+                     (std::filesystem::path(out_dir) / (std::string(kTimingChannel) + ".csv")).string());
 }
 
 }  // namespace lagrange::tools

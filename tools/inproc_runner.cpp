@@ -11,7 +11,7 @@
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
-#include "plant/plant_sim.hpp"
+#include "plant/scenario_plant.hpp"
 #include "tools/progress.hpp"
 #include "transport/builders.hpp"
 #include "transport/channels.hpp"
@@ -29,9 +29,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
             transport::nowUtime());
 
-  plant::PlantSim sim(
-      s.robot, {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
-      s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt);
+  plant::PlantSim sim = plant::plantFor(s);
   controller::ScenarioController ctl(s);
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
   logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
@@ -46,8 +44,10 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
     const double t = static_cast<double>(k) * s.tickPeriod();
     const plant::PlantState st = sim.state();
     const plant::PlantEnergy e = sim.energy();
-    const transport::PlantSample sample =
-        transport::plantSample(k, t, st.q, st.qdot, tau.row(0).transpose(), e.kinetic, e.potential);
+    const transport::PlantSample sample = transport::plantSample(
+        k, t, st.q, st.qdot, tau.row(0).transpose(), e.kinetic, e.potential,
+        k == 0 ? transport::TorqueInput{}
+               : transport::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
     log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
     log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));

@@ -11,8 +11,8 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
-#include "tools/csv_export.hpp"
 #include "tools/replay.hpp"
+#include "tools/report.hpp"
 #include "tools/run_command.hpp"
 
 namespace lagrange {
@@ -49,6 +49,7 @@ int replay(const std::string& log_path, const std::string& component,
            const std::vector<std::string>& overrides) {
   try {
     const tools::ReplayResult r = component == "actuator" ? tools::replayActuator(log_path, overrides)
+                                  : component == "plant"  ? tools::replayPlant(log_path, overrides)
                                                           : tools::replayController(log_path, overrides);
     for (const auto& w : r.warnings) std::cerr << "lagrange replay: warning: " << w << "\n";
     if (r.divergence) {
@@ -68,18 +69,9 @@ int replay(const std::string& log_path, const std::string& component,
 int report(const std::string& target, std::string out_dir) {
   namespace fs = std::filesystem;
   const std::string log_path = fs::is_directory(target) ? (fs::path(target) / "run.lcm").string() : target;
-  if (out_dir.empty()) out_dir = (fs::path(log_path).parent_path() / "csv").string();
+  if (out_dir.empty()) out_dir = (fs::path(log_path).parent_path() / "report").string();
   try {
-    const auto rows = tools::exportCsv(log_path, out_dir);
-    if (rows.empty()) {
-      std::cerr << "lagrange report: " << log_path
-                << " holds no message of this project (PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR, "
-                   "CONTROL_COMMAND, ACTUATOR_STATE); expected a log written by lagrange run\n";
-      return 2;
-    }
-    for (const auto& [channel, n] : rows)
-      std::cout << "lagrange report: " << n << " rows -> "
-                << (fs::path(out_dir) / (channel + ".csv")).string() << "\n";
+    tools::printReport(tools::writeReport(log_path, out_dir), out_dir, "lagrange report: ");
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "lagrange report: " << e.what() << "\n";
@@ -116,6 +108,9 @@ int DoMain(int argc, char** argv) {
   run_cmd->add_flag("--strict", run.strict,
                     "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
+  run_cmd->add_flag(
+      "--report", run.report,
+      "At the end of the run, write CSV files and PNG plots to OUT/report (as lagrange report)");
 
   std::string gains_config;
   std::vector<std::string> gains_overrides;
@@ -142,8 +137,9 @@ int DoMain(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   replay_cmd
       ->add_option("--component", component,
-                   "Component to replay: controller (default; CONTROL_COMMAND) or actuator (ACTUATOR_STATE)")
-      ->check(CLI::IsMember({"controller", "actuator"}));
+                   "Component to replay: controller (default; CONTROL_COMMAND), actuator (ACTUATOR_STATE) or "
+                   "plant (PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR)")
+      ->check(CLI::IsMember({"controller", "actuator", "plant"}));
   replay_cmd->add_option("--set", replay_overrides,
                          "Override a key of the logged scenario before replaying (e.g. to check that a "
                          "changed gain is caught); repeatable");
@@ -152,12 +148,14 @@ int DoMain(int argc, char** argv) {
   CLI::App* report_cmd = app.add_subcommand(
       "report",
       "Write one CSV file per channel of a run's log (rows: first copy of each tick; columns: the "
-      "message fields per joint). Plots are not made by this version");
+      "message fields per joint) and PNG plots drawn by gnuplot (tracking error, joints, torques, filter, "
+      "actuator and, for realtime runs, timing histograms)");
   report_cmd->add_option("target", report_target, "A run directory (its run.lcm) or an LCM log file")
       ->required()
       ->check(CLI::ExistingPath);
-  report_cmd->add_option("-o,--out", report_out,
-                         "Directory for the CSV files (default: csv/ next to the log)");
+  report_cmd->add_option(
+      "-o,--out", report_out,
+      "Directory for the CSV files, plots and plots.gp (default: report/ next to the log)");
 
   try {
     app.parse(argc, argv);

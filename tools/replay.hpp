@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `lagrange replay LOG --component controller|actuator`. The controller: feeds its
+/// `lagrange replay LOG --component controller|actuator|plant`. The controller: feeds its
 /// recorded inputs -- PLANT_POSITION, and ACTUATOR_STATE / PLANT_MOTOR where
 /// the scenario has them -- into a fresh controller core built from the
 /// log's own SCENARIO, in the order the commands were recorded, and compares
@@ -26,7 +26,7 @@ class ReplayError : public std::runtime_error {
 
 struct ReplayResult {
   long long events = 0;                   ///< log events read
-  long long commands = 0;                 ///< commands replayed and compared
+  long long commands = 0;                 ///< outputs replayed and compared
   std::optional<std::string> divergence;  ///< the first mismatch: tick, time, field, both values
   std::vector<std::string> warnings;      ///< e.g. undecodable events skipped
 };
@@ -38,5 +38,12 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
 /// names (input_command_tick), through a fresh IntegratorChain; compares
 /// u_commanded, every torque step, the chain state xi and the saturation flags.
 ReplayResult replayActuator(const std::string& log_path, const std::vector<std::string>& overrides = {});
+
+/// The plant: a fresh PlantSim stepped, period by period, with the torque
+/// each recorded PLANT_TRUTH says was applied (input_actuator_tick and
+/// torque_source: commanded, held or zero, so the stale-torque policy of a
+/// realtime run replays too); compares q, q', the applied torque and the
+/// energies of PLANT_TRUTH, q of PLANT_POSITION and q2 (q2') of PLANT_MOTOR.
+ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides = {});
 
 }  // namespace lagrange::tools

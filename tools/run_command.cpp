@@ -23,6 +23,7 @@
 #include "tools/inproc_runner.hpp"
 #include "tools/netns.hpp"
 #include "tools/progress.hpp"
+#include "tools/report.hpp"
 #include "tools/supervisor.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -157,6 +158,25 @@ void printResult(const std::string& out_dir) {
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
   std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
+// --report: CSV and plots of the log in OUT/report; a failed or diverged run
+// is reported too (its plots show what went wrong). Never changes the exit code.
+void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
+  if (!opt.report) return;
+  const std::string report_dir = (fs::path(out_dir) / "report").string();
+  try {
+    const Report report = writeReport((fs::path(out_dir) / "run.lcm").string(), report_dir);
+    if (opt.quiet) {
+      for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
+    } else {
+      std::cout << "report: " << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) << " CSV files, "
+                << report.plots.written.size() << " plots in " << report_dir << "\n";
+      for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange run: report: " << e.what() << "\n";
+  }
+}
+
 // Starts logger, controller, actuator and plant on a fresh LCM URL, shows
 // progress, and watches them until all have exited; returns the exit code.
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
@@ -244,6 +264,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   progress.finish();
   close(progress_pipe[0]);
   if (exit_code == 0) addCpuTimes(out_dir, cpu);
+  if (exit_code != 130) writeRunReport(opt, out_dir);
   if (exit_code == 0 && !opt.quiet) printResult(out_dir);
   if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";
   return exit_code;
@@ -269,6 +290,7 @@ int runScenario(const RunOptions& opt) {
     ProgressDisplay progress(scenario.duration, opt.quiet);
     const int code = runInProcess(scenario, out_dir, progress, [] { return launcher_signal != 0; });
     progress.finish();
+    if (code != 130) writeRunReport(opt, out_dir);
     if (code == 0 && !opt.quiet) printResult(out_dir);
     return code;
   }

@@ -17,6 +17,7 @@ struct RunOptions {
   std::string lcm_url;  ///< empty: a fresh URL per run
   bool strict = false;
   bool quiet = false;
+  bool report = false;                 ///< write OUT/report (CSV + plots) when the run ends with a log
   std::vector<std::string> self_argv;  ///< to re-execute inside the namespace
 };
 

@@ -5,7 +5,8 @@
 namespace lagrange::transport {
 
 PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                        const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy) {
+                        const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy,
+                        TorqueInput input) {
   PlantSample o;
   o.position.header = makeHeader(tick, sim_time);
   o.position.num_joints = static_cast<int32_t>(q.size());
@@ -18,6 +19,8 @@ PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q,
   o.truth.kinetic_energy = kinetic_energy;
   o.truth.potential_energy = potential_energy;
   o.truth.total_energy = kinetic_energy + potential_energy;
+  o.truth.input_actuator_tick = input.actuator_tick;
+  o.truth.torque_source = input.source;
   return o;
 }
 

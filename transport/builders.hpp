@@ -23,9 +23,16 @@ struct PlantSample {
   lagrange::plant_truth_t truth;
 };
 
-/// tau_applied: the torque applied over the period that ended at this tick.
+/// Which torque the plant applied over a period, and why (plant_truth_t).
+struct TorqueInput {
+  int64_t actuator_tick = -1;
+  int8_t source = lagrange::plant_truth_t::TORQUE_ZERO;
+};
+
+/// tau_applied: the torque applied over the period that ended at this tick, chosen as `input` says.
 PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                        const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy);
+                        const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy,
+                        TorqueInput input);
 
 /// PLANT_MOTOR of a flexible-joint arm; motor_qdot is sent only when with_rates.
 lagrange::plant_motor_t motorMessage(int64_t tick, double sim_time, const Eigen::VectorXd& motor_q,

@@ -34,7 +34,7 @@ std::string Recorded::chain_, Recorded::flexible_, Recorded::realtime_;
 
 TEST_F(Recorded, LockstepAndRealtimeLogsReplayExactly) {
   for (const std::string& log : {chain_, flexible_, realtime_})
-    for (const std::string component : {"controller", "actuator"}) {
+    for (const std::string component : {"controller", "actuator", "plant"}) {
       const RunResult r = lagrange("replay " + quote(log) + " --component " + component);
       EXPECT_EQ(r.exit_code, 0) << log << ": " << r.output;
       EXPECT_NE(r.output.find(component + " reproduced all"), std::string::npos) << r.output;
@@ -77,6 +77,27 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
   EXPECT_NE(r.output.find("reproduced all"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("1001 recorded outputs"), std::string::npos)
       << r.output;  // fewer than the full run
+  EXPECT_NE(r.output.find("warning: the log ends with"), std::string::npos) << r.output;  // and says why
+  EXPECT_NE(r.output.find("not a whole event"), std::string::npos) << r.output;
+  const RunResult plant = lagrange("replay " + quote(cut) + " --component plant");
+  EXPECT_EQ(plant.exit_code, 0) << plant.output;
+
+  // Garbage in the middle: the reader skips to the next event and says how much it lost.
+  const std::string corrupt = freshDir("corrupt") + ".lcm";
+  std::filesystem::copy_file(chain_, corrupt);
+  {
+    std::fstream f(corrupt, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(size / 3));
+    const std::string junk(300, '\x5a');
+    f.write(junk.data(), static_cast<std::streamsize>(junk.size()));
+  }
+  const RunResult c = lagrange("replay " + quote(corrupt));
+  EXPECT_NE(c.exit_code, 0) << c.output;  // a command's input is gone, or the replay stops short
+  EXPECT_NE(c.output.find("corrupt bytes between events were skipped"), std::string::npos) << c.output;
+  const RunResult report = lagrange("report " + quote(corrupt) + " -o " + quote(freshDir("corrupt-report")));
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_NE(report.output.find("corrupt bytes between events were skipped"), std::string::npos)
+      << report.output;
 }
 
 // lagrange report: a CSV per channel, one row per tick, values exact.
@@ -102,7 +123,7 @@ TEST_F(Recorded, ReportWritesOneCsvPerChannelWithEveryTick) {
   std::ofstream(text) << "hello\n";
   const RunResult bad = lagrange("report " + quote(text));
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
-  EXPECT_NE(bad.output.find("holds no message of this project"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("is not an LCM log: no event in its 6 bytes"), std::string::npos) << bad.output;
 }
 
 TEST(ReplayBadInput, ALogWithoutScenarioOrNotALogIsNamed) {
@@ -118,14 +139,41 @@ TEST(ReplayBadInput, ALogWithoutScenarioOrNotALogIsNamed) {
   }
   const RunResult r = lagrange("replay " + quote(no_scenario));
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("no SCENARIO channel among 1 events"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("1 events could not be decoded"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no SCENARIO channel among its 1 events on PLANT_POSITION"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("1 events on this project's channels could not be decoded"), std::string::npos)
+      << r.output;
 
   const std::string text = freshDir("text") + ".lcm";
   std::ofstream(text) << "name: not a log\n";
   const RunResult t = lagrange("replay " + quote(text));
   EXPECT_EQ(t.exit_code, 2) << t.output;
-  EXPECT_NE(t.output.find("no SCENARIO channel among 0 events"), std::string::npos) << t.output;
+  EXPECT_NE(t.output.find("is not an LCM log: no event in its 16 bytes"), std::string::npos) << t.output;
+
+  // Another project's log: its channels are named, nothing is decoded as ours.
+  const std::string foreign = freshDir("foreign") + ".lcm";
+  {
+    lcm::LogFile log(foreign, "w");
+    for (const char* channel : {"POSE", "ODOMETRY", "POSE"}) {
+      lcm::LogEvent ev{};
+      std::string payload = "\x01\x02\x03 someone else's bytes";
+      ev.channel = channel;
+      ev.data = payload.data();
+      ev.datalen = static_cast<int32_t>(payload.size());
+      log.writeEvent(&ev);
+    }
+  }
+  for (const std::string component : {"controller", "actuator", "plant"}) {
+    const RunResult f = lagrange("replay " + quote(foreign) + " --component " + component);
+    EXPECT_EQ(f.exit_code, 2) << f.output;
+    EXPECT_NE(f.output.find("no SCENARIO channel among its 3 events on ODOMETRY, POSE"), std::string::npos)
+        << f.output;
+  }
+  const RunResult fr = lagrange("report " + quote(foreign) + " -o " + quote(freshDir("foreign-report")));
+  EXPECT_EQ(fr.exit_code, 2) << fr.output;
+  EXPECT_NE(fr.output.find("holds no message of this project among its 3 events on ODOMETRY, POSE"),
+            std::string::npos)
+      << fr.output;
 }
 
 }  // namespace

@@ -29,15 +29,18 @@ inline std::string freshDir(const std::string& tag) {
 
 inline std::string quote(const std::string& s) { return "'" + s + "'"; }
 
-inline RunResult lagrange(const std::string& args) {
+/// A shell command's exit code and combined output.
+inline RunResult shell(const std::string& command) {
   RunResult r;
-  FILE* pipe = popen((kBin + "/lagrange " + args + " 2>&1").c_str(), "r");
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   char buf[4096];
   while (size_t got = fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, got);
   const int status = pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+inline RunResult lagrange(const std::string& args) { return shell(kBin + "/lagrange " + args); }
 
 inline RunResult runScenario(const std::string& config, const std::string& out,
                              const std::string& extra = "") {

@@ -1,0 +1,11 @@
+#include "plant/scenario_plant.hpp"
+
+namespace lagrange::plant {
+
+PlantSim plantFor(const config::Scenario& s) {
+  return PlantSim(
+      s.robot, {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
+      s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt);
+}
+
+}  // namespace lagrange::plant

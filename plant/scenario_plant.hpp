@@ -1,0 +1,14 @@
+#pragma once
+/// @file
+/// The plant a scenario describes: one place that turns the config into a
+/// PlantSim, for the plant process, the in-process runner and plant replay.
+
+#include "config/scenario.hpp"
+#include "plant/plant_sim.hpp"
+
+namespace lagrange::plant {
+
+/// The arm of `s.robot` at `s.initial_state` (with rotors when s.flexible), stepping s.plant.physics_step.
+PlantSim plantFor(const config::Scenario& s);
+
+}  // namespace lagrange::plant

@@ -1,0 +1,151 @@
+// Stock LCM tools work with lagrange: the stock lcm-logplayer plays a log of
+// `lagrange run` into a live controller process, which answers with the
+// recorded commands bit for bit (recorded by the stock lcm-logger); and a log
+// the stock lcm-logger records from a running scenario is accepted by
+// `lagrange replay` and `lagrange report`.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <map>
+#include <random>
+
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/status_t.hpp"
+#include "support/child.hpp"
+#include "support/launch.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/";
+
+std::string freshUrl() {
+  static std::mt19937 rng(std::random_device{}());
+  return "udpm://239.255.76.67:" + std::to_string(20000 + rng() % 20000) + "?ttl=0";
+}
+
+// Every event of a log, by channel, in order (an unreadable file: none).
+std::vector<std::pair<std::string, std::string>> events(const std::string& path) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (!std::filesystem::exists(path)) return out;
+  lcm::LogFile log(path, "r");
+  if (!log.good()) return out;
+  while (const lcm::LogEvent* ev = log.readNextEvent())
+    out.emplace_back(ev->channel, std::string(static_cast<const char*>(ev->data), ev->datalen));
+  return out;
+}
+
+// The commands of a log, first copy per tick.
+std::map<int64_t, lagrange::control_command_t> commands(const std::string& path) {
+  std::map<int64_t, lagrange::control_command_t> out;
+  for (const auto& [channel, data] : events(path)) {
+    lagrange::control_command_t m;
+    if (channel == "CONTROL_COMMAND" && m.decode(data.data(), 0, static_cast<int>(data.size())) > 0)
+      out.emplace(m.header.tick, m);
+  }
+  return out;
+}
+
+bool heardStatusFrom(const std::string& path, const std::string& process) {
+  for (const auto& [channel, data] : events(path)) {
+    lagrange::status_t m;
+    if (channel == "STATUS" && m.decode(data.data(), 0, static_cast<int>(data.size())) > 0 &&
+        m.process == process)
+      return true;
+  }
+  return false;
+}
+
+class LogplayerIntoLiveController : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LogplayerIntoLiveController, AnswersWithTheRecordedCommands) {
+  const std::string golden = kGolden + GetParam() + ".lcm";
+  const std::string dir = freshDir("logplayer");
+  std::filesystem::create_directories(dir);
+  const std::string url = freshUrl();
+
+  // The controller's config: the scenario the log carries.
+  const auto recorded = events(golden);
+  ASSERT_FALSE(recorded.empty());
+  ASSERT_EQ(recorded.front().first, "SCENARIO");
+  const std::string config = dir + "/scenario.yaml";
+  std::ofstream(config) << recorded.front().second;
+
+  const std::string answers = dir + "/answers.lcm";
+  Child logger({"lcm-logger", "--lcm-url=" + url, "-c", "CONTROL_COMMAND|STATUS", "-f", "--flush-interval=20",
+                answers},
+               dir + "/lcm-logger.out");
+  Child controller({kBin + "/lagrange-controller", "--config", config, "--lcm-url", url},
+                   dir + "/controller.log");
+  // Play only once the controller listens: its STATUS "ready" reached the logger.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!heardStatusFrom(answers, "controller") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(heardStatusFrom(answers, "controller")) << "the controller did not report on " << url;
+
+  // Its inputs, and STATUS (the plant's "finished" ends the controller).
+  const RunResult play =
+      shell("lcm-logplayer --lcm-url='" + url +
+            "' -e '^(PLANT_POSITION|PLANT_MOTOR|ACTUATOR_STATE|STATUS)$' " + quote(golden));
+  EXPECT_EQ(play.exit_code, 0) << play.output;
+  EXPECT_EQ(controller.wait(20), 0) << "the controller did not finish after the plant's final STATUS";
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  logger.signal(SIGINT);
+  EXPECT_EQ(logger.wait(10), 0);
+
+  const auto expected = commands(golden);
+  const auto live = commands(answers);
+  ASSERT_EQ(expected.size(), 1001u);
+  EXPECT_EQ(live.size(), expected.size()) << "commands answered by the live controller";
+  long long identical = 0;
+  for (const auto& [tick, want] : expected) {
+    const auto it = live.find(tick);
+    if (it == live.end()) continue;
+    const auto& got = it->second;
+    const bool same = got.u == want.u && got.q_error == want.q_error && got.theta == want.theta &&
+                      got.filter_state == want.filter_state && got.xi_error == want.xi_error &&
+                      got.input_actuator_tick == want.input_actuator_tick;
+    EXPECT_TRUE(same) << "tick " << tick << ": the live command differs from the recorded one";
+    identical += same;
+    if (!same) break;
+  }
+  EXPECT_EQ(identical, 1001);
+}
+
+INSTANTIATE_TEST_SUITE_P(GoldenLogs, LogplayerIntoLiveController,
+                         ::testing::Values("rigid_2dof_lockstep", "chain_m2_lockstep"));
+
+// A stock lcm-logger, started before the run on the run's LCM URL, records a
+// log that lagrange replay and lagrange report accept: the logger publishes
+// the scenario on SCENARIO.
+TEST(StockLogger, ItsRecordingOfARunReplaysAndReports) {
+  const std::string dir = freshDir("stock-logger");
+  std::filesystem::create_directories(dir);
+  const std::string url = freshUrl();
+  const std::string log = dir + "/stock.lcm";
+  Child logger({"lcm-logger", "--lcm-url=" + url, "-f", "--flush-interval=20", log}, dir + "/lcm-logger.out");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!std::filesystem::exists(log) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const RunResult run = runScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/chain_m1.yaml", dir + "/run",
+                                    "-q --set duration=1 --no-netns --lcm-url '" + url + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  logger.signal(SIGINT);
+  EXPECT_EQ(logger.wait(10), 0);
+
+  for (const std::string component : {"controller", "actuator", "plant"}) {
+    const RunResult r = lagrange("replay " + quote(log) + " --component " + component);
+    EXPECT_EQ(r.exit_code, 0) << component << ": " << r.output;
+    EXPECT_NE(r.output.find("reproduced all 1001 recorded outputs"), std::string::npos) << r.output;
+  }
+  const RunResult report = lagrange("report " + quote(log) + " -o " + quote(dir + "/report"));
+  EXPECT_EQ(report.exit_code, 0) << report.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/report/tracking_error.png")) << report.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/report/CONTROL_COMMAND.csv")) << report.output;
+}
+
+}  // namespace
+}  // namespace lagrange::testing

@@ -1,0 +1,50 @@
+#pragma once
+/// @file
+/// Reading an LCM log event by event through lcm::LogFile, noticing what it
+/// does not say: bytes it skipped (a corrupt stretch, the reader resyncs on
+/// the next event marker) and bytes at the end it could not read (a log cut
+/// short, e.g. a run killed while writing). Replay and report both read
+/// logs through this, so both name what was read and what was not.
+
+#include <functional>
+#include <lcm/lcm-cpp.hpp>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace lagrange::tools {
+
+/// A file that is not an LCM log at all, or cannot be opened.
+class LogError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What a pass over a log read.
+struct LogScan {
+  long long events = 0;                       ///< events read whole
+  long long skipped_bytes = 0;                ///< corrupt bytes between events, jumped over
+  long long unreadable_tail_bytes = 0;        ///< bytes after the last whole event
+  std::map<std::string, long long> channels;  ///< events per channel
+
+  /// Warnings for a person, empty when the log was read whole.
+  std::vector<std::string> problems() const;
+  /// "N events on CH1, CH2, ..." (at most a few channel names).
+  std::string describe() const;
+};
+
+/// Calls on_event for every event of the log at `path`, in file order.
+/// @throws LogError if the file cannot be opened or holds no event in a nonzero length.
+LogScan readLog(const std::string& path, const std::function<void(const lcm::LogEvent&)>& on_event);
+
+/// Decodes an event as Msg; false (never a throw) if it is not one whole Msg.
+template <class Msg>
+bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
+  try {
+    return m.decode(ev.data, 0, static_cast<int>(ev.datalen)) == static_cast<int>(ev.datalen);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace lagrange::tools

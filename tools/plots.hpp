@@ -1,0 +1,53 @@
+#pragma once
+/// @file
+/// `lagrange report`, its pictures: PNG plots of a run drawn by gnuplot from
+/// the CSV files of csv_export.hpp. gnuplot (Debian's gnuplot-nox, cairo
+/// PNG terminal) rather than matplotlib: one small C program with no Python
+/// stack, it reads the CSV files as they are, and the generated script
+/// (plots.gp, kept next to the PNGs) is a readable starting point for a
+/// user's own figures.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lagrange::tools {
+
+/// gnuplot missing or failing; the CSV files are written regardless.
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What the plots need to know about the run.
+struct PlotSpec {
+  std::string dir;         ///< holds CHANNEL.csv; the PNGs and plots.gp go here
+  std::string title;       ///< names the scenario, e.g. "rigid_2dof (lockstep, theorem1)"
+  int dof = 0;             ///< joints
+  int chain_order = 0;     ///< actuator integrators m (stage plots when > 0)
+  bool flexible = false;   ///< motor positions plotted against the links'
+  double tolerance = 0.0;  ///< metrics.tolerance [rad], drawn on the error plot (0: none)
+};
+
+/// What the CSV files in `dir` say about the run, for a log without a scenario.
+PlotSpec specFromCsv(const std::string& dir, const std::string& title);
+
+/// The gnuplot script for `spec` (only plots whose CSV files exist), and the PNG names it writes.
+struct PlotScript {
+  std::string text;                   ///< the whole script (plots.gp)
+  std::vector<std::string> pngs;      ///< file names, one per picture
+  std::vector<std::string> sections;  ///< a self-contained script per picture
+};
+PlotScript plotScript(const PlotSpec& spec);
+
+struct Plots {
+  std::vector<std::string> written;  ///< PNG paths
+  std::vector<std::string> failed;   ///< PNG names gnuplot could not draw (its messages in `log`)
+  std::string log;                   ///< DIR/gnuplot.log
+};
+
+/// Writes DIR/plots.gp and runs gnuplot once per picture.
+/// @throws PlotError when gnuplot is not installed or plots.gp cannot be written.
+Plots drawPlots(const PlotSpec& spec);
+
+}  // namespace lagrange::tools

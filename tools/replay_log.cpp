@@ -1,0 +1,129 @@
+#include "tools/replay_log.hpp"
+
+#include <cstdio>
+#include <set>
+
+#include "tools/log_reader.hpp"
+#include "transport/channels.hpp"
+
+namespace lagrange::tools::replay_log {
+
+namespace {
+
+// Keeps the first copy of each tick (lockstep re-sends are identical).
+struct FirstCopies {
+  std::set<int64_t> commands, states, truths;
+};
+
+// false if the event is on a channel of this project but does not decode.
+bool record(const lcm::LogEvent& ev, Recorded& r, FirstCopies& seen) {
+  const std::string& ch = ev.channel;
+  if (ch == transport::kScenario) {
+    if (!r.scenario) r.scenario = std::string(static_cast<const char*>(ev.data), ev.datalen);
+  } else if (ch == transport::kPlantPosition) {
+    lagrange::plant_position_t m;
+    if (!decodeEvent(ev, m)) return false;
+    r.positions.emplace(m.header.tick, m);
+  } else if (ch == transport::kPlantTruth) {
+    lagrange::plant_truth_t m;
+    if (!decodeEvent(ev, m)) return false;
+    if (seen.truths.insert(m.header.tick).second) r.truths.push_back(m);
+  } else if (ch == transport::kActuatorState) {
+    lagrange::actuator_state_t m;
+    if (!decodeEvent(ev, m)) return false;
+    if (seen.states.insert(m.header.tick).second) {
+      r.actuator.emplace(m.header.tick, m);
+      r.states.push_back(m);
+    }
+  } else if (ch == transport::kPlantMotor) {
+    lagrange::plant_motor_t m;
+    if (!decodeEvent(ev, m)) return false;
+    r.motor.emplace(m.header.tick, m);
+  } else if (ch == transport::kControlCommand) {
+    lagrange::control_command_t m;
+    if (!decodeEvent(ev, m)) return false;
+    if (seen.commands.insert(m.input_position_tick).second) {
+      r.commands.push_back(m);
+      r.commands_by_tick.emplace(m.header.tick, m);
+    }
+  }
+  return true;
+}
+
+std::string show(double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+size_t outputCount(const Recorded& r, const std::string& outputs) {
+  if (outputs == transport::kActuatorState) return r.states.size();
+  if (outputs == transport::kPlantTruth) return r.truths.size();
+  return r.commands.size();
+}
+
+}  // namespace
+
+Opened openLog(const std::string& log_path, const std::vector<std::string>& overrides,
+               const std::string& outputs) {
+  Opened o;
+  Recorded& rec = o.rec;
+  FirstCopies seen;
+  long long undecodable = 0;
+  LogScan scan;
+  try {
+    scan = readLog(log_path, [&](const lcm::LogEvent& ev) { undecodable += record(ev, rec, seen) ? 0 : 1; });
+  } catch (const LogError& e) {
+    throw ReplayError(e.what());
+  }
+  ReplayResult& result = o.result;
+  result.events = rec.events = scan.events;
+  rec.undecodable = undecodable;
+  result.warnings = scan.problems();
+  if (undecodable > 0)
+    result.warnings.push_back(std::to_string(undecodable) +
+                              " events on this project's channels could not be decoded as its messages "
+                              "(another version's types?) and were skipped");
+  std::string also;  // what else is wrong with the log, for an error message
+  for (const auto& w : result.warnings) also += "; " + w;
+  if (!rec.scenario)
+    throw ReplayError(log_path + ": no SCENARIO channel among its " + scan.describe() +
+                      "; expected a log of a lagrange run (lagrange run writes the scenario first; a stock "
+                      "lcm-logger must be started before the scenario to record it)" +
+                      also);
+  try {
+    o.scenario = config::parseScenario(*rec.scenario, log_path + ":SCENARIO", overrides);
+  } catch (const config::ConfigError& e) {
+    throw ReplayError(std::string("the log's SCENARIO is not a valid scenario: ") + e.what());
+  }
+  if (outputCount(rec, outputs) == 0)
+    throw ReplayError(log_path + ": no " + outputs + " among its " + scan.describe() +
+                      ": nothing to compare");
+  return o;
+}
+
+std::string compare(const std::string& field, const std::vector<double>& recorded,
+                    const Eigen::VectorXd& replayed) {
+  if (static_cast<Eigen::Index>(recorded.size()) != replayed.size())
+    return field + ": recorded " + std::to_string(recorded.size()) + " values, replayed " +
+           std::to_string(replayed.size());
+  for (size_t i = 0; i < recorded.size(); ++i) {
+    const std::string d =
+        compare(field + "[" + std::to_string(i) + "]", recorded[i], replayed(static_cast<Eigen::Index>(i)));
+    if (!d.empty()) return d;
+  }
+  return "";
+}
+
+std::string compare(const std::string& field, double recorded, double replayed) {
+  if (recorded == replayed) return "";
+  return field + ": recorded " + show(recorded) + ", replayed " + show(replayed);
+}
+
+std::string at(int64_t tick, double t) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "tick %lld (t = %.6f s): ", static_cast<long long>(tick), t);
+  return buf;
+}
+
+}  // namespace lagrange::tools::replay_log

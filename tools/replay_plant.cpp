@@ -1,0 +1,112 @@
+/// @file
+/// `lagrange replay --component plant` (tools/replay.hpp).
+
+#include <stdexcept>
+
+#include "plant/scenario_plant.hpp"
+#include "tools/replay.hpp"
+#include "tools/replay_log.hpp"
+#include "transport/builders.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+
+using namespace replay_log;
+
+// The torque profile the plant applied over the period ending at `truth`,
+// as the sample itself says it was chosen; `tau` holds the previous period's.
+std::string chooseTorque(const Recorded& rec, const lagrange::plant_truth_t& truth, Eigen::MatrixXd& tau) {
+  switch (truth.torque_source) {
+    case lagrange::plant_truth_t::TORQUE_COMMANDED: {
+      const auto& state = input(rec.actuator, truth.input_actuator_tick, transport::kActuatorState,
+                                transport::kPlantTruth, truth.header.tick);
+      const Eigen::MatrixXd profile = transport::toEigen(state.tau_applied);
+      if (profile.rows() != tau.rows() || profile.cols() != tau.cols())
+        return "PLANT_TRUTH: the torque of ACTUATOR_STATE tick " + std::to_string(truth.input_actuator_tick) +
+               " is " + std::to_string(profile.rows()) + " x " + std::to_string(profile.cols()) +
+               ", the scenario's " + std::to_string(tau.rows()) + " x " + std::to_string(tau.cols());
+      tau = profile;
+      return "";
+    }
+    case lagrange::plant_truth_t::TORQUE_HELD:
+      tau.rowwise() = Eigen::RowVectorXd(tau.row(tau.rows() - 1));
+      return "";
+    case lagrange::plant_truth_t::TORQUE_ZERO:
+      tau.setZero();
+      return "";
+    default:
+      return "PLANT_TRUTH.torque_source: recorded " + std::to_string(truth.torque_source) +
+             ", expected 0 (commanded), 1 (held) or 2 (zero)";
+  }
+}
+
+// First difference between what the plant recorded at a tick and the replayed sample.
+std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& truth,
+                            const transport::PlantSample& replayed, const plant::PlantState& state) {
+  const lagrange::plant_truth_t& r = replayed.truth;
+  std::string d = compare("PLANT_TRUTH.sim_time", truth.header.sim_time, r.header.sim_time);
+  if (d.empty()) d = compare("PLANT_TRUTH.q", truth.q, transport::toEigen(r.q));
+  if (d.empty()) d = compare("PLANT_TRUTH.qdot", truth.qdot, transport::toEigen(r.qdot));
+  if (d.empty()) d = compare("PLANT_TRUTH.tau_applied", truth.tau_applied, transport::toEigen(r.tau_applied));
+  if (d.empty()) d = compare("PLANT_TRUTH.kinetic_energy", truth.kinetic_energy, r.kinetic_energy);
+  if (d.empty()) d = compare("PLANT_TRUTH.potential_energy", truth.potential_energy, r.potential_energy);
+  if (d.empty()) d = compare("PLANT_TRUTH.total_energy", truth.total_energy, r.total_energy);
+  const int64_t k = truth.header.tick;
+  if (const auto it = rec.positions.find(k); d.empty() && it != rec.positions.end())
+    d = compare("PLANT_POSITION.q", it->second.q, state.q);
+  if (const auto it = rec.motor.find(k); d.empty() && it != rec.motor.end()) {
+    d = compare("PLANT_MOTOR.q", it->second.q, state.motor_q);
+    if (d.empty() && it->second.num_rates > 0)
+      d = compare("PLANT_MOTOR.qdot", it->second.qdot, state.motor_qdot);
+  }
+  return d;
+}
+
+}  // namespace
+
+ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides) {
+  const Opened o = openLog(log_path, overrides, transport::kPlantTruth);
+  const Recorded& rec = o.rec;
+  const config::Scenario& s = o.scenario;
+  ReplayResult result = o.result;
+  plant::PlantSim sim = plant::plantFor(s);
+  Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());
+  int64_t expected_tick = 0;
+  for (const auto& truth : rec.truths) {
+    const int64_t k = truth.header.tick;
+    if (k != expected_tick)
+      throw ReplayError("the log lacks PLANT_TRUTH tick " + std::to_string(expected_tick) + " (the next is " +
+                        std::to_string(k) + "); the plant's samples before it were replayed");
+    ++expected_tick;
+    std::string d;
+    if (k > 0) {
+      d = chooseTorque(rec, truth, tau);
+      if (d.empty()) {
+        try {
+          sim.stepProfile(tau, s.substepsPerTick());
+        } catch (const std::exception& e) {
+          d = std::string("PLANT_TRUTH: the replayed plant could not step: ") + e.what();
+        }
+      }
+    }
+    if (d.empty()) {
+      const plant::PlantState st = sim.state();
+      const plant::PlantEnergy e = sim.energy();
+      const auto replayed = transport::plantSample(k, static_cast<double>(k) * s.tickPeriod(), st.q, st.qdot,
+                                                   tau.row(0).transpose(), e.kinetic, e.potential,
+                                                   {truth.input_actuator_tick, truth.torque_source});
+      d = firstDifference(rec, truth, replayed, st);
+    }
+    ++result.commands;
+    if (!d.empty()) {
+      result.divergence = at(k, truth.header.sim_time) + d;
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace lagrange::tools
