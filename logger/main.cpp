@@ -22,6 +22,7 @@
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
+#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/process.hpp"
@@ -51,9 +52,8 @@ int DoMain(int argc, char** argv) {
         const auto wall_start = Clock::now();
         const std::string log_path = (std::filesystem::path(out_dir) / "run.lcm").string();
         logger::EventLog log(log_path);
-        const std::string scenario_text = config::toYaml(s);
-        log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
-                  transport::nowUtime());
+        const lagrange::scenario_t scenario = transport::scenarioMessage(s);
+        log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
 
         const controller::GainReport gains = controller::checkGains(s);
         logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance,
@@ -133,7 +133,7 @@ int DoMain(int argc, char** argv) {
           node.handle(20);
           const auto now = Clock::now();
           if (now >= next_scenario) {
-            node.publishBytes(transport::kScenario, scenario_text);
+            node.publish(transport::kScenario, scenario);
             next_scenario = now + std::chrono::seconds(1);
           }
           if (now >= next_flush) {

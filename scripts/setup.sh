@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java gnuplot-nox
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless
   iproute2 util-linux

@@ -148,8 +148,7 @@ CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
   std::map<std::string, std::ofstream> files;
   std::map<std::string, std::set<int64_t>> seen;
   result.scan = readLog(log_path, [&](const lcm::LogEvent& ev) {
-    if (ev.channel == transport::kScenario && !result.scenario)
-      result.scenario = std::string(static_cast<const char*>(ev.data), ev.datalen);
+    if (ev.channel == transport::kScenario && !result.scenario) result.scenario = scenarioYaml(ev);
     Row row;
     int64_t tick = 0;
     if (!rowOf(ev, row, tick) || !seen[ev.channel].insert(tick).second) return;

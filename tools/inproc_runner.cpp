@@ -25,9 +25,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   const auto wall_start = std::chrono::steady_clock::now();
   const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
   logger::EventLog log(log_path);
-  const std::string scenario_text = config::toYaml(s);
-  log.write(transport::kScenario, scenario_text.data(), static_cast<int>(scenario_text.size()),
-            transport::nowUtime());
+  log.writeMessage(transport::kScenario, transport::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
   controller::ScenarioController ctl(s);

@@ -60,6 +60,10 @@ int replay(const std::string& log_path, const std::string& component,
     std::cout << "lagrange replay: " << component << " reproduced all " << r.commands
               << " recorded outputs bit for bit (" << r.events << " events read)\n";
     return 0;
+  } catch (const tools::ReplayError& e) {
+    for (const auto& w : e.warnings()) std::cerr << "lagrange replay: warning: " << w << "\n";
+    std::cerr << "lagrange replay: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "lagrange replay: " << e.what() << "\n";
     return 2;

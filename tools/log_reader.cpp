@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "lagrange/scenario_t.hpp"
+
 namespace lagrange::tools {
 
 namespace {
@@ -52,6 +54,12 @@ std::string LogScan::describe() const {
     out += (shown > 1 ? ", " : "") + channel;
   }
   return out;
+}
+
+std::optional<std::string> scenarioYaml(const lcm::LogEvent& ev) {
+  lagrange::scenario_t m;
+  if (!decodeEvent(ev, m)) return std::nullopt;
+  return m.yaml;
 }
 
 LogScan readLog(const std::string& path, const std::function<void(const lcm::LogEvent&)>& on_event) {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -46,5 +47,8 @@ bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
     return false;
   }
 }
+
+/// The scenario YAML of a SCENARIO event (scenario_t), or nothing if it is not one.
+std::optional<std::string> scenarioYaml(const lcm::LogEvent& ev);
 
 }  // namespace lagrange::tools

@@ -41,78 +41,81 @@ std::string firstDifference(const lagrange::control_command_t& rec, const contro
 }  // namespace
 
 ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides) {
-  const Opened o = openLog(log_path, overrides, transport::kControlCommand);
-  const Recorded& rec = o.rec;
-  const config::Scenario& s = o.scenario;
-  ReplayResult result = o.result;
-  controller::ScenarioController ctl(s);
-  for (const auto& cmd : rec.commands) {
-    const int64_t k = cmd.input_position_tick;
-    const auto& position = input(rec.positions, k, transport::kPlantPosition, transport::kControlCommand, k);
-    const Eigen::VectorXd q = transport::toEigen(position.q);
-    controller::Theorem1Output out;
-    if (ctl.flexible()) {
-      Eigen::VectorXd q2 = s.initial_state.motor_q;
-      std::optional<Eigen::VectorXd> q2dot;
-      if (s.flexible->rate_sensor) q2dot = s.initial_state.motor_qdot;
-      if (cmd.input_motor_tick >= 0) {
-        const auto& motor =
-            input(rec.motor, cmd.input_motor_tick, transport::kPlantMotor, transport::kControlCommand, k);
-        q2 = transport::toEigen(motor.q);
-        q2dot = transport::motorRates(motor);
-      }
-      out = ctl.stepFlexible(position.header.sim_time, q, q2, q2dot);
-    } else {
-      Eigen::MatrixXd xi = s.actuator.initial_state;
-      if (ctl.order() > 0 && cmd.input_actuator_tick >= 0)
-        xi = transport::toEigen(input(rec.actuator, cmd.input_actuator_tick, transport::kActuatorState,
-                                      transport::kControlCommand, k)
-                                    .xi);
-      out = ctl.step(position.header.sim_time, q, xi);
-    }
-    ++result.commands;
-    const std::string d = firstDifference(cmd, out);
-    if (!d.empty()) {
-      result.divergence = at(k, position.header.sim_time) + transport::kControlCommand + "." + d;
-      break;
-    }
-  }
-  return result;
+  return replayWith(
+      log_path, overrides, transport::kControlCommand, [&](const Opened& o, ReplayResult& result) {
+        const Recorded& rec = o.rec;
+        const config::Scenario& s = o.scenario;
+        controller::ScenarioController ctl(s);
+        for (const auto& cmd : rec.commands) {
+          const int64_t k = cmd.input_position_tick;
+          const auto& position =
+              input(rec.positions, k, transport::kPlantPosition, transport::kControlCommand, k);
+          const Eigen::VectorXd q = transport::toEigen(position.q);
+          controller::Theorem1Output out;
+          if (ctl.flexible()) {
+            Eigen::VectorXd q2 = s.initial_state.motor_q;
+            std::optional<Eigen::VectorXd> q2dot;
+            if (s.flexible->rate_sensor) q2dot = s.initial_state.motor_qdot;
+            if (cmd.input_motor_tick >= 0) {
+              const auto& motor = input(rec.motor, cmd.input_motor_tick, transport::kPlantMotor,
+                                        transport::kControlCommand, k);
+              q2 = transport::toEigen(motor.q);
+              q2dot = transport::motorRates(motor);
+            }
+            out = ctl.stepFlexible(position.header.sim_time, q, q2, q2dot);
+          } else {
+            Eigen::MatrixXd xi = s.actuator.initial_state;
+            if (ctl.order() > 0 && cmd.input_actuator_tick >= 0)
+              xi = transport::toEigen(input(rec.actuator, cmd.input_actuator_tick, transport::kActuatorState,
+                                            transport::kControlCommand, k)
+                                          .xi);
+            out = ctl.step(position.header.sim_time, q, xi);
+          }
+          ++result.commands;
+          const std::string d = firstDifference(cmd, out);
+          if (!d.empty()) {
+            result.divergence = at(k, position.header.sim_time) + transport::kControlCommand + "." + d;
+            break;
+          }
+        }
+      });
 }
 
 ReplayResult replayActuator(const std::string& log_path, const std::vector<std::string>& overrides) {
-  const Opened o = openLog(log_path, overrides, transport::kActuatorState);
-  const Recorded& rec = o.rec;
-  const config::Scenario& s = o.scenario;
-  ReplayResult result = o.result;
-  actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
-  for (const auto& state : rec.states) {
-    const int64_t k = state.input_command_tick;
-    const auto& cmd = input(rec.commands_by_tick, k, transport::kControlCommand, transport::kActuatorState,
-                            state.header.tick);
-    const actuator::ActuatorOutput out =
-        act.step(transport::toEigen(cmd.u), s.tickPeriod(), s.torqueStepsPerTick());
-    ++result.commands;
-    std::string d = compare("u_commanded", state.u_commanded, transport::toEigen(cmd.u));
-    if (d.empty() && static_cast<Eigen::Index>(state.tau_applied.size()) != out.tau.rows())
-      d = "tau_applied: recorded " + std::to_string(state.tau_applied.size()) + " steps, replayed " +
-          std::to_string(out.tau.rows());
-    for (size_t i = 0; d.empty() && i < state.tau_applied.size(); ++i)
-      d = compare("tau_applied[" + std::to_string(i) + "]", state.tau_applied[i],
-                  out.tau.row(static_cast<Eigen::Index>(i)).transpose());
-    for (size_t i = 0; d.empty() && i < state.xi.size(); ++i)
-      d = compare("xi[" + std::to_string(i) + "]", state.xi[i],
-                  act.state().row(static_cast<Eigen::Index>(i)).transpose());
-    for (size_t j = 0; d.empty() && j < state.saturated.size(); ++j)
-      if (state.saturated[j] != static_cast<int8_t>(out.saturated(static_cast<Eigen::Index>(j))))
-        d = "saturated[" + std::to_string(j) + "]: recorded " + std::to_string(state.saturated[j]) +
-            ", replayed " + std::to_string(out.saturated(static_cast<Eigen::Index>(j)));
-    if (!d.empty()) {
-      result.divergence = at(state.header.tick, state.header.sim_time) + transport::kActuatorState + "." + d;
-      break;
-    }
-  }
-  return result;
+  return replayWith(
+      log_path, overrides, transport::kActuatorState, [&](const Opened& o, ReplayResult& result) {
+        const Recorded& rec = o.rec;
+        const config::Scenario& s = o.scenario;
+        actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
+                                      s.actuator.initial_state);
+        for (const auto& state : rec.states) {
+          const int64_t k = state.input_command_tick;
+          const auto& cmd = input(rec.commands_by_tick, k, transport::kControlCommand,
+                                  transport::kActuatorState, state.header.tick);
+          const actuator::ActuatorOutput out =
+              act.step(transport::toEigen(cmd.u), s.tickPeriod(), s.torqueStepsPerTick());
+          ++result.commands;
+          std::string d = compare("u_commanded", state.u_commanded, transport::toEigen(cmd.u));
+          if (d.empty() && static_cast<Eigen::Index>(state.tau_applied.size()) != out.tau.rows())
+            d = "tau_applied: recorded " + std::to_string(state.tau_applied.size()) + " steps, replayed " +
+                std::to_string(out.tau.rows());
+          for (size_t i = 0; d.empty() && i < state.tau_applied.size(); ++i)
+            d = compare("tau_applied[" + std::to_string(i) + "]", state.tau_applied[i],
+                        out.tau.row(static_cast<Eigen::Index>(i)).transpose());
+          for (size_t i = 0; d.empty() && i < state.xi.size(); ++i)
+            d = compare("xi[" + std::to_string(i) + "]", state.xi[i],
+                        act.state().row(static_cast<Eigen::Index>(i)).transpose());
+          for (size_t j = 0; d.empty() && j < state.saturated.size(); ++j)
+            if (state.saturated[j] != static_cast<int8_t>(out.saturated(static_cast<Eigen::Index>(j))))
+              d = "saturated[" + std::to_string(j) + "]: recorded " + std::to_string(state.saturated[j]) +
+                  ", replayed " + std::to_string(out.saturated(static_cast<Eigen::Index>(j)));
+          if (!d.empty()) {
+            result.divergence =
+                at(state.header.tick, state.header.sim_time) + transport::kActuatorState + "." + d;
+            break;
+          }
+        }
+      });
 }
 
 }  // namespace lagrange::tools

@@ -21,7 +21,13 @@ namespace lagrange::tools {
 /// command names is missing. The message says what was still read.
 class ReplayError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit ReplayError(const std::string& what, std::vector<std::string> warnings = {})
+      : std::runtime_error(what), warnings_(std::move(warnings)) {}
+  /// What else was wrong with the log (corrupt or missing bytes), found before this error.
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+ private:
+  std::vector<std::string> warnings_;
 };
 
 struct ReplayResult {

@@ -19,7 +19,9 @@ struct FirstCopies {
 bool record(const lcm::LogEvent& ev, Recorded& r, FirstCopies& seen) {
   const std::string& ch = ev.channel;
   if (ch == transport::kScenario) {
-    if (!r.scenario) r.scenario = std::string(static_cast<const char*>(ev.data), ev.datalen);
+    if (r.scenario) return true;
+    r.scenario = scenarioYaml(ev);
+    return r.scenario.has_value();
   } else if (ch == transport::kPlantPosition) {
     lagrange::plant_position_t m;
     if (!decodeEvent(ev, m)) return false;

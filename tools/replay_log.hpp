@@ -48,6 +48,21 @@ struct Opened {
 Opened openLog(const std::string& log_path, const std::vector<std::string>& overrides,
                const std::string& outputs);
 
+/// Opens the log and runs `body(opened, result)`; a ReplayError thrown by
+/// the body (an input the log lacks) carries the log's warnings with it.
+template <class Body>
+ReplayResult replayWith(const std::string& log_path, const std::vector<std::string>& overrides,
+                        const std::string& outputs, Body body) {
+  const Opened o = openLog(log_path, overrides, outputs);
+  ReplayResult result = o.result;
+  try {
+    body(o, result);
+  } catch (const ReplayError& e) {
+    throw ReplayError(e.what(), result.warnings);
+  }
+  return result;
+}
+
 /// "" when equal bit for bit, else "FIELD[i]: recorded X, replayed Y".
 std::string compare(const std::string& field, const std::vector<double>& recorded,
                     const Eigen::VectorXd& replayed);

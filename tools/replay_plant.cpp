@@ -68,45 +68,45 @@ std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& 
 }  // namespace
 
 ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides) {
-  const Opened o = openLog(log_path, overrides, transport::kPlantTruth);
-  const Recorded& rec = o.rec;
-  const config::Scenario& s = o.scenario;
-  ReplayResult result = o.result;
-  plant::PlantSim sim = plant::plantFor(s);
-  Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());
-  int64_t expected_tick = 0;
-  for (const auto& truth : rec.truths) {
-    const int64_t k = truth.header.tick;
-    if (k != expected_tick)
-      throw ReplayError("the log lacks PLANT_TRUTH tick " + std::to_string(expected_tick) + " (the next is " +
-                        std::to_string(k) + "); the plant's samples before it were replayed");
-    ++expected_tick;
-    std::string d;
-    if (k > 0) {
-      d = chooseTorque(rec, truth, tau);
-      if (d.empty()) {
-        try {
-          sim.stepProfile(tau, s.substepsPerTick());
-        } catch (const std::exception& e) {
-          d = std::string("PLANT_TRUTH: the replayed plant could not step: ") + e.what();
+  return replayWith(log_path, overrides, transport::kPlantTruth, [&](const Opened& o, ReplayResult& result) {
+    const Recorded& rec = o.rec;
+    const config::Scenario& s = o.scenario;
+    plant::PlantSim sim = plant::plantFor(s);
+    Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());
+    int64_t expected_tick = 0;
+    for (const auto& truth : rec.truths) {
+      const int64_t k = truth.header.tick;
+      if (k != expected_tick)
+        throw ReplayError("the log lacks PLANT_TRUTH tick " + std::to_string(expected_tick) +
+                          " (the next is " + std::to_string(k) +
+                          "); the plant's samples before it were replayed");
+      ++expected_tick;
+      std::string d;
+      if (k > 0) {
+        d = chooseTorque(rec, truth, tau);
+        if (d.empty()) {
+          try {
+            sim.stepProfile(tau, s.substepsPerTick());
+          } catch (const std::exception& e) {
+            d = std::string("PLANT_TRUTH: the replayed plant could not step: ") + e.what();
+          }
         }
       }
+      if (d.empty()) {
+        const plant::PlantState st = sim.state();
+        const plant::PlantEnergy e = sim.energy();
+        const auto replayed = transport::plantSample(k, static_cast<double>(k) * s.tickPeriod(), st.q,
+                                                     st.qdot, tau.row(0).transpose(), e.kinetic, e.potential,
+                                                     {truth.input_actuator_tick, truth.torque_source});
+        d = firstDifference(rec, truth, replayed, st);
+      }
+      ++result.commands;
+      if (!d.empty()) {
+        result.divergence = at(k, truth.header.sim_time) + d;
+        break;
+      }
     }
-    if (d.empty()) {
-      const plant::PlantState st = sim.state();
-      const plant::PlantEnergy e = sim.energy();
-      const auto replayed = transport::plantSample(k, static_cast<double>(k) * s.tickPeriod(), st.q, st.qdot,
-                                                   tau.row(0).transpose(), e.kinetic, e.potential,
-                                                   {truth.input_actuator_tick, truth.torque_source});
-      d = firstDifference(rec, truth, replayed, st);
-    }
-    ++result.commands;
-    if (!d.empty()) {
-      result.divergence = at(k, truth.header.sim_time) + d;
-      break;
-    }
-  }
-  return result;
+  });
 }
 
 }  // namespace lagrange::tools

@@ -4,6 +4,13 @@
 
 namespace lagrange::transport {
 
+lagrange::scenario_t scenarioMessage(const config::Scenario& s) {
+  lagrange::scenario_t m;
+  m.name = s.name;
+  m.yaml = config::toYaml(s);
+  return m;
+}
+
 PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                         const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy,
                         TorqueInput input) {

@@ -8,12 +8,14 @@
 #include <optional>
 
 #include "actuator/integrator_chain.hpp"
+#include "config/scenario.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
+#include "lagrange/scenario_t.hpp"
 
 namespace lagrange::transport {
 
@@ -22,6 +24,9 @@ struct PlantSample {
   lagrange::plant_position_t position;
   lagrange::plant_truth_t truth;
 };
+
+/// SCENARIO: the resolved scenario as YAML (config::toYaml).
+lagrange::scenario_t scenarioMessage(const config::Scenario& s);
 
 /// Which torque the plant applied over a period, and why (plant_truth_t).
 struct TorqueInput {

@@ -44,13 +44,6 @@ class LcmNode {
     counters_[channel].published++;
   }
 
-  /// Publishes bytes that are not an LCM type (the SCENARIO text).
-  void publishBytes(const std::string& channel, const std::string& bytes) {
-    if (lcm_.publish(channel, bytes.data(), static_cast<unsigned>(bytes.size())) != 0)
-      noteError(channel, "publish failed");
-    counters_[channel].published++;
-  }
-
   /// Every message on channels matching the regex, undecoded. The queue is
   /// deep (kQueueCapacity) so a slow handler does not silently drop messages.
   void subscribeRaw(const std::string& channel_regex,

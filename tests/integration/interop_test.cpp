@@ -12,6 +12,7 @@
 #include <random>
 
 #include "lagrange/control_command_t.hpp"
+#include "lagrange/scenario_t.hpp"
 #include "lagrange/status_t.hpp"
 #include "support/child.hpp"
 #include "support/launch.hpp"
@@ -71,7 +72,10 @@ TEST_P(LogplayerIntoLiveController, AnswersWithTheRecordedCommands) {
   ASSERT_FALSE(recorded.empty());
   ASSERT_EQ(recorded.front().first, "SCENARIO");
   const std::string config = dir + "/scenario.yaml";
-  std::ofstream(config) << recorded.front().second;
+  lagrange::scenario_t scenario;
+  const std::string& bytes = recorded.front().second;
+  ASSERT_GT(scenario.decode(bytes.data(), 0, static_cast<int>(bytes.size())), 0);
+  std::ofstream(config) << scenario.yaml;
 
   const std::string answers = dir + "/answers.lcm";
   Child logger({"lcm-logger", "--lcm-url=" + url, "-c", "CONTROL_COMMAND|STATUS", "-f", "--flush-interval=20",
