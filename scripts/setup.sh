@@ -5,10 +5,14 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java gnuplot-nox
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java
+  gnuplot-nox  # lagrange report's plots
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless
   iproute2 util-linux
+  # lagrange spy (lcm-spy's window) and its test: a virtual display, a
+  # screenshot, OCR of it
+  default-jre fonts-dejavu-core xvfb imagemagick tesseract-ocr tesseract-ocr-eng
 )
 
 missing=()

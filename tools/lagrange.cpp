@@ -14,6 +14,7 @@
 #include "tools/replay.hpp"
 #include "tools/report.hpp"
 #include "tools/run_command.hpp"
+#include "tools/spy.hpp"
 
 namespace lagrange {
 namespace {
@@ -161,6 +162,17 @@ int DoMain(int argc, char** argv) {
       "-o,--out", report_out,
       "Directory for the CSV files, plots and plots.gp (default: report/ next to the log)");
 
+  tools::SpyOptions spy;
+  CLI::App* spy_cmd = app.add_subcommand(
+      "spy",
+      "Start lcm-spy with this project's message types on a running scenario's LCM URL (joining its private "
+      "network namespace), so every channel is decoded; needs a display");
+  spy_cmd->add_option("run", spy.run_dir, "Output directory of a running `lagrange run` (it holds lcm.json)")
+      ->check(CLI::ExistingDirectory);
+  spy_cmd->add_option("--lcm-url", spy.lcm_url,
+                      "LCM URL to watch (default: the run's; without a run, LCM's default URL)");
+  spy_cmd->add_flag("--print-command", spy.print_only, "Print the java command line instead of running it");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -175,6 +187,7 @@ int DoMain(int argc, char** argv) {
   }
   if (*replay_cmd) return replay(replay_log, component, replay_overrides);
   if (*report_cmd) return report(report_target, report_out);
+  if (*spy_cmd) return tools::runSpy(spy);
   return checkGains(gains_config, gains_overrides, suggest);
 }
 

@@ -1,5 +1,8 @@
 #include "tools/netns.hpp"
 
+#include <fcntl.h>
+#include <sched.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,6 +56,44 @@ std::string reexecInPrivateNetns(const std::vector<std::string>& args) {
   argv.push_back(nullptr);
   execvp("unshare", argv.data());
   return "cannot run 'unshare' (util-linux): " + std::string(std::strerror(errno));
+}
+
+namespace {
+// The namespace file of `kind` of process `pid`, and whether it is the one this process is in.
+struct NamespaceFile {
+  std::string path;
+  bool same_as_ours;
+};
+NamespaceFile namespaceOf(long pid, const char* kind) {
+  const std::string path = "/proc/" + std::to_string(pid) + "/ns/" + kind;
+  struct stat theirs {
+  }, ours{};
+  if (stat(path.c_str(), &theirs) != 0)
+    throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+  const std::string own = std::string("/proc/self/ns/") + kind;
+  const bool same =
+      stat(own.c_str(), &ours) == 0 && ours.st_ino == theirs.st_ino && ours.st_dev == theirs.st_dev;
+  return {path, same};
+}
+
+void enter(const NamespaceFile& ns, int type) {
+  if (ns.same_as_ours) return;
+  const int fd = open(ns.path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("cannot open " + ns.path + ": " + std::strerror(errno));
+  const int rc = setns(fd, type);
+  const int err = errno;
+  close(fd);
+  if (rc != 0)
+    throw std::runtime_error("cannot enter " + ns.path + ": " + std::strerror(err) +
+                             (err == EPERM ? " (join a run started by the same user, or as root)" : ""));
+}
+}  // namespace
+
+void joinNetnsOf(long pid) {
+  const NamespaceFile net = namespaceOf(pid, "net");
+  if (net.same_as_ours) return;
+  enter(namespaceOf(pid, "user"), CLONE_NEWUSER);
+  enter(net, CLONE_NEWNET);
 }
 
 void configureLoopbackMulticast() {

@@ -17,6 +17,12 @@ bool insidePrivateNetns();
 /// Returns only on failure, with the reason.
 std::string reexecInPrivateNetns(const std::vector<std::string>& argv);
 
+/// Moves this (single-threaded) process into the network namespace of
+/// process `pid` -- through its user namespace first when it has its own
+/// (a run started without root). @throws std::runtime_error naming the step
+/// that failed and why.
+void joinNetnsOf(long pid);
+
 /// Brings up lo with multicast and routes 224.0.0.0/4 to it.
 /// @throws std::runtime_error naming the failed `ip` command.
 void configureLoopbackMulticast();

@@ -24,6 +24,7 @@
 #include "tools/netns.hpp"
 #include "tools/progress.hpp"
 #include "tools/report.hpp"
+#include "tools/spy.hpp"
 #include "tools/supervisor.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -182,6 +183,14 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
                        const std::string& resolved) {
   const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
+  // Where `lagrange spy OUT` finds this run: its URL and, in a private
+  // network namespace, a process (this one) to take the namespace from.
+  try {
+    writeEndpoint(out_dir, {url, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt});
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return 1;
+  }
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   std::signal(SIGPIPE, SIG_IGN);

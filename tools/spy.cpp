@@ -1,0 +1,106 @@
+#include "tools/spy.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "tools/netns.hpp"
+
+namespace lagrange::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kEndpointFile = "lcm.json";
+
+std::string requireFile(const fs::path& path, const std::string& what_provides_it) {
+  if (!fs::exists(path)) throw std::runtime_error(path.string() + " not found; " + what_provides_it);
+  return path.string();
+}
+
+bool processAlive(long pid) { return fs::exists("/proc/" + std::to_string(pid) + "/ns/net"); }
+}  // namespace
+
+void writeEndpoint(const std::string& out_dir, const RunEndpoint& endpoint) {
+  nlohmann::json j = {{"lcm_url", endpoint.lcm_url}, {"netns_pid", nullptr}};
+  if (endpoint.netns_pid) j["netns_pid"] = *endpoint.netns_pid;
+  std::ofstream out(fs::path(out_dir) / kEndpointFile);
+  out << j.dump(2) << "\n";
+  if (!out) throw std::runtime_error("cannot write " + out_dir + "/" + kEndpointFile);
+}
+
+RunEndpoint readEndpoint(const std::string& out_dir) {
+  const fs::path path = fs::path(out_dir) / kEndpointFile;
+  std::ifstream in(path);
+  if (!in)
+    throw std::runtime_error(
+        "no " + path.string() +
+        ": expected the output directory of a `lagrange run` over LCM (inproc runs have no "
+        "LCM traffic)");
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    RunEndpoint e;
+    e.lcm_url = j.at("lcm_url").get<std::string>();
+    if (!j.at("netns_pid").is_null()) e.netns_pid = j.at("netns_pid").get<long>();
+    return e;
+  } catch (const nlohmann::json::exception& ex) {
+    throw std::runtime_error(path.string() +
+                             " is not what lagrange run writes (lcm_url, netns_pid): " + ex.what());
+  }
+}
+
+std::vector<std::string> spyCommand(const std::string& lcm_url) {
+  const fs::path exe_dir = fs::read_symlink("/proc/self/exe").parent_path();
+  const std::string types = requireFile(exe_dir.parent_path() / "share/java/lagrange_lcmtypes.jar",
+                                        "build the project with Java (bash scripts/build.sh)");
+  const std::string lcm = requireFile("/usr/share/java/lcm.jar", "install Debian's liblcm-java");
+  const std::string chart = requireFile("/usr/share/java/jchart2d.jar", "install Debian's libjchart2d-java");
+  std::vector<std::string> cmd = {"java", "-Djava.net.preferIPv4Stack=true", "-Xmx256m",
+                                  "-cp",  lcm + ":" + chart + ":" + types,   "lcm.spy.Spy"};
+  if (!lcm_url.empty()) cmd.push_back("--lcm-url=" + lcm_url);
+  return cmd;
+}
+
+int runSpy(const SpyOptions& opt) {
+  try {
+    std::string url = opt.lcm_url;
+    if (!opt.run_dir.empty()) {
+      const RunEndpoint e = readEndpoint(opt.run_dir);
+      if (url.empty()) url = e.lcm_url;
+      if (e.netns_pid && !opt.print_only) {
+        if (!processAlive(*e.netns_pid))
+          throw std::runtime_error("the run in " + opt.run_dir + " has ended (its launcher, pid " +
+                                   std::to_string(*e.netns_pid) +
+                                   ", is gone); start lagrange spy while the run is going");
+        joinNetnsOf(*e.netns_pid);
+      }
+    }
+    const std::vector<std::string> cmd = spyCommand(url);
+    if (opt.print_only) {
+      for (const auto& c : cmd) std::cout << c << (&c == &cmd.back() ? "\n" : " ");
+      return 0;
+    }
+    if (std::getenv("DISPLAY") == nullptr)
+      throw std::runtime_error(
+          "lcm-spy opens a window and DISPLAY is not set (log in with ssh -X, or use a virtual "
+          "display: xvfb-run lagrange spy ...)");
+    std::vector<char*> argv;
+    for (const auto& c : cmd) argv.push_back(const_cast<char*>(c.c_str()));
+    argv.push_back(nullptr);
+    execvp("java", argv.data());
+    throw std::runtime_error(std::string("cannot run java: ") + std::strerror(errno) +
+                             " (install Debian's default-jre)");
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange spy: " << e.what() << "\n";
+    return 2;
+  }
+}
+
+}  // namespace lagrange::tools
