@@ -106,6 +106,13 @@ int DoMain(int argc, char** argv) {
                 plant_finished_at = Clock::now();
             });
 
+        // Best effort: a full pipe drops a line, never blocks the logger.
+        auto write_progress = [&] {
+          if (progress_fd < 0) return;
+          const std::string line =
+              std::to_string(metrics.lastTime()) + " " + std::to_string(metrics.lastError()) + "\n";
+          [[maybe_unused]] const ssize_t written = write(progress_fd, line.data(), line.size());
+        };
         auto report = [&](const char* state) {
           status.publish(state, metrics.lastTick(), metrics.lastTime(), metrics.lastError());
         };
@@ -142,12 +149,9 @@ int DoMain(int argc, char** argv) {
           }
           if (progress_due || now >= next_status) {
             report("running");
-            if (progress_fd >= 0 && now >= next_progress_line) {
+            if (now >= next_progress_line) {
               next_progress_line = now + std::chrono::milliseconds(100);
-              // Best effort: a full pipe drops a line, never blocks the logger.
-              const std::string line =
-                  std::to_string(metrics.lastTime()) + " " + std::to_string(metrics.lastError()) + "\n";
-              [[maybe_unused]] const ssize_t written = write(progress_fd, line.data(), line.size());
+              write_progress();
             }
             progress_due = false;
             next_status = now + std::chrono::milliseconds(100);
@@ -179,6 +183,7 @@ int DoMain(int argc, char** argv) {
         if (facts.status == "completed" && !all_reported("finished"))
           spdlog::warn("not every process reported 'finished' within {} s of the plant", finish_grace);
         report(transport::stopRequested() ? "interrupted" : "finished");
+        write_progress();  // the final sample, for the launcher's last progress line
         log.flush();
         facts.log_events = log.events();
         lagrange::status_t own;

@@ -12,10 +12,10 @@ ProgressDisplay::ProgressDisplay(double duration, bool quiet)
     : duration_(duration),
       quiet_(quiet),
       tty_(isatty(STDOUT_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()),
-      next_draw_(start_) {}
+      next_draw_(std::chrono::steady_clock::now()) {}
 
 void ProgressDisplay::update(double sim_time, double tracking_error) {
+  if (!first_sample_) first_sample_ = std::make_pair(sim_time, std::chrono::steady_clock::now());
   sim_time_ = sim_time;
   if (std::isfinite(tracking_error)) error_ = tracking_error;
 }
@@ -29,8 +29,12 @@ void ProgressDisplay::tick() {
 }
 
 void ProgressDisplay::draw() {
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double rtf = wall > 0.0 ? sim_time_ / wall : 0.0;
+  double rtf = 0.0;
+  if (first_sample_) {
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - first_sample_->second).count();
+    if (wall > 0.0) rtf = (sim_time_ - first_sample_->first) / wall;
+  }
   const double fraction = duration_ > 0.0 ? std::min(1.0, sim_time_ / duration_) : 0.0;
   char err[32];
   if (error_ >= 0.0)

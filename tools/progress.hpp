@@ -2,9 +2,12 @@
 /// @file
 /// Progress of a run: on a terminal a bar redrawn in place (sim time,
 /// real-time factor, current tracking error); otherwise a plain line every
-/// few seconds, so logs of CI runs stay readable.
+/// 2 s, so logs of CI runs stay readable. The real-time factor is simulated
+/// time over wall time since the first sample arrived.
 
 #include <chrono>
+#include <optional>
+#include <utility>
 
 namespace lagrange::tools {
 
@@ -21,7 +24,10 @@ class ProgressDisplay {
   bool quiet_, tty_;
   double sim_time_ = 0.0, error_ = -1.0;
   bool drawn_ = false;
-  std::chrono::steady_clock::time_point start_, next_draw_;
+  // The real-time factor counts from the first sample, not from the launch:
+  // starting the processes is not simulation.
+  std::optional<std::pair<double, std::chrono::steady_clock::time_point>> first_sample_;
+  std::chrono::steady_clock::time_point next_draw_;
 };
 
 }  // namespace lagrange::tools

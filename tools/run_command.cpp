@@ -270,6 +270,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       break;
     }
   }
+  // The logger's last line (the final sample) may have come after the loop's last read.
+  if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
   progress.finish();
   close(progress_pipe[0]);
   if (exit_code == 0) addCpuTimes(out_dir, cpu);

@@ -1,0 +1,131 @@
+// lagrange report draws the plots of every kind of run -- rigid, actuator
+// chain, flexible joints, realtime (timing histograms) -- as real PNG files,
+// titled by the scenario; `lagrange run --report` does the same at the end of
+// a run; a log without its scenario still gets its plots, with a warning.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <set>
+
+#include "support/launch.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/";
+
+// Width and height of a PNG file (its IHDR chunk), or {0, 0} if it is not a PNG.
+std::pair<uint32_t, uint32_t> pngSize(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char head[24] = {};
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  const unsigned char magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!in || !std::equal(magic, magic + 8, head) ||
+      std::string(reinterpret_cast<char*>(head + 12), 4) != "IHDR")
+    return {0, 0};
+  const auto be32 = [&](int at) {
+    return uint32_t(head[at]) << 24 | uint32_t(head[at + 1]) << 16 | uint32_t(head[at + 2]) << 8 |
+           head[at + 3];
+  };
+  return {be32(16), be32(20)};
+}
+
+std::set<std::string> pngsIn(const std::string& dir) {
+  std::set<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".png") out.insert(e.path().filename().string());
+  return out;
+}
+
+void expectPlots(const std::string& dir, const std::set<std::string>& expected, const std::string& context) {
+  EXPECT_EQ(pngsIn(dir), expected) << context;
+  for (const auto& png : expected) {
+    const auto [width, height] = pngSize(dir + "/" + png);
+    EXPECT_EQ(width, 1100u) << png << " is not a 1100 px wide PNG (" << context << ")";
+    EXPECT_GE(height, 600u) << png;
+  }
+}
+
+const std::set<std::string> kEveryRun = {"tracking_error.png", "joints.png", "torques.png",
+                                         "filter_states.png"};
+
+std::set<std::string> with(std::set<std::string> base, const std::set<std::string>& more) {
+  base.insert(more.begin(), more.end());
+  return base;
+}
+
+TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
+  const std::set<std::string> chain = {"chain_error.png", "control_input.png", "actuator_states.png"};
+  const std::vector<std::tuple<std::string, std::set<std::string>, std::string>> cases = {
+      {"rigid_2dof_lockstep", kEveryRun, "rigid_2dof (lockstep, theorem1)"},
+      {"chain_m2_lockstep", with(kEveryRun, chain), "chain_m2 (lockstep, cascaded)"},
+      {"flexible_2dof_filtered_rate_lockstep", with(kEveryRun, {"motors.png"}),
+       "flexible_2dof_filtered_rate (lockstep, flexible)"},
+      {"chain_m1_realtime", with(with(kEveryRun, chain), {"timing.png"}), "chain_m1 (realtime, cascaded)"},
+  };
+  for (const auto& [log, expected, title] : cases) {
+    const std::string out = freshDir("report-" + log);
+    const RunResult r = lagrange("report " + quote(kGolden + log + ".lcm") + " -o " + quote(out));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    expectPlots(out, expected, log);
+    std::ifstream script(out + "/plots.gp");
+    const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\"" + title + ": tracking error norm"), std::string::npos) << log;
+  }
+}
+
+TEST(Report, RealtimeTimingTableHasARowPerTick) {
+  const std::string out = freshDir("report-timing");
+  ASSERT_EQ(lagrange("report " + quote(kGolden + "chain_m1_realtime.lcm") + " -o " + quote(out)).exit_code,
+            0);
+  std::ifstream timing(out + "/TIMING.csv");
+  std::string header, line;
+  std::getline(timing, header);
+  EXPECT_EQ(header, "tick,period_error_us,command_latency_us,actuator_latency_us");
+  long long rows = 0, with_latency = 0;
+  while (std::getline(timing, line)) {
+    ++rows;
+    const auto third = line.find(',', line.find(',') + 1);
+    with_latency += line.size() > third + 1 && line[third + 1] != ',';
+  }
+  EXPECT_EQ(rows, 1001);
+  EXPECT_GE(with_latency, 990);  // a command answered nearly every sample
+}
+
+TEST(Report, RunWithReportFlagWritesThePlotsAtTheEnd) {
+  const std::string out = freshDir("run-report");
+  const RunResult r = runScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/chain_m1.yaml", out,
+                                  "--set duration=1 --report");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("report: 4 CSV files, 7 plots in " + out + "/report"), std::string::npos)
+      << r.output;
+  expectPlots(out + "/report",
+              with(kEveryRun, {"chain_error.png", "control_input.png", "actuator_states.png"}),
+              "run --report");
+}
+
+// A stock logger started late misses SCENARIO: the plots come from the CSV columns.
+TEST(Report, ALogWithoutItsScenarioStillGetsPlots) {
+  const std::string dir = freshDir("report-noscenario");
+  fs::create_directories(dir);
+  const std::string log = dir + "/no_scenario.lcm";
+  {
+    lcm::LogFile in(kGolden + "chain_m2_lockstep.lcm", "r"), out(log, "w");
+    while (const lcm::LogEvent* ev = in.readNextEvent())
+      if (ev->channel != "SCENARIO") out.writeEvent(const_cast<lcm::LogEvent*>(ev));
+  }
+  const RunResult r = lagrange("report " + quote(log) + " -o " + quote(dir + "/report"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the log has no SCENARIO channel"), std::string::npos) << r.output;
+  expectPlots(dir + "/report",
+              with(kEveryRun, {"chain_error.png", "control_input.png", "actuator_states.png"}),
+              "no scenario");
+}
+
+}  // namespace
+}  // namespace lagrange::testing
