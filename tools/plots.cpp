@@ -270,7 +270,7 @@ class ScriptBuilder {
   std::ostringstream out_;
 };
 
-const char* kPreamble = "set datafile separator \",\"\nset grid\nset key top right opaque\n";
+const char* kPreamble = "set datafile separator \",\"\nset grid\nset key top right box opaque\n";
 
 // Runs gnuplot in `dir` with `script` on its standard input; its messages are
 // appended to `log`. Returns gnuplot's exit status (127: not installed).
