@@ -85,7 +85,8 @@ model::ChainParams readRobot(MapReader robot) {
     }
   }
   params.gravity = robot.number("gravity", params.gravity);
-  if (params.gravity < 0.0) robot.fail("gravity", "expected a number >= 0 [m/s^2]");
+  if (params.gravity < 0.0)
+    robot.fail("gravity", "expected a number >= 0 [m/s^2], got " + std::to_string(params.gravity));
   robot.finish({"preset", "links", "gravity", "flexible"});
   return params;
 }
@@ -125,7 +126,9 @@ model::ReferenceParams readReference(MapReader ref, const model::ChainParams& ro
   p.offset = ref.vector("offset", n, true, false);
   p.amplitude = ref.vector("amplitude", n, true, false);
   p.frequency = ref.vector("frequency", n, true, false);
-  if ((p.frequency.array() < 0.0).any()) ref.fail("frequency", "expected numbers >= 0 [rad/s]");
+  if ((p.frequency.array() < 0.0).any())
+    ref.fail("frequency", "expected numbers >= 0 [rad/s], got a negative one (" +
+                              std::to_string(p.frequency.minCoeff()) + ")");
   p.phase = ref.has("phase") ? ref.vector("phase", n, true, false) : Eigen::VectorXd::Zero(n);
   if (p.type == model::ReferenceType::kSmoothSine) {
     p.alpha = ref.vector("alpha", n, true, true);
@@ -342,7 +345,13 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
     throw ConfigError("config: " + source + ": malformed YAML at line " + std::to_string(e.mark.line + 1) +
                       ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
   }
-  if (!root.IsMap()) throw ConfigError("config: " + source + ": expected a map of keys at the top level");
+  if (root.IsNull())
+    throw ConfigError(
+        "config: " + source +
+        ": no keys (the file is empty or only comments); expected a map of keys at the top level");
+  if (!root.IsMap())
+    throw ConfigError("config: " + source + ": expected a map of keys at the top level, got a " +
+                      (root.IsSequence() ? "list" : "single value"));
   for (const auto& o : overrides) applyOverride(root, o);
   try {
     return readScenario(MapReader(root, ""));
