@@ -329,8 +329,28 @@ Scenario readScenario(MapReader root) {
       r.fail("priority", "expected a SCHED_FIFO priority from 1 to 99, or 0 for the normal scheduler");
     r.finish({"max_torque_age", "stale_torque", "hold_periods", "max_input_age", "priority"});
   }
+  if (root.has("supervision")) {
+    MapReader sv = root.map("supervision");
+    if (sv.has("restart")) {
+      const YAML::Node list = sv.child("restart");
+      if (!list.IsSequence())
+        sv.fail("restart", "expected a list of processes to restart when they die, e.g. [controller]");
+      for (const auto& item : list) {
+        const std::string name = item.IsScalar() ? item.as<std::string>() : "";
+        if (name != "controller" && name != "actuator")
+          sv.fail("restart",
+                  "cannot restart '" + name +
+                      "'; expected controller and/or actuator (the plant holds the simulated arm, the "
+                      "logger the log)");
+        if (!s.supervision.restarts(name)) s.supervision.restart.push_back(name);
+      }
+    }
+    s.supervision.max_restarts = sv.integer("max_restarts", s.supervision.max_restarts);
+    if (s.supervision.max_restarts < 0) sv.fail("max_restarts", "expected a whole number >= 0");
+    sv.finish({"restart", "max_restarts"});
+  }
   root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference", "plant",
-               "actuator", "controller", "metrics", "lockstep", "realtime"});
+               "actuator", "controller", "metrics", "lockstep", "realtime", "supervision"});
   return s;
 }
 
@@ -492,6 +512,11 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "hold_periods" << YAML::Value << s.realtime.hold_periods;
   out << YAML::Key << "max_input_age" << YAML::Value << s.realtime.max_input_age;
   out << YAML::Key << "priority" << YAML::Value << s.realtime.priority;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "supervision" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "restart" << YAML::Value << YAML::Flow << s.supervision.restart;
+  out << YAML::Key << "max_restarts" << YAML::Value << s.supervision.max_restarts;
   out << YAML::EndMap;
 
   out << YAML::EndMap;

@@ -5,6 +5,7 @@
 /// process starts. Every key is documented in docs/configuration.md.
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -89,6 +90,17 @@ struct RealtimeConfig {
   int priority = 50;             ///< SCHED_FIFO priority of the loops, 0 for the normal scheduler
 };
 
+/// What the launcher does when a process dies (supervision.*).
+struct SupervisionConfig {
+  /// Processes restarted when they die: "controller", "actuator". The plant
+  /// (the simulated arm) and the logger (the log) cannot be restarted.
+  std::vector<std::string> restart;
+  int max_restarts = 3;  ///< per process; the next death stops the run
+  bool restarts(const std::string& process) const {
+    return std::find(restart.begin(), restart.end(), process) != restart.end();
+  }
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -104,6 +116,7 @@ struct Scenario {
   MetricsConfig metrics;
   LockstepConfig lockstep;
   RealtimeConfig realtime;
+  SupervisionConfig supervision;
 
   int dof() const { return static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }

@@ -186,7 +186,7 @@ int DoMain(int argc, char** argv) {
         write_progress();  // the final sample, for the launcher's last progress line
         log.flush();
         facts.log_events = log.events();
-        lagrange::status_t own;
+        lagrange::status_t own{};  // zeroed: its loop statistics are not measured
         own.process = "logger";
         own.state = facts.status == "completed" ? "finished" : "interrupted";
         own.last_tick = metrics.lastTick();

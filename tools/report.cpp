@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "config/scenario.hpp"
+#include "transport/channels.hpp"
 
 namespace lagrange::tools {
 
@@ -47,6 +48,16 @@ Report writeReport(const std::string& log_path, const std::string& out_dir) {
         "of a lagrange run)");
   std::optional<config::Scenario> scenario;
   const PlotSpec spec = specOf(report.csv, log_path, out_dir, scenario, report.warnings);
+  if (scenario) {
+    const long long samples =
+        report.csv.rows.count(transport::kPlantTruth) ? report.csv.rows.at(transport::kPlantTruth) : 0;
+    if (samples < scenario->lastTick() + 1)
+      report.warnings.push_back(
+          "the log holds " + std::to_string(samples) + " of the run's " +
+          std::to_string(scenario->lastTick() + 1) +
+          " plant samples: the run was cut short (interrupted, a process died) or the log "
+          "lost the rest");
+  }
   if (scenario && scenario->mode == "realtime")
     report.timing_rows = exportTiming(log_path, scenario->tickPeriod(), out_dir);
   try {

@@ -80,8 +80,10 @@ std::string writeResolved(const config::Scenario& scenario, const std::string& s
 }
 
 // The logger wrote summary.json before the others were reaped; the launcher
-// adds what only it knows: each process's CPU time.
-void addCpuTimes(const std::string& out_dir, const nlohmann::json& cpu) {
+// adds what only it knows: each process's CPU time, and the processes that
+// died and were restarted (supervision).
+void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
+                      const nlohmann::json& supervision) {
   const fs::path path = fs::path(out_dir) / "summary.json";
   nlohmann::json j;
   try {
@@ -90,6 +92,7 @@ void addCpuTimes(const std::string& out_dir, const nlohmann::json& cpu) {
     return;  // printResult reports the unreadable summary
   }
   j["timing"]["cpu_seconds"] = cpu;
+  j["supervision"] = supervision;
   std::ofstream(path) << j.dump(2) << "\n";
 }
 
@@ -178,6 +181,24 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
   }
 }
 
+// CPU time of a process, summed over its restarts.
+void addCpu(nlohmann::json& cpu, const ChildExit& e) {
+  nlohmann::json& c = cpu[e.name];
+  if (!c.is_object()) c = {{"user", 0.0}, {"system", 0.0}};
+  c["user"] = c.value("user", 0.0) + e.cpu_user;
+  c["system"] = c.value("system", 0.0) + e.cpu_system;
+}
+
+// A dead process is restarted when the scenario says so and it has restarts
+// left; every death is noted in `supervision` either way.
+bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervision, const ChildExit& e) {
+  const int done = supervision["restarts"].value(e.name, 0);
+  const bool restart = policy.restarts(e.name) && done < policy.max_restarts;
+  supervision["deaths"].push_back({{"process", e.name}, {"how", e.describe()}, {"restarted", restart}});
+  if (restart) supervision["restarts"][e.name] = done + 1;
+  return restart;
+}
+
 // Starts logger, controller, actuator and plant on a fresh LCM URL, shows
 // progress, and watches them until all have exited; returns the exit code.
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
@@ -229,6 +250,9 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
 
   int exit_code = 0;
   nlohmann::json cpu = nlohmann::json::object();
+  nlohmann::json supervision = {{"restart", scenario.supervision.restart},
+                                {"restarts", nlohmann::json::object()},
+                                {"deaths", nlohmann::json::array()}};
   // After the plant has finished, the others get this long to follow (they
   // normally need milliseconds); then they are stopped, so that a lost final
   // STATUS can never hang a run.
@@ -250,15 +274,23 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       std::cerr << "lagrange run: warning: processes still running " << kFollowSeconds
                 << " s after the plant finished; stopping them\n";
       for (const ChildExit& e : supervisor.stopAll(5.0)) {
-        cpu[e.name] = {{"user", e.cpu_user}, {"system", e.cpu_system}};
+        addCpu(cpu, e);
         if (e.failed() && e.signal != SIGTERM) exit_code = 1;
       }
       break;
     }
     for (const ChildExit& e : supervisor.reap()) {
-      cpu[e.name] = {{"user", e.cpu_user}, {"system", e.cpu_system}};
+      addCpu(cpu, e);
       if (e.name == "plant" && !e.failed()) plant_done = std::chrono::steady_clock::now();
       if (!e.failed()) continue;
+      if (!plant_done && mayRestart(scenario.supervision, supervision, e)) {
+        progress.finish();
+        std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
+                  << "; restarting it (restart " << supervision["restarts"][e.name].get<int>()
+                  << " of at most " << scenario.supervision.max_restarts << ", supervision.restart)\n";
+        supervisor.restart(e.name);
+        continue;
+      }
       progress.finish();
       std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
                 << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
@@ -274,7 +306,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
   progress.finish();
   close(progress_pipe[0]);
-  if (exit_code == 0) addCpuTimes(out_dir, cpu);
+  if (exit_code == 0) addLauncherFacts(out_dir, cpu, supervision);
   if (exit_code != 130) writeRunReport(opt, out_dir);
   if (exit_code == 0 && !opt.quiet) printResult(out_dir);
   if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";

@@ -32,7 +32,8 @@ void Supervisor::start(const ChildSpec& spec) {
     // The child must not outlive the launcher.
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(1);
-    const int fd = open(spec.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fd =
+        open(spec.log_path.c_str(), O_WRONLY | O_CREAT | (spec.append_log ? O_APPEND : O_TRUNC), 0644);
     if (fd >= 0) {
       dup2(fd, STDOUT_FILENO);
       dup2(fd, STDERR_FILENO);
@@ -50,6 +51,17 @@ void Supervisor::start(const ChildSpec& spec) {
     _exit(127);
   }
   children_.push_back({spec, pid, true});
+}
+
+void Supervisor::restart(const std::string& name) {
+  const Child* last = nullptr;
+  for (const auto& c : children_)
+    if (c.spec.name == name) last = &c;
+  if (last == nullptr) throw std::runtime_error("no process '" + name + "' to restart");
+  if (last->running) throw std::runtime_error("process '" + name + "' still runs");
+  ChildSpec spec = last->spec;
+  spec.append_log = true;
+  start(spec);
 }
 
 std::vector<ChildExit> Supervisor::reap() {

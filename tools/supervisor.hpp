@@ -15,6 +15,7 @@ struct ChildSpec {
   std::vector<std::string> argv;  ///< argv[0] is the executable path
   std::string log_path;           ///< stdout and stderr go here
   int pass_fd = -1;               ///< if >= 0, handed to the child as its file descriptor 3
+  bool append_log = false;        ///< append to log_path (a restart) instead of truncating it
 };
 
 struct ChildExit {
@@ -33,6 +34,10 @@ class Supervisor {
 
   /// @throws std::runtime_error if fork or exec setup fails.
   void start(const ChildSpec& spec);
+
+  /// Starts the named child again (it must have exited), appending to its log.
+  /// @throws std::runtime_error if there is no such child, or it still runs.
+  void restart(const std::string& name);
 
   /// Children that exited since the last call (non-blocking).
   std::vector<ChildExit> reap();

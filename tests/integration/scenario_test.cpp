@@ -28,28 +28,13 @@
 #include "support/launch.hpp"
 #include "support/rk4.hpp"
 #include "support/run_log.hpp"
+#include "support/signal_run.hpp"
 
 namespace lagrange::testing {
 namespace {
 
 namespace fs = std::filesystem;
 const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
-
-// The pid of a process whose argv[0] ends with `name` and whose command line
-// mentions `needle`, or -1.
-pid_t findProcess(const std::string& name, const std::string& needle) {
-  for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string pid = entry.path().filename().string();
-    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::ifstream in(entry.path() / "cmdline");
-    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const std::string argv0 = cmdline.substr(0, cmdline.find('\0'));
-    if (argv0.size() >= name.size() && argv0.compare(argv0.size() - name.size(), name.size(), name) == 0 &&
-        cmdline.find(needle) != std::string::npos)
-      return static_cast<pid_t>(std::stol(pid));
-  }
-  return -1;
-}
 
 // One lockstep run of the default scenario, shared by the cross-checks.
 class DefaultRun : public ::testing::Test {
@@ -474,33 +459,11 @@ TEST(BadInput, ViolatedGainConditionWarnsOrRefusesUnderStrict) {
 
 // Runs the default scenario for a long time and, once its log holds 100 kB,
 // sends `sig` to the process whose argv[0] ends with `process`.
-struct SignalledRun {
-  RunResult result;
-  bool signalled = false;
-};
-
-SignalledRun signalMidRun(const std::string& dir, const std::string& process, int sig) {
-  SignalledRun out;
-  std::atomic<bool> done{false};
-  std::thread runner([&] {
-    out.result = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=600 -q");
-    done = true;
-  });
-  for (int i = 0; i < 200 && !out.signalled && !done; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 100000) continue;
-    const pid_t pid = findProcess(process, dir);
-    out.signalled = pid > 0 && kill(pid, sig) == 0;
-  }
-  runner.join();
-  return out;
-}
-
 // A dead process: the launcher names it and its signal, stops the rest and
 // keeps the log.
 TEST(Failure, KilledControllerIsNamedAndTheLogIsKept) {
   const std::string dir = freshDir("kill");
-  const SignalledRun run = signalMidRun(dir, "lagrange-controller", SIGKILL);
+  const SignalledRun run = signalMidRun(dir, kConfigs + "/rigid_2dof.yaml", "lagrange-controller", SIGKILL);
   ASSERT_TRUE(run.signalled);
   EXPECT_EQ(run.result.exit_code, 1) << run.result.output;
   EXPECT_NE(run.result.output.find("process 'controller' was killed by signal 9"), std::string::npos)
@@ -511,7 +474,7 @@ TEST(Failure, KilledControllerIsNamedAndTheLogIsKept) {
 // Ctrl-C: every process stops cleanly, the log and the summary are kept.
 TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
   const std::string dir = freshDir("interrupt");
-  const SignalledRun run = signalMidRun(dir, "bin/lagrange", SIGINT);
+  const SignalledRun run = signalMidRun(dir, kConfigs + "/rigid_2dof.yaml", "bin/lagrange", SIGINT);
   const RunResult& r = run.result;
   const bool interrupted = run.signalled;
   ASSERT_TRUE(interrupted);

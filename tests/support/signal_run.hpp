@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// Signalling a process of a running scenario from a test: find it by name
+/// and output directory, send the signal once the run is under way.
+
+#include <signal.h>
+#include <sys/types.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "support/launch.hpp"
+
+namespace lagrange::testing {
+
+/// The pid of a process whose argv[0] ends with `name` and whose command line
+/// mentions `needle`, or -1.
+inline pid_t findProcess(const std::string& name, const std::string& needle) {
+  namespace fs = std::filesystem;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(entry.path() / "cmdline");
+    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string argv0 = cmdline.substr(0, cmdline.find('\0'));
+    if (argv0.size() >= name.size() && argv0.compare(argv0.size() - name.size(), name.size(), name) == 0 &&
+        cmdline.find(needle) != std::string::npos)
+      return static_cast<pid_t>(std::stol(pid));
+  }
+  return -1;
+}
+
+struct SignalledRun {
+  RunResult result;
+  bool signalled = false;
+};
+
+/// Runs `config` into `dir` with `args` and sends `sig` to `process` once
+/// run.lcm holds `log_bytes` (the run is under way); returns when the run ends.
+inline SignalledRun signalMidRun(const std::string& dir, const std::string& config,
+                                 const std::string& process, int sig,
+                                 const std::string& args = "--set duration=600 -q",
+                                 std::uintmax_t log_bytes = 100000) {
+  namespace fs = std::filesystem;
+  SignalledRun out;
+  std::atomic<bool> done{false};
+  std::thread runner([&] {
+    out.result = runScenario(config, dir, args);
+    done = true;
+  });
+  const fs::path log = fs::path(dir) / "run.lcm";
+  for (int i = 0; i < 1200 && !out.signalled && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    if (!fs::exists(log) || fs::file_size(log) < log_bytes) continue;
+    const pid_t pid = findProcess(process, dir);
+    out.signalled = pid > 0 && kill(pid, sig) == 0;
+  }
+  runner.join();
+  return out;
+}
+
+}  // namespace lagrange::testing
