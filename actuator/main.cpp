@@ -34,10 +34,21 @@ int DoMain(int argc, char** argv) {
                                           s.dof(), {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);
         }
         transport::Progress progress;
-        transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
-            node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
-            [&](const lagrange::control_command_t& m) { return std::optional(compute(m)); });
-        return transport::serveUntilPlantFinished(node, progress);
+        const auto last_state =
+            transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
+                node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
+                [&](const lagrange::control_command_t& m) { return std::optional(compute(m)); });
+        // The plant re-sends a position nobody answered, and the controller
+        // and this actuator answer a re-sent tick from their caches -- but a
+        // controller waiting for the chain state of the previous tick (lost
+        // on the way, or a restarted controller that never saw it) would wait
+        // forever: re-send the last state whenever the run stalls.
+        return transport::serveUntilPlantFinished(
+            node, progress,
+            [&] {
+              if (*last_state) node.publish(transport::kActuatorState, **last_state);
+            },
+            s.lockstep.retransmit_timeout);
       });
 }
 

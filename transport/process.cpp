@@ -58,14 +58,28 @@ void watchPlantFinished(LcmNode& node, bool& finished) {
       });
 }
 
-int serveUntilPlantFinished(LcmNode& node, const Progress& progress) {
+int serveUntilPlantFinished(LcmNode& node, const Progress& progress, const std::function<void()>& when_idle,
+                            double idle_seconds) {
   bool plant_finished = false;
   watchPlantFinished(node, plant_finished);
   StatusReporter status(node);
   status.publish("ready", progress.last_tick, progress.sim_time);
   auto next_status = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+  const auto idle_period = std::chrono::duration<double>(idle_seconds);
+  int64_t seen_tick = progress.last_tick;
+  auto moved_at = std::chrono::steady_clock::now();
   while (!plant_finished && !stopRequested()) {
-    if (!node.handle(50)) throw std::runtime_error("LCM receive failed");
+    if (!node.handle(when_idle ? 5 : 50)) throw std::runtime_error("LCM receive failed");
+    if (when_idle) {
+      const auto now = std::chrono::steady_clock::now();
+      if (progress.last_tick != seen_tick) {
+        seen_tick = progress.last_tick;
+        moved_at = now;
+      } else if (now - moved_at >= idle_period) {
+        when_idle();
+        moved_at = now;
+      }
+    }
     if (std::chrono::steady_clock::now() >= next_status) {
       status.publish("running", progress.last_tick, progress.sim_time);
       next_status += std::chrono::milliseconds(500);

@@ -50,7 +50,11 @@ void watchPlantFinished(LcmNode& node, bool& finished);
 /// publishes STATUS "ready", handles messages with periodic "running" reports
 /// until the plant reports "finished" or a stop signal arrives, then
 /// publishes the final STATUS. Returns the exit code (0).
-int serveUntilPlantFinished(LcmNode& node, const Progress& progress);
+/// `when_idle`, if given, runs whenever `progress` has not moved for
+/// `idle_seconds` (the actuator re-sends its last state: nobody else can
+/// re-request it).
+int serveUntilPlantFinished(LcmNode& node, const Progress& progress,
+                            const std::function<void()>& when_idle = {}, double idle_seconds = 0.0);
 
 /// The body of a process: gets the validated scenario and a connected node;
 /// returns the exit code.

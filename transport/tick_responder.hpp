@@ -18,9 +18,11 @@
 
 namespace lagrange::transport {
 
+/// Returns the cached output (the answer to the newest tick), for re-sending.
 template <class In, class Out>
-void respondPerTick(LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
-                    Progress& progress, std::function<std::optional<Out>(const In&)> compute) {
+std::shared_ptr<const std::optional<Out>> respondPerTick(
+    LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
+    Progress& progress, std::function<std::optional<Out>(const In&)> compute) {
   auto cached = std::make_shared<std::optional<Out>>();
   node.subscribe<In>(
       in_channel, [joints](const In& m) { return validate(m, joints); },
@@ -35,6 +37,7 @@ void respondPerTick(LcmNode& node, const std::string& in_channel, const std::str
         node.publish(out_channel, **cached);
         progress = {m.header.tick, m.header.sim_time};
       });
+  return cached;
 }
 
 }  // namespace lagrange::transport

@@ -47,6 +47,22 @@ TEST(Supervision, ARestartedControllerTakesOverAndTheArmConvergesAgain) {
   EXPECT_EQ(j["tracking"]["samples"], 8001);  // nothing recorded was lost
 }
 
+// Lockstep with an actuator chain: the fresh cascaded controller needs the
+// chain state of the tick before its first, which the actuator re-sends while
+// the run stalls; without that re-send the run would wait forever.
+TEST(Supervision, ARestartedCascadedControllerResumesALockstepRun) {
+  const std::string dir = freshDir("restart-chain");
+  const SignalledRun run =
+      signalMidRun(dir, std::string(LAGRANGE_SOURCE_DIR) + "/configs/chain_m1.yaml", "lagrange-controller",
+                   SIGKILL, "-q --set duration=5 --set supervision.restart=[controller]", 2'000'000);
+  ASSERT_TRUE(run.signalled);
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["supervision"]["restarts"]["controller"], 1) << j["supervision"].dump();
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
+  EXPECT_EQ(j["tracking"]["samples"], 5001);
+}
+
 TEST(Supervision, WithTheRestartsUsedUpTheRunStopsAndNamesTheProcess) {
   const std::string dir = freshDir("restart-none-left");
   const SignalledRun run = signalMidRun(
