@@ -113,6 +113,11 @@ int DoMain(int argc, char** argv) {
   run_cmd->add_flag("--strict", run.strict,
                     "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
+  run_cmd
+      ->add_option("--processes", run.processes,
+                   "Start only these processes here (comma-separated: logger, controller, actuator, plant), "
+                   "for a run spread over several hosts; needs --no-netns and --lcm-url")
+      ->delimiter(',');
   run_cmd->add_flag(
       "--report", run.report,
       "At the end of the run, write CSV files and PNG plots to OUT/report (as lagrange report)");

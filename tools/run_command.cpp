@@ -162,10 +162,31 @@ void printResult(const std::string& out_dir) {
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
   std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
+bool runsHere(const RunOptions& opt, const std::string& process) {
+  return opt.processes.empty() ||
+         std::find(opt.processes.begin(), opt.processes.end(), process) != opt.processes.end();
+}
+
+// A run spread over hosts: each launcher starts its share, on a URL they all use.
+std::string checkProcesses(const RunOptions& opt) {
+  for (const auto& p : opt.processes)
+    if (std::find(kProcesses.begin(), kProcesses.end(), p) == kProcesses.end())
+      return "--processes: unknown process '" + p + "'; expected some of logger, controller, actuator, plant";
+  if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) return "";
+  if (opt.private_netns)
+    return "--processes starts part of a run here and the rest runs elsewhere, which a private network "
+           "namespace would cut off; add --no-netns";
+  if (opt.lcm_url.empty())
+    return "--processes: every host must use the same LCM URL; give it with --lcm-url (TTL 1 or more to "
+           "cross "
+           "hosts, e.g. udpm://239.255.76.67:7667?ttl=1)";
+  return "";
+}
+
 // --report: CSV and plots of the log in OUT/report; a failed or diverged run
 // is reported too (its plots show what went wrong). Never changes the exit code.
 void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
-  if (!opt.report) return;
+  if (!opt.report || !runsHere(opt, "logger")) return;
   const std::string report_dir = (fs::path(out_dir) / "report").string();
   try {
     const Report report = writeReport((fs::path(out_dir) / "run.lcm").string(), report_dir);
@@ -245,7 +266,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       logger,
       spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{}),
       spec("actuator", {}), spec("plant", {})};
-  for (const auto& s : specs) supervisor.start(s);
+  for (const auto& s : specs)
+    if (runsHere(opt, s.name)) supervisor.start(s);
   close(progress_pipe[1]);
 
   int exit_code = 0;
@@ -308,13 +330,22 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   close(progress_pipe[0]);
   if (exit_code == 0) addLauncherFacts(out_dir, cpu, supervision);
   if (exit_code != 130) writeRunReport(opt, out_dir);
-  if (exit_code == 0 && !opt.quiet) printResult(out_dir);
+  if (exit_code == 0 && !opt.quiet) {
+    if (runsHere(opt, "logger"))
+      printResult(out_dir);
+    else
+      std::cout << "this host's processes finished; the log and summary.json are where the logger ran\n";
+  }
   if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";
   return exit_code;
 }
 }  // namespace
 
 int runScenario(const RunOptions& opt) {
+  if (const std::string why = checkProcesses(opt); !why.empty()) {
+    std::cerr << "lagrange run: " << why << "\n";
+    return 2;
+  }
   config::Scenario scenario;
   std::string out_dir;
   try {
@@ -326,6 +357,10 @@ int runScenario(const RunOptions& opt) {
   }
 
   if (scenario.mode == "inproc") {
+    if (!opt.processes.empty()) {
+      std::cerr << "lagrange run: --processes does not apply to mode inproc (one process, no LCM)\n";
+      return 2;
+    }
     if (!gainsAllowRun(scenario, opt)) return 2;
     writeResolved(scenario, opt.config_path, out_dir);
     std::signal(SIGINT, onSignal);

@@ -17,9 +17,15 @@ struct RunOptions {
   std::string lcm_url;  ///< empty: a fresh URL per run
   bool strict = false;
   bool quiet = false;
-  bool report = false;                 ///< write OUT/report (CSV + plots) when the run ends with a log
+  bool report = false;  ///< write OUT/report (CSV + plots) when the run ends with a log
+  /// The processes to start on this host (a run spread over several hosts);
+  /// empty: all four. A subset needs --no-netns and an explicit LCM URL.
+  std::vector<std::string> processes;
   std::vector<std::string> self_argv;  ///< to re-execute inside the namespace
 };
+
+/// The processes of a run, in start order: the logger first, so it records from the first tick.
+inline const std::vector<std::string> kProcesses = {"logger", "controller", "actuator", "plant"};
 
 /// Exit code: 0 success, 1 a process failed, 2 bad input, 130 interrupted.
 int runScenario(const RunOptions& options);

@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "lagrange/actuator_state_t.hpp"
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "transport/messages.hpp"
 
@@ -54,6 +57,25 @@ inline size_t forCommonTicks(const std::vector<TruthSample>& a, const std::vecto
       ++common;
     }
   return common;
+}
+
+/// (channel, header.tick) of every PLANT_POSITION, PLANT_TRUTH,
+/// CONTROL_COMMAND and ACTUATOR_STATE event, in log order.
+inline std::vector<std::pair<std::string, long long>> readTicks(const std::string& log_path) {
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw std::runtime_error("cannot open " + log_path);
+  std::vector<std::pair<std::string, long long>> out;
+  auto note = [&](const lcm::LogEvent& ev, auto message) {
+    if (message.decode(ev.data, 0, ev.datalen) < 0) throw std::runtime_error("bad " + ev.channel + " event");
+    out.emplace_back(ev.channel, message.header.tick);
+  };
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    if (ev->channel == "PLANT_POSITION") note(*ev, lagrange::plant_position_t{});
+    if (ev->channel == "PLANT_TRUTH") note(*ev, lagrange::plant_truth_t{});
+    if (ev->channel == "CONTROL_COMMAND") note(*ev, lagrange::control_command_t{});
+    if (ev->channel == "ACTUATOR_STATE") note(*ev, lagrange::actuator_state_t{});
+  }
+  return out;
 }
 
 /// Every event's channel, in log order.
