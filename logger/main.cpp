@@ -61,6 +61,7 @@ int DoMain(int argc, char** argv) {
         transport::StatusReporter status(node);
         logger::RunFacts facts;
         facts.log_path = log_path;
+        facts.run_id = node.runId();
         const int n = s.dof();
 
         // Record first, then interpret: the log keeps every message, even ones

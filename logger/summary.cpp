@@ -76,6 +76,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     j["gains"]["proposition1_holds"] = g.propositionHolds();
   }
   if (!g.warnings.empty()) j["gains"]["warnings"] = g.warnings;
+  j["run_id"] = f.run_id;
   j["timing"] = {
       {"sim_time", t.sim_time},
       {"wall_time", f.wall_time},
@@ -86,12 +87,24 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   for (const auto& [name, st] : f.final_status) {
     json channels = json::object();
     for (const auto& c : st.channels) {
-      channels[c.channel] = {{"published", c.published}, {"received", c.received}, {"rejected", c.rejected}};
+      const json reasons = {{"undecodable", c.rejected_undecodable},
+                            {"other_run", c.rejected_other_run},
+                            {"wrong_publisher", c.rejected_wrong_publisher},
+                            {"old_or_repeated", c.rejected_old_or_repeated},
+                            {"invalid", c.rejected_invalid}};
+      channels[c.channel] = {{"published", c.published},
+                             {"received", c.received},
+                             {"rejected", c.rejected},
+                             {"rejected_by_reason", reasons}};
       json& total = messages[c.channel];
-      if (total.is_null()) total = {{"published", 0}, {"received", 0}, {"rejected", 0}};
+      if (total.is_null())
+        total = {{"published", 0}, {"received", 0}, {"rejected", 0}, {"rejected_by_reason", json::object()}};
       total["published"] = total["published"].get<long long>() + c.published;
       total["received"] = total["received"].get<long long>() + c.received;
       total["rejected"] = total["rejected"].get<long long>() + c.rejected;
+      for (const auto& [reason, n] : reasons.items())
+        total["rejected_by_reason"][reason] =
+            total["rejected_by_reason"].value(reason, 0LL) + n.get<long long>();
     }
     processes[name] = {
         {"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message}, {"channels", channels}};

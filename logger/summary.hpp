@@ -19,6 +19,7 @@ struct RunFacts {
   std::string log_path;
   long long log_events = 0;
   std::map<std::string, lagrange::status_t> final_status;  ///< by process name
+  int64_t run_id = 0;                                      ///< the run's identity (header.run_id)
 };
 
 nlohmann::json makeSummary(const config::Scenario& scenario, const TrackingSummary& tracking,

@@ -113,6 +113,10 @@ int DoMain(int argc, char** argv) {
   run_cmd->add_flag("--strict", run.strict,
                     "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
   run_cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
+  run_cmd->add_option(
+      "--run-id", run.run_id,
+      "The run's identity stamped on every message (default: random; with --processes, derived "
+      "from the LCM URL and the scenario so every host agrees)");
   run_cmd
       ->add_option("--processes", run.processes,
                    "Start only these processes here (comma-separated: logger, controller, actuator, plant), "

@@ -202,6 +202,23 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
   }
 }
 
+// A run's identity. One launcher: random. Several (--processes): they must
+// agree without talking, so it is derived from what they share -- the URL and
+// the resolved scenario (FNV-1a) -- unless --run-id gives it.
+int64_t runIdFor(const RunOptions& opt, const std::string& url, const std::string& resolved_path) {
+  if (opt.run_id) return *opt.run_id;
+  if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) {
+    std::random_device rd;
+    const uint64_t r = (static_cast<uint64_t>(rd()) << 32) ^ rd();
+    return static_cast<int64_t>(r >> 1) | 1;  // positive, never 0 ("any run")
+  }
+  std::ifstream in(resolved_path);
+  const std::string text = url + "\n" + std::string(std::istreambuf_iterator<char>(in), {});
+  uint64_t h = 1469598103934665603ULL;
+  for (const unsigned char ch : text) h = (h ^ ch) * 1099511628211ULL;
+  return static_cast<int64_t>(h >> 1) | 1;
+}
+
 // CPU time of a process, summed over its restarts.
 void addCpu(nlohmann::json& cpu, const ChildExit& e) {
   nlohmann::json& c = cpu[e.name];
@@ -225,10 +242,11 @@ bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervi
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
                        const std::string& resolved) {
   const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
+  const int64_t run_id = runIdFor(opt, url, resolved);
   // Where `lagrange spy OUT` finds this run: its URL and, in a private
   // network namespace, a process (this one) to take the namespace from.
   try {
-    writeEndpoint(out_dir, {url, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt});
+    writeEndpoint(out_dir, {url, run_id, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt});
   } catch (const std::exception& e) {
     std::cerr << "lagrange run: " << e.what() << "\n";
     return 1;
@@ -253,7 +271,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   auto spec = [&](const std::string& name, std::vector<std::string> extra) {
     ChildSpec c;
     c.name = name;
-    c.argv = {bin + "/lagrange-" + name, "--config", resolved, "--lcm-url", url};
+    c.argv = {bin + "/lagrange-" + name, "--config", resolved, "--lcm-url", url, "--run-id",
+              std::to_string(run_id)};
     c.argv.insert(c.argv.end(), extra.begin(), extra.end());
     c.log_path = (fs::path(out_dir) / (name + ".log")).string();
     return c;

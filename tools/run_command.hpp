@@ -4,6 +4,8 @@
 /// start plant, actuator, controller and logger, show progress, stop
 /// everything cleanly, and report.
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,9 @@ struct RunOptions {
   /// The processes to start on this host (a run spread over several hosts);
   /// empty: all four. A subset needs --no-netns and an explicit LCM URL.
   std::vector<std::string> processes;
+  /// The run's identity on every message; unset: random, or for --processes
+  /// derived from the LCM URL and the resolved scenario (the same on every host).
+  std::optional<int64_t> run_id;
   std::vector<std::string> self_argv;  ///< to re-execute inside the namespace
 };
 

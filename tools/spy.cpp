@@ -29,7 +29,7 @@ bool processAlive(long pid) { return fs::exists("/proc/" + std::to_string(pid) +
 }  // namespace
 
 void writeEndpoint(const std::string& out_dir, const RunEndpoint& endpoint) {
-  nlohmann::json j = {{"lcm_url", endpoint.lcm_url}, {"netns_pid", nullptr}};
+  nlohmann::json j = {{"lcm_url", endpoint.lcm_url}, {"run_id", endpoint.run_id}, {"netns_pid", nullptr}};
   if (endpoint.netns_pid) j["netns_pid"] = *endpoint.netns_pid;
   std::ofstream out(fs::path(out_dir) / kEndpointFile);
   out << j.dump(2) << "\n";
@@ -48,6 +48,7 @@ RunEndpoint readEndpoint(const std::string& out_dir) {
     const nlohmann::json j = nlohmann::json::parse(in);
     RunEndpoint e;
     e.lcm_url = j.at("lcm_url").get<std::string>();
+    e.run_id = j.value("run_id", int64_t{0});
     if (!j.at("netns_pid").is_null()) e.netns_pid = j.at("netns_pid").get<long>();
     return e;
   } catch (const nlohmann::json::exception& ex) {

@@ -17,6 +17,7 @@ namespace lagrange::tools {
 /// Where a running scenario's traffic is: OUT/lcm.json.
 struct RunEndpoint {
   std::string lcm_url;
+  int64_t run_id = 0;
   std::optional<long> netns_pid;  ///< a process in the run's private network namespace
 };
 

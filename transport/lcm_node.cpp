@@ -1,13 +1,16 @@
 #include "transport/lcm_node.hpp"
 
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <cerrno>
 
+#include "transport/channels.hpp"
+
 namespace lagrange::transport {
 
-LcmNode::LcmNode(const std::string& process_name, const std::string& url)
-    : process_name_(process_name), lcm_(url) {
+LcmNode::LcmNode(const std::string& process_name, const std::string& url, int64_t run_id)
+    : process_name_(process_name), lcm_(url), run_id_(run_id), pid_(static_cast<int32_t>(getpid())) {
   if (!lcm_.good())
     throw std::runtime_error(process_name + ": cannot open LCM at '" + url +
                              "'; expected a working LCM URL such as udpm://239.255.76.67:7667?ttl=0 "
@@ -32,11 +35,49 @@ int LcmNode::drain(int max_messages) {
   return handled;
 }
 
-void LcmNode::reject(const std::string& channel, const std::string& reason) {
-  counters_[channel].rejected++;
-  if (reported_.insert(channel + "\n" + reason).second)
+void LcmNode::reject(const std::string& channel, RejectReason why, const std::string& detail) {
+  ChannelCounters& c = counters_[channel];
+  c.rejected++;
+  c.rejected_by[static_cast<size_t>(why)]++;
+  // Logged once per kind: per reason, and for invalid messages per detail
+  // (the others carry numbers that change with every message).
+  const std::string kind =
+      std::to_string(static_cast<int>(why)) + (why == RejectReason::kInvalid ? detail : "");
+  if (reported_.insert(channel + "\n" + kind).second)
     spdlog::warn("{}: rejected a message on {}: {} (further ones of this kind are counted, not logged)",
-                 process_name_, channel, reason);
+                 process_name_, channel, detail);
+}
+
+void LcmNode::stamp(const std::string& channel, lagrange::header_t& header) const {
+  header.run_id = run_id_;
+  header.publisher = process_name_;
+  header.publisher_pid = pid_;
+  const auto it = counters_.find(channel);
+  header.seq = (it == counters_.end() ? 0 : it->second.published) + 1;
+}
+
+bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h) {
+  if (run_id_ != 0 && h.run_id != run_id_) {
+    reject(channel, RejectReason::kOtherRun,
+           "from another run (run_id " + std::to_string(h.run_id) + ", this run is " +
+               std::to_string(run_id_) + "; publisher '" + h.publisher + "')");
+    return false;
+  }
+  const std::string expected = publisherOf(channel);
+  if (!expected.empty() && h.publisher != expected) {
+    reject(channel, RejectReason::kWrongPublisher,
+           "published by '" + h.publisher + "', expected '" + expected + "'");
+    return false;
+  }
+  int64_t& last = last_seq_[channel + "\n" + h.publisher + "\n" + std::to_string(h.publisher_pid)];
+  if (h.seq <= last) {
+    reject(channel, RejectReason::kOldOrRepeated,
+           "sequence number " + std::to_string(h.seq) + " of '" + h.publisher + "' not newer than " +
+               std::to_string(last) + " (a duplicate or reordered datagram)");
+    return false;
+  }
+  last = h.seq;
+  return true;
 }
 
 void LcmNode::noteError(const std::string& channel, const std::string& what) {
@@ -47,11 +88,16 @@ void LcmNode::noteError(const std::string& channel, const std::string& what) {
 std::vector<lagrange::channel_stats_t> LcmNode::channelStats() const {
   std::vector<lagrange::channel_stats_t> out;
   for (const auto& [channel, c] : counters_) {
-    lagrange::channel_stats_t s;
+    lagrange::channel_stats_t s{};
     s.channel = channel;
     s.published = c.published;
     s.received = c.received;
     s.rejected = c.rejected;
+    s.rejected_undecodable = c.rejected_by[static_cast<size_t>(RejectReason::kUndecodable)];
+    s.rejected_other_run = c.rejected_by[static_cast<size_t>(RejectReason::kOtherRun)];
+    s.rejected_wrong_publisher = c.rejected_by[static_cast<size_t>(RejectReason::kWrongPublisher)];
+    s.rejected_old_or_repeated = c.rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)];
+    s.rejected_invalid = c.rejected_by[static_cast<size_t>(RejectReason::kInvalid)];
     out.push_back(s);
   }
   return out;

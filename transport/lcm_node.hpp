@@ -5,6 +5,7 @@
 /// message is rejected, counted and logged once per kind, never crashes the
 /// process and never reaches the mathematics.
 
+#include <array>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
@@ -12,25 +13,42 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "lagrange/channel_stats_t.hpp"
+#include "lagrange/header_t.hpp"
 
 namespace lagrange::transport {
 
 /// Why a message was rejected (empty string: accepted).
 using Rejection = std::string;
 
+/// Why a message was rejected (channel_stats_t's rejected_* counters).
+enum class RejectReason { kUndecodable, kOtherRun, kWrongPublisher, kOldOrRepeated, kInvalid };
+inline constexpr int kRejectReasons = 5;
+
 struct ChannelCounters {
   long long published = 0;
   long long received = 0;
   long long rejected = 0;
+  std::array<long long, kRejectReasons> rejected_by = {};  ///< indexed by RejectReason
 };
+
+/// True for the project's message types: they carry a header_t.
+template <class T, class = void>
+struct HasHeader : std::false_type {};
+template <class T>
+struct HasHeader<T, std::void_t<decltype(std::declval<T>().header)>> : std::true_type {};
 
 class LcmNode {
  public:
+  /// @param run_id the run's identity, stamped on every message published and
+  ///        required of every message received; 0: a process on its own,
+  ///        which stamps 0 and accepts any run.
   /// @throws std::runtime_error naming the URL if LCM cannot be initialised.
-  LcmNode(const std::string& process_name, const std::string& url);
+  LcmNode(const std::string& process_name, const std::string& url, int64_t run_id = 0);
+  int64_t runId() const { return run_id_; }
 
   /// Subscribe to a channel with type Msg. `validate` returns an empty string
   /// to accept, or the reason to reject; `handle` sees accepted messages only.
@@ -38,9 +56,18 @@ class LcmNode {
   void subscribe(const std::string& channel, std::function<Rejection(const Msg&)> validate,
                  std::function<void(const Msg&)> handle);
 
+  /// Publishes `msg`, its header stamped with the run, this publisher and the next sequence number.
   template <class Msg>
   void publish(const std::string& channel, const Msg& msg) {
-    if (lcm_.publish(channel, &msg) != 0) noteError(channel, "publish failed");
+    int rc = 0;
+    if constexpr (HasHeader<Msg>::value) {
+      Msg stamped = msg;
+      stamp(channel, stamped.header);
+      rc = lcm_.publish(channel, &stamped);
+    } else {
+      rc = lcm_.publish(channel, &msg);
+    }
+    if (rc != 0) noteError(channel, "publish failed");
     counters_[channel].published++;
   }
 
@@ -67,7 +94,11 @@ class LcmNode {
   lcm::LCM& raw() { return lcm_; }
 
  private:
-  void reject(const std::string& channel, const std::string& reason);
+  void reject(const std::string& channel, RejectReason why, const std::string& detail);
+  void stamp(const std::string& channel, lagrange::header_t& header) const;
+  /// Whether a received header belongs here: this run, the channel's
+  /// publisher, a newer sequence number. Rejects (and returns false) if not.
+  bool admit(const std::string& channel, const lagrange::header_t& header);
   void noteError(const std::string& channel, const std::string& what);
 
   std::string process_name_;
@@ -75,6 +106,9 @@ class LcmNode {
   std::map<std::string, ChannelCounters> counters_;
   std::set<std::string> reported_;  ///< channel/reason pairs already logged
   int64_t last_receive_utime_ = 0;
+  int64_t run_id_ = 0;
+  int32_t pid_ = 0;
+  std::map<std::string, int64_t> last_seq_;  ///< per channel, publisher and pid
 
   struct RawHandler {
     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;
@@ -95,9 +129,13 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
     } catch (const std::exception&) {
       decoded = false;  // e.g. a negative array length makes resize() throw
     }
-    if (!decoded) return reject(channel, "undecodable (wrong type, size or corrupt bytes)");
+    if (!decoded)
+      return reject(channel, RejectReason::kUndecodable, "undecodable (wrong type, size or corrupt bytes)");
+    if constexpr (HasHeader<Msg>::value) {
+      if (!admit(channel, msg.header)) return;
+    }
     const Rejection why = validate(msg);
-    if (!why.empty()) return reject(channel, why);
+    if (!why.empty()) return reject(channel, RejectReason::kInvalid, why);
     counters_[channel].received++;
     last_receive_utime_ = rbuf->recv_utime;
     handle(msg);

@@ -13,7 +13,7 @@ int64_t nowUtime() {
 }
 
 lagrange::header_t makeHeader(int64_t tick, double sim_time) {
-  lagrange::header_t h;
+  lagrange::header_t h{};  // run_id, publisher and seq: stamped by LcmNode::publish
   h.tick = tick;
   h.sim_time = sim_time;
   h.publish_utime = nowUtime();

@@ -22,7 +22,7 @@ bool stopRequested() { return stop_flag.load(); }
 
 void StatusReporter::publish(const std::string& state, int64_t last_tick, double sim_time,
                              double tracking_error, const std::string& message) {
-  lagrange::status_t s;
+  lagrange::status_t s{};
   s.header = makeHeader(std::max<int64_t>(last_tick, 0), std::max(sim_time, 0.0));
   s.process = node_.processName();
   s.state = state;
@@ -39,7 +39,7 @@ void StatusReporter::publish(const std::string& state, int64_t last_tick, double
       found = true;
     }
   if (!found) {
-    lagrange::channel_stats_t c;
+    lagrange::channel_stats_t c{};
     c.channel = kStatus;
     c.published = 1;
     c.received = c.rejected = 0;
@@ -102,6 +102,11 @@ int runProcess(const std::string& name, const std::string& description, int argc
   std::string config_path;
   std::string url = kDefaultLcmUrl;
   std::vector<std::string> overrides;
+  int64_t run_id = 0;
+  app.add_option("--run-id", run_id,
+                 "The run's identity: stamped on every message, required of every message received "
+                 "(0: accept any run)")
+      ->capture_default_str();
   app.add_option("-c,--config", config_path, "Scenario YAML file (e.g. config.resolved.yaml)")->required();
   app.add_option("--lcm-url", url, "LCM URL shared by every process of the run")->capture_default_str();
   app.add_option("--set", overrides, "Override a config key, key=value (YAML value); repeatable");
@@ -126,7 +131,7 @@ int runProcess(const std::string& name, const std::string& description, int argc
           "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
           "the normal scheduler",
           scenario.realtime.priority);
-    LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes));
+    LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
     return body(scenario, node);
   } catch (const config::ConfigError& e) {
     spdlog::error("{}", e.what());

@@ -574,24 +574,42 @@ std::vector<uint8_t> encoded(const Msg& m) {
   return bytes;
 }
 
+// The run identity the bad-traffic runs use, so that injected messages pass
+// the run check and reach the checks under test.
+constexpr int64_t kTestRunId = 4242;
+
+// A message as a given publisher would send it: this run, a fresh sequence number.
+template <class Msg>
+std::vector<uint8_t> fromPublisher(Msg m, const std::string& publisher, int64_t seq,
+                                   int64_t run_id = kTestRunId) {
+  m.header.run_id = run_id;
+  m.header.publisher = publisher;
+  m.header.publisher_pid = 1;
+  m.header.seq = seq;
+  return encoded(m);
+}
+
 // Runs a scenario on the machine's network (inside the test's namespace) at
-// `url` while publishing `payloads` on `channel` every 5 ms for the whole run.
+// `url` with run id kTestRunId while publishing, every 5 ms for the whole run,
+// the payloads `make(n)` returns for the n-th round on `channel`.
 // Returns the run's result and how many bad messages were sent.
-std::pair<RunResult, int> runUnderBadTraffic(const std::string& config, const std::string& dir,
-                                             const std::string& url, const std::string& channel,
-                                             const std::vector<std::vector<uint8_t>>& payloads) {
+std::pair<RunResult, int> runUnderBadTraffic(
+    const std::string& config, const std::string& dir, const std::string& url, const std::string& channel,
+    const std::function<std::vector<std::vector<uint8_t>>(int64_t)>& make, const std::string& extra = "") {
   std::atomic<bool> done{false};
   RunResult r;
   std::thread runner([&] {
-    r = runScenario(config, dir, "--no-netns -q --lcm-url '" + url + "'");
+    r = runScenario(
+        config, dir,
+        "--no-netns -q --run-id " + std::to_string(kTestRunId) + " --lcm-url '" + url + "' " + extra);
     done = true;
   });
   lcm_t* lcm = lcm_create(url.c_str());
   int sent = 0;
-  while (!done && lcm) {
-    for (const auto& p : payloads)
+  for (int64_t round = 1; !done && lcm; ++round) {
+    for (const auto& p : make(round))
       lcm_publish(lcm, channel.c_str(), p.data(), static_cast<unsigned>(p.size()));
-    sent += static_cast<int>(payloads.size());
+    sent += static_cast<int>(make(round).size());
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   runner.join();
@@ -617,9 +635,12 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   nan_msg.num_joints = 2;
   nan_msg.q = {std::nan(""), 0.0};
   const std::vector<uint8_t> garbage = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
-  const auto [r, sent] =
-      runUnderBadTraffic(kConfigs + "/rigid_2dof.yaml", dir, "udpm://239.255.76.67:7671?ttl=0",
-                         "PLANT_POSITION", {garbage, encoded(wrong_size), encoded(nan_msg)});
+  const auto [r, sent] = runUnderBadTraffic(
+      kConfigs + "/rigid_2dof.yaml", dir, "udpm://239.255.76.67:7671?ttl=0", "PLANT_POSITION",
+      [&](int64_t n) {
+        return std::vector<std::vector<uint8_t>>{garbage, fromPublisher(wrong_size, "plant", 2 * n),
+                                                 fromPublisher(nan_msg, "plant", 2 * n + 1)};
+      });
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir);
   const long long rejected = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected"];
@@ -631,6 +652,44 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   EXPECT_NE(text.find("undecodable"), std::string::npos);
   EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
   EXPECT_NE(text.find("non-finite"), std::string::npos);
+  const auto& reasons = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected_by_reason"];
+  EXPECT_GE(reasons["undecodable"].get<long long>(), 1) << reasons.dump();
+  EXPECT_GE(reasons["invalid"].get<long long>(), 2) << reasons.dump();
+}
+
+// Message hygiene: well-formed positions of another run, of a process that is
+// not the plant, and repeats of one sequence number are rejected per reason
+// before any validation, and the run converges. (Their tick would pin a
+// realtime controller, and answering them would stall a lockstep one.)
+TEST(Failure, MessagesOfAnotherRunAnotherPublisherOrRepeatedAreRejected) {
+  const std::string dir = freshDir("hygiene");
+  lagrange::plant_position_t position;
+  position.header = transport::makeHeader(1000000000, 1e6);
+  position.num_joints = 2;
+  position.q = {0.1, 0.2};
+  lagrange::plant_position_t repeated = position;
+  repeated.header = transport::makeHeader(0, 0.0);  // an old tick: harmless even the once it is new
+  const auto [r, sent] =
+      runUnderBadTraffic(kConfigs + "/rigid_2dof.yaml", dir, "udpm://239.255.76.67:7673?ttl=0",
+                         "PLANT_POSITION", [&](int64_t n) {
+                           return std::vector<std::vector<uint8_t>>{
+                               fromPublisher(position, "plant", n, kTestRunId + 1),
+                               fromPublisher(position, "intruder", n), fromPublisher(repeated, "plant", 7)};
+                         });
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["run_id"], kTestRunId);
+  const auto& reasons = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected_by_reason"];
+  std::printf("sent %d foreign messages; the controller rejected %s\n", sent, reasons.dump().c_str());
+  EXPECT_GE(reasons["other_run"].get<long long>(), 3) << reasons.dump();
+  EXPECT_GE(reasons["wrong_publisher"].get<long long>(), 3) << reasons.dump();
+  EXPECT_GE(reasons["old_or_repeated"].get<long long>(), 2) << reasons.dump();  // every copy but the first
+  EXPECT_EQ(reasons["invalid"], 0);
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
+  const std::string text = readText(dir + "/controller.log");
+  EXPECT_NE(text.find("from another run (run_id 4243, this run is 4242"), std::string::npos) << text;
+  EXPECT_NE(text.find("published by 'intruder', expected 'plant'"), std::string::npos) << text;
+  EXPECT_NE(text.find("sequence number 7 of 'plant' not newer than 7"), std::string::npos) << text;
 }
 
 // An ACTUATOR_STATE of the wrong chain order or size reaching the cascaded
@@ -660,9 +719,12 @@ TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
   wrong_steps.xi = {{1.0, 1.0}};
   wrong_steps.torque_steps = 2;
   wrong_steps.tau_applied = {{0.0, 0.0}, {0.0, 0.0}};
-  const auto [r, sent] =
-      runUnderBadTraffic(kConfigs + "/chain_m1.yaml", dir, "udpm://239.255.76.67:7672?ttl=0",
-                         "ACTUATOR_STATE", {encoded(wrong_order), encoded(wrong_size), encoded(wrong_steps)});
+  const auto [r, sent] = runUnderBadTraffic(
+      kConfigs + "/chain_m1.yaml", dir, "udpm://239.255.76.67:7672?ttl=0", "ACTUATOR_STATE", [&](int64_t n) {
+        return std::vector<std::vector<uint8_t>>{fromPublisher(wrong_order, "actuator", 3 * n),
+                                                 fromPublisher(wrong_size, "actuator", 3 * n + 1),
+                                                 fromPublisher(wrong_steps, "actuator", 3 * n + 2)};
+      });
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir);
   const long long rejected = j["processes"]["controller"]["channels"]["ACTUATOR_STATE"]["rejected"];
