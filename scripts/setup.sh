@@ -13,6 +13,8 @@ packages=(
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it
   default-jre fonts-dejavu-core xvfb imagemagick tesseract-ocr tesseract-ocr-eng
+  # scripts/fuzz.sh: libFuzzer with clang
+  clang libclang-rt-14-dev
 )
 
 missing=()
