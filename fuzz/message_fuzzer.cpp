@@ -21,21 +21,15 @@
 #include "lagrange/scenario_t.hpp"
 #include "lagrange/status_t.hpp"
 #include "transport/messages.hpp"
+#include "transport/safe_decode.hpp"
 
 namespace {
 
-// Decodes like LcmNode::subscribe does (a throw, e.g. a negative array
-// length reaching resize(), counts as undecodable), then validates.
+// Decodes as LcmNode::subscribe and the log reader do, then validates.
 template <class Msg, class Validate>
 void decodeAndValidate(const uint8_t* data, size_t size, Validate validate) {
   Msg m;
-  bool decoded = false;
-  try {
-    decoded = m.decode(data, 0, static_cast<int>(size)) == static_cast<int>(size);
-  } catch (const std::exception&) {
-    decoded = false;
-  }
-  if (!decoded) return;
+  if (!lagrange::transport::safeDecode(data, size, m)) return;
   const std::string why = validate(m);
   (void)why;
 }
@@ -53,22 +47,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const int steps = 1 + (selector >> 6) % 3;
   switch (selector % 8) {
     case 0:
-      decodeAndValidate<plant_position_t>(data, size, [&](const auto& m) { return transport::validate(m, joints); });
+      decodeAndValidate<plant_position_t>(data, size,
+                                          [&](const auto& m) { return transport::validate(m, joints); });
       break;
     case 1:
-      decodeAndValidate<plant_truth_t>(data, size, [&](const auto& m) { return transport::validate(m, joints); });
+      decodeAndValidate<plant_truth_t>(data, size,
+                                       [&](const auto& m) { return transport::validate(m, joints); });
       break;
     case 2:
-      decodeAndValidate<plant_motor_t>(data, size,
-                                       [&](const auto& m) { return transport::validate(m, joints, selector & 8); });
+      decodeAndValidate<plant_motor_t>(
+          data, size, [&](const auto& m) { return transport::validate(m, joints, selector & 8); });
       break;
     case 3:
       decodeAndValidate<control_command_t>(data, size,
                                            [&](const auto& m) { return transport::validate(m, joints); });
       break;
     case 4:
-      decodeAndValidate<actuator_state_t>(data, size,
-                                          [&](const auto& m) { return transport::validate(m, joints, steps); });
+      decodeAndValidate<actuator_state_t>(
+          data, size, [&](const auto& m) { return transport::validate(m, joints, steps); });
       break;
     case 5:
       decodeAndValidate<status_t>(data, size, [&](const auto& m) { return transport::validate(m); });

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "transport/safe_decode.hpp"
+
 namespace lagrange::tools {
 
 /// A file that is not an LCM log at all, or cannot be opened.
@@ -38,14 +40,10 @@ struct LogScan {
 /// @throws LogError if the file cannot be opened or holds no event in a nonzero length.
 LogScan readLog(const std::string& path, const std::function<void(const lcm::LogEvent&)>& on_event);
 
-/// Decodes an event as Msg; false (never a throw) if it is not one whole Msg.
+/// Decodes an event as Msg; false (never a throw, never a huge allocation) if it is not one whole Msg.
 template <class Msg>
 bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
-  try {
-    return m.decode(ev.data, 0, static_cast<int>(ev.datalen)) == static_cast<int>(ev.datalen);
-  } catch (const std::exception&) {
-    return false;
-  }
+  return ev.datalen >= 0 && transport::safeDecode(ev.data, static_cast<std::size_t>(ev.datalen), m);
 }
 
 /// The scenario YAML of a SCENARIO event (scenario_t), or nothing if it is not one.

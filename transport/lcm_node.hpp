@@ -18,6 +18,7 @@
 
 #include "lagrange/channel_stats_t.hpp"
 #include "lagrange/header_t.hpp"
+#include "transport/safe_decode.hpp"
 
 namespace lagrange::transport {
 
@@ -123,13 +124,7 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
   counters_[channel];
   auto callback = [this, channel, validate, handle](const lcm::ReceiveBuffer* rbuf, const std::string&) {
     Msg msg;
-    bool decoded = false;
-    try {
-      decoded = msg.decode(rbuf->data, 0, rbuf->data_size) == static_cast<int>(rbuf->data_size);
-    } catch (const std::exception&) {
-      decoded = false;  // e.g. a negative array length makes resize() throw
-    }
-    if (!decoded)
+    if (!safeDecode(rbuf->data, rbuf->data_size, msg))
       return reject(channel, RejectReason::kUndecodable, "undecodable (wrong type, size or corrupt bytes)");
     if constexpr (HasHeader<Msg>::value) {
       if (!admit(channel, msg.header)) return;
