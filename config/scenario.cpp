@@ -349,8 +349,47 @@ Scenario readScenario(MapReader root) {
     if (s.supervision.max_restarts < 0) sv.fail("max_restarts", "expected a whole number >= 0");
     sv.finish({"restart", "max_restarts"});
   }
+  if (root.has("faults")) {
+    MapReader f = root.map("faults");
+    const int seed = f.integer("seed", static_cast<int>(s.faults.seed));
+    if (seed < 0) f.fail("seed", "expected a whole number >= 0");
+    s.faults.seed = static_cast<uint64_t>(seed);
+    if (f.has("channels")) {
+      MapReader channels = f.map("channels");
+      const std::set<std::string> known = {"all",         "PLANT_POSITION",  "PLANT_TRUTH",
+                                           "PLANT_MOTOR", "CONTROL_COMMAND", "ACTUATOR_STATE",
+                                           "STATUS",      "SCENARIO"};
+      std::set<std::string> names;
+      for (const std::string& name : channels.keys()) {
+        if (known.count(name) == 0)
+          channels.fail(name,
+                        "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, "
+                        "CONTROL_COMMAND, ACTUATOR_STATE, STATUS or SCENARIO");
+        names.insert(name);
+        MapReader c = channels.map(name);
+        ChannelFaults rule;
+        const auto probability = [&](const char* key) {
+          const double p = c.number(key, 0.0);
+          if (p < 0.0 || p > 1.0) c.fail(key, "expected a probability from 0 to 1");
+          return p;
+        };
+        rule.drop = probability("drop");
+        rule.duplicate = probability("duplicate");
+        rule.reorder = probability("reorder");
+        rule.corrupt = probability("corrupt");
+        rule.delay = c.number("delay", 0.0);
+        if (rule.delay < 0.0) c.fail("delay", "expected a time >= 0 [s]");
+        rule.delay_jitter = c.number("delay_jitter", 0.0);
+        if (rule.delay_jitter < 0.0) c.fail("delay_jitter", "expected a time >= 0 [s]");
+        c.finish({"drop", "duplicate", "reorder", "corrupt", "delay", "delay_jitter"});
+        s.faults.channels[name] = rule;
+      }
+      channels.finish(names);
+    }
+    f.finish({"seed", "channels"});
+  }
   root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference", "plant",
-               "actuator", "controller", "metrics", "lockstep", "realtime", "supervision"});
+               "actuator", "controller", "metrics", "lockstep", "realtime", "supervision", "faults"});
   return s;
 }
 
@@ -517,6 +556,22 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "supervision" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "restart" << YAML::Value << YAML::Flow << s.supervision.restart;
   out << YAML::Key << "max_restarts" << YAML::Value << s.supervision.max_restarts;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "faults" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "seed" << YAML::Value << s.faults.seed;
+  out << YAML::Key << "channels" << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, r] : s.faults.channels) {
+    out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "drop" << YAML::Value << r.drop << YAML::Key << "duplicate" << YAML::Value
+        << r.duplicate;
+    out << YAML::Key << "reorder" << YAML::Value << r.reorder << YAML::Key << "corrupt" << YAML::Value
+        << r.corrupt;
+    out << YAML::Key << "delay" << YAML::Value << r.delay << YAML::Key << "delay_jitter" << YAML::Value
+        << r.delay_jitter;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
   out << YAML::EndMap;
 
   out << YAML::EndMap;

@@ -6,6 +6,8 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -90,6 +92,26 @@ struct RealtimeConfig {
   int priority = 50;             ///< SCHED_FIFO priority of the loops, 0 for the normal scheduler
 };
 
+/// What may happen to a datagram on one channel (probabilities in [0, 1], times in s).
+/// (faults.channels.NAME; transport/fault_injector.hpp)
+struct ChannelFaults {
+  double drop = 0.0;
+  double duplicate = 0.0;
+  double reorder = 0.0;
+  double corrupt = 0.0;
+  double delay = 0.0;
+  double delay_jitter = 0.0;
+  bool any() const {
+    return drop > 0 || duplicate > 0 || reorder > 0 || corrupt > 0 || delay > 0 || delay_jitter > 0;
+  }
+};
+
+/// Seeded fault injection on the sending side (faults.*).
+struct FaultsConfig {
+  uint64_t seed = 1;                              ///< each process draws from seed and its name
+  std::map<std::string, ChannelFaults> channels;  ///< by channel name, or "all"
+};
+
 /// What the launcher does when a process dies (supervision.*).
 struct SupervisionConfig {
   /// Processes restarted when they die: "controller", "actuator". The plant
@@ -117,6 +139,7 @@ struct Scenario {
   LockstepConfig lockstep;
   RealtimeConfig realtime;
   SupervisionConfig supervision;
+  FaultsConfig faults;
 
   int dof() const { return static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }

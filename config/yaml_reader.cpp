@@ -37,6 +37,12 @@ MapReader::MapReader(YAML::Node node, std::string path) : node_(node), path_(std
                       ": expected a map of keys, got " + show(node_) + lineOf(node_));
 }
 
+std::vector<std::string> MapReader::keys() const {
+  std::vector<std::string> out;
+  for (const auto& entry : node_) out.push_back(entry.first.as<std::string>());
+  return out;
+}
+
 std::string MapReader::keyPath(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }

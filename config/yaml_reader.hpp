@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace lagrange::config {
 
@@ -41,6 +42,9 @@ class MapReader {
 
   /// @throws ConfigError listing the first unknown key and the known ones.
   void finish(const std::set<std::string>& known) const;
+
+  /// The keys of the map, in file order (for maps keyed by name).
+  std::vector<std::string> keys() const;
 
   std::string keyPath(const std::string& key) const;
 

@@ -80,13 +80,17 @@ int DoMain(int argc, char** argv) {
         // lockstep.logger_window ticks ahead, never waits for the logger.
         const long long ack_every = std::max(1, s.lockstep.logger_window / 4);
         bool progress_due = false;
+        long long acked = -1;  // the lastTick() of the last STATUS
+        // Samples in any order: one re-sent by the plant, or overtaken by a
+        // later one, is still a sample of the run.
         node.subscribe<lagrange::plant_truth_t>(
             transport::kPlantTruth, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::plant_truth_t& m) {
               if (metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q)) &&
-                  m.header.tick % ack_every == 0)
+                  metrics.lastTick() - acked >= ack_every)
                 progress_due = true;
-            });
+            },
+            transport::LcmNode::Order::kAcceptReordered);
         node.subscribe<lagrange::control_command_t>(
             transport::kControlCommand, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::control_command_t& m) {
@@ -115,6 +119,7 @@ int DoMain(int argc, char** argv) {
           [[maybe_unused]] const ssize_t written = write(progress_fd, line.data(), line.size());
         };
         auto report = [&](const char* state) {
+          acked = metrics.lastTick();
           status.publish(state, metrics.lastTick(), metrics.lastTime(), metrics.lastError());
         };
         // True when plant, controller and actuator have all reported `state`
@@ -180,7 +185,9 @@ int DoMain(int argc, char** argv) {
           if (!got && (!transport::stopRequested() || all_reported(""))) break;
         }
         // Completed means every tick was recorded, however the logger was stopped.
-        facts.status = metrics.lastTick() >= s.lastTick() ? "completed" : "interrupted";
+        // (Realtime runs do not re-send: a sample lost on the way is missing
+        // from the log -- log.missing_samples -- but the run still completed.)
+        facts.status = metrics.newestTick() >= s.lastTick() ? "completed" : "interrupted";
         if (facts.status == "completed" && !all_reported("finished"))
           spdlog::warn("not every process reported 'finished' within {} s of the plant", finish_grace);
         report(transport::stopRequested() ? "interrupted" : "finished");

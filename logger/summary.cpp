@@ -98,10 +98,22 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                              {"rejected_by_reason", reasons}};
       json& total = messages[c.channel];
       if (total.is_null())
-        total = {{"published", 0}, {"received", 0}, {"rejected", 0}, {"rejected_by_reason", json::object()}};
+        total = {{"published", 0},
+                 {"received", 0},
+                 {"rejected", 0},
+                 {"rejected_by_reason", json::object()},
+                 {"injected", json::object()}};
       total["published"] = total["published"].get<long long>() + c.published;
       total["received"] = total["received"].get<long long>() + c.received;
       total["rejected"] = total["rejected"].get<long long>() + c.rejected;
+      const json injected = {{"dropped", c.injected_dropped},
+                             {"duplicated", c.injected_duplicated},
+                             {"reordered", c.injected_reordered},
+                             {"delayed", c.injected_delayed},
+                             {"corrupted", c.injected_corrupted}};
+      channels[c.channel]["injected"] = injected;
+      for (const auto& [fault, n] : injected.items())
+        total["injected"][fault] = total["injected"].value(fault, 0LL) + n.get<long long>();
       for (const auto& [reason, n] : reasons.items())
         total["rejected_by_reason"][reason] =
             total["rejected_by_reason"].value(reason, 0LL) + n.get<long long>();
@@ -138,7 +150,12 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   }
   j["messages"] = messages;
   j["processes"] = processes;
-  j["log"] = {{"path", f.log_path}, {"events", f.log_events}};
+  j["log"] = {
+      {"path", f.log_path},
+      {"events", f.log_events},
+      // ticks up to the newest sample without a PLANT_TRUTH in the log
+      {"missing_samples",
+       t.samples == 0 ? 0LL : std::max(0LL, std::llround(t.sim_time / s.tickPeriod()) + 1 - t.samples)}};
   return j;
 }
 

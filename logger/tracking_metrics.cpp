@@ -41,13 +41,12 @@ void TrackingMetrics::addChainErrors(long long tick, double t,
 }
 
 std::optional<double> TrackingMetrics::addSample(long long tick, double t, const Eigen::VectorXd& q) {
-  if (tick <= last_tick_) return std::nullopt;
-  last_tick_ = tick;
+  if (tick < 0 || samples_.count(tick) > 0) return std::nullopt;
   Eigen::VectorXd qd(reference_.dof());
   for (int i = 0; i < reference_.dof(); ++i) qd(i) = reference_.jointDerivative(i, 0, t);
   const double e = (q - qd).norm();
-  times_.push_back(t);
-  errors_.push_back(e);
+  samples_.emplace(tick, Sample{t, e});
+  while (samples_.count(contiguous_tick_ + 1) > 0) ++contiguous_tick_;
   return e;
 }
 
@@ -59,29 +58,34 @@ TrackingSummary TrackingMetrics::summary() const {
   TrackingSummary s;
   s.tolerance = tolerance_;
   s.max_abs_torque = max_abs_torque_;
-  s.samples = static_cast<long long>(errors_.size());
-  if (errors_.empty()) return s;
-  s.sim_time = times_.back();
-  s.final_error = errors_.back();
+  std::vector<double> times, errors;  // in tick order
+  for (const auto& [tick, sample] : samples_) {
+    times.push_back(sample.t);
+    errors.push_back(sample.error);
+  }
+  s.samples = static_cast<long long>(errors.size());
+  if (errors.empty()) return s;
+  s.sim_time = times.back();
+  s.final_error = errors.back();
   double sum_sq = 0.0;
   long long in_window = 0;
   // Walk backwards: the convergence time is the sample after the last one at
   // or above the tolerance.
   std::optional<size_t> last_violation;
-  for (size_t i = errors_.size(); i-- > 0;) {
-    s.max_error = std::max(s.max_error, errors_[i]);
-    if (!last_violation && errors_[i] >= tolerance_) last_violation = i;
-    if (times_[i] >= s.sim_time - 1.0 - 1e-12) {
-      sum_sq += errors_[i] * errors_[i];
+  for (size_t i = errors.size(); i-- > 0;) {
+    s.max_error = std::max(s.max_error, errors[i]);
+    if (!last_violation && errors[i] >= tolerance_) last_violation = i;
+    if (times[i] >= s.sim_time - 1.0 - 1e-12) {
+      sum_sq += errors[i] * errors[i];
       ++in_window;
     }
   }
   s.rms_last_second = std::sqrt(sum_sq / static_cast<double>(in_window));
-  for (const auto& errors : chain_errors_) s.chain.push_back(summarize(chain_times_, errors, xi_tolerance_));
+  for (const auto& stage : chain_errors_) s.chain.push_back(summarize(chain_times_, stage, xi_tolerance_));
   if (!last_violation) {
-    s.convergence_time = times_.front();
-  } else if (*last_violation + 1 < errors_.size()) {
-    s.convergence_time = times_[*last_violation + 1];
+    s.convergence_time = times.front();
+  } else if (*last_violation + 1 < errors.size()) {
+    s.convergence_time = times[*last_violation + 1];
   }
   return s;
 }

@@ -4,6 +4,7 @@
 /// the reference (not from the controller's own view). Pure.
 
 #include <Eigen/Dense>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -36,8 +37,8 @@ class TrackingMetrics {
  public:
   TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance = 1e-2);
 
-  /// A plant sample. Ticks must increase; a repeated or older tick is ignored
-  /// (returns false). Returns ||q~||.
+  /// A plant sample, in any order (a re-sent one may come late); a tick
+  /// already recorded is ignored (returns nothing). Returns ||q~||.
   std::optional<double> addSample(long long tick, double t, const Eigen::VectorXd& q);
   void addTorque(const Eigen::MatrixXd& tau);
 
@@ -46,15 +47,22 @@ class TrackingMetrics {
   void addChainErrors(long long tick, double t, const std::vector<std::vector<double>>& xi_error);
 
   TrackingSummary summary() const;
-  long long lastTick() const { return last_tick_; }
-  double lastError() const { return errors_.empty() ? std::nan("") : errors_.back(); }
-  double lastTime() const { return times_.empty() ? 0.0 : times_.back(); }
+  /// The last tick up to which every sample is recorded (-1: not tick 0 yet).
+  long long lastTick() const { return contiguous_tick_; }
+  /// The newest tick recorded (-1: none).
+  long long newestTick() const { return samples_.empty() ? -1 : samples_.rbegin()->first; }
+  /// ||q~|| and time of the newest sample.
+  double lastError() const { return samples_.empty() ? std::nan("") : samples_.rbegin()->second.error; }
+  double lastTime() const { return samples_.empty() ? 0.0 : samples_.rbegin()->second.t; }
 
  private:
   model::Reference reference_;
   double tolerance_;
-  long long last_tick_ = -1;
-  std::vector<double> times_, errors_;
+  struct Sample {
+    double t, error;
+  };
+  std::map<long long, Sample> samples_;  ///< by tick
+  long long contiguous_tick_ = -1;
   double max_abs_torque_ = 0.0;
   double xi_tolerance_;
   long long last_chain_tick_ = -1;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <chrono>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -64,18 +65,34 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         if (m.process == "logger") logger_tick = std::max(logger_tick, m.last_tick);
       });
 
+  // PLANT_TRUTH the logger has not confirmed (its STATUS last_tick: every
+  // sample up to it recorded); re-sent while the logger holds the run back,
+  // so a datagram lost on the way to the log is sent again, not lost.
+  std::map<int64_t, lagrange::plant_truth_t> unconfirmed;
+  long long truth_resends = 0;
+  auto resendUnconfirmed = [&] {
+    unconfirmed.erase(unconfirmed.begin(), unconfirmed.upper_bound(logger_tick));
+    for (const auto& [tick, truth] : unconfirmed) node.publish(transport::kPlantTruth, truth);
+    truth_resends += static_cast<long long>(unconfirmed.size());
+  };
+
   status.publish("ready", -1, 0.0);
   const auto startup_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
   long long retransmits = 0;
   auto next_status = Clock::now();
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
+    auto resend_truth_at = Clock::now() + retransmit;
     while (logger_tick == -2 || k - logger_tick > s.lockstep.logger_window) {
       if (transport::stopRequested()) break;
       if (logger_tick == -2 && Clock::now() > startup_deadline)
         throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
                                  " s; is it running on the same LCM URL?");
-      node.handle(20);
+      node.handle(5);
+      if (logger_tick != -2 && Clock::now() >= resend_truth_at) {
+        resendUnconfirmed();
+        resend_truth_at = Clock::now() + retransmit;
+      }
     }
     if (transport::stopRequested()) {
       status.publish("interrupted", k - 1, t);
@@ -87,6 +104,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose(), input);
     publishMeasurements(node, s, sim, out.position);
     node.publish(transport::kPlantTruth, out.truth);
+    unconfirmed.emplace(k, out.truth);
     if (Clock::now() >= next_status) {
       status.publish("running", k, t);
       next_status = Clock::now() + std::chrono::milliseconds(500);
@@ -110,9 +128,27 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     // ring is delivered before the plant reports "finished".
     if (k < last_tick) sim.stepProfile(tau, substeps);
   }
-  if (retransmits > 0) spdlog::info("re-sent {} position samples after timeouts", retransmits);
-  status.publish("finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
-                 "retransmits=" + std::to_string(retransmits));
+  // The end: every sample in the log first (bounded: a logger that has
+  // gone away does not keep the plant forever).
+  const auto log_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
+  auto resend_truth_at = Clock::now() + retransmit;
+  while (logger_tick < last_tick && Clock::now() < log_deadline && !transport::stopRequested()) {
+    node.handle(5);
+    if (Clock::now() >= resend_truth_at) {
+      resendUnconfirmed();
+      resend_truth_at = Clock::now() + retransmit;
+    }
+  }
+  if (logger_tick < last_tick)
+    spdlog::warn("the logger confirmed samples up to tick {} of {}", logger_tick, last_tick);
+  if (retransmits > 0 || truth_resends > 0)
+    spdlog::info("re-sent {} position samples and {} PLANT_TRUTH samples after timeouts", retransmits,
+                 truth_resends);
+  // Three times: the others end on it, and a datagram can be lost.
+  for (int copy = 0; copy < 3; ++copy)
+    status.publish(
+        "finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
+        "retransmits=" + std::to_string(retransmits) + " truth_resends=" + std::to_string(truth_resends));
   return 0;
 }
 

@@ -48,6 +48,10 @@ void LcmNode::reject(const std::string& channel, RejectReason why, const std::st
                  process_name_, channel, detail);
 }
 
+void LcmNode::injectFaults(const std::map<std::string, config::ChannelFaults>& rules, uint64_t seed) {
+  faults_ = std::make_unique<FaultInjector>(lcm_, rules, seed);
+}
+
 void LcmNode::stamp(const std::string& channel, lagrange::header_t& header) const {
   header.run_id = run_id_;
   header.publisher = process_name_;
@@ -56,7 +60,7 @@ void LcmNode::stamp(const std::string& channel, lagrange::header_t& header) cons
   header.seq = (it == counters_.end() ? 0 : it->second.published) + 1;
 }
 
-bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h) {
+bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h, Order order) {
   if (run_id_ != 0 && h.run_id != run_id_) {
     reject(channel, RejectReason::kOtherRun,
            "from another run (run_id " + std::to_string(h.run_id) + ", this run is " +
@@ -69,7 +73,19 @@ bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h) {
            "published by '" + h.publisher + "', expected '" + expected + "'");
     return false;
   }
-  int64_t& last = last_seq_[channel + "\n" + h.publisher + "\n" + std::to_string(h.publisher_pid)];
+  const std::string source = channel + "\n" + h.publisher + "\n" + std::to_string(h.publisher_pid);
+  if (order == Order::kAcceptReordered) {
+    std::set<int64_t>& seen = seen_[source];
+    if (h.seq <= 0 || !seen.insert(h.seq).second) {
+      reject(
+          channel, RejectReason::kOldOrRepeated,
+          "sequence number " + std::to_string(h.seq) + " of '" + h.publisher + "' seen before (a duplicate)");
+      return false;
+    }
+    if (seen.size() > 100000) seen.erase(seen.begin());  // older than any reordering
+    return true;
+  }
+  int64_t& last = last_seq_[source];
   if (h.seq <= last) {
     reject(channel, RejectReason::kOldOrRepeated,
            "sequence number " + std::to_string(h.seq) + " of '" + h.publisher + "' not newer than " +
@@ -98,6 +114,14 @@ std::vector<lagrange::channel_stats_t> LcmNode::channelStats() const {
     s.rejected_wrong_publisher = c.rejected_by[static_cast<size_t>(RejectReason::kWrongPublisher)];
     s.rejected_old_or_repeated = c.rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)];
     s.rejected_invalid = c.rejected_by[static_cast<size_t>(RejectReason::kInvalid)];
+    if (faults_) {
+      const InjectedCounts injected = faults_->counts(channel);
+      s.injected_dropped = injected.dropped;
+      s.injected_duplicated = injected.duplicated;
+      s.injected_reordered = injected.reordered;
+      s.injected_delayed = injected.delayed;
+      s.injected_corrupted = injected.corrupted;
+    }
     out.push_back(s);
   }
   return out;

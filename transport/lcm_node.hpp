@@ -18,6 +18,7 @@
 
 #include "lagrange/channel_stats_t.hpp"
 #include "lagrange/header_t.hpp"
+#include "transport/fault_injector.hpp"
 #include "transport/safe_decode.hpp"
 
 namespace lagrange::transport {
@@ -51,11 +52,17 @@ class LcmNode {
   LcmNode(const std::string& process_name, const std::string& url, int64_t run_id = 0);
   int64_t runId() const { return run_id_; }
 
+  /// What a subscription does with a datagram older than the newest one of its publisher.
+  enum class Order {
+    kNewestOnly,      ///< reject it (old_or_repeated): inputs of the mathematics, where late means stale
+    kAcceptReordered  ///< accept it unless it is a repeat: records, where a late sample is still a sample
+  };
+
   /// Subscribe to a channel with type Msg. `validate` returns an empty string
   /// to accept, or the reason to reject; `handle` sees accepted messages only.
   template <class Msg>
   void subscribe(const std::string& channel, std::function<Rejection(const Msg&)> validate,
-                 std::function<void(const Msg&)> handle);
+                 std::function<void(const Msg&)> handle, Order order = Order::kNewestOnly);
 
   /// Publishes `msg`, its header stamped with the run, this publisher and the next sequence number.
   template <class Msg>
@@ -64,13 +71,16 @@ class LcmNode {
     if constexpr (HasHeader<Msg>::value) {
       Msg stamped = msg;
       stamp(channel, stamped.header);
-      rc = lcm_.publish(channel, &stamped);
+      rc = send(channel, stamped);
     } else {
-      rc = lcm_.publish(channel, &msg);
+      rc = send(channel, msg);
     }
     if (rc != 0) noteError(channel, "publish failed");
     counters_[channel].published++;
   }
+
+  /// From now on, what this node publishes passes through seeded fault injection (config faults.*).
+  void injectFaults(const std::map<std::string, config::ChannelFaults>& rules, uint64_t seed);
 
   /// Every message on channels matching the regex, undecoded. The queue is
   /// deep (kQueueCapacity) so a slow handler does not silently drop messages.
@@ -95,11 +105,18 @@ class LcmNode {
   lcm::LCM& raw() { return lcm_; }
 
  private:
+  template <class Msg>
+  int send(const std::string& channel, const Msg& msg) {
+    if (!faults_) return lcm_.publish(channel, &msg);
+    std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
+    msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    return faults_->publish(channel, std::move(bytes));
+  }
   void reject(const std::string& channel, RejectReason why, const std::string& detail);
   void stamp(const std::string& channel, lagrange::header_t& header) const;
   /// Whether a received header belongs here: this run, the channel's
   /// publisher, a newer sequence number. Rejects (and returns false) if not.
-  bool admit(const std::string& channel, const lagrange::header_t& header);
+  bool admit(const std::string& channel, const lagrange::header_t& header, Order order);
   void noteError(const std::string& channel, const std::string& what);
 
   std::string process_name_;
@@ -107,9 +124,11 @@ class LcmNode {
   std::map<std::string, ChannelCounters> counters_;
   std::set<std::string> reported_;  ///< channel/reason pairs already logged
   int64_t last_receive_utime_ = 0;
+  std::unique_ptr<FaultInjector> faults_;  // after lcm_: stopped (its last sends made) before LCM closes
   int64_t run_id_ = 0;
   int32_t pid_ = 0;
-  std::map<std::string, int64_t> last_seq_;  ///< per channel, publisher and pid
+  std::map<std::string, int64_t> last_seq_;        ///< per channel, publisher and pid
+  std::map<std::string, std::set<int64_t>> seen_;  ///< the same, recent numbers (Order::kAcceptReordered)
 
   struct RawHandler {
     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;
@@ -120,14 +139,15 @@ class LcmNode {
 
 template <class Msg>
 void LcmNode::subscribe(const std::string& channel, std::function<Rejection(const Msg&)> validate,
-                        std::function<void(const Msg&)> handle) {
+                        std::function<void(const Msg&)> handle, Order order) {
   counters_[channel];
-  auto callback = [this, channel, validate, handle](const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  auto callback = [this, channel, validate, handle, order](const lcm::ReceiveBuffer* rbuf,
+                                                           const std::string&) {
     Msg msg;
     if (!safeDecode(rbuf->data, rbuf->data_size, msg))
       return reject(channel, RejectReason::kUndecodable, "undecodable (wrong type, size or corrupt bytes)");
     if constexpr (HasHeader<Msg>::value) {
-      if (!admit(channel, msg.header)) return;
+      if (!admit(channel, msg.header, order)) return;
     }
     const Rejection why = validate(msg);
     if (!why.empty()) return reject(channel, RejectReason::kInvalid, why);

@@ -132,6 +132,13 @@ int runProcess(const std::string& name, const std::string& description, int argc
           "the normal scheduler",
           scenario.realtime.priority);
     LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
+    if (!scenario.faults.channels.empty()) {
+      // Each process its own stream of draws, the same in every run with this seed.
+      uint64_t seed = scenario.faults.seed;
+      for (const unsigned char c : name) seed = (seed ^ c) * 1099511628211ULL;
+      node.injectFaults(scenario.faults.channels, seed);
+      spdlog::info("fault injection on: seed {}", scenario.faults.seed);
+    }
     return body(scenario, node);
   } catch (const config::ConfigError& e) {
     spdlog::error("{}", e.what());
