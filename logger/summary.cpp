@@ -91,7 +91,8 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                             {"other_run", c.rejected_other_run},
                             {"wrong_publisher", c.rejected_wrong_publisher},
                             {"old_or_repeated", c.rejected_old_or_repeated},
-                            {"invalid", c.rejected_invalid}};
+                            {"invalid", c.rejected_invalid},
+                            {"corrupt", c.rejected_corrupt}};
       channels[c.channel] = {{"published", c.published},
                              {"received", c.received},
                              {"rejected", c.rejected},

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "transport/checksum.hpp"
+#include "transport/lcm_node.hpp"
 #include "transport/safe_decode.hpp"
 
 namespace lagrange::tools {
@@ -40,10 +42,16 @@ struct LogScan {
 /// @throws LogError if the file cannot be opened or holds no event in a nonzero length.
 LogScan readLog(const std::string& path, const std::function<void(const lcm::LogEvent&)>& on_event);
 
-/// Decodes an event as Msg; false (never a throw, never a huge allocation) if it is not one whole Msg.
+/// Decodes an event as Msg; false (never a throw, never a huge allocation)
+/// if it is not one whole, intact Msg: a message whose checksum does not
+/// match was corrupted on the way (a log records what arrived; the intact
+/// copy, re-sent, follows). Unsealed messages (checksum 0: in-process runs) pass.
 template <class Msg>
 bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
-  return ev.datalen >= 0 && transport::safeDecode(ev.data, static_cast<std::size_t>(ev.datalen), m);
+  if (ev.datalen < 0 || !transport::safeDecode(ev.data, static_cast<std::size_t>(ev.datalen), m))
+    return false;
+  if constexpr (transport::HasHeader<Msg>::value) return m.header.checksum == 0 || transport::intact(m);
+  return true;
 }
 
 /// The scenario YAML of a SCENARIO event (scenario_t), or nothing if it is not one.

@@ -83,9 +83,11 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
   rec.undecodable = undecodable;
   result.warnings = scan.problems();
   if (undecodable > 0)
-    result.warnings.push_back(std::to_string(undecodable) +
-                              " events on this project's channels could not be decoded as its messages "
-                              "(another version's types?) and were skipped");
+    result.warnings.push_back(
+        std::to_string(undecodable) +
+        " events on this project's channels could not be decoded as its messages, or failed "
+        "their checksum (corrupted on the way -- the intact copy is re-sent in lockstep -- or "
+        "another version's types), and were skipped");
   std::string also;  // what else is wrong with the log, for an error message
   for (const auto& w : result.warnings) also += "; " + w;
   if (!rec.scenario)

@@ -1,6 +1,7 @@
 /// @file
 /// `lagrange replay --component plant` (tools/replay.hpp).
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "plant/scenario_plant.hpp"
@@ -65,6 +66,14 @@ std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& 
   return d;
 }
 
+// The plant's samples by tick: in the log a re-sent one (lost on the way to
+// the logger the first time) comes after later ones.
+std::vector<lagrange::plant_truth_t> inTickOrder(std::vector<lagrange::plant_truth_t> truths) {
+  std::stable_sort(truths.begin(), truths.end(),
+                   [](const auto& a, const auto& b) { return a.header.tick < b.header.tick; });
+  return truths;
+}
+
 }  // namespace
 
 ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides) {
@@ -74,7 +83,7 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
     plant::PlantSim sim = plant::plantFor(s);
     Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());
     int64_t expected_tick = 0;
-    for (const auto& truth : rec.truths) {
+    for (const auto& truth : inTickOrder(rec.truths)) {
       const int64_t k = truth.header.tick;
       if (k != expected_tick)
         throw ReplayError("the log lacks PLANT_TRUTH tick " + std::to_string(expected_tick) +

@@ -114,6 +114,7 @@ std::vector<lagrange::channel_stats_t> LcmNode::channelStats() const {
     s.rejected_wrong_publisher = c.rejected_by[static_cast<size_t>(RejectReason::kWrongPublisher)];
     s.rejected_old_or_repeated = c.rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)];
     s.rejected_invalid = c.rejected_by[static_cast<size_t>(RejectReason::kInvalid)];
+    s.rejected_corrupt = c.rejected_by[static_cast<size_t>(RejectReason::kCorrupt)];
     if (faults_) {
       const InjectedCounts injected = faults_->counts(channel);
       s.injected_dropped = injected.dropped;

@@ -18,6 +18,7 @@
 
 #include "lagrange/channel_stats_t.hpp"
 #include "lagrange/header_t.hpp"
+#include "transport/checksum.hpp"
 #include "transport/fault_injector.hpp"
 #include "transport/safe_decode.hpp"
 
@@ -27,8 +28,8 @@ namespace lagrange::transport {
 using Rejection = std::string;
 
 /// Why a message was rejected (channel_stats_t's rejected_* counters).
-enum class RejectReason { kUndecodable, kOtherRun, kWrongPublisher, kOldOrRepeated, kInvalid };
-inline constexpr int kRejectReasons = 5;
+enum class RejectReason { kUndecodable, kOtherRun, kWrongPublisher, kOldOrRepeated, kInvalid, kCorrupt };
+inline constexpr int kRejectReasons = 6;
 
 struct ChannelCounters {
   long long published = 0;
@@ -71,6 +72,7 @@ class LcmNode {
     if constexpr (HasHeader<Msg>::value) {
       Msg stamped = msg;
       stamp(channel, stamped.header);
+      seal(stamped);
       rc = send(channel, stamped);
     } else {
       rc = send(channel, msg);
@@ -147,6 +149,8 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
     if (!safeDecode(rbuf->data, rbuf->data_size, msg))
       return reject(channel, RejectReason::kUndecodable, "undecodable (wrong type, size or corrupt bytes)");
     if constexpr (HasHeader<Msg>::value) {
+      if (!intact(msg))
+        return reject(channel, RejectReason::kCorrupt, "checksum mismatch (bytes changed on the way)");
       if (!admit(channel, msg.header, order)) return;
     }
     const Rejection why = validate(msg);

@@ -1,10 +1,11 @@
 // Seeded fault injection (config faults.*) on every channel:
-// - lockstep with 5 % drops, duplicates and reordering yields the trajectory
+// - lockstep with 5 % drops, duplicates, reordering and corrupted bytes yields the trajectory
 //   of the fault-free run bit for bit, with every sample in the log: the
 //   plant re-sends positions nobody answered and samples the logger has not
 //   confirmed, the controller and actuator answer re-sent ticks from their
 //   caches, the actuator re-sends its state while the run stalls, and
-//   duplicates and late datagrams are rejected by sequence number;
+//   duplicates and late datagrams are rejected by sequence number, corrupted
+//   ones by the checksum (then re-sent like lost ones);
 // - realtime with 1 % drops and up to 2 ms of random delay converges within
 //   twice the nominal time, and the counters add up: what the plant published,
 //   minus what was dropped, is what the controller received or rejected.
@@ -25,12 +26,13 @@ namespace {
 const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 const char* kChannels[] = {"PLANT_POSITION", "PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS"};
 
-TEST(Faults, LockstepUnderDropsDuplicatesAndReorderingIsBitIdentical) {
+TEST(Faults, LockstepUnderDropsDuplicatesReorderingAndCorruptionIsBitIdentical) {
   const std::string clean = freshDir("faults-clean"), faulty = freshDir("faults-lockstep");
   ASSERT_EQ(runScenario(kRigid, clean, "-q --set duration=1").exit_code, 0);
-  const RunResult r = runScenario(kRigid, faulty,
-                                  "-q --set duration=1 --set lockstep.retransmit_timeout=0.01 --set "
-                                  "'faults.channels.all={drop: 0.05, duplicate: 0.05, reorder: 0.05}'");
+  const RunResult r =
+      runScenario(kRigid, faulty,
+                  "-q --set duration=1 --set lockstep.retransmit_timeout=0.01 --set "
+                  "'faults.channels.all={drop: 0.05, duplicate: 0.05, reorder: 0.05, corrupt: 0.05}'");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(faulty);
   for (const char* channel : kChannels) {  // the faults happened ...
@@ -38,7 +40,12 @@ TEST(Faults, LockstepUnderDropsDuplicatesAndReorderingIsBitIdentical) {
     EXPECT_GT(injected["dropped"].get<long long>(), 0) << channel << injected.dump();
     EXPECT_GT(injected["duplicated"].get<long long>(), 0) << channel << injected.dump();
     EXPECT_GT(injected["reordered"].get<long long>(), 0) << channel << injected.dump();
+    EXPECT_GT(injected["corrupted"].get<long long>(), 0) << channel << injected.dump();
   }
+  // A flipped byte is caught: by the checksum, or already by the decoder.
+  const auto& reasons = j["messages"]["PLANT_POSITION"]["rejected_by_reason"];
+  EXPECT_GT(reasons["corrupt"].get<long long>() + reasons["undecodable"].get<long long>(), 0)
+      << reasons.dump();
   EXPECT_GT(j["messages"]["PLANT_POSITION"]["rejected_by_reason"]["old_or_repeated"].get<long long>(), 0);
   // ... and nothing changed: every sample, each the fault-free one.
   const auto a = readTruth(clean + "/run.lcm"), b = readTruth(faulty + "/run.lcm");
@@ -49,6 +56,12 @@ TEST(Faults, LockstepUnderDropsDuplicatesAndReorderingIsBitIdentical) {
   forCommonTicks(
       a, b, [&](const TruthSample& x, const TruthSample& y) { identical += x.q == y.q && x.qdot == y.qdot; });
   EXPECT_EQ(identical, 1001u);
+  // The log, corrupted copies and all, replays exactly through every component.
+  for (const std::string component : {"controller", "actuator", "plant"}) {
+    const RunResult replay = lagrange("replay " + quote(faulty + "/run.lcm") + " --component " + component);
+    EXPECT_EQ(replay.exit_code, 0) << component << ": " << replay.output;
+    EXPECT_NE(replay.output.find("reproduced all 1001 recorded outputs"), std::string::npos) << replay.output;
+  }
 }
 
 TEST(Faults, RealtimeUnderDropsAndDelaysConvergesAndTheCountersAddUp) {

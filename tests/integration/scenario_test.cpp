@@ -29,6 +29,7 @@
 #include "support/rk4.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
+#include "transport/checksum.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -586,6 +587,7 @@ std::vector<uint8_t> fromPublisher(Msg m, const std::string& publisher, int64_t 
   m.header.publisher = publisher;
   m.header.publisher_pid = 1;
   m.header.seq = seq;
+  transport::seal(m);
   return encoded(m);
 }
 

@@ -16,7 +16,9 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
+#include "transport/checksum.hpp"
 #include "transport/messages.hpp"
+#include "transport/safe_decode.hpp"
 
 namespace lagrange::testing {
 
@@ -35,7 +37,10 @@ inline std::vector<TruthSample> readTruth(const std::string& log_path) {
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     if (ev->channel != "PLANT_TRUTH") continue;
     lagrange::plant_truth_t m;
-    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad PLANT_TRUTH event");
+    // A copy corrupted on the way (recorded as it arrived) is skipped; the intact one is re-sent.
+    if (!transport::safeDecode(ev->data, static_cast<size_t>(ev->datalen), m) ||
+        (m.header.checksum != 0 && !transport::intact(m)))
+      continue;
     by_tick.emplace(m.header.tick, TruthSample{m.header.tick, m.header.sim_time, transport::toEigen(m.q),
                                                transport::toEigen(m.qdot), m.total_energy});
   }
@@ -65,9 +70,10 @@ inline std::vector<std::pair<std::string, long long>> readTicks(const std::strin
   lcm::LogFile log(log_path, "r");
   if (!log.good()) throw std::runtime_error("cannot open " + log_path);
   std::vector<std::pair<std::string, long long>> out;
-  auto note = [&](const lcm::LogEvent& ev, auto message) {
-    if (message.decode(ev.data, 0, ev.datalen) < 0) throw std::runtime_error("bad " + ev.channel + " event");
-    out.emplace_back(ev.channel, message.header.tick);
+  auto note = [&](const lcm::LogEvent& ev, auto message) {  // corrupted copies skipped, as in readTruth
+    if (transport::safeDecode(ev.data, static_cast<size_t>(ev.datalen), message) &&
+        (message.header.checksum == 0 || transport::intact(message)))
+      out.emplace_back(ev.channel, message.header.tick);
   };
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     if (ev->channel == "PLANT_POSITION") note(*ev, lagrange::plant_position_t{});
