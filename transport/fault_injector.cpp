@@ -114,9 +114,12 @@ void FaultInjector::run() {
     if (pending_.empty()) {
       wake_.wait(lock);
     } else {
-      const auto next = std::min_element(pending_.begin(), pending_.end(),
-                                         [](const Pending& a, const Pending& b) { return a.due < b.due; });
-      wake_.wait_until(lock, next->due);
+      // A copy: waiting releases the lock, and a publish may then grow pending_.
+      const Clock::time_point next =
+          std::min_element(pending_.begin(), pending_.end(), [](const Pending& a, const Pending& b) {
+            return a.due < b.due;
+          })->due;
+      wake_.wait_until(lock, next);
     }
   }
 }
