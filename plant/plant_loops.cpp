@@ -105,6 +105,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     publishMeasurements(node, s, sim, out.position);
     node.publish(transport::kPlantTruth, out.truth);
     unconfirmed.emplace(k, out.truth);
+    unconfirmed.erase(unconfirmed.begin(), unconfirmed.upper_bound(logger_tick));  // bounded by the window
     if (Clock::now() >= next_status) {
       status.publish("running", k, t);
       next_status = Clock::now() + std::chrono::milliseconds(500);

@@ -92,10 +92,9 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
     letters = readTypeColumn(display, dir, "spy");
   }
   const std::string spy_out = slurp(dir + "/spy.out");
-  const int project_types =
-      static_cast<int>(std::distance(fs::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/lcmtypes"),
-                                     fs::directory_iterator{})) -
-      1;
+  int project_types = 0;  // one Java class per lcmtypes/*.lcm
+  for (const auto& f : fs::directory_iterator(std::string(LAGRANGE_SOURCE_DIR) + "/lcmtypes"))
+    project_types += f.path().extension() == ".lcm";
   EXPECT_NE(spy_out.find("Found " + std::to_string(project_types) + " LCM types"), std::string::npos)
       << "lcm-spy did not load the project's " << project_types << " types:\n"
       << spy_out;
