@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <lcm/lcm-cpp.hpp>
 #include <regex>
 
@@ -32,6 +33,19 @@ class Recorded : public ::testing::Test {
   static std::string chain_, flexible_, realtime_;
 };
 std::string Recorded::chain_, Recorded::flexible_, Recorded::realtime_;
+
+// Offset of the first event (LCM sync word 0xEDA1DA01) at or after `from`, so
+// the damage below lands at the same place in every recording: where events
+// fall depends on the run (realtime timing, string lengths), and junk that
+// lands wholly inside one payload is not detectable at all (LCM logs have no
+// checksums).
+std::uintmax_t eventStartAtOrAfter(const std::string& log, std::uintmax_t from) {
+  std::ifstream in(log, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = bytes.find(std::string("\xED\xA1\xDA\x01", 4), from);
+  EXPECT_NE(at, std::string::npos) << "no event after byte " << from << " of " << log;
+  return at == std::string::npos ? from : at;
+}
 
 TEST_F(Recorded, LockstepAndRealtimeLogsReplayExactly) {
   for (const std::string& log : {chain_, flexible_, realtime_})
@@ -72,7 +86,7 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
   const std::string cut = freshDir("truncated") + ".lcm";
   const auto size = std::filesystem::file_size(chain_);
   std::filesystem::copy_file(chain_, cut);
-  std::filesystem::resize_file(cut, size / 2 + 7);  // mid-event
+  std::filesystem::resize_file(cut, eventStartAtOrAfter(chain_, size / 2) + 7);  // mid-header
   const RunResult r = lagrange("replay " + quote(cut));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("reproduced all"), std::string::npos) << r.output;
@@ -88,14 +102,16 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
   std::filesystem::copy_file(chain_, corrupt);
   {
     std::fstream f(corrupt, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(static_cast<std::streamoff>(size / 3));
+    f.seekp(static_cast<std::streamoff>(eventStartAtOrAfter(chain_, size / 3)));
     const std::string junk(300, '\x5a');
     f.write(junk.data(), static_cast<std::streamsize>(junk.size()));
   }
-  // LCM logs have no checksums: the event the junk starts in keeps its length
-  // and is read with junk values, so the replay may diverge there, or name an
-  // input the junk destroyed, or (junk in an unused field) pass. Either way it
-  // warns, and reading goes on past the junk.
+  // The junk starts on an event's sync word, so that event and whatever else
+  // the 300 bytes cover are lost; the event the junk ends in keeps no header,
+  // so the reader must find the next sync word. The replay then passes with a
+  // few commands fewer, or names an input the junk destroyed, or (the lost
+  // tick was a controller input) diverges there. Either way it warns, and
+  // reading goes on past the junk.
   const RunResult c = lagrange("replay " + quote(corrupt));
   EXPECT_NE(c.output.find("corrupt bytes between events were skipped"), std::string::npos) << c.output;
   std::smatch replayed;  // all but the few commands the junk destroyed
