@@ -1,0 +1,147 @@
+/// @file
+/// The scenario's arm and its task: robot (links or preset, gravity, elastic
+/// joints), initial_state, reference, plant (config/scenario_sections.hpp).
+
+#include <cmath>
+
+#include "config/scenario_sections.hpp"
+#include "model/planar_chain.hpp"
+
+namespace lagrange::config::sections {
+
+namespace {
+
+model::ChainParams readRobot(MapReader robot) {
+  model::ChainParams params;
+  const bool has_preset = robot.has("preset");
+  const bool has_links = robot.has("links");
+  if (has_preset == has_links)
+    robot.fail("links", "give exactly one of robot.preset (pelican) or robot.links");
+  if (has_preset) {
+    const std::string preset = robot.text("preset");
+    if (preset != "pelican") robot.fail("preset", "unknown preset '" + preset + "'; expected: pelican");
+    params = model::pelicanParams();
+  } else {
+    YAML::Node links = robot.child("links");
+    if (!links.IsSequence() || links.size() == 0)
+      robot.fail("links", "expected a non-empty list of links, each with length, com, mass, inertia");
+    for (size_t i = 0; i < links.size(); ++i) {
+      MapReader link(links[i], robot.keyPath("links") + "[" + std::to_string(i) + "]");
+      model::LinkParams p;
+      p.length = link.positive("length");
+      p.com = link.number("com");
+      if (p.com < 0.0) link.fail("com", "expected a number >= 0 (distance joint to centre of mass)");
+      p.mass = link.positive("mass");
+      p.inertia = link.positive("inertia");
+      link.finish({"length", "com", "mass", "inertia"});
+      params.links.push_back(p);
+    }
+  }
+  params.gravity = robot.number("gravity", params.gravity);
+  if (params.gravity < 0.0)
+    robot.fail("gravity", "expected a number >= 0 [m/s^2], got " + std::to_string(params.gravity));
+  robot.finish({"preset", "links", "gravity", "flexible"});
+  return params;
+}
+
+std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
+  if (!robot.has("flexible")) return std::nullopt;
+  MapReader f = robot.map("flexible");
+  FlexibleConfig c;
+  c.params.stiffness = f.vector("stiffness", n, true, true);
+  c.params.rotor_inertia = f.vector("rotor_inertia", n, true, true);
+  c.rate_sensor = f.boolean("rate_sensor", false);
+  f.finish({"stiffness", "rotor_inertia", "rate_sensor"});
+  return c;
+}
+
+model::ReferenceParams readReference(MapReader ref, const model::ChainParams& robot, double duration) {
+  const int n = static_cast<int>(robot.links.size());
+  model::ReferenceParams p;
+  const std::string type = ref.text("type");
+  if (type == "sine") {
+    p.type = model::ReferenceType::kSine;
+  } else if (type == "smooth_sine") {
+    p.type = model::ReferenceType::kSmoothSine;
+  } else if (type == "free_motion") {
+    // The unforced motion of this very arm (Assumption 2), over the run and a second more.
+    p.type = model::ReferenceType::kFreeMotion;
+    p.initial_q = ref.vector("initial_q", n, false, false);
+    p.initial_qdot =
+        ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
+    p.chain = robot;
+    p.horizon = duration + 1.0;
+    ref.finish({"type", "initial_q", "initial_qdot"});
+    return p;
+  } else {
+    ref.fail("type", "unknown reference type '" + type + "'; expected: sine, smooth_sine or free_motion");
+  }
+  p.offset = ref.vector("offset", n, true, false);
+  p.amplitude = ref.vector("amplitude", n, true, false);
+  p.frequency = ref.vector("frequency", n, true, false);
+  if ((p.frequency.array() < 0.0).any())
+    ref.fail("frequency", "expected numbers >= 0 [rad/s], got a negative one (" +
+                              std::to_string(p.frequency.minCoeff()) + ")");
+  p.phase = ref.has("phase") ? ref.vector("phase", n, true, false) : Eigen::VectorXd::Zero(n);
+  if (p.type == model::ReferenceType::kSmoothSine) {
+    p.alpha = ref.vector("alpha", n, true, true);
+  } else if (ref.has("alpha")) {
+    ref.fail("alpha", "only a smooth_sine reference has alpha");
+  }
+  ref.finish({"type", "offset", "amplitude", "frequency", "phase", "alpha"});
+  return p;
+}
+
+}  // namespace
+
+// robot: a preset or a list of links, gravity, and robot.flexible for elastic joints.
+void readRobotSection(MapReader& root, Scenario& s) {
+  s.robot = readRobot(root.map("robot"));
+  s.flexible = readFlexible(root.map("robot"), s.dof());
+}
+
+// initial_state: q, qdot, and for an elastic arm its motors.
+void readInitialStateSection(MapReader& root, Scenario& s) {
+  const int n = s.dof();
+  MapReader init = root.map("initial_state");
+  s.initial_state.q = init.vector("q", n, false, false);
+  s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false) : Eigen::VectorXd::Zero(n);
+  if (s.flexible) {
+    // Default: each spring's twist K^-1 g(q) holds the links at rest against gravity.
+    s.initial_state.motor_q =
+        init.has("motor_q")
+            ? init.vector("motor_q", n, false, false)
+            : Eigen::VectorXd(s.initial_state.q + model::PlanarChain(s.robot)
+                                                      .gravity(s.initial_state.q)
+                                                      .cwiseQuotient(s.flexible->params.stiffness));
+    s.initial_state.motor_qdot =
+        init.has("motor_qdot") ? init.vector("motor_qdot", n, false, false) : s.initial_state.qdot;
+  } else if (init.has("motor_q") || init.has("motor_qdot")) {
+    init.fail(init.has("motor_q") ? "motor_q" : "motor_qdot", "only an arm with robot.flexible has motors");
+  }
+  init.finish({"q", "qdot", "motor_q", "motor_qdot"});
+}
+
+// reference: a sine, a smooth sine or the arm's own free motion.
+void readReferenceSection(MapReader& root, Scenario& s) {
+  s.reference = readReference(root.map("reference"), s.controlModel(), s.duration);
+}
+
+// plant: physics_step and publish_rate; the run must last a whole number of periods.
+void readPlantSection(MapReader& root, Scenario& s) {
+  if (root.has("plant")) {
+    MapReader plant = root.map("plant");
+    s.plant.physics_step = plant.positive("physics_step", s.plant.physics_step);
+    s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
+    plant.finish({"physics_step", "publish_rate"});
+    const double ratio = s.tickPeriod() / s.plant.physics_step;
+    if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
+      plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +
+                                     " s must be a whole multiple of physics_step");
+  }
+  const double ticks = s.duration * s.plant.publish_rate;
+  if (std::abs(ticks - std::round(ticks)) > 1e-6)
+    root.fail("duration", "expected a whole number of publish periods (duration * plant.publish_rate)");
+}
+
+}  // namespace lagrange::config::sections

@@ -1,0 +1,133 @@
+/// @file
+/// What drives the arm: actuator (integrator chain, rate, saturation) and
+/// controller (Theorem 1, cascaded, flexible) (config/scenario_sections.hpp).
+
+#include <cmath>
+
+#include "config/scenario_sections.hpp"
+
+namespace lagrange::config::sections {
+
+// actuator: the integrator chain between controller and joints, and its rate.
+void readActuatorSection(MapReader& root, Scenario& s) {
+  const int n = s.dof();
+  s.actuator.rate = s.plant.publish_rate;
+  if (root.has("actuator")) {
+    MapReader act = root.map("actuator");
+    s.actuator.order = act.integer("order", 0);
+    s.actuator.rate = act.positive("rate", s.plant.publish_rate);
+    const double steps = s.actuator.rate / s.plant.publish_rate;
+    const double per_step = static_cast<double>(s.substepsPerTick()) / std::round(steps);
+    if (steps < 1.0 - 1e-9 || std::abs(steps - std::round(steps)) > 1e-6 * steps)
+      act.fail("rate", "expected a whole multiple of plant.publish_rate (" +
+                           std::to_string(s.plant.publish_rate) + " Hz), got " +
+                           std::to_string(s.actuator.rate) + " Hz");
+    if (std::abs(per_step - std::round(per_step)) > 1e-9)
+      act.fail("rate", "the actuator period 1/rate must be a whole multiple of plant.physics_step (" +
+                           std::to_string(s.plant.physics_step) +
+                           " s), so that the torque changes on a physics step");
+    if (s.actuator.order < 0 || s.actuator.order > 4)
+      act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to 4, got " +
+                            std::to_string(s.actuator.order));
+    s.actuator.saturation = act.optionalVector("saturation", n, true, true);
+    s.actuator.initial_state = Eigen::MatrixXd::Zero(s.actuator.order, n);
+    if (act.has("initial_state")) {
+      YAML::Node rows = act.child("initial_state");
+      if (!rows.IsSequence() || static_cast<int>(rows.size()) != s.actuator.order)
+        act.fail("initial_state", "expected a list of " + std::to_string(s.actuator.order) +
+                                      " rows (xi_1 .. xi_m), each a list of " + std::to_string(n) +
+                                      " numbers");
+      for (int i = 0; i < s.actuator.order; ++i) {
+        YAML::Node wrapper;
+        wrapper["row"] = rows[i];
+        MapReader row(wrapper, act.keyPath("initial_state") + "[" + std::to_string(i) + "]");
+        s.actuator.initial_state.row(i) = row.vector("row", n, true, false).transpose();
+      }
+    }
+    act.finish({"order", "rate", "saturation", "initial_state"});
+  }
+}
+
+// controller: its type, gains, filter start, stages and motor rate source.
+void readControllerSection(MapReader& root, Scenario& s) {
+  const int n = s.dof();
+  MapReader ctl = root.map("controller");
+  s.controller.type = ctl.text("type");
+  if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible")
+    ctl.fail("type",
+             "unknown controller type '" + s.controller.type + "'; expected: theorem1, cascaded or flexible");
+  if (s.flexible && s.controller.type != "flexible")
+    ctl.fail("type",
+             "robot.flexible has elastic joints, which only the flexible controller (eq. 830) "
+             "drives; expected: type flexible");
+  if (s.controller.type == "flexible") {
+    if (!s.flexible)
+      ctl.fail("type",
+               "the flexible controller needs an arm with elastic joints; expected a robot.flexible "
+               "section (stiffness, rotor_inertia)");
+    if (s.actuator.order != 0)
+      ctl.fail("type",
+               "the flexible controller commands the motor torque itself; expected actuator.order 0, got " +
+                   std::to_string(s.actuator.order));
+    if (!ctl.has("motor_rate"))
+      ctl.fail("motor_rate",
+               "missing; the paper does not say where q2' comes from: expected measured (the "
+               "motor's rate sensor, robot.flexible.rate_sensor: true) or filtered (a dirty "
+               "derivative of q2)");
+    s.controller.motor_rate = ctl.text("motor_rate");
+    if (s.controller.motor_rate != "measured" && s.controller.motor_rate != "filtered")
+      ctl.fail("motor_rate",
+               "unknown choice '" + s.controller.motor_rate + "'; expected: measured or filtered");
+    if (s.controller.motor_rate == "measured" && !s.flexible->rate_sensor)
+      ctl.fail("motor_rate",
+               "measured needs a motor rate sensor; expected robot.flexible.rate_sensor: true, "
+               "or motor_rate: filtered");
+    if (s.controller.motor_rate == "filtered")
+      s.controller.motor_rate_pole = ctl.has("motor_rate_pole") ? ctl.vector("motor_rate_pole", n, true, true)
+                                                                : Eigen::VectorXd::Constant(n, 300.0);
+    else if (ctl.has("motor_rate_pole"))
+      ctl.fail("motor_rate_pole", "only motor_rate: filtered has a filter pole");
+  } else if (ctl.has("motor_rate") || ctl.has("motor_rate_pole")) {
+    ctl.fail(ctl.has("motor_rate") ? "motor_rate" : "motor_rate_pole", "only the flexible controller has it");
+  }
+  if (s.controller.type == "theorem1" && s.actuator.order != 0)
+    ctl.fail("type",
+             "the theorem1 controller drives torque directly (actuator.order 0), but actuator.order is " +
+                 std::to_string(s.actuator.order) + "; expected: type cascaded for an integrator chain");
+  if (s.controller.type == "cascaded" || s.controller.type == "flexible") {
+    if (s.controller.type == "cascaded" && s.actuator.order < 1)
+      ctl.fail("type",
+               "the cascaded controller needs an integrator chain; expected actuator.order from 1 to 4");
+    const int count = s.controller.type == "flexible" ? 2 : s.actuator.order;
+    YAML::Node stages = ctl.child("stages");
+    if (!stages.IsSequence() || static_cast<int>(stages.size()) != count)
+      ctl.fail("stages", "expected a list of " + std::to_string(count) +
+                             (s.controller.type == "flexible"
+                                  ? " stages (xi_1 = K q2, xi_2 = K q2': m = 2), each {kp, kd, a, b}"
+                                  : " stages (one per integrator, actuator.order), each {kp, kd, a, b}"));
+    for (size_t i = 0; i < stages.size(); ++i) {
+      MapReader st(stages[i], ctl.keyPath("stages") + "[" + std::to_string(i) + "]");
+      s.controller.stages.push_back({st.vector("kp", n, true, true), st.vector("kd", n, true, true),
+                                     st.vector("a", n, true, true), st.vector("b", n, true, true)});
+      st.finish({"kp", "kd", "a", "b"});
+    }
+  } else if (ctl.has("stages")) {
+    ctl.fail("stages", "only the cascaded and flexible controllers have stages");
+  }
+  s.controller.gains.kp = ctl.vector("kp", n, true, true);
+  s.controller.gains.kd = ctl.vector("kd", n, true, true);
+  s.controller.gains.a = ctl.vector("a", n, true, true);
+  s.controller.gains.b = ctl.vector("b", n, true, true);
+  if (!ctl.has("initial_filter_state")) {
+    s.controller.initial_filter_state = Eigen::VectorXd::Zero(n);
+  } else if (ctl.child("initial_filter_state").IsScalar() &&
+             ctl.child("initial_filter_state").Scalar() == "bumpless") {
+    s.controller.initial_filter_state.reset();
+  } else {
+    s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
+  }
+  ctl.finish(
+      {"type", "kp", "kd", "a", "b", "initial_filter_state", "stages", "motor_rate", "motor_rate_pole"});
+}
+
+}  // namespace lagrange::config::sections

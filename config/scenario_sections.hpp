@@ -1,0 +1,30 @@
+/// @file
+/// The readers of the scenario file's sections (config/scenario.cpp calls
+/// them in order): each reads one top-level key into the Scenario, checks it
+/// against what was read before, and fails with the key's path and what was
+/// expected (ConfigError). Internal to lagrange_config.
+#pragma once
+
+#include "config/scenario.hpp"
+#include "config/yaml_reader.hpp"
+
+namespace lagrange::config::sections {
+
+// The arm and its task (arm_sections.cpp).
+void readRobotSection(MapReader& root, Scenario& s);
+void readInitialStateSection(MapReader& root, Scenario& s);  ///< after robot
+void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot and duration
+void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
+
+// What drives it (drive_sections.cpp).
+void readActuatorSection(MapReader& root, Scenario& s);    ///< after plant
+void readControllerSection(MapReader& root, Scenario& s);  ///< after actuator
+
+// How the run is judged and run (run_sections.cpp).
+void readMetricsSection(MapReader& root, Scenario& s);
+void readLockstepSection(MapReader& root, Scenario& s);
+void readRealtimeSection(MapReader& root, Scenario& s);
+void readSupervisionSection(MapReader& root, Scenario& s);
+void readFaultsSection(MapReader& root, Scenario& s);
+
+}  // namespace lagrange::config::sections

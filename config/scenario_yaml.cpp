@@ -1,0 +1,160 @@
+/// @file
+/// toYaml: the resolved scenario, every default filled in
+/// (config.resolved.yaml, the SCENARIO message).
+
+#include <yaml-cpp/yaml.h>
+
+#include "config/scenario.hpp"
+
+namespace lagrange::config {
+
+namespace {
+void emitVector(YAML::Emitter& out, const char* key, const Eigen::VectorXd& v) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (int i = 0; i < v.size(); ++i) out << v(i);
+  out << YAML::EndSeq;
+}
+}  // namespace
+
+std::string toYaml(const Scenario& s) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << s.name;
+  out << YAML::Key << "description" << YAML::Value << s.description;
+  out << YAML::Key << "duration" << YAML::Value << s.duration;
+  out << YAML::Key << "mode" << YAML::Value << s.mode;
+
+  out << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;
+  out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
+  for (const auto& l : s.robot.links) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length << YAML::Key
+        << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value << l.mass << YAML::Key
+        << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  if (s.flexible) {
+    out << YAML::Key << "flexible" << YAML::Value << YAML::BeginMap;
+    emitVector(out, "stiffness", s.flexible->params.stiffness);
+    emitVector(out, "rotor_inertia", s.flexible->params.rotor_inertia);
+    out << YAML::Key << "rate_sensor" << YAML::Value << s.flexible->rate_sensor << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+
+  out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginMap;
+  emitVector(out, "q", s.initial_state.q);
+  emitVector(out, "qdot", s.initial_state.qdot);
+  if (s.flexible) {
+    emitVector(out, "motor_q", s.initial_state.motor_q);
+    emitVector(out, "motor_qdot", s.initial_state.motor_qdot);
+  }
+  out << YAML::EndMap;
+
+  out << YAML::Key << "reference" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "type" << YAML::Value << model::toString(s.reference.type);
+  if (s.reference.type == model::ReferenceType::kFreeMotion) {
+    emitVector(out, "initial_q", s.reference.initial_q);
+    emitVector(out, "initial_qdot", s.reference.initial_qdot);
+  } else {
+    emitVector(out, "offset", s.reference.offset);
+    emitVector(out, "amplitude", s.reference.amplitude);
+    emitVector(out, "frequency", s.reference.frequency);
+    emitVector(out, "phase", s.reference.phase);
+  }
+  if (s.reference.type == model::ReferenceType::kSmoothSine) emitVector(out, "alpha", s.reference.alpha);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "physics_step" << YAML::Value << s.plant.physics_step;
+  out << YAML::Key << "publish_rate" << YAML::Value << s.plant.publish_rate;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "order" << YAML::Value << s.actuator.order;
+  out << YAML::Key << "rate" << YAML::Value << s.actuator.rate;
+  if (s.actuator.saturation) emitVector(out, "saturation", *s.actuator.saturation);
+  if (s.actuator.order > 0) {
+    out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginSeq;
+    for (int i = 0; i < s.actuator.order; ++i) {
+      out << YAML::Flow << YAML::BeginSeq;
+      for (int j = 0; j < s.actuator.initial_state.cols(); ++j) out << s.actuator.initial_state(i, j);
+      out << YAML::EndSeq;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+
+  out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "type" << YAML::Value << s.controller.type;
+  if (!s.controller.motor_rate.empty())
+    out << YAML::Key << "motor_rate" << YAML::Value << s.controller.motor_rate;
+  if (s.controller.motor_rate_pole.size() > 0)
+    emitVector(out, "motor_rate_pole", s.controller.motor_rate_pole);
+  emitVector(out, "kp", s.controller.gains.kp);
+  emitVector(out, "kd", s.controller.gains.kd);
+  emitVector(out, "a", s.controller.gains.a);
+  emitVector(out, "b", s.controller.gains.b);
+  if (s.controller.initial_filter_state)
+    emitVector(out, "initial_filter_state", *s.controller.initial_filter_state);
+  else
+    out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
+  if (!s.controller.stages.empty()) {
+    out << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
+    for (const auto& st : s.controller.stages) {
+      out << YAML::BeginMap;
+      emitVector(out, "kp", st.kp);
+      emitVector(out, "kd", st.kd);
+      emitVector(out, "a", st.a);
+      emitVector(out, "b", st.b);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+
+  out << YAML::Key << "metrics" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "tolerance" << YAML::Value << s.metrics.tolerance;
+  out << YAML::Key << "convergence_deadline" << YAML::Value << s.metrics.convergence_deadline;
+  out << YAML::Key << "xi_tolerance" << YAML::Value << s.metrics.xi_tolerance;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "lockstep" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "retransmit_timeout" << YAML::Value << s.lockstep.retransmit_timeout;
+  out << YAML::Key << "logger_window" << YAML::Value << s.lockstep.logger_window;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "realtime" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "max_torque_age" << YAML::Value << s.realtime.max_torque_age;
+  out << YAML::Key << "stale_torque" << YAML::Value << s.realtime.stale_torque;
+  out << YAML::Key << "hold_periods" << YAML::Value << s.realtime.hold_periods;
+  out << YAML::Key << "max_input_age" << YAML::Value << s.realtime.max_input_age;
+  out << YAML::Key << "priority" << YAML::Value << s.realtime.priority;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "supervision" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "restart" << YAML::Value << YAML::Flow << s.supervision.restart;
+  out << YAML::Key << "max_restarts" << YAML::Value << s.supervision.max_restarts;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "faults" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "seed" << YAML::Value << s.faults.seed;
+  out << YAML::Key << "channels" << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, r] : s.faults.channels) {
+    out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "drop" << YAML::Value << r.drop << YAML::Key << "duplicate" << YAML::Value
+        << r.duplicate;
+    out << YAML::Key << "reorder" << YAML::Value << r.reorder << YAML::Key << "corrupt" << YAML::Value
+        << r.corrupt;
+    out << YAML::Key << "delay" << YAML::Value << r.delay << YAML::Key << "delay_jitter" << YAML::Value
+        << r.delay_jitter;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+  out << YAML::EndMap;
+
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace lagrange::config
