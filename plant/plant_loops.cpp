@@ -240,9 +240,13 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         ages.push_back(static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6);
       used_tick = latest->header.tick;
     } else if (latest && age <= hold_limit) {
-      ++held;  // policy "hold": keep the last torque a little longer (its final step, held flat)
-      tau.rowwise() = Eigen::RowVectorXd(tau.row(torque_steps - 1));
-      applied.source = lagrange::plant_truth_t::TORQUE_HELD;
+      // Policy "hold": the newest torque, late, its final step held flat. Never
+      // an older one: under network delay the newest torque is often a few
+      // periods past max_torque_age, and holding the last fresh one instead
+      // would keep the arm on a torque that gets older every period.
+      ++held;
+      tau.rowwise() = transport::toEigen(latest->tau_applied).row(torque_steps - 1);
+      applied = {latest->header.tick, lagrange::plant_truth_t::TORQUE_HELD};
     } else {
       if (k > 0) ++zeroed;  // nothing can have answered before the first sample
       tau.setZero();

@@ -18,10 +18,11 @@ namespace {
 using namespace replay_log;
 
 // The torque profile the plant applied over the period ending at `truth`,
-// as the sample itself says it was chosen; `tau` holds the previous period's.
+// as the sample itself says it was chosen.
 std::string chooseTorque(const Recorded& rec, const lagrange::plant_truth_t& truth, Eigen::MatrixXd& tau) {
   switch (truth.torque_source) {
-    case lagrange::plant_truth_t::TORQUE_COMMANDED: {
+    case lagrange::plant_truth_t::TORQUE_COMMANDED:
+    case lagrange::plant_truth_t::TORQUE_HELD: {
       const auto& state = input(rec.actuator, truth.input_actuator_tick, transport::kActuatorState,
                                 transport::kPlantTruth, truth.header.tick);
       const Eigen::MatrixXd profile = transport::toEigen(state.tau_applied);
@@ -29,12 +30,12 @@ std::string chooseTorque(const Recorded& rec, const lagrange::plant_truth_t& tru
         return "PLANT_TRUTH: the torque of ACTUATOR_STATE tick " + std::to_string(truth.input_actuator_tick) +
                " is " + std::to_string(profile.rows()) + " x " + std::to_string(profile.cols()) +
                ", the scenario's " + std::to_string(tau.rows()) + " x " + std::to_string(tau.cols());
-      tau = profile;
+      if (truth.torque_source == lagrange::plant_truth_t::TORQUE_COMMANDED)
+        tau = profile;
+      else  // held: the final step of that (late) torque, flat over the period
+        tau.rowwise() = Eigen::RowVectorXd(profile.row(profile.rows() - 1));
       return "";
     }
-    case lagrange::plant_truth_t::TORQUE_HELD:
-      tau.rowwise() = Eigen::RowVectorXd(tau.row(tau.rows() - 1));
-      return "";
     case lagrange::plant_truth_t::TORQUE_ZERO:
       tau.setZero();
       return "";

@@ -20,7 +20,11 @@ LcmNode::LcmNode(const std::string& process_name, const std::string& url, int64_
 void LcmNode::subscribeRaw(const std::string& channel_regex,
                            std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle) {
   handlers_.push_back(std::make_unique<RawHandler>(RawHandler{std::move(handle)}));
-  lcm::Subscription* sub = lcm_.subscribe(channel_regex, &RawHandler::onMessage, handlers_.back().get());
+  // subscribeFunction, not subscribe(channel, &Class::method, object): LCM
+  // calls the latter through `(handler->*method)(...)`, which GCC 12's
+  // -fsanitize=vptr miscompiles (a false "invalid vptr" report, and a
+  // segfault with vptr alone). A plain function keeps UBSan's vptr check on.
+  lcm::Subscription* sub = lcm_.subscribeFunction(channel_regex, &RawHandler::onMessage, handlers_.back().get());
   sub->setQueueCapacity(kQueueCapacity);
 }
 

@@ -134,7 +134,9 @@ class LcmNode {
 
   struct RawHandler {
     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;
-    void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) { fn(rbuf, channel); }
+    static void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, RawHandler* self) {
+      self->fn(rbuf, channel);
+    }
   };
   std::vector<std::unique_ptr<RawHandler>> handlers_;
 };

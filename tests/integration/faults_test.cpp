@@ -1,5 +1,6 @@
 // Seeded fault injection (config faults.*) on every channel:
-// - lockstep with 5 % drops, duplicates, reordering and corrupted bytes yields the trajectory
+// - lockstep (rigid, integrator chain, flexible joints) with 5 % drops, duplicates, reordering and corrupted
+// bytes yields the trajectory
 //   of the fault-free run bit for bit, with every sample in the log: the
 //   plant re-sends positions nobody answered and samples the logger has not
 //   confirmed, the controller and actuator answer re-sent ticks from their
@@ -9,13 +10,17 @@
 // - realtime with 1 % drops and up to 2 ms of random delay converges within
 //   twice the nominal time, and the counters add up: what the plant published,
 //   minus what was dropped, is what the controller received or rejected.
-//   Three such hops make the loop up to ~7 periods late, so the plant must
-//   accept torques that old (realtime.max_torque_age: 10): with the default 2
-//   it holds, then zeroes, nearly every torque and the arm falls away.
+//   Three such hops make the loop up to ~7 periods late, past the shipped
+//   realtime.max_torque_age of 2: the plant applies those late torques under
+//   the "hold" policy (the newest one, held flat) and counts them. Holding the
+//   last fresh torque instead, as it first did, let the arm fall away.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
+#include <string>
+#include <vector>
 
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
@@ -26,16 +31,24 @@ namespace {
 const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 const char* kChannels[] = {"PLANT_POSITION", "PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS"};
 
-TEST(Faults, LockstepUnderDropsDuplicatesReorderingAndCorruptionIsBitIdentical) {
+// One lockstep run per wiring: the rigid arm (Theorem 1), an integrator chain
+// (ACTUATOR_STATE also feeds the controller) and the flexible-joint arm
+// (PLANT_MOTOR with the motor rates).
+class LockstepUnderFaults : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LockstepUnderFaults, DropsDuplicatesReorderingAndCorruptionLeaveTheTrajectoryBitIdentical) {
+  const std::string config = std::string(LAGRANGE_SOURCE_DIR) + "/configs/" + GetParam() + ".yaml";
   const std::string clean = freshDir("faults-clean"), faulty = freshDir("faults-lockstep");
-  ASSERT_EQ(runScenario(kRigid, clean, "-q --set duration=1").exit_code, 0);
+  ASSERT_EQ(runScenario(config, clean, "-q --set duration=1").exit_code, 0);
   const RunResult r =
-      runScenario(kRigid, faulty,
+      runScenario(config, faulty,
                   "-q --set duration=1 --set lockstep.retransmit_timeout=0.01 --set "
                   "'faults.channels.all={drop: 0.05, duplicate: 0.05, reorder: 0.05, corrupt: 0.05}'");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(faulty);
-  for (const char* channel : kChannels) {  // the faults happened ...
+  std::vector<std::string> channels(std::begin(kChannels), std::end(kChannels));
+  if (GetParam().rfind("flexible", 0) == 0) channels.push_back("PLANT_MOTOR");
+  for (const std::string& channel : channels) {  // the faults happened ...
     const auto& injected = j["messages"][channel]["injected"];
     EXPECT_GT(injected["dropped"].get<long long>(), 0) << channel << injected.dump();
     EXPECT_GT(injected["duplicated"].get<long long>(), 0) << channel << injected.dump();
@@ -64,18 +77,27 @@ TEST(Faults, LockstepUnderDropsDuplicatesReorderingAndCorruptionIsBitIdentical) 
   }
 }
 
+INSTANTIATE_TEST_SUITE_P(Faults, LockstepUnderFaults,
+                         ::testing::Values("rigid_2dof", "chain_m2", "flexible_2dof"));
+
 TEST(Faults, RealtimeUnderDropsAndDelaysConvergesAndTheCountersAddUp) {
   const std::string nominal = freshDir("faults-nominal"), faulty = freshDir("faults-realtime");
   ASSERT_EQ(runScenario(kRigid, nominal, "-q --set duration=3").exit_code, 0);
-  const RunResult r =
-      runScenario(kRigid, faulty,
-                  "-q --mode realtime --set duration=3 --set realtime.max_torque_age=10 --set "
-                  "'faults.channels.all={drop: 0.01, delay_jitter: 0.002}'");
+  const RunResult r = runScenario(kRigid, faulty,
+                                  "-q --mode realtime --set duration=3 --set "
+                                  "'faults.channels.all={drop: 0.01, delay_jitter: 0.002}'");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(faulty), n = readSummary(nominal);
   EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
   EXPECT_LE(j["tracking"]["convergence_time"].get<double>(),
             2.0 * n["tracking"]["convergence_time"].get<double>());
+  // The delays made torques late (the faults happened) and the plant applied
+  // them under "hold" (zeroed: only the first ticks, before any torque came).
+  const auto& stale = j["messages"]["stale"]["plant"];
+  std::printf("plant: %lld torques held, %lld zeroed\n", stale["torque_held"].get<long long>(),
+              stale["torque_zeroed"].get<long long>());
+  EXPECT_GT(stale["torque_held"].get<long long>(), 0) << stale.dump();
+  EXPECT_LT(stale["torque_zeroed"].get<long long>(), 20) << stale.dump();
 
   const auto& position = j["messages"]["PLANT_POSITION"];
   const long long published = position["published"], dropped = position["injected"]["dropped"],
