@@ -17,10 +17,12 @@
 #include <filesystem>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 
 #include "controller/gain_report.hpp"
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
+#include "logger/tick_coverage.hpp"
 #include "logger/tracking_metrics.hpp"
 #include "transport/builders.hpp"
 #include "transport/channels.hpp"
@@ -83,24 +85,53 @@ int DoMain(int argc, char** argv) {
         long long acked = -1;  // the lastTick() of the last STATUS
         // Samples in any order: one re-sent by the plant, or overtaken by a
         // later one, is still a sample of the run.
+        // Which ticks of each per-tick channel reached the log intact
+        // (summary.json log.missing_ticks). Every copy counts, in any order.
+        constexpr auto kAnyOrder = transport::LcmNode::Order::kAcceptReordered;
+        std::map<std::string, logger::TickCoverage> coverage;
+        for (const char* channel : {transport::kPlantPosition, transport::kPlantTruth,
+                                    transport::kControlCommand, transport::kActuatorState})
+          coverage.emplace(channel, logger::TickCoverage(s.lastTick()));
+        if (s.flexible) coverage.emplace(transport::kPlantMotor, logger::TickCoverage(s.lastTick()));
         node.subscribe<lagrange::plant_truth_t>(
             transport::kPlantTruth, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::plant_truth_t& m) {
+              coverage.at(transport::kPlantTruth).add(m.header.tick);
               if (metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q)) &&
                   metrics.lastTick() - acked >= ack_every)
                 progress_due = true;
             },
-            transport::LcmNode::Order::kAcceptReordered);
+            kAnyOrder);
+        node.subscribe<lagrange::plant_position_t>(
+            transport::kPlantPosition, [n](const auto& m) { return transport::validate(m, n); },
+            [&](const lagrange::plant_position_t& m) {
+              coverage.at(transport::kPlantPosition).add(m.header.tick);
+            },
+            kAnyOrder);
+        if (s.flexible)
+          node.subscribe<lagrange::plant_motor_t>(
+              transport::kPlantMotor,
+              [n, rates = s.flexible->rate_sensor](const auto& m) {
+                return transport::validate(m, n, rates);
+              },
+              [&](const lagrange::plant_motor_t& m) {
+                coverage.at(transport::kPlantMotor).add(m.header.tick);
+              },
+              kAnyOrder);
         node.subscribe<lagrange::control_command_t>(
             transport::kControlCommand, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::control_command_t& m) {
+              coverage.at(transport::kControlCommand).add(m.header.tick);
               metrics.addChainErrors(m.header.tick, m.header.sim_time, m.xi_error);
-            });
+            },
+            kAnyOrder);
         node.subscribe<lagrange::actuator_state_t>(
             transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::actuator_state_t& m) {
+              coverage.at(transport::kActuatorState).add(m.header.tick);
               metrics.addTorque(transport::toEigen(m.tau_applied));
-            });
+            },
+            kAnyOrder);
         std::optional<Clock::time_point> plant_finished_at, all_samples_at;
         node.subscribe<lagrange::status_t>(
             transport::kStatus, [](const auto& m) { return transport::validate(m); },
@@ -194,6 +225,8 @@ int DoMain(int argc, char** argv) {
         write_progress();  // the final sample, for the launcher's last progress line
         log.flush();
         facts.log_events = log.events();
+        for (const auto& [channel, ticks] : coverage)
+          facts.missing_ticks[channel] = ticks.missingUpTo(metrics.newestTick());
         lagrange::status_t own{};  // zeroed: its loop statistics are not measured
         own.process = "logger";
         own.state = facts.status == "completed" ? "finished" : "interrupted";

@@ -156,7 +156,8 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"events", f.log_events},
       // ticks up to the newest sample without a PLANT_TRUTH in the log
       {"missing_samples",
-       t.samples == 0 ? 0LL : std::max(0LL, std::llround(t.sim_time / s.tickPeriod()) + 1 - t.samples)}};
+       t.samples == 0 ? 0LL : std::max(0LL, std::llround(t.sim_time / s.tickPeriod()) + 1 - t.samples)},
+      {"missing_ticks", f.missing_ticks}};
   return j;
 }
 

@@ -65,6 +65,11 @@ TEST_P(LockstepUnderFaults, DropsDuplicatesReorderingAndCorruptionLeaveTheTrajec
   ASSERT_EQ(a.size(), 1001u);
   ASSERT_EQ(b.size(), 1001u) << "samples missing from the log under faults";
   EXPECT_EQ(j["tracking"]["samples"], 1001);
+  for (const std::string& channel : channels) {  // every tick of every channel, STATUS aside
+    if (channel != "STATUS") {
+      EXPECT_EQ(j["log"]["missing_ticks"][channel], 0) << channel << j["log"].dump();
+    }
+  }
   size_t identical = 0;
   forCommonTicks(
       a, b, [&](const TruthSample& x, const TruthSample& y) { identical += x.q == y.q && x.qdot == y.qdot; });
@@ -116,6 +121,8 @@ TEST(Faults, RealtimeUnderDropsAndDelaysConvergesAndTheCountersAddUp) {
   // Realtime does not re-send: the log misses exactly the samples dropped on the way to it.
   EXPECT_EQ(j["status"], "completed");
   EXPECT_EQ(j["log"]["missing_samples"], j["messages"]["PLANT_TRUTH"]["injected"]["dropped"]);
+  EXPECT_EQ(j["log"]["missing_ticks"]["PLANT_TRUTH"], j["messages"]["PLANT_TRUTH"]["injected"]["dropped"]);
+  EXPECT_EQ(j["log"]["missing_ticks"]["PLANT_POSITION"], dropped) << j["log"].dump();
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Tracking metrics.
 #include <gtest/gtest.h>
 
+#include "logger/tick_coverage.hpp"
 #include "logger/tracking_metrics.hpp"
 
 namespace lagrange {
@@ -51,3 +52,23 @@ TEST(TrackingMetrics, ChainErrorsAreJudgedPerStage) {
 
 }  // namespace
 }  // namespace lagrange
+
+namespace lagrange::logger {
+namespace {
+
+// The log's per-channel tick coverage: gaps counted up to the newest sample,
+// repeats counted once, ticks outside the run ignored (not allocated).
+TEST(TickCoverage, CountsTheTicksWithNoMessage) {
+  TickCoverage c(9);  // a run of ticks 0..9
+  EXPECT_EQ(c.missingUpTo(9), 10);
+  for (int64_t k : {0, 1, 1, 3, 4, 9}) c.add(k);
+  EXPECT_EQ(c.missingUpTo(4), 1);  // tick 2
+  EXPECT_EQ(c.missingUpTo(9), 5);  // 2, 5, 6, 7, 8
+  c.add(-1);
+  c.add(int64_t{1} << 60);  // forged or corrupt: beyond the run
+  EXPECT_EQ(c.missingUpTo(int64_t{1} << 61), 5);
+  EXPECT_EQ(c.missingUpTo(-1), 0);
+}
+
+}  // namespace
+}  // namespace lagrange::logger
