@@ -37,6 +37,7 @@ int DoMain(int argc, char** argv) {
         const auto last_state =
             transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
                 node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
+                s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
                 [&](const lagrange::control_command_t& m) { return std::optional(compute(m)); });
         // The plant re-sends a position nobody answered, and the controller
         // and this actuator answer a re-sent tick from their caches -- but a

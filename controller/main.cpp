@@ -120,6 +120,7 @@ int DoMain(int argc, char** argv) {
         transport::Progress progress;
         transport::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
+            s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
             [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
               if (ctl.flexible()) {
                 const std::optional<Eigen::MatrixXd> motor = motor_by_tick.take(m.header.tick);

@@ -78,35 +78,46 @@ int DoMain(int argc, char** argv) {
                                                                 const std::string& channel) {
           log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
         });
-        // Acknowledge progress often enough that the plant, allowed
-        // lockstep.logger_window ticks ahead, never waits for the logger.
-        const long long ack_every = std::max(1, s.lockstep.logger_window / 4);
-        bool progress_due = false;
-        long long acked = -1;  // the lastTick() of the last STATUS
-        // Samples in any order: one re-sent by the plant, or overtaken by a
-        // later one, is still a sample of the run.
         // Which ticks of each per-tick channel reached the log intact
-        // (summary.json log.missing_ticks). Every copy counts, in any order.
+        // (summary.json log.missing_ticks). Every copy counts, in any order:
+        // one re-sent by the plant, or overtaken by a later one, is still a
+        // message of the run.
         constexpr auto kAnyOrder = transport::LcmNode::Order::kAcceptReordered;
         std::map<std::string, logger::TickCoverage> coverage;
         for (const char* channel : {transport::kPlantPosition, transport::kPlantTruth,
                                     transport::kControlCommand, transport::kActuatorState})
           coverage.emplace(channel, logger::TickCoverage(s.lastTick()));
         if (s.flexible) coverage.emplace(transport::kPlantMotor, logger::TickCoverage(s.lastTick()));
+        // What STATUS last_tick confirms to the plant. In lockstep: every
+        // message of every tick up to it is in the log; the plant re-sends
+        // the ticks after it (and the controller and actuator answer them
+        // again), so a datagram lost on the way to the logger alone is sent
+        // again. In realtime (nothing is re-sent): the contiguous samples.
+        auto confirmed = [&] {
+          int64_t tick = metrics.lastTick();
+          if (s.mode == "lockstep")
+            for (const auto& entry : coverage) tick = std::min(tick, entry.second.contiguousThrough());
+          return tick;
+        };
+        // Acknowledge progress often enough that the plant, allowed
+        // lockstep.logger_window ticks ahead, never waits for the logger.
+        const long long ack_every = std::max(1, s.lockstep.logger_window / 4);
+        bool progress_due = false;
+        long long acked = -1;  // the last_tick of the last STATUS
+        auto record = [&](const char* channel, int64_t tick) {
+          coverage.at(channel).add(tick);
+          if (confirmed() - acked >= ack_every) progress_due = true;
+        };
         node.subscribe<lagrange::plant_truth_t>(
             transport::kPlantTruth, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::plant_truth_t& m) {
-              coverage.at(transport::kPlantTruth).add(m.header.tick);
-              if (metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q)) &&
-                  metrics.lastTick() - acked >= ack_every)
-                progress_due = true;
+              metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q));
+              record(transport::kPlantTruth, m.header.tick);
             },
             kAnyOrder);
         node.subscribe<lagrange::plant_position_t>(
             transport::kPlantPosition, [n](const auto& m) { return transport::validate(m, n); },
-            [&](const lagrange::plant_position_t& m) {
-              coverage.at(transport::kPlantPosition).add(m.header.tick);
-            },
+            [&](const lagrange::plant_position_t& m) { record(transport::kPlantPosition, m.header.tick); },
             kAnyOrder);
         if (s.flexible)
           node.subscribe<lagrange::plant_motor_t>(
@@ -114,22 +125,20 @@ int DoMain(int argc, char** argv) {
               [n, rates = s.flexible->rate_sensor](const auto& m) {
                 return transport::validate(m, n, rates);
               },
-              [&](const lagrange::plant_motor_t& m) {
-                coverage.at(transport::kPlantMotor).add(m.header.tick);
-              },
+              [&](const lagrange::plant_motor_t& m) { record(transport::kPlantMotor, m.header.tick); },
               kAnyOrder);
         node.subscribe<lagrange::control_command_t>(
             transport::kControlCommand, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::control_command_t& m) {
-              coverage.at(transport::kControlCommand).add(m.header.tick);
               metrics.addChainErrors(m.header.tick, m.header.sim_time, m.xi_error);
+              record(transport::kControlCommand, m.header.tick);
             },
             kAnyOrder);
         node.subscribe<lagrange::actuator_state_t>(
             transport::kActuatorState, [n](const auto& m) { return transport::validate(m, n); },
             [&](const lagrange::actuator_state_t& m) {
-              coverage.at(transport::kActuatorState).add(m.header.tick);
               metrics.addTorque(transport::toEigen(m.tau_applied));
+              record(transport::kActuatorState, m.header.tick);
             },
             kAnyOrder);
         std::optional<Clock::time_point> plant_finished_at, all_samples_at;
@@ -150,8 +159,9 @@ int DoMain(int argc, char** argv) {
           [[maybe_unused]] const ssize_t written = write(progress_fd, line.data(), line.size());
         };
         auto report = [&](const char* state) {
-          acked = metrics.lastTick();
-          status.publish(state, metrics.lastTick(), metrics.lastTime(), metrics.lastError());
+          acked = confirmed();
+          status.publish(state, acked, static_cast<double>(std::max<int64_t>(acked, 0)) * s.tickPeriod(),
+                         metrics.lastError());
         };
         // True when plant, controller and actuator have all reported `state`
         // (or, with state empty, any final state).
@@ -198,7 +208,7 @@ int DoMain(int argc, char** argv) {
             break;
           // The plant's final STATUS can be lost like any datagram: having
           // every tick's sample is enough to finish, after the same grace.
-          if (metrics.lastTick() >= s.lastTick()) {
+          if (confirmed() >= s.lastTick()) {
             if (!all_samples_at) all_samples_at = now;
             if (now - *all_samples_at > std::chrono::duration<double>(finish_grace)) break;
           }

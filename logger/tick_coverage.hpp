@@ -16,7 +16,11 @@ class TickCoverage {
 
   void add(int64_t tick) {
     if (tick >= 0 && static_cast<size_t>(tick) < seen_.size()) seen_[static_cast<size_t>(tick)] = true;
+    while (next_ < seen_.size() && seen_[next_]) ++next_;
   }
+
+  /// The newest tick up to which every tick has a message (-1: not tick 0).
+  int64_t contiguousThrough() const { return static_cast<int64_t>(next_) - 1; }
 
   /// Ticks 0..up_to (clamped to the run) without a message.
   long long missingUpTo(int64_t up_to) const {
@@ -28,6 +32,7 @@ class TickCoverage {
 
  private:
   std::vector<bool> seen_;
+  size_t next_ = 0;  ///< the oldest tick without a message
 };
 
 }  // namespace lagrange::logger

@@ -25,17 +25,29 @@ transport::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time
   return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input);
 }
 
-// PLANT_POSITION with, for flexible joints, PLANT_MOTOR of the same tick
-// first, so a controller woken by the position finds the motor sample there.
-void publishMeasurements(transport::LcmNode& node, const config::Scenario& s, const PlantSim& sim,
-                         const lagrange::plant_position_t& position) {
+// What the plant publishes at a tick: the measurements (PLANT_MOTOR for
+// flexible joints only) and the ground truth.
+struct TickMessages {
+  lagrange::plant_position_t position;
+  std::optional<lagrange::plant_motor_t> motor;
+  lagrange::plant_truth_t truth;
+};
+
+TickMessages tickMessages(const config::Scenario& s, const PlantSim& sim, const transport::PlantSample& out) {
+  TickMessages m{out.position, std::nullopt, out.truth};
   if (s.flexible) {
     const PlantState st = sim.state();
-    node.publish(transport::kPlantMotor,
-                 transport::motorMessage(position.header.tick, position.header.sim_time, st.motor_q,
-                                         st.motor_qdot, s.flexible->rate_sensor));
+    m.motor = transport::motorMessage(out.position.header.tick, out.position.header.sim_time, st.motor_q,
+                                      st.motor_qdot, s.flexible->rate_sensor);
   }
-  node.publish(transport::kPlantPosition, position);
+  return m;
+}
+
+// PLANT_POSITION with, for flexible joints, PLANT_MOTOR of the same tick
+// first, so a controller woken by the position finds the motor sample there.
+void publishMeasurements(transport::LcmNode& node, const TickMessages& m) {
+  if (m.motor) node.publish(transport::kPlantMotor, *m.motor);
+  node.publish(transport::kPlantPosition, m.position);
 }
 }  // namespace
 
@@ -65,15 +77,21 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         if (m.process == "logger") logger_tick = std::max(logger_tick, m.last_tick);
       });
 
-  // PLANT_TRUTH the logger has not confirmed (its STATUS last_tick: every
-  // sample up to it recorded); re-sent while the logger holds the run back,
-  // so a datagram lost on the way to the log is sent again, not lost.
-  std::map<int64_t, lagrange::plant_truth_t> unconfirmed;
-  long long truth_resends = 0;
+  // Ticks the logger has not confirmed (its STATUS last_tick: every message
+  // of every tick up to it recorded), re-sent while the logger holds the run
+  // back, so a datagram lost on the way to the log is sent again, not lost.
+  // The measurements go too: the controller and the actuator answer them
+  // with the commands and states they sent for those ticks, which the
+  // logger may be the one to lack.
+  std::map<int64_t, TickMessages> unconfirmed;
+  long long log_resends = 0;  // ticks re-sent for the logger
   auto resendUnconfirmed = [&] {
     unconfirmed.erase(unconfirmed.begin(), unconfirmed.upper_bound(logger_tick));
-    for (const auto& [tick, truth] : unconfirmed) node.publish(transport::kPlantTruth, truth);
-    truth_resends += static_cast<long long>(unconfirmed.size());
+    for (const auto& [tick, sent] : unconfirmed) {
+      publishMeasurements(node, sent);
+      node.publish(transport::kPlantTruth, sent.truth);
+    }
+    log_resends += static_cast<long long>(unconfirmed.size());
   };
 
   status.publish("ready", -1, 0.0);
@@ -82,16 +100,16 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   auto next_status = Clock::now();
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
-    auto resend_truth_at = Clock::now() + retransmit;
+    auto resend_unconfirmed_at = Clock::now() + retransmit;
     while (logger_tick == -2 || k - logger_tick > s.lockstep.logger_window) {
       if (transport::stopRequested()) break;
       if (logger_tick == -2 && Clock::now() > startup_deadline)
         throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
                                  " s; is it running on the same LCM URL?");
       node.handle(5);
-      if (logger_tick != -2 && Clock::now() >= resend_truth_at) {
+      if (logger_tick != -2 && Clock::now() >= resend_unconfirmed_at) {
         resendUnconfirmed();
-        resend_truth_at = Clock::now() + retransmit;
+        resend_unconfirmed_at = Clock::now() + retransmit;
       }
     }
     if (transport::stopRequested()) {
@@ -101,10 +119,10 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     const transport::TorqueInput input =
         k == 0 ? transport::TorqueInput{}
                : transport::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED};
-    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose(), input);
-    publishMeasurements(node, s, sim, out.position);
+    const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), input));
+    publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
-    unconfirmed.emplace(k, out.truth);
+    unconfirmed.emplace(k, out);
     unconfirmed.erase(unconfirmed.begin(), unconfirmed.upper_bound(logger_tick));  // bounded by the window
     if (Clock::now() >= next_status) {
       status.publish("running", k, t);
@@ -116,7 +134,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     while (!answered && !transport::stopRequested()) {
       node.handle(5);
       if (!answered && Clock::now() >= resend_at) {
-        publishMeasurements(node, s, sim, out.position);
+        publishMeasurements(node, out);
         ++retransmits;
         resend_at = Clock::now() + retransmit;
       }
@@ -132,24 +150,24 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   // The end: every sample in the log first (bounded: a logger that has
   // gone away does not keep the plant forever).
   const auto log_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
-  auto resend_truth_at = Clock::now() + retransmit;
+  auto resend_unconfirmed_at = Clock::now() + retransmit;
   while (logger_tick < last_tick && Clock::now() < log_deadline && !transport::stopRequested()) {
     node.handle(5);
-    if (Clock::now() >= resend_truth_at) {
+    if (Clock::now() >= resend_unconfirmed_at) {
       resendUnconfirmed();
-      resend_truth_at = Clock::now() + retransmit;
+      resend_unconfirmed_at = Clock::now() + retransmit;
     }
   }
   if (logger_tick < last_tick)
-    spdlog::warn("the logger confirmed samples up to tick {} of {}", logger_tick, last_tick);
-  if (retransmits > 0 || truth_resends > 0)
-    spdlog::info("re-sent {} position samples and {} PLANT_TRUTH samples after timeouts", retransmits,
-                 truth_resends);
+    spdlog::warn("the logger confirmed every message up to tick {} of {}", logger_tick, last_tick);
+  if (retransmits > 0 || log_resends > 0)
+    spdlog::info("re-sent {} position samples nobody answered, and {} ticks the logger had not confirmed",
+                 retransmits, log_resends);
   // Three times: the others end on it, and a datagram can be lost.
   for (int copy = 0; copy < 3; ++copy)
     status.publish(
         "finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
-        "retransmits=" + std::to_string(retransmits) + " truth_resends=" + std::to_string(truth_resends));
+        "retransmits=" + std::to_string(retransmits) + " log_resends=" + std::to_string(log_resends));
   return 0;
 }
 
@@ -224,8 +242,8 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   for (int64_t k = 0; k <= last_tick && !transport::stopRequested(); ++k) {
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const transport::PlantSample out = sample(sim, k, t, tau.row(0).transpose(), applied);
-    publishMeasurements(node, s, sim, out.position);
+    const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), applied));
+    publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
     published_utime[k % kRing] = out.position.header.publish_utime;
     if (k == last_tick) break;

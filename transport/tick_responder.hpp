@@ -1,13 +1,15 @@
 #pragma once
 /// @file
 /// The lockstep rule of a reactive process (controller, actuator): one output
-/// per input tick. A repeated tick (the plant re-sending after a timeout) is
-/// answered with the cached output, so no core ever steps twice on one
-/// sample; an older tick is ignored. `compute` may decline (empty result)
-/// when another input of the tick is still missing; the tick is then
-/// answered when the plant re-sends it.
+/// per input tick. A repeated tick (the plant re-sending after a timeout, or
+/// re-sending a tick the logger has not confirmed) is answered with the
+/// output sent for it, kept for the last `history` ticks, so no core ever
+/// steps twice on one sample; a tick older than that is ignored. `compute`
+/// may decline (empty result) when another input of the tick is still
+/// missing; the tick is then answered when the plant re-sends it.
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,13 +24,15 @@ namespace lagrange::transport {
 template <class In, class Out>
 std::shared_ptr<const std::optional<Out>> respondPerTick(
     LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
-    Progress& progress, std::function<std::optional<Out>(const In&)> compute) {
+    Progress& progress, int history, std::function<std::optional<Out>(const In&)> compute) {
   auto cached = std::make_shared<std::optional<Out>>();
+  auto sent = std::make_shared<std::map<int64_t, Out>>();  // the last `history` answers, by tick
   node.subscribe<In>(
       in_channel, [joints](const In& m) { return validate(m, joints); },
-      [&node, &progress, out_channel, compute, cached](const In& m) {
+      [&node, &progress, out_channel, compute, cached, sent, history](const In& m) {
         if (m.header.tick <= progress.last_tick) {
-          if (m.header.tick == progress.last_tick && *cached) node.publish(out_channel, **cached);
+          if (const auto it = sent->find(m.header.tick); it != sent->end())
+            node.publish(out_channel, it->second);
           return;
         }
         std::optional<Out> out = compute(m);
@@ -36,6 +40,8 @@ std::shared_ptr<const std::optional<Out>> respondPerTick(
         *cached = std::move(out);
         node.publish(out_channel, **cached);
         progress = {m.header.tick, m.header.sim_time};
+        sent->emplace(m.header.tick, **cached);
+        while (static_cast<int>(sent->size()) > history) sent->erase(sent->begin());
       });
   return cached;
 }

@@ -72,3 +72,26 @@ TEST(TickCoverage, CountsTheTicksWithNoMessage) {
 
 }  // namespace
 }  // namespace lagrange::logger
+
+namespace lagrange::logger {
+namespace {
+
+// What the logger confirms to the plant: every tick up to it present.
+TEST(TickCoverage, ContiguousThroughStopsAtTheFirstGap) {
+  TickCoverage c(5);
+  EXPECT_EQ(c.contiguousThrough(), -1);
+  c.add(1);
+  EXPECT_EQ(c.contiguousThrough(), -1);  // tick 0 missing
+  c.add(0);
+  EXPECT_EQ(c.contiguousThrough(), 1);
+  c.add(3);
+  c.add(5);
+  EXPECT_EQ(c.contiguousThrough(), 1);  // tick 2 missing
+  c.add(2);
+  EXPECT_EQ(c.contiguousThrough(), 3);
+  c.add(4);
+  EXPECT_EQ(c.contiguousThrough(), 5);
+}
+
+}  // namespace
+}  // namespace lagrange::logger
