@@ -69,7 +69,16 @@ void readSupervisionSection(MapReader& root, Scenario& s) {
   sv.finish({"restart", "max_restarts"});
 }
 
-// faults: seeded fault injection per channel.
+namespace {
+double probability(MapReader& map, const char* key) {
+  const double p = map.number(key, 0.0);
+  if (p < 0.0 || p > 1.0) map.fail(key, "expected a probability from 0 to 1");
+  return p;
+}
+}  // namespace
+
+// faults: seeded fault injection per channel (sending side) and per
+// receiving process.
 void readFaultsSection(MapReader& root, Scenario& s) {
   if (!root.has("faults")) return;
   MapReader f = root.map("faults");
@@ -90,15 +99,10 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       names.insert(name);
       MapReader c = channels.map(name);
       ChannelFaults rule;
-      const auto probability = [&](const char* key) {
-        const double p = c.number(key, 0.0);
-        if (p < 0.0 || p > 1.0) c.fail(key, "expected a probability from 0 to 1");
-        return p;
-      };
-      rule.drop = probability("drop");
-      rule.duplicate = probability("duplicate");
-      rule.reorder = probability("reorder");
-      rule.corrupt = probability("corrupt");
+      rule.drop = probability(c, "drop");
+      rule.duplicate = probability(c, "duplicate");
+      rule.reorder = probability(c, "reorder");
+      rule.corrupt = probability(c, "corrupt");
       rule.delay = c.number("delay", 0.0);
       if (rule.delay < 0.0) c.fail("delay", "expected a time >= 0 [s]");
       rule.delay_jitter = c.number("delay_jitter", 0.0);
@@ -108,7 +112,20 @@ void readFaultsSection(MapReader& root, Scenario& s) {
     }
     channels.finish(names);
   }
-  f.finish({"seed", "channels"});
+  if (f.has("receivers")) {
+    MapReader receivers = f.map("receivers");
+    std::set<std::string> names;
+    for (const std::string& name : receivers.keys()) {
+      if (name != "plant" && name != "controller" && name != "actuator" && name != "logger")
+        receivers.fail(name, "unknown process; expected plant, controller, actuator or logger");
+      names.insert(name);
+      MapReader r = receivers.map(name);
+      s.faults.receiver_drop[name] = probability(r, "drop");
+      r.finish({"drop"});
+    }
+    receivers.finish(names);
+  }
+  f.finish({"seed", "channels", "receivers"});
 }
 
 }  // namespace lagrange::config::sections

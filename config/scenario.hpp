@@ -110,6 +110,9 @@ struct ChannelFaults {
 struct FaultsConfig {
   uint64_t seed = 1;                              ///< each process draws from seed and its name
   std::map<std::string, ChannelFaults> channels;  ///< by channel name, or "all"
+  /// By process name: the probability that a datagram reaching it is lost
+  /// for it alone (faults.receivers.PROCESS.drop), every channel.
+  std::map<std::string, double> receiver_drop;
 };
 
 /// What the launcher does when a process dies (supervision.*).

@@ -151,6 +151,11 @@ std::string toYaml(const Scenario& s) {
     out << YAML::EndMap;
   }
   out << YAML::EndMap;
+  out << YAML::Key << "receivers" << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, drop] : s.faults.receiver_drop)
+    out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "drop"
+        << YAML::Value << drop << YAML::EndMap;
+  out << YAML::EndMap;
   out << YAML::EndMap;
 
   out << YAML::EndMap;

@@ -107,11 +107,10 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       total["published"] = total["published"].get<long long>() + c.published;
       total["received"] = total["received"].get<long long>() + c.received;
       total["rejected"] = total["rejected"].get<long long>() + c.rejected;
-      const json injected = {{"dropped", c.injected_dropped},
-                             {"duplicated", c.injected_duplicated},
-                             {"reordered", c.injected_reordered},
-                             {"delayed", c.injected_delayed},
-                             {"corrupted", c.injected_corrupted}};
+      const json injected = {
+          {"dropped", c.injected_dropped},     {"duplicated", c.injected_duplicated},
+          {"reordered", c.injected_reordered}, {"delayed", c.injected_delayed},
+          {"corrupted", c.injected_corrupted}, {"lost_on_receive", c.injected_lost_on_receive}};
       channels[c.channel]["injected"] = injected;
       for (const auto& [fault, n] : injected.items())
         total["injected"][fault] = total["injected"].value(fault, 0LL) + n.get<long long>();

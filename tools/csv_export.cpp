@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "lagrange/actuator_state_t.hpp"
@@ -140,29 +142,59 @@ long long writeTiming(const PublishTimes& times, double period, const std::strin
   return rows;
 }
 
+// One channel's CSV file, rows in tick order: a lockstep tick the logger
+// lacked and the plant re-sent is in the log a few ticks late (at most
+// lockstep.logger_window). Rows wait in a window of kHeldTicks ticks, so the
+// memory stays bounded however long the run.
+class TickOrderedCsv {
+ public:
+  static constexpr int64_t kHeldTicks = 1000;
+
+  explicit TickOrderedCsv(const std::filesystem::path& path) : out_(path) {}
+  bool opened() const { return static_cast<bool>(out_); }
+  void header(const std::string& line) { out_ << line << "\n"; }
+  void add(int64_t tick, std::string line) {
+    held_.emplace(tick, std::move(line));
+    while (!held_.empty() && held_.begin()->first < held_.rbegin()->first - kHeldTicks) writeFirst();
+  }
+  bool finish() {
+    while (!held_.empty()) writeFirst();
+    return static_cast<bool>(out_.flush());
+  }
+
+ private:
+  void writeFirst() {
+    out_ << held_.begin()->second << "\n";
+    held_.erase(held_.begin());
+  }
+  std::ofstream out_;
+  std::map<int64_t, std::string> held_;
+};
+
 }  // namespace
 
 CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
   std::filesystem::create_directories(out_dir);
   CsvExport result;
-  std::map<std::string, std::ofstream> files;
+  std::map<std::string, TickOrderedCsv> files;
   std::map<std::string, std::set<int64_t>> seen;
   result.scan = readLog(log_path, [&](const lcm::LogEvent& ev) {
     if (ev.channel == transport::kScenario && !result.scenario) result.scenario = scenarioYaml(ev);
     Row row;
     int64_t tick = 0;
     if (!rowOf(ev, row, tick) || !seen[ev.channel].insert(tick).second) return;
-    auto [it, fresh] = files.try_emplace(ev.channel);
-    if (fresh) {
-      it->second.open(std::filesystem::path(out_dir) / (ev.channel + ".csv"));
-      if (!it->second) throw std::runtime_error("cannot write " + out_dir + "/" + ev.channel + ".csv");
-      it->second << row.header() << "\n";
+    auto it = files.find(ev.channel);
+    if (it == files.end()) {
+      it = files.try_emplace(ev.channel, std::filesystem::path(out_dir) / (ev.channel + ".csv")).first;
+      if (!it->second.opened())
+        throw std::runtime_error("cannot write " + out_dir + "/" + ev.channel + ".csv");
+      it->second.header(row.header());
     }
-    it->second << row.line() << "\n";
+    it->second.add(tick, row.line());
     ++result.rows[ev.channel];
   });
   for (auto& [channel, file] : files)
-    if (!file.flush()) throw std::runtime_error("writing " + out_dir + "/" + channel + ".csv failed");
+    if (!file.finish()) throw std::runtime_error("writing " + out_dir + "/" + channel + ".csv failed");
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "tools/replay_log.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 
@@ -78,6 +79,12 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
   } catch (const LogError& e) {
     throw ReplayError(e.what());
   }
+  // In tick order, which is the order each process computed them in: a copy
+  // the logger lacked and the plant had re-sent is in the log a few ticks late.
+  const auto by_tick = [](const auto& a, const auto& b) { return a.header.tick < b.header.tick; };
+  std::stable_sort(rec.commands.begin(), rec.commands.end(), by_tick);
+  std::stable_sort(rec.states.begin(), rec.states.end(), by_tick);
+  std::stable_sort(rec.truths.begin(), rec.truths.end(), by_tick);
   ReplayResult& result = o.result;
   result.events = rec.events = scan.events;
   rec.undecodable = undecodable;

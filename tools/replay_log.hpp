@@ -21,13 +21,13 @@
 namespace lagrange::tools::replay_log {
 
 /// A log's messages. Maps hold one message per tick (the first copy:
-/// lockstep re-sends are identical); the vectors keep log order.
+/// lockstep re-sends are identical); the vectors too, in tick order.
 struct Recorded {
   std::optional<std::string> scenario;
   std::map<int64_t, lagrange::plant_position_t> positions;
   std::map<int64_t, lagrange::actuator_state_t> actuator;
   std::map<int64_t, lagrange::plant_motor_t> motor;
-  std::vector<lagrange::control_command_t> commands;  // first copy of each tick, in log order
+  std::vector<lagrange::control_command_t> commands;  // first copy of each tick, in tick order
   std::vector<lagrange::actuator_state_t> states;     // likewise
   std::vector<lagrange::plant_truth_t> truths;        // likewise
   std::map<int64_t, lagrange::control_command_t> commands_by_tick;

@@ -19,12 +19,16 @@ LcmNode::LcmNode(const std::string& process_name, const std::string& url, int64_
 
 void LcmNode::subscribeRaw(const std::string& channel_regex,
                            std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle) {
-  handlers_.push_back(std::make_unique<RawHandler>(RawHandler{std::move(handle)}));
+  handlers_.push_back(std::make_unique<RawHandler>(RawHandler{
+      [this, handle = std::move(handle)](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+        if (!lostOnReceive(rbuf, channel)) handle(rbuf, channel);
+      }}));
   // subscribeFunction, not subscribe(channel, &Class::method, object): LCM
   // calls the latter through `(handler->*method)(...)`, which GCC 12's
   // -fsanitize=vptr miscompiles (a false "invalid vptr" report, and a
   // segfault with vptr alone). A plain function keeps UBSan's vptr check on.
-  lcm::Subscription* sub = lcm_.subscribeFunction(channel_regex, &RawHandler::onMessage, handlers_.back().get());
+  lcm::Subscription* sub =
+      lcm_.subscribeFunction(channel_regex, &RawHandler::onMessage, handlers_.back().get());
   sub->setQueueCapacity(kQueueCapacity);
 }
 
@@ -54,6 +58,29 @@ void LcmNode::reject(const std::string& channel, RejectReason why, const std::st
 
 void LcmNode::injectFaults(const std::map<std::string, config::ChannelFaults>& rules, uint64_t seed) {
   faults_ = std::make_unique<FaultInjector>(lcm_, rules, seed);
+}
+
+void LcmNode::loseOnReceive(double probability, uint64_t seed) {
+  receive_loss_ = probability;
+  receive_seed_ = seed;
+}
+
+bool LcmNode::lostOnReceive(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+  if (receive_loss_ <= 0.0) return false;
+  // splitmix64 of the bytes' FNV-1a and the seed: a uniform draw in [0, 1)
+  // that is the same for every handler this datagram is dispatched to.
+  uint64_t x = fnv1a(static_cast<const uint8_t*>(rbuf->data), rbuf->data_size) ^ receive_seed_;
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  if (static_cast<double>(x >> 11) * 0x1.0p-53 >= receive_loss_) return false;
+  if (rbuf != last_lost_ || rbuf->recv_utime != last_lost_utime_) {
+    counters_[channel].lost_on_receive++;
+    last_lost_ = rbuf;
+    last_lost_utime_ = rbuf->recv_utime;
+  }
+  return true;
 }
 
 void LcmNode::stamp(const std::string& channel, lagrange::header_t& header) const {
@@ -127,6 +154,7 @@ std::vector<lagrange::channel_stats_t> LcmNode::channelStats() const {
       s.injected_delayed = injected.delayed;
       s.injected_corrupted = injected.corrupted;
     }
+    s.injected_lost_on_receive = c.lost_on_receive;
     out.push_back(s);
   }
   return out;

@@ -36,6 +36,7 @@ struct ChannelCounters {
   long long received = 0;
   long long rejected = 0;
   std::array<long long, kRejectReasons> rejected_by = {};  ///< indexed by RejectReason
+  long long lost_on_receive = 0;                           ///< injected: faults.receivers
 };
 
 /// True for the project's message types: they carry a header_t.
@@ -84,6 +85,12 @@ class LcmNode {
   /// From now on, what this node publishes passes through seeded fault injection (config faults.*).
   void injectFaults(const std::map<std::string, config::ChannelFaults>& rules, uint64_t seed);
 
+  /// From now on, each datagram reaching this node is lost for it with this
+  /// probability (config faults.receivers), before any handler sees it:
+  /// decided by a seeded hash of its bytes, so every subscription of the
+  /// node agrees, and counted once per datagram.
+  void loseOnReceive(double probability, uint64_t seed);
+
   /// Every message on channels matching the regex, undecoded. The queue is
   /// deep (kQueueCapacity) so a slow handler does not silently drop messages.
   void subscribeRaw(const std::string& channel_regex,
@@ -129,6 +136,11 @@ class LcmNode {
   std::unique_ptr<FaultInjector> faults_;  // after lcm_: stopped (its last sends made) before LCM closes
   int64_t run_id_ = 0;
   int32_t pid_ = 0;
+  double receive_loss_ = 0.0;
+  uint64_t receive_seed_ = 0;
+  const lcm::ReceiveBuffer* last_lost_ = nullptr;  ///< the datagram counted last (one per handler pass)
+  int64_t last_lost_utime_ = -1;
+  bool lostOnReceive(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   std::map<std::string, int64_t> last_seq_;        ///< per channel, publisher and pid
   std::map<std::string, std::set<int64_t>> seen_;  ///< the same, recent numbers (Order::kAcceptReordered)
 

@@ -132,12 +132,18 @@ int runProcess(const std::string& name, const std::string& description, int argc
           "the normal scheduler",
           scenario.realtime.priority);
     LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
-    if (!scenario.faults.channels.empty()) {
-      // Each process its own stream of draws, the same in every run with this seed.
-      uint64_t seed = scenario.faults.seed;
+    // Each process its own stream of draws, the same in every run with this seed.
+    const auto seed_for = [&name](uint64_t seed) {
       for (const unsigned char c : name) seed = (seed ^ c) * 1099511628211ULL;
-      node.injectFaults(scenario.faults.channels, seed);
+      return seed;
+    };
+    if (!scenario.faults.channels.empty()) {
+      node.injectFaults(scenario.faults.channels, seed_for(scenario.faults.seed));
       spdlog::info("fault injection on: seed {}", scenario.faults.seed);
+    }
+    if (const auto it = scenario.faults.receiver_drop.find(name); it != scenario.faults.receiver_drop.end()) {
+      node.loseOnReceive(it->second, seed_for(scenario.faults.seed ^ 0x7265636569766572ULL));  // "receiver"
+      spdlog::info("{} loses {} of the datagrams it receives (faults.receivers)", name, it->second);
     }
     return body(scenario, node);
   } catch (const config::ConfigError& e) {
