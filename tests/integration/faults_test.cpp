@@ -34,6 +34,24 @@ namespace {
 const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 const char* kChannels[] = {"PLANT_POSITION", "PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS"};
 
+// The run under faults is the fault-free one: all 1001 samples, each bit for
+// bit, and its log replays exactly through every component.
+void expectTheFaultFreeRun(const std::string& clean_dir, const std::string& faulty_dir) {
+  const auto a = readTruth(clean_dir + "/run.lcm"), b = readTruth(faulty_dir + "/run.lcm");
+  ASSERT_EQ(a.size(), 1001u);
+  ASSERT_EQ(b.size(), 1001u) << "samples missing from the log under faults";
+  size_t identical = 0;
+  forCommonTicks(
+      a, b, [&](const TruthSample& x, const TruthSample& y) { identical += x.q == y.q && x.qdot == y.qdot; });
+  EXPECT_EQ(identical, 1001u);
+  for (const std::string component : {"controller", "actuator", "plant"}) {
+    const RunResult replay =
+        lagrange("replay " + quote(faulty_dir + "/run.lcm") + " --component " + component);
+    EXPECT_EQ(replay.exit_code, 0) << component << ": " << replay.output;
+    EXPECT_NE(replay.output.find("reproduced all 1001 recorded outputs"), std::string::npos) << replay.output;
+  }
+}
+
 // One lockstep run per wiring: the rigid arm (Theorem 1), an integrator chain
 // (ACTUATOR_STATE also feeds the controller) and the flexible-joint arm
 // (PLANT_MOTOR with the motor rates).
@@ -63,26 +81,15 @@ TEST_P(LockstepUnderFaults, DropsDuplicatesReorderingAndCorruptionLeaveTheTrajec
   EXPECT_GT(reasons["corrupt"].get<long long>() + reasons["undecodable"].get<long long>(), 0)
       << reasons.dump();
   EXPECT_GT(j["messages"]["PLANT_POSITION"]["rejected_by_reason"]["old_or_repeated"].get<long long>(), 0);
-  // ... and nothing changed: every sample, each the fault-free one.
-  const auto a = readTruth(clean + "/run.lcm"), b = readTruth(faulty + "/run.lcm");
-  ASSERT_EQ(a.size(), 1001u);
-  ASSERT_EQ(b.size(), 1001u) << "samples missing from the log under faults";
+  // ... and nothing changed: every message of every tick logged (STATUS
+  // aside), the fault-free trajectory, corrupted copies and all replayed.
   EXPECT_EQ(j["tracking"]["samples"], 1001);
-  for (const std::string& channel : channels) {  // every tick of every channel, STATUS aside
+  for (const std::string& channel : channels) {
     if (channel != "STATUS") {
       EXPECT_EQ(j["log"]["missing_ticks"][channel], 0) << channel << j["log"].dump();
     }
   }
-  size_t identical = 0;
-  forCommonTicks(
-      a, b, [&](const TruthSample& x, const TruthSample& y) { identical += x.q == y.q && x.qdot == y.qdot; });
-  EXPECT_EQ(identical, 1001u);
-  // The log, corrupted copies and all, replays exactly through every component.
-  for (const std::string component : {"controller", "actuator", "plant"}) {
-    const RunResult replay = lagrange("replay " + quote(faulty + "/run.lcm") + " --component " + component);
-    EXPECT_EQ(replay.exit_code, 0) << component << ": " << replay.output;
-    EXPECT_NE(replay.output.find("reproduced all 1001 recorded outputs"), std::string::npos) << replay.output;
-  }
+  expectTheFaultFreeRun(clean, faulty);
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, LockstepUnderFaults,
@@ -114,18 +121,8 @@ TEST(Faults, LossSeenByOneReceiverAloneIsSentAgainUntilTheLogIsComplete) {
                 .get<long long>(),
             10);
   EXPECT_EQ(j["log"]["missing_samples"], 0);
-  const auto a = readTruth(clean + "/run.lcm"), b = readTruth(lossy + "/run.lcm");
-  ASSERT_EQ(b.size(), 1001u);
-  size_t identical = 0;
-  forCommonTicks(
-      a, b, [&](const TruthSample& x, const TruthSample& y) { identical += x.q == y.q && x.qdot == y.qdot; });
-  EXPECT_EQ(identical, 1001u);
   // Re-sent ticks are in the log a few ticks late; replay and report put them in tick order.
-  for (const std::string component : {"controller", "actuator", "plant"}) {
-    const RunResult replay = lagrange("replay " + quote(lossy + "/run.lcm") + " --component " + component);
-    EXPECT_EQ(replay.exit_code, 0) << component << ": " << replay.output;
-    EXPECT_NE(replay.output.find("reproduced all 1001 recorded outputs"), std::string::npos) << replay.output;
-  }
+  expectTheFaultFreeRun(clean, lossy);
   const std::string report = freshDir("faults-receivers-report");
   ASSERT_EQ(lagrange("report " + quote(lossy + "/run.lcm") + " -o " + quote(report)).exit_code, 0);
   for (const std::string channel : {"PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE"}) {
