@@ -133,7 +133,8 @@ void readPlantSection(MapReader& root, Scenario& s) {
     MapReader plant = root.map("plant");
     s.plant.physics_step = plant.positive("physics_step", s.plant.physics_step);
     s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
-    plant.finish({"physics_step", "publish_rate"});
+    if (plant.has("max_rate")) s.plant.max_rate = plant.positive("max_rate");
+    plant.finish({"physics_step", "publish_rate", "max_rate"});
     const double ratio = s.tickPeriod() / s.plant.physics_step;
     if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
       plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +

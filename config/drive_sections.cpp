@@ -109,7 +109,19 @@ void readControllerSection(MapReader& root, Scenario& s) {
       MapReader st(stages[i], ctl.keyPath("stages") + "[" + std::to_string(i) + "]");
       s.controller.stages.push_back({st.vector("kp", n, true, true), st.vector("kd", n, true, true),
                                      st.vector("a", n, true, true), st.vector("b", n, true, true)});
-      st.finish({"kp", "kd", "a", "b"});
+      controller::StageStart start;
+      start.qc = Eigen::VectorXd::Zero(n);
+      start.zeta =
+          st.has("initial_zeta") ? st.vector("initial_zeta", n, true, false) : Eigen::VectorXd::Zero(n);
+      if (st.has("initial_filter_state")) {
+        if (st.child("initial_filter_state").IsScalar() &&
+            st.child("initial_filter_state").Scalar() == "bumpless")
+          start.bumpless = true;
+        else
+          start.qc = st.vector("initial_filter_state", n, true, false);
+      }
+      s.controller.stage_starts.push_back(start);
+      st.finish({"kp", "kd", "a", "b", "initial_filter_state", "initial_zeta"});
     }
   } else if (ctl.has("stages")) {
     ctl.fail("stages", "only the cascaded and flexible controllers have stages");

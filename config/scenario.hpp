@@ -44,6 +44,10 @@ struct FlexibleConfig {
 struct PlantConfig {
   double physics_step = 1e-4;  ///< ODE step [s]
   double publish_rate = 1000;  ///< samples per second [Hz]; one tick per sample
+  /// A limit on any body's angular rate [rad/s] the user sets: the plant stops
+  /// the run when it is crossed. Unset (the default): no limit but the
+  /// simulation's own (non-finite state, pi/2 per physics step).
+  std::optional<double> max_rate;
 };
 
 struct ActuatorConfig {
@@ -66,6 +70,9 @@ struct ControllerConfig {
   std::vector<controller::StageGains> stages;  ///< "cascaded": stages 1..m
   /// qc(0); empty means "bumpless": qc(0) = -b q~(0), so theta(0) = 0.
   std::optional<Eigen::VectorXd> initial_filter_state;
+  /// Per stage i = 1..m, how its filter starts (stages[i].initial_filter_state,
+  /// stages[i].initial_zeta); default: qc_i(0) = zeta_i(0) = 0.
+  std::vector<controller::StageStart> stage_starts;
 };
 
 struct MetricsConfig {

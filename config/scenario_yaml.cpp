@@ -68,6 +68,7 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "physics_step" << YAML::Value << s.plant.physics_step;
   out << YAML::Key << "publish_rate" << YAML::Value << s.plant.publish_rate;
+  if (s.plant.max_rate) out << YAML::Key << "max_rate" << YAML::Value << *s.plant.max_rate;
   out << YAML::EndMap;
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
@@ -101,12 +102,21 @@ std::string toYaml(const Scenario& s) {
     out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
   if (!s.controller.stages.empty()) {
     out << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
-    for (const auto& st : s.controller.stages) {
+    for (size_t i = 0; i < s.controller.stages.size(); ++i) {
+      const auto& st = s.controller.stages[i];
       out << YAML::BeginMap;
       emitVector(out, "kp", st.kp);
       emitVector(out, "kd", st.kd);
       emitVector(out, "a", st.a);
       emitVector(out, "b", st.b);
+      if (i < s.controller.stage_starts.size()) {
+        const controller::StageStart& start = s.controller.stage_starts[i];
+        if (start.bumpless)
+          out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
+        else if (start.qc.size() != 0)
+          emitVector(out, "initial_filter_state", start.qc);
+        if (start.zeta.size() != 0) emitVector(out, "initial_zeta", start.zeta);
+      }
       out << YAML::EndMap;
     }
     out << YAML::EndSeq;

@@ -77,7 +77,8 @@ void advanceCascade(const CascadedGains& gains, const CascadeSignals& held, doub
 }
 
 CascadedController::CascadedController(const model::PlanarChain& chain, const model::Reference& reference,
-                                       CascadedGains gains, std::optional<Eigen::VectorXd> qc0)
+                                       CascadedGains gains, std::optional<Eigen::VectorXd> qc0,
+                                       const std::vector<StageStart>& starts)
     : gains_(std::move(gains)), stage0_(chain, reference, gains_.stage0, std::move(qc0)) {
   const int n = chain.dof();
   const int m = static_cast<int>(gains_.stages.size());
@@ -91,6 +92,20 @@ CascadedController::CascadedController(const model::PlanarChain& chain, const mo
   }
   state_.qc = Eigen::MatrixXd::Zero(m, n);
   state_.zeta = Eigen::MatrixXd::Zero(m, n);
+  bumpless_.assign(m, false);
+  if (!starts.empty() && static_cast<int>(starts.size()) != m)
+    throw std::invalid_argument("CascadedController: " + std::to_string(starts.size()) +
+                                " stage starts for " + std::to_string(m) + " stages");
+  for (int i = 0; i < static_cast<int>(starts.size()); ++i) {
+    const StageStart& st = starts[i];
+    for (const Eigen::VectorXd* v : {&st.qc, &st.zeta})
+      if (v->size() != 0 && (v->size() != n || !v->allFinite()))
+        throw std::invalid_argument("CascadedController: stage " + std::to_string(i + 1) +
+                                    " initial state must have " + std::to_string(n) + " finite entries");
+    bumpless_[i] = st.bumpless;
+    if (st.qc.size() != 0 && !st.bumpless) state_.qc.row(i) = st.qc.transpose();
+    if (st.zeta.size() != 0) state_.zeta.row(i) = st.zeta.transpose();
+  }
 }
 
 CascadedController::Output CascadedController::step(double t, const Eigen::VectorXd& q,
@@ -101,6 +116,16 @@ CascadedController::Output CascadedController::step(double t, const Eigen::Vecto
   if (held_) advanceCascade(gains_, *held_, t - held_time_, state_);
   Output out;
   out.stage0 = stage0_.step(t, q);
+  if (!held_) {
+    // Bumpless stages: xi_i* depends on the stages before i only, so fix
+    // theta_i = 0 stage by stage, evaluating the cascade again after each.
+    for (int i = 0; i < order(); ++i) {
+      if (!bumpless_[i]) continue;
+      const CascadeSignals before = evaluateCascade(gains_, out.stage0.u, xi, state_);
+      state_.qc.row(i) = -(gains_.stages[i].b.cwiseProduct(before.xi_star.row(i).transpose())).transpose() -
+                         state_.zeta.row(i);
+    }
+  }
   out.cascade = evaluateCascade(gains_, out.stage0.u, xi, state_);
   held_ = out.cascade;
   held_time_ = t;

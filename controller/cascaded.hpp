@@ -36,6 +36,18 @@ struct CascadedGains {
   std::vector<StageGains> stages;  ///< i = 1..m
 };
 
+/// How stage i's filter starts (its qc_i(0) and zeta_i(0)), like stage 0's
+/// initial_filter_state: given values (empty: zeros), or bumpless, qc_i(0) =
+/// -b_i xi_i*(t0) - zeta_i(0) at the first sample, so theta_i(t0) = 0 and the
+/// first command has no kick from a filter that has not seen xi_i* yet.
+/// Zeros, the default, give theta_i(t0) = b_i xi_i*(t0): with xi_1* of a few
+/// hundred N m that is a command kick of kd_i b_i xi_i*.
+struct StageStart {
+  bool bumpless = false;
+  Eigen::VectorXd qc;    ///< qc_i(0) when not bumpless; empty: zeros
+  Eigen::VectorXd zeta;  ///< zeta_i(0); empty: zeros
+};
+
 /// The cascade's own states, row i-1 for stage i (m x n each).
 struct CascadeState {
   Eigen::MatrixXd qc, zeta;
@@ -65,10 +77,12 @@ void advanceCascade(const CascadedGains& gains, const CascadeSignals& held, doub
 
 class CascadedController {
  public:
-  /// qc0: stage-0 filter state (empty: bumpless); the cascade starts at qc = zeta = 0.
-  /// @throws std::invalid_argument on sizes, m < 1 or non-positive gains.
+  /// qc0: stage-0 filter state (empty: bumpless); starts: per stage i = 1..m
+  /// (empty: every stage at qc = zeta = 0).
+  /// @throws std::invalid_argument on sizes, m < 1, non-positive gains or a
+  ///         starts list that does not have m entries.
   CascadedController(const model::PlanarChain& chain, const model::Reference& reference, CascadedGains gains,
-                     std::optional<Eigen::VectorXd> qc0);
+                     std::optional<Eigen::VectorXd> qc0, const std::vector<StageStart>& starts = {});
 
   struct Output {
     Theorem1Output stage0;  ///< xi_1* is stage0.u
@@ -81,11 +95,13 @@ class CascadedController {
 
   int order() const { return static_cast<int>(gains_.stages.size()); }
   const CascadeState& state() const { return state_; }
+  const Theorem1Controller& stage0() const { return stage0_; }
 
  private:
   CascadedGains gains_;
   Theorem1Controller stage0_;
   CascadeState state_;
+  std::vector<bool> bumpless_;  ///< per stage, consumed at the first step
   std::optional<CascadeSignals> held_;
   double held_time_ = 0.0;
 };

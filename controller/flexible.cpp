@@ -8,8 +8,10 @@ namespace lagrange::controller {
 FlexibleController::FlexibleController(const model::PlanarChain& link_model,
                                        const model::Reference& reference, CascadedGains gains,
                                        std::optional<Eigen::VectorXd> qc0, model::FlexibleParams params,
-                                       std::optional<Eigen::VectorXd> rate_pole)
-    : cascade_(link_model, reference, std::move(gains), std::move(qc0)), params_(std::move(params)) {
+                                       std::optional<Eigen::VectorXd> rate_pole,
+                                       const std::vector<StageStart>& starts,
+                                       std::optional<Eigen::VectorXd> rate_filter_start)
+    : cascade_(link_model, reference, std::move(gains), std::move(qc0), starts), params_(std::move(params)) {
   model::validateFlexible(params_, link_model.dof());
   if (cascade_.order() != 2)
     throw std::invalid_argument("FlexibleController: expected 2 stages (m = 2), got " +
@@ -17,6 +19,13 @@ FlexibleController::FlexibleController(const model::PlanarChain& link_model,
   if (rate_pole) {
     rate_pole_ = *rate_pole;
     rate_filter_.emplace(rate_pole_, rate_pole_, Eigen::VectorXd::Zero(link_model.dof()));
+    if (rate_filter_start) {
+      if (rate_filter_start->size() != link_model.dof() || !rate_filter_start->allFinite())
+        throw std::invalid_argument("FlexibleController: the rate filter's start must have " +
+                                    std::to_string(link_model.dof()) + " finite entries");
+      rate_filter_->reset(*rate_filter_start);
+      rate_filter_bumpless_ = false;
+    }
   }
 }
 
@@ -28,10 +37,12 @@ FlexibleController::Output FlexibleController::step(double t, const Eigen::Vecto
     throw std::invalid_argument("FlexibleController: q1 and q2 must have " + std::to_string(n) + " entries");
   Output out;
   if (rate_filter_) {
-    if (!has_previous_)
-      rate_filter_->reset(-rate_pole_.cwiseProduct(q2));  // bumpless: the estimate starts at 0
-    else
+    if (!has_previous_) {
+      if (rate_filter_bumpless_)
+        rate_filter_->reset(-rate_pole_.cwiseProduct(q2));  // the estimate starts at 0
+    } else {
       rate_filter_->advance(previous_q2_, t - previous_time_);  // exact for q2 held between samples
+    }
     out.motor_rate = rate_filter_->output(q2);
   } else {
     if (!q2dot || q2dot->size() != n)

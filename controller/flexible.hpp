@@ -24,10 +24,13 @@ class FlexibleController {
  public:
   /// @param link_model the links with joint_stiffness = K (see file comment).
   /// @param rate_pole empty: q2' is measured; else the dirty derivative's pole a [1/s].
+  /// @param rate_filter_start filtered q2' only: the estimate filter's state at the
+  ///        first sample (empty: bumpless, the estimate starts at 0).
   /// @throws std::invalid_argument unless gains.stages has 2 stages and sizes match.
   FlexibleController(const model::PlanarChain& link_model, const model::Reference& reference,
                      CascadedGains gains, std::optional<Eigen::VectorXd> qc0, model::FlexibleParams params,
-                     std::optional<Eigen::VectorXd> rate_pole);
+                     std::optional<Eigen::VectorXd> rate_pole, const std::vector<StageStart>& starts = {},
+                     std::optional<Eigen::VectorXd> rate_filter_start = std::nullopt);
 
   struct Output {
     CascadedController::Output cascade;
@@ -39,11 +42,15 @@ class FlexibleController {
   /// @throws std::invalid_argument when q2' is measured but not given.
   Output step(double t, const Eigen::VectorXd& q1, const Eigen::VectorXd& q2,
               const std::optional<Eigen::VectorXd>& q2dot);
+  const CascadedController& cascade() const { return cascade_; }
+  /// Filtered q2' only: the estimate filter's state (after the last step's advance).
+  const std::optional<DirtyDerivativeFilter>& rateFilter() const { return rate_filter_; }
 
  private:
   CascadedController cascade_;
   model::FlexibleParams params_;
   std::optional<DirtyDerivativeFilter> rate_filter_;
+  bool rate_filter_bumpless_ = true;
   Eigen::VectorXd rate_pole_;
   bool has_previous_ = false;
   double previous_time_ = 0.0;

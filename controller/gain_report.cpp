@@ -55,6 +55,7 @@ GainReport checkGains(const config::Scenario& s) {
       for (auto& c : model::proposition1Conditions(*r.eta, stages)) r.proposition.push_back(std::move(c));
     }
   }
+  r.sampled = checkSampledData(s);
   return r;
 }
 
@@ -84,6 +85,7 @@ std::string describe(const GainReport& r) {
     for (const auto& c : r.proposition) out += "\n  " + line(c);
   }
   for (const auto& w : r.warnings) out += "\nwarning: " + w;
+  out += "\n" + describe(r.sampled);
   return out;
 }
 

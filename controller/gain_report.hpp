@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "controller/sampled_data.hpp"
 #include "model/chain_conditions.hpp"
 #include "model/gain_conditions.hpp"
 
@@ -25,8 +26,12 @@ struct GainReport {
   std::vector<model::ConditionReport> proposition;  ///< m >= 2: (632a-c), (794), (795), Q - diag Q / 2 >= 0
   std::optional<model::EtaEstimate> eta;            ///< cascaded controller
   std::vector<std::string> warnings;                ///< hypotheses of the theorems that do not hold
+  /// Whether the sampled implementation at the configured rate is adequate:
+  /// the continuous-time conditions above say nothing about it.
+  SampledDataCheck sampled;
 
-  /// Every evaluated condition holds.
+  /// Every evaluated continuous-time condition holds (the theorems' verdict;
+  /// the sampled-data check is apart).
   bool holds() const;
   /// The smallest margin among the evaluated conditions.
   double margin() const;

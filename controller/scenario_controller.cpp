@@ -10,10 +10,11 @@ ScenarioController::ScenarioController(const config::Scenario& s)
     flexible_.emplace(
         chain_, reference_, CascadedGains{s.controller.gains, s.controller.stages},
         s.controller.initial_filter_state, s.flexible->params,
-        s.controller.motor_rate == "filtered" ? std::optional(s.controller.motor_rate_pole) : std::nullopt);
+        s.controller.motor_rate == "filtered" ? std::optional(s.controller.motor_rate_pole) : std::nullopt,
+        s.controller.stage_starts);
   } else if (s.controller.type == "cascaded") {
     cascaded_.emplace(chain_, reference_, CascadedGains{s.controller.gains, s.controller.stages},
-                      s.controller.initial_filter_state);
+                      s.controller.initial_filter_state, s.controller.stage_starts);
   } else {
     theorem1_.emplace(chain_, reference_, s.controller.gains, s.controller.initial_filter_state);
   }

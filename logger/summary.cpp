@@ -76,6 +76,20 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     j["gains"]["proposition1_holds"] = g.propositionHolds();
   }
   if (!g.warnings.empty()) j["gains"]["warnings"] = g.warnings;
+  const controller::SampledDataCheck& sd = g.sampled;
+  j["gains"]["sampled_data"] = {
+      {"rate", sd.rate},
+      {"verdict", sd.verdict},
+      {"why", sd.why},
+      {"spectral_radius", sd.spectral_radius},
+      {"worst_time", sd.worst_time},
+      {"sampled_decay", sd.sampled_decay},
+      {"continuous_decay", sd.continuous_decay},
+      {"fastest_mode", sd.fastest_mode},
+      {"fastest_mode_times_period", sd.fastestModeTimesPeriod()},
+      {"sufficient_rate", sd.sufficient_rate ? json(*sd.sufficient_rate) : json(nullptr)},
+      {"method", "estimate: the discretised closed loop linearised along the reference"},
+  };
   j["run_id"] = f.run_id;
   j["timing"] = {
       {"sim_time", t.sim_time},

@@ -86,8 +86,10 @@ std::vector<ConditionReport> theorem2Conditions(double kc, double kdelta, const 
           kd0.minCoeff() * (ratio_low / 4.0 - 1.0), 1.5 + (kc * kdelta + 1.5) * ratio_high * ratio_high),
       makeCondition("eq. (632b)", "kp1_min > (eta_2^2 + eta_3^2) / 2 + 2", kp1.minCoeff(),
                     0.5 * (e2 + e3) + 2.0),
-      makeCondition("eq. (632c)", "a1_min > (eta_2^2 + eta_3^2 b1_max^2 + 1) / 2", a1.minCoeff(),
-                    0.5 * (e2 + e3 * b1.maxCoeff() * b1.maxCoeff() + 1.0)),
+      // As printed, (632c) reads a1 > (eta_2^2 + eta_3^2 b1^2 + 1) / 2; the proof's
+      // own bound (700) and the alpha_3 before (745) need b1^2 on eta_2^2 too.
+      makeCondition("eq. (632c)", "a1_min > (b1_max^2 (eta_2^2 + eta_3^2) + 1) / 2 (corrected reading)",
+                    a1.minCoeff(), 0.5 * (b1.maxCoeff() * b1.maxCoeff() * (e2 + e3) + 1.0)),
   };
 }
 

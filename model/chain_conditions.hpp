@@ -42,7 +42,13 @@ EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, co
 /// gain where a larger one helps, the largest where it hurts:
 ///   (632a) kd0_min (a0_min / (4 b0_max) - 1) > 3/2 + (k_c k_delta + 3/2) (a0_max / b0_min)^2
 ///   (632b) kp1_min > (eta_2^2 + eta_3^2) / 2 + 2
-///   (632c) a1_min > (eta_2^2 + eta_3^2 b1_max^2 + 1) / 2
+///   (632c) a1_min > (b1_max^2 (eta_2^2 + eta_3^2) + 1) / 2
+///
+/// (632c) as printed lacks b1^2 on eta_2^2: a1 > (eta_2^2 + eta_3^2 b1^2 + 1) / 2.
+/// The proof's bound (700), -[a1 - b1^2 (eta_2^2 + eta_3^2) / 2] |theta_1|^2, and
+/// the alpha_3 it defines before (745) from the triangle inequality, with its
+/// [1 + eta_2^2 b1^2 + eta_3^2 b1^2], both carry it; so does (795c) at i = 1.
+/// This code uses the corrected form (docs/architecture.md, "Readings").
 std::vector<ConditionReport> theorem2Conditions(double kc, double kdelta, const EtaEstimate& eta,
                                                 const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0,
                                                 const Eigen::VectorXd& b0, const Eigen::VectorXd& kp1,

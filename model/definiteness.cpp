@@ -18,8 +18,7 @@ double scaledMinEigenvalue(const Eigen::MatrixXd& symmetric, const Eigen::Matrix
       .minCoeff();
 }
 
-double hurwitzMargin(const Eigen::MatrixXd& a) {
-  if (!a.allFinite()) return -std::numeric_limits<double>::infinity();  // nothing to decide on
+Eigen::VectorXcd balancedEigenvalues(const Eigen::MatrixXd& a) {
   Eigen::MatrixXd b = a;
   const Eigen::Index n = b.rows();
   bool changed = true;
@@ -41,7 +40,12 @@ double hurwitzMargin(const Eigen::MatrixXd& a) {
       }
     }
   }
-  return -Eigen::EigenSolver<Eigen::MatrixXd>(b, false).eigenvalues().real().maxCoeff();
+  return Eigen::EigenSolver<Eigen::MatrixXd>(b, false).eigenvalues();
+}
+
+double hurwitzMargin(const Eigen::MatrixXd& a) {
+  if (!a.allFinite()) return -std::numeric_limits<double>::infinity();  // nothing to decide on
+  return -balancedEigenvalues(a).real().maxCoeff();
 }
 
 }  // namespace lagrange::model

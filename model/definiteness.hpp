@@ -22,4 +22,10 @@ double scaledMinEigenvalue(const Eigen::MatrixXd& symmetric, const Eigen::Matrix
 /// Positive when A is Hurwitz; -infinity when A has a non-finite entry.
 double hurwitzMargin(const Eigen::MatrixXd& a);
 
+/// The eigenvalues of a (finite) after balancing it by a diagonal similarity
+/// (powers of two, Parlett-Reinsch), which leaves them unchanged in exact
+/// arithmetic and keeps rows and columns of very different scales from
+/// swamping the small ones in rounding.
+Eigen::VectorXcd balancedEigenvalues(const Eigen::MatrixXd& a);
+
 }  // namespace lagrange::model

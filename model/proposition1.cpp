@@ -47,7 +47,7 @@ std::vector<ConditionReport> proposition1Conditions(const EtaEstimate& eta,
     std::vector<ScalarStage> s;
     for (const auto& st : stages) s.push_back({st.kp(j), st.kd(j), st.a(j), st.b(j)});
     mismatch_794a = std::max(mismatch_794a, relativeMismatch(s[0].kp, s[0].kd));
-    w794b.offer(std::min(s[0].a, s[0].kp), e);
+    w794b.offer(std::min(s[0].a / (s[0].b * s[0].b), s[0].kp), e);
     double beta_product = 1.0;  // prod_{j=0}^{i-1} beta_j, beta_0 = 1
     for (int i = 2; i <= m; ++i) {
       const ScalarStage& now = s[i - 1];
@@ -67,7 +67,8 @@ std::vector<ConditionReport> proposition1Conditions(const EtaEstimate& eta,
   return {
       makeCondition("eq. (794a)", "kp1 = kd1: " + tol + " > |kp1 - kd1| / max(kp1, kd1) (worst joint)",
                     kEqualityTolerance, mismatch_794a),
-      makeCondition("eq. (794b)", "min{a1, kp1} > eta_2^2 + eta_3^2 (worst joint)", w794b.lhs, w794b.rhs),
+      makeCondition("eq. (794b)", "min{a1 / b1^2, kp1} > eta_2^2 + eta_3^2 (corrected reading; worst joint)",
+                    w794b.lhs, w794b.rhs),
       makeCondition("eq. (795a)",
                     "kd_i^2 = kp_i (kp_i - kp_{i-1}) (the printed 4 kd_i under the root read as 4 kd_i^2): " +
                         tol + " > relative mismatch (worst joint and stage)",

@@ -3,7 +3,7 @@
 /// Proposition 1: constructive sufficient conditions for Theorem 3 (m >= 2).
 /// Besides (632) and (lego), which are reported elsewhere, it asks for
 ///   (794a) kp_1 = kd_1,
-///   (794b) min{a_1, kp_1} > eta_2^2 + eta_3^2,
+///   (794b) min{a_1 / b_1^2, kp_1} > eta_2^2 + eta_3^2,
 ///   (795a) kd_i^2 = kp_i (kp_i - kp_{i-1}), i in [2, m],
 ///   (795b) kp_i > (eta_2^2 + eta_3^2) (prod_{j=0}^{i-1} beta_j)^2 + kp_{i-1},
 ///   (795c) a_i > (eta_2^2 + eta_3^2) (b_i prod_{j=0}^{i-1} beta_j)^2,   beta_0 = 1,
@@ -16,6 +16,11 @@
 /// typo is in (795a): this code uses sqrt(kp_{i-1}^2 + 4 kd_i^2). With it and
 /// (794a) every eta_ik vanishes and the printed Q equals -(A + A^T), i.e. P = I
 /// in Theorem 3 (tested for m = 2..4).
+///
+/// (794b) as printed, min{a_1, kp_1} > eta_2^2 + eta_3^2, lacks b_1^2 on a_1:
+/// (795c) at i = 1 (beta_0 = 1) reads a_1 > (eta_2^2 + eta_3^2) b_1^2, and the
+/// proof's bound (800)-(820) treats stage 1 like the others. This code uses
+/// the corrected form; with b_1 = 1 both agree.
 ///
 /// Gains are per joint; each inequality reports its worst joint and stage (the
 /// smallest lhs / rhs), each equality its largest relative mismatch.

@@ -82,8 +82,8 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
     if (k < last_tick) {
       try {
         sim.stepProfile(tau, s.substepsPerTick());
-      } catch (const std::runtime_error& diverged) {  // the closed loop diverged: keep what was recorded
-        std::cerr << "lagrange run: " << diverged.what() << "\n";
+      } catch (const plant::PlantStopped& stopped) {  // keep what was recorded
+        std::cerr << "lagrange run: " << stopped.what() << "\n";
         exit_code = 1;
         break;
       }

@@ -122,6 +122,9 @@ int DoMain(int argc, char** argv) {
                    "Start only these processes here (comma-separated: logger, controller, actuator, plant), "
                    "for a run spread over several hosts; needs --no-netns and --lcm-url")
       ->delimiter(',');
+  run_cmd->add_flag("--check", run.check,
+                    "Exit 3, naming the metric and its value, when the run completes but misses its stated "
+                    "metric (summary.json tracking.met false): for guarding a controller in CI");
   run_cmd->add_flag(
       "--report", run.report,
       "At the end of the run, write CSV files and PNG plots to OUT/report (as lagrange report)");

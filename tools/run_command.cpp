@@ -162,6 +162,38 @@ void printResult(const std::string& out_dir) {
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
   std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
+// --check: a completed run that missed its stated metric exits kMetricMissed,
+// naming each metric it missed with its value, so CI can guard a controller.
+int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code) {
+  if (!opt.check || exit_code != 0) return exit_code;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(std::ifstream(fs::path(out_dir) / "summary.json"));
+  } catch (const std::exception&) {
+    std::cerr << "lagrange run: --check: summary.json could not be read in " << out_dir
+              << "; expected the logger's summary of this run\n";
+    return kMetricMissed;
+  }
+  const auto& t = j.at("tracking");
+  if (t.at("met").get<bool>()) return 0;
+  const double deadline = t.at("convergence_deadline").get<double>();
+  auto when = [](const nlohmann::json& ct) {
+    return ct.is_null() ? std::string("never") : std::to_string(ct.get<double>()) + " s";
+  };
+  std::cerr << "lagrange run: --check: metric MISSED: ||q~|| below " << t.at("tolerance").get<double>()
+            << " rad by t = " << deadline << " s and staying there: converged "
+            << when(t.at("convergence_time")) << ", final error " << t.at("final_error").get<double>()
+            << " rad\n";
+  if (t.contains("chain"))
+    for (const auto& c : t.at("chain"))
+      if (c.at("convergence_time").is_null() || c.at("convergence_time").get<double>() > deadline)
+        std::cerr << "lagrange run: --check: metric MISSED: ||xit_" << c.at("stage").get<int>() << "|| below "
+                  << c.at("tolerance").get<double>() << " by t = " << deadline << " s: converged "
+                  << when(c.at("convergence_time")) << ", final error " << c.at("final_error").get<double>()
+                  << "\n";
+  return kMetricMissed;
+}
+
 bool runsHere(const RunOptions& opt, const std::string& process) {
   return opt.processes.empty() ||
          std::find(opt.processes.begin(), opt.processes.end(), process) != opt.processes.end();
@@ -361,6 +393,11 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
 }  // namespace
 
 int runScenario(const RunOptions& opt) {
+  if (opt.check && !runsHere(opt, "logger")) {
+    std::cerr << "lagrange run: --check reads the run's summary.json, which the logger writes on its own "
+                 "host; expected --processes to include logger\n";
+    return 2;
+  }
   if (const std::string why = checkProcesses(opt); !why.empty()) {
     std::cerr << "lagrange run: " << why << "\n";
     return 2;
@@ -389,7 +426,7 @@ int runScenario(const RunOptions& opt) {
     progress.finish();
     if (code != 130) writeRunReport(opt, out_dir);
     if (code == 0 && !opt.quiet) printResult(out_dir);
-    return code;
+    return checkMetric(opt, out_dir, code);
   }
 
   if (opt.private_netns && !insidePrivateNetns()) {
@@ -408,7 +445,7 @@ int runScenario(const RunOptions& opt) {
   if (!gainsAllowRun(scenario, opt)) return 2;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
 
-  return superviseProcesses(scenario, opt, out_dir, resolved);
+  return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));
 }
 
 }  // namespace lagrange::tools

@@ -20,6 +20,8 @@ struct RunOptions {
   bool strict = false;
   bool quiet = false;
   bool report = false;  ///< write OUT/report (CSV + plots) when the run ends with a log
+  /// Exit 3 when the run completed but missed its stated metric (tracking.met false).
+  bool check = false;
   /// The processes to start on this host (a run spread over several hosts);
   /// empty: all four. A subset needs --no-netns and an explicit LCM URL.
   std::vector<std::string> processes;
@@ -32,7 +34,10 @@ struct RunOptions {
 /// The processes of a run, in start order: the logger first, so it records from the first tick.
 inline const std::vector<std::string> kProcesses = {"logger", "controller", "actuator", "plant"};
 
-/// Exit code: 0 success, 1 a process failed, 2 bad input, 130 interrupted.
+/// Exit code: 0 success, 1 a process failed (or the plant stopped a diverging
+/// run), 2 bad input, 3 with --check: the run completed but missed its stated
+/// metric, 130 interrupted.
+inline constexpr int kMetricMissed = 3;
 int runScenario(const RunOptions& options);
 
 }  // namespace lagrange::tools

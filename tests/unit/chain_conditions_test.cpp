@@ -16,9 +16,9 @@ TEST(Theorem2Conditions, EachPassesOrFailsByItsOwnInequality) {
                                 v2(60, 70), v2(2, 2));
   ASSERT_EQ(all.size(), 3u);
   for (const auto& c : all) EXPECT_TRUE(c.holds) << c.name << " " << c.lhs << " > " << c.rhs;
-  EXPECT_DOUBLE_EQ(all[1].rhs, 0.5 * (4.0 + 9.0) + 2.0);        // (632b)
-  EXPECT_DOUBLE_EQ(all[2].rhs, 0.5 * (4.0 + 9.0 * 4.0 + 1.0));  // (632c) with b1_max = 2
-  EXPECT_DOUBLE_EQ(all[0].lhs, 300.0 * (400.0 / 40.0 - 1.0));   // (632a): kd0_min (a0/(4 b0) - 1)
+  EXPECT_DOUBLE_EQ(all[1].rhs, 0.5 * (4.0 + 9.0) + 2.0);          // (632b)
+  EXPECT_DOUBLE_EQ(all[2].rhs, 0.5 * (4.0 * (4.0 + 9.0) + 1.0));  // (632c) with b1_max = 2
+  EXPECT_DOUBLE_EQ(all[0].lhs, 300.0 * (400.0 / 40.0 - 1.0));     // (632a): kd0_min (a0/(4 b0) - 1)
 
   // Violate one at a time.
   auto a = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(20, 400), v2(10, 10), v2(10, 12), v2(60, 70),
@@ -32,10 +32,31 @@ TEST(Theorem2Conditions, EachPassesOrFailsByItsOwnInequality) {
   EXPECT_EQ(b[1].name, "eq. (632b)");
   EXPECT_TRUE(b[0].holds && b[2].holds);
   auto c = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(10, 12),
-                              v2(20.4, 70), v2(2, 2));
-  EXPECT_FALSE(c[2].holds);  // a1_min = 20.4 < 20.5
+                              v2(26.4, 70), v2(2, 2));
+  EXPECT_FALSE(c[2].holds);  // a1_min = 26.4 < 26.5
   EXPECT_EQ(c[2].name, "eq. (632c)");
   EXPECT_LT(c[2].margin(), 0.0);
+}
+
+// (632c) as printed, a1 > (eta_2^2 + eta_3^2 b1^2 + 1) / 2, lacks b1^2 on
+// eta_2^2 (compare the proof's (700) and (795c) at i = 1). With b1 = 2,
+// eta_2 = 2, eta_3 = 3 the printed bound is 20.5 and the corrected 26.5: a1 = 23
+// passes the printed form and must fail.
+TEST(Theorem2Conditions, Eq632cCarriesB1SquaredOnEta2) {
+  const EtaEstimate eta{5.0, 2.0, 3.0};
+  const double b1 = 2.0, printed = 0.5 * (4.0 + 9.0 * b1 * b1 + 1.0),
+               corrected = 0.5 * (b1 * b1 * 13.0 + 1.0);
+  ASSERT_LT(printed, 23.0);
+  ASSERT_GT(corrected, 23.0);
+  const auto r = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(10, 12),
+                                    v2(23, 70), v2(b1, b1));
+  EXPECT_FALSE(r[2].holds);
+  EXPECT_DOUBLE_EQ(r[2].rhs, corrected);
+  // With b1 = 1 both readings agree.
+  const auto unit = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(10, 12),
+                                       v2(23, 70), v2(1, 1));
+  EXPECT_TRUE(unit[2].holds);
+  EXPECT_DOUBLE_EQ(unit[2].rhs, 0.5 * (4.0 + 9.0 + 1.0));
 }
 
 TEST(EtaEstimate, Eta3IsExactAndEta2BoundsTheJacobianTerm) {

@@ -106,6 +106,22 @@ TEST(Proposition1Conditions, EachFailsByItsOwnInequality) {
   EXPECT_FALSE(named(matrix, "Q - diag(Q)/2 >= 0 (Proposition 1)").holds);
 }
 
+// (794b) as printed, min{a1, kp1} > eta_2^2 + eta_3^2, lacks b1^2 on a1 (compare
+// (795c) at i = 1). With b1 = 2 and e = 4, a1 = 10 passes the printed form
+// (10 > 4) and fails the corrected one (10 / 4 = 2.5 < 4).
+TEST(Proposition1Conditions, Eq794bDividesA1ByB1Squared) {
+  auto s = passing();
+  s[0] = {10.0, 10.0, 10.0, 2.0};
+  const EtaEstimate eta{0.0, 2.0, 0.0};
+  const auto wide = named(proposition1Conditions(eta, vectors(s)), "eq. (794b)");
+  EXPECT_FALSE(wide.holds);
+  EXPECT_DOUBLE_EQ(wide.lhs, 2.5);
+  s[0].b = 1.0;  // both readings agree
+  const auto unit = named(proposition1Conditions(eta, vectors(s)), "eq. (794b)");
+  EXPECT_TRUE(unit.holds);
+  EXPECT_DOUBLE_EQ(unit.lhs, 10.0);
+}
+
 TEST(Definiteness, ScaledEigenvalueKeepsTheSignAcrossSixtyDecades) {
   // M = D C D, D = diag(1, 1e30): M is positive definite iff C is. Unscaled,
   // lambda_min(M) = det / lambda_max ~ 0.1 is below M's rounding error (~1e44).

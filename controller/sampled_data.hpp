@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// Is the sampled implementation adequate at the configured rate? The paper's
+/// conditions (eq. 11, (632), Theorem 3) are about the continuous-time loop; a
+/// controller running at 1 kHz can converge far slower than that loop, or not
+/// at all, while eq. (11) holds with a wide margin -- e.g. uniform gains on an
+/// arm whose lightest joint then has a closed-loop mode near the sampling rate.
+///
+/// Method: the linearisation of the discretised closed loop along the reference.
+///  - The one-period map x_k -> x_{k+1} of the whole loop, with the controller
+///    core of the scenario exactly as implemented (its filters discretised
+///    exactly, the same classes the processes run), the actuator's integrator
+///    chain (with actuator.rate's torque steps), and the plant's dynamics under
+///    the zero-order-held torque, integrated by RK4 of the analytic model (595
+///    for flexible joints). The state: q, q' (and q2, q2'), the actuator's xi,
+///    and every filter state of the controller.
+///  - Its Jacobian by central differences at the reference, frozen at
+///    kInstants instants spread over the run (q = q_d(t), q' = q_d'(t), filters
+///    at rest, the actuator at the feedforward torque), and the spectral radius
+///    rho of each; the largest is reported with its instant.
+///  - The continuous loop's modes lambda from the same map at a period short
+///    enough that |lambda| T_f <= 0.05 (lambda = log(mu) / T_f): the slowest
+///    decay sigma_c = -max Re lambda and the fastest |lambda|.
+///  - Verdict: "adequate" when rho < 1 and the sampled loop's slowest mode,
+///    sigma_d = -ln(rho) / T, decays at least kAdequateFraction as fast as
+///    the continuous loop's (sigma_d >= 0.5 sigma_c); "slow" when rho < 1 but
+///    not that fast; "unstable" when rho >= 1. Otherwise the smallest rate of
+///    rate x 2^k (k <= 10) that is adequate is reported as sufficient.
+/// Limits (it is an estimate, and says so): it is local (small errors: the
+/// global question is the theorems'), frozen in time (exact for a set point,
+/// an approximation for references slow next to the loop), ignores actuator
+/// saturation, the realtime wiring's one-period delays and ODE's integration
+/// error, and samples kInstants instants, not every t.
+
+#include <optional>
+#include <string>
+
+#include "config/scenario.hpp"
+
+namespace lagrange::controller {
+
+struct SampledDataCheck {
+  static constexpr int kInstants = 8;
+  static constexpr double kAdequateFraction = 0.5;
+
+  double rate = 0.0;                      ///< the controller rate examined [Hz] (plant.publish_rate)
+  double spectral_radius = 0.0;           ///< rho: largest over the instants
+  double worst_time = 0.0;                ///< the instant of that largest rho [s]
+  double sampled_decay = 0.0;             ///< sigma_d = -ln(rho) / T [1/s] (negative: growth)
+  double continuous_decay = 0.0;          ///< sigma_c = min over instants of -max Re lambda [1/s]
+  double fastest_mode = 0.0;              ///< max |lambda| of the continuous loop [1/s]
+  std::string verdict;                    ///< "adequate", "slow", "unstable" or "not assessed"
+  std::string why;                        ///< one sentence behind the verdict
+  std::optional<double> sufficient_rate;  ///< when not adequate: a rate that is [Hz]
+
+  bool adequate() const { return verdict == "adequate"; }
+  /// fastest_mode T: how close the fastest continuous mode is to the sampling rate.
+  double fastestModeTimesPeriod() const { return fastest_mode / rate; }
+};
+
+/// The check for the scenario's controller at its plant.publish_rate.
+SampledDataCheck checkSampledData(const config::Scenario& scenario);
+
+/// One line a person reads.
+std::string describe(const SampledDataCheck& check);
+
+}  // namespace lagrange::controller
