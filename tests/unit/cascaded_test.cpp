@@ -252,5 +252,41 @@ TEST(CascadedController, StepAdvancesTheFiltersThenEvaluatesAndChecksSizes) {
   EXPECT_THROW(CascadedController(chain, reference, bad, std::nullopt), std::invalid_argument);
 }
 
+// Stage starts: bumpless gives theta_i(t0) = 0 on every stage, so the first
+// command carries no kick kd_i b_i xi_i*; zeros (the default) give theta_i(t0)
+// = b_i xi_i*(t0); given values are used as they are.
+TEST(CascadedController, StagesStartBumplessOrFromGivenValues) {
+  const model::PlanarChain chain(model::pelicanParams());
+  model::ReferenceParams rp;
+  rp.type = model::ReferenceType::kSine;
+  rp.offset = Eigen::Vector2d(0.3, 0.2);
+  rp.amplitude = rp.frequency = rp.phase = Eigen::Vector2d::Zero();
+  const model::Reference reference(rp);
+  const CascadedGains g = gainsFor(3, 2);
+  const Eigen::Vector2d q(1.0, -0.5);
+  const Eigen::MatrixXd xi = Eigen::MatrixXd::Zero(3, 2);
+  CascadedController zeros(chain, reference, g, std::nullopt);
+  const auto z = zeros.step(0.0, q, xi);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_LT(
+        (z.cascade.theta.row(i) - g.stages[i].b.transpose().cwiseProduct(z.cascade.xi_star.row(i))).norm(),
+        1e-12);
+  std::vector<StageStart> starts(3);
+  for (auto& st : starts) st.bumpless = true;
+  starts[1].zeta = Eigen::Vector2d(0.7, -0.2);  // bumpless whatever zeta starts at
+  CascadedController bumpless(chain, reference, g, std::nullopt, starts);
+  const auto b = bumpless.step(0.0, q, xi);
+  EXPECT_LT(b.cascade.theta.norm(), 1e-12);
+  EXPECT_EQ(bumpless.state().zeta.row(1), Eigen::RowVector2d(0.7, -0.2));
+  EXPECT_LT(b.cascade.u.norm(), z.cascade.u.norm());  // no filter kick
+  std::vector<StageStart> given(3);
+  given[2].qc = Eigen::Vector2d(5.0, -3.0);
+  CascadedController valued(chain, reference, g, std::nullopt, given);
+  valued.step(0.0, q, xi);
+  EXPECT_EQ(valued.state().qc.row(2), Eigen::RowVector2d(5.0, -3.0));
+  EXPECT_THROW(CascadedController(chain, reference, g, std::nullopt, std::vector<StageStart>(2)),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace lagrange::controller

@@ -1,0 +1,91 @@
+// Verdicts the tool prints, each confirmed by running what it claims:
+// the sampled-data check (approves one case, warns on another, both run at
+// the configured rate and at a much higher one), `lagrange run --check`, and
+// the plant stopping only a failing simulation or at the user's limit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "support/launch.hpp"
+#include "support/run_log.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
+
+nlohmann::json runInproc(const std::string& config, const std::string& tag, const std::string& sets,
+                         int expected_exit = 0) {
+  const std::string out = freshDir(tag);
+  const RunResult r = runScenario(kConfigs + "/" + config, out, "-q --mode inproc " + sets);
+  EXPECT_EQ(r.exit_code, expected_exit) << r.output;
+  return readSummary(out);
+}
+
+// Approves: rigid_2dof at 1 kHz. Running it at 1 kHz and at 10 kHz (as good as
+// continuous time here) gives the same convergence time within 5 %.
+TEST(SampledDataCheck, ApprovesRigid2dofAndTheRunsAgreeAt1And10kHz) {
+  const RunResult check = lagrange("check-gains " + quote(kConfigs + "/rigid_2dof.yaml"));
+  EXPECT_NE(check.output.find("sampled-data check at 1000 Hz: ADEQUATE"), std::string::npos) << check.output;
+  const auto slow = runInproc("rigid_2dof.yaml", "sd1k", "");
+  const auto fast =
+      runInproc("rigid_2dof.yaml", "sd10k", "--set plant.publish_rate=10000 --set plant.physics_step=2.5e-5");
+  EXPECT_EQ(slow["gains"]["sampled_data"]["verdict"], "adequate");
+  const double t1 = slow["tracking"]["convergence_time"], t10 = fast["tracking"]["convergence_time"];
+  std::printf("rigid_2dof convergence: %.3f s at 1 kHz, %.3f s at 10 kHz\n", t1, t10);
+  EXPECT_NEAR(t1, t10, 0.05 * t10);
+}
+
+// Warns: rigid_5link's gains at 1 kHz (eq. 11 still holds: the continuous loop
+// is fine). The check calls the sampled loop unstable and names a rate that
+// suffices; the run at 1 kHz does not converge, the run at that rate does.
+TEST(SampledDataCheck, WarnsOnRigid5linkAt1kHzAndTheRunsConfirmIt) {
+  const RunResult check =
+      lagrange("check-gains " + quote(kConfigs + "/rigid_5link.yaml") + " --set plant.publish_rate=1000");
+  EXPECT_NE(check.output.find("gain condition eq. (11) HOLDS"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("sampled-data check at 1000 Hz: UNSTABLE"), std::string::npos) << check.output;
+  EXPECT_EQ(check.exit_code, 1) << "an inadequate implementation fails check-gains";
+  const auto at1k = runInproc("rigid_5link.yaml", "sd5l1k", "--set plant.publish_rate=1000");
+  const auto& sd = at1k["gains"]["sampled_data"];
+  ASSERT_TRUE(sd["sufficient_rate"].is_number()) << sd.dump();
+  const double rate = sd["sufficient_rate"];
+  EXPECT_GT(sd["spectral_radius"].get<double>(), 1.0);
+  EXPECT_FALSE(at1k["tracking"]["met"].get<bool>());
+  EXPECT_GT(at1k["tracking"]["final_error"].get<double>(), 0.1);
+  const auto sufficient = runInproc("rigid_5link.yaml", "sd5lok",
+                                    "--set plant.publish_rate=" + std::to_string(static_cast<int>(rate)) +
+                                        " --set plant.physics_step=2.5e-5");
+  std::printf("rigid_5link: final error %.3e rad at 1 kHz, %.3e rad at %g Hz (suggested)\n",
+              at1k["tracking"]["final_error"].get<double>(),
+              sufficient["tracking"]["final_error"].get<double>(), rate);
+  EXPECT_TRUE(sufficient["tracking"]["met"].get<bool>());
+  EXPECT_EQ(sufficient["gains"]["sampled_data"]["verdict"], "adequate");
+}
+
+// --check: a run that misses its stated metric exits 3 naming it; one that
+// meets it exits 0.
+TEST(RunCheck, AMissedMetricExits3AndNamesIt) {
+  const std::string met = freshDir("checkmet"), missed = freshDir("checkmiss");
+  const RunResult ok = runScenario(kConfigs + "/rigid_2dof.yaml", met, "-q --mode inproc --check");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  const RunResult late = runScenario(kConfigs + "/rigid_2dof.yaml", missed,
+                                     "-q --mode inproc --check --set metrics.convergence_deadline=0.5");
+  EXPECT_EQ(late.exit_code, 3) << late.output;
+  EXPECT_NE(late.output.find("metric MISSED"), std::string::npos) << late.output;
+  EXPECT_NE(late.output.find("by t = 0.5 s"), std::string::npos) << late.output;
+  EXPECT_FALSE(readSummary(missed)["tracking"]["met"].get<bool>());  // the claim the exit code makes
+}
+
+// plant.max_rate: a limit the user sets stops the run, named, with the log kept.
+TEST(PlantLimits, TheUsersMaxRateStopsTheRunAndSaysSo) {
+  const std::string out = freshDir("maxrate");
+  const RunResult r =
+      runScenario(kConfigs + "/rigid_2dof_large_error.yaml", out, "-q --mode inproc --set plant.max_rate=5");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("above plant.max_rate = 5"), std::string::npos) << r.output;
+  EXPECT_GT(readSummary(out)["tracking"]["samples"].get<long long>(), 0);
+}
+
+}  // namespace
+}  // namespace lagrange::testing
