@@ -77,7 +77,7 @@ config::Scenario suggestGains(const config::Scenario& in) {
       throw std::range_error(
           "Proposition 1's constructive gains for m = " + std::to_string(m) + " overflow " +
           "double precision at stage " + std::to_string(i) +
-          " (they grow like (eta_2^2 + eta_3^2)^(2^i)); expected m <= " + std::to_string(i - 1) +
+          " (they grow like e^(3^(i-1)), e = eta_2^2 + eta_3^2); expected m <= " + std::to_string(i - 1) +
           " for this rule, or gains checked against Theorem 3 directly");
   }
   return s;
