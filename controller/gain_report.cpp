@@ -24,7 +24,7 @@ double GainReport::margin() const {
   return m;
 }
 
-GainReport checkGains(const config::Scenario& s) {
+GainReport checkGains(const config::Scenario& s, bool sampled_data) {
   GainReport r;
   // For flexible joints the links as the chain (600) sees them: g(q1) + K q1.
   const model::PlanarChain chain(s.controlModel());
@@ -59,7 +59,7 @@ GainReport checkGains(const config::Scenario& s) {
       for (auto& c : model::proposition1Conditions(*r.eta, stages)) r.proposition.push_back(std::move(c));
     }
   }
-  r.sampled = checkSampledData(s);
+  if (sampled_data) r.sampled = checkSampledData(s);
   return r;
 }
 
@@ -89,7 +89,7 @@ std::string describe(const GainReport& r) {
     for (const auto& c : r.proposition) out += "\n  " + line(c);
   }
   for (const auto& w : r.warnings) out += "\nwarning: " + w;
-  out += "\n" + describe(r.sampled);
+  if (!r.sampled.verdict.empty()) out += "\n" + describe(r.sampled);
   return out;
 }
 

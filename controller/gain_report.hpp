@@ -39,7 +39,9 @@ struct GainReport {
   bool propositionHolds() const;
 };
 
-GainReport checkGains(const config::Scenario& scenario);
+/// @param sampled_data also run the sampled-data check (tens of ms to a second;
+///        the processes skip it at start and leave `sampled` empty).
+GainReport checkGains(const config::Scenario& scenario, bool sampled_data = true);
 
 /// Lines a person reads: each condition's verdict, both sides and margin.
 std::string describe(const GainReport& report);

@@ -35,7 +35,8 @@ int DoMain(int argc, char** argv) {
             "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        const controller::GainReport gains = controller::checkGains(s);
+        // The launcher prints the sampled-data check; here it would only delay the first tick.
+        const controller::GainReport gains = controller::checkGains(s, false);
         if (gains.holds()) {
           spdlog::info("{}", controller::describe(gains));
         } else if (strict) {

@@ -182,6 +182,8 @@ TEST_P(ShippedConfig, MeetsItsStatedMetric) {
                              GetParam().rfind("flexible", 0) == 0;  // the flexible configs follow (608)
     if (!free_motion)
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("not a free motion"), std::string::npos);
+    else if (GetParam().find("filtered_rate") != std::string::npos)  // outside the Corollary, and said
+      EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("Corollary assumes"), std::string::npos);
     else
       EXPECT_FALSE(j["gains"].contains("warnings"));
   }
@@ -379,20 +381,21 @@ TEST(Flexible, FilteredMotorRateConvergesWithItsPoleAndNotWithAFastOne) {
   ASSERT_EQ(runScenario(kConfigs + "/flexible_2dof.yaml", measured, "-q --mode inproc").exit_code, 0);
   ASSERT_EQ(runScenario(kConfigs + "/flexible_2dof_filtered_rate.yaml", slow, "-q --mode inproc").exit_code,
             0);
-  // Diverges: the plant stops it, the run exits 1 and keeps what it recorded.
+  // Does not converge. With no artificial limit on the state the plant keeps
+  // simulating (the motors spin fast but within what ODE can integrate), so
+  // the run completes, misses its metric, and --check says so (exit 3).
   const RunResult r_fast = runScenario(kConfigs + "/flexible_2dof_filtered_rate.yaml", fast,
-                                       "-q --mode inproc --set controller.motor_rate_pole=1000");
-  EXPECT_EQ(r_fast.exit_code, 1) << r_fast.output;
-  EXPECT_NE(r_fast.output.find("the simulation diverged"), std::string::npos) << r_fast.output;
+                                       "-q --mode inproc --check --set controller.motor_rate_pole=1000");
+  EXPECT_EQ(r_fast.exit_code, 3) << r_fast.output;
+  EXPECT_NE(r_fast.output.find("metric MISSED"), std::string::npos) << r_fast.output;
   const double e_measured = readSummary(measured)["tracking"]["final_error"];
   const double e_slow = readSummary(slow)["tracking"]["final_error"];
   const auto j_fast = readSummary(fast);
   std::printf("final ||q~||: measured rate %.3e, filtered a = 300 %.3e, a = 1000 %.3e rad\n", e_measured,
               e_slow, j_fast["tracking"]["final_error"].get<double>());
   EXPECT_LT(e_slow, 2.0 * e_measured + 1e-6);
-  EXPECT_EQ(j_fast["status"], "diverged");
   EXPECT_FALSE(j_fast["tracking"]["met"].get<bool>());
-  EXPECT_GT(j_fast["tracking"]["samples"].get<long long>(), 1000);  // recorded up to the divergence
+  EXPECT_GT(j_fast["tracking"]["samples"].get<long long>(), 1000);
   EXPECT_GT(j_fast["tracking"]["final_error"].get<double>(), 100.0 * e_slow);
 }
 
