@@ -19,8 +19,8 @@
 
 namespace lagrange::tools {
 
-int runInProcess(const config::Scenario& s, const std::string& out_dir, ProgressDisplay& progress,
-                 bool (*stop_requested)()) {
+int runInProcess(const config::Scenario& s, const controller::GainReport& gains, const std::string& out_dir,
+                 ProgressDisplay& progress, bool (*stop_requested)()) {
   namespace fs = std::filesystem;
   const auto wall_start = std::chrono::steady_clock::now();
   const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
@@ -96,7 +96,7 @@ int runInProcess(const config::Scenario& s, const std::string& out_dir, Progress
   facts.log_path = log_path;
   facts.log_events = log.events();
   facts.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const auto summary = logger::makeSummary(s, metrics.summary(), controller::checkGains(s), facts);
+  const auto summary = logger::makeSummary(s, metrics.summary(), gains, facts);
   std::ofstream out(fs::path(out_dir) / "summary.json");
   out << summary.dump(2) << "\n";
   if (!out) throw std::runtime_error("cannot write summary.json in " + out_dir);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/scenario.hpp"
+#include "controller/gain_report.hpp"
 
 namespace lagrange::tools {
 
@@ -16,7 +17,9 @@ class ProgressDisplay;
 
 /// Runs the scenario; writes run.lcm and summary.json into out_dir.
 /// Returns 0, or 130 when stop_requested() became true midway.
-int runInProcess(const config::Scenario& scenario, const std::string& out_dir, ProgressDisplay& progress,
-                 bool (*stop_requested)());
+/// `gains`: the scenario's gain report, as the launcher already computed it
+/// (the sampled-data check is not cheap), written into summary.json.
+int runInProcess(const config::Scenario& scenario, const controller::GainReport& gains,
+                 const std::string& out_dir, ProgressDisplay& progress, bool (*stop_requested)());
 
 }  // namespace lagrange::tools

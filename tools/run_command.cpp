@@ -59,9 +59,8 @@ std::string prepareOutDir(const std::string& dir) {
   return fs::absolute(dir).string();
 }
 
-// Prints the eq. (11) verdict; false when --strict forbids running.
-bool gainsAllowRun(const config::Scenario& scenario, const RunOptions& opt) {
-  const controller::GainReport gains = controller::checkGains(scenario);
+// Prints the gain report; false when --strict forbids running.
+bool gainsAllowRun(const controller::GainReport& gains, const RunOptions& opt) {
   if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
   if (!gains.holds() && opt.strict) {
     std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is violated\n";
@@ -417,12 +416,13 @@ int runScenario(const RunOptions& opt) {
       std::cerr << "lagrange run: --processes does not apply to mode inproc (one process, no LCM)\n";
       return 2;
     }
-    if (!gainsAllowRun(scenario, opt)) return 2;
+    const controller::GainReport gains = controller::checkGains(scenario);
+    if (!gainsAllowRun(gains, opt)) return 2;
     writeResolved(scenario, opt.config_path, out_dir);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     ProgressDisplay progress(scenario.duration, opt.quiet);
-    const int code = runInProcess(scenario, out_dir, progress, [] { return launcher_signal != 0; });
+    const int code = runInProcess(scenario, gains, out_dir, progress, [] { return launcher_signal != 0; });
     progress.finish();
     if (code != 130) writeRunReport(opt, out_dir);
     if (code == 0 && !opt.quiet) printResult(out_dir);
@@ -442,7 +442,7 @@ int runScenario(const RunOptions& opt) {
       return 1;
     }
   }
-  if (!gainsAllowRun(scenario, opt)) return 2;
+  if (!gainsAllowRun(controller::checkGains(scenario), opt)) return 2;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
 
   return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));
