@@ -4,6 +4,8 @@
 /// (through LCM's own log API) and summary.json.
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
@@ -14,6 +16,7 @@
 
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "transport/checksum.hpp"
@@ -82,6 +85,26 @@ inline std::vector<std::pair<std::string, long long>> readTicks(const std::strin
     if (ev->channel == "ACTUATOR_STATE") note(*ev, lagrange::actuator_state_t{});
   }
   return out;
+}
+
+/// The largest |rate| a channel's samples carry: PLANT_TRUTH (joint rates q')
+/// or PLANT_MOTOR (measured motor rates q2'), intact copies only.
+inline double peakRate(const std::string& log_path, const std::string& channel) {
+  lcm::LogFile log(log_path, "r");
+  if (!log.good()) throw std::runtime_error("cannot open " + log_path);
+  double peak = 0.0;
+  auto take = [&](const lcm::LogEvent& ev, auto message) {
+    if (!transport::safeDecode(ev.data, static_cast<size_t>(ev.datalen), message) ||
+        (message.header.checksum != 0 && !transport::intact(message)))
+      return;
+    for (const double rate : message.qdot) peak = std::max(peak, std::abs(rate));
+  };
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    if (ev->channel != channel) continue;
+    if (channel == "PLANT_TRUTH") take(*ev, lagrange::plant_truth_t{});
+    if (channel == "PLANT_MOTOR") take(*ev, lagrange::plant_motor_t{});
+  }
+  return peak;
 }
 
 /// Every event's channel, in log order.
