@@ -19,8 +19,10 @@
 namespace lagrange::controller {
 
 struct GainReport {
-  double kc = 0.0;
-  double kdelta = 0.0;
+  double kc = 0.0;        ///< proven (model::coriolisBound)
+  double kc_found = 0.0;  ///< the largest ||C(q, y)|| / ||y|| found: how tight kc is
+  double kdelta = 0.0;    ///< exact for a sine reference, else a sampled estimate
+  bool kdelta_exact = true;
   model::ConditionReport condition;                 ///< eq. (11), on the stage-0 gains
   std::vector<model::ConditionReport> chain;        ///< eq. (632a-c) for m = 1, Theorem 3's for m >= 2
   std::vector<model::ConditionReport> proposition;  ///< m >= 2: (632a-c), (794), (795), Q - diag Q / 2 >= 0

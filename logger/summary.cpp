@@ -63,12 +63,20 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"condition_holds", g.holds()},
       {"margin", g.margin()},
       {"k_c", g.kc},
+      {"k_c_method", "proven: closed-form Christoffel symbols"},
+      {"k_c_largest_found", g.kc_found},
       {"k_delta", g.kdelta},
+      {"k_delta_method", g.kdelta_exact ? "closed form" : "estimate: sampled supremum x 1.02"},
   };
   json conditions = json::array({conditionJson(g.condition)});
   for (const auto& c : g.chain) conditions.push_back(conditionJson(c));
   j["gains"]["conditions"] = conditions;
-  if (g.eta) j["gains"]["eta"] = {{"eta1", g.eta->eta1}, {"eta2", g.eta->eta2}, {"eta3", g.eta->eta3}};
+  if (g.eta)
+    j["gains"]["eta"] = {
+        {"eta1", g.eta->eta1},
+        {"eta2", g.eta->eta2},
+        {"eta3", g.eta->eta3},
+        {"method", "estimate: eta1, eta2 sampled suprema refined by local ascent; eta3 exact"}};
   if (!g.proposition.empty()) {
     json proposition = json::array();
     for (const auto& c : g.proposition) proposition.push_back(conditionJson(c));

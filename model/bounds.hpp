@@ -7,18 +7,27 @@
 
 namespace lagrange::model {
 
-/// k_c with ||C(q, y)|| <= k_c ||y|| for all q, y (Assumption 1.2, induced 2-norm).
+/// k_c with ||C(q, y)|| <= k_c ||y|| for all q, y (Assumption 1.2, induced
+/// 2-norm), proven.
 ///
-/// Method: C(q, y) = [C_1(q) ... C_n(q)] (y (x) I), and ||y (x) I|| = ||y||, so
-/// for each q the spectral norm of the block row [C_1(q) ... C_n(q)] bounds
-/// ||C(q, y)|| / ||y|| exactly (no sampling in y). C depends on q only through
-/// the relative angles q_2..q_n and is 2 pi-periodic in each: the supremum over
-/// q is sampled, on a uniform grid of 7200 points for n = 2 and on 20000
-/// seeded uniform random points of [0, 2 pi)^(n-1) for n > 2, and multiplied by
-/// a safety factor of 1.05 for the sampling. For n = 1, C = 0 and k_c = 0.
+/// C(q, y) = [C_1(q) ... C_n(q)] (y (x) I) and ||y (x) I|| = ||y||, so
+/// ||C(q, y)|| / ||y|| <= ||[C_1(q) ... C_n(q)]||_2 =: G(q) for every y. By
+/// the closed form (PlanarChain::coriolisTerms), [C_1 ... C_n](q) =
+/// sum_p s_p P_p over the N link pairs p = (a, b), s_p = sin(phi_a - phi_b),
+/// P_p constant; so G(q) <= sum_p ||P_p|| (triangle inequality, |s_p| <= 1)
+/// and G(q) <= ||[P_1 ... P_N]|| ||s|| <= sqrt(N) ||[P_1 ... P_N]||. k_c is
+/// the smaller of the two. For n = 2 (one pair, sin q_2 reaching 1) it is the
+/// supremum exactly; for longer chains it can exceed the supremum
+/// (coriolisLargestFound gives a lower bound of it). For n = 1, C = 0.
 double coriolisBound(const PlanarChain& chain);
 
-/// Per-q quantity maximised by coriolisBound: ||[C_1(q) ... C_n(q)]||_2.
+/// The largest G(q) found: a grid of 7200 points for n = 2, else 20000 seeded
+/// random points of the torus [0, 2 pi)^(n-1) (G depends on the relative
+/// angles only), each of the 4 best then refined by a compass search. A lower
+/// bound of sup G, reported beside coriolisBound to show how tight it is.
+double coriolisLargestFound(const PlanarChain& chain);
+
+/// G(q) = ||[C_1(q) ... C_n(q)]||_2.
 double coriolisGain(const PlanarChain& chain, const Eigen::VectorXd& q);
 
 /// k_delta of eq. (bndonqd): an upper bound of max over k = 0,1,2 of

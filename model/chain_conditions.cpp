@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace lagrange::model {
 
@@ -36,6 +37,35 @@ double horizon(const Reference& reference) {
   return std::max(10.0, 2.0 * longest + settle);
 }
 
+// Compass search maximising value(t, q) from (t, q): a step up along t or any
+// q_i is taken, the step halves when none is, down to 1e-7 (t scaled by
+// t_scale). `allowed` rejects points outside the search's domain.
+template <class Value, class Allowed>
+double ascend(double t, Eigen::VectorXd q, double value_at_start, double t_max, double t_scale, Value value,
+              Allowed allowed) {
+  double best = value_at_start;
+  const int n = static_cast<int>(q.size());
+  for (double step = 0.05; step > 1e-7;) {
+    bool moved = false;
+    for (int axis = 0; axis <= n; ++axis) {
+      for (const double sign : {1.0, -1.0}) {
+        double trial_t = t;
+        Eigen::VectorXd trial_q = q;
+        if (axis == n) {
+          trial_t = std::clamp(t + sign * step * t_scale, 1e-6, t_max);
+        } else {
+          trial_q(axis) += sign * step;
+        }
+        if (!allowed(trial_t, trial_q)) continue;
+        const double v = value(trial_t, trial_q);
+        if (v > best) best = v, t = trial_t, q = trial_q, moved = true;
+      }
+    }
+    if (!moved) step /= 2.0;
+  }
+  return best;
+}
+
 }  // namespace
 
 EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, const Eigen::VectorXd& kp0,
@@ -48,6 +78,28 @@ EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, co
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
   const double t_max = horizon(reference), dt = 1e-6;
+  const double t_last = t_max + dt;  // the sampled t run up to it; dhdt needs t - dt >= 0
+  auto eta2_at = [&](double t, const Eigen::VectorXd& q) {
+    return (dhdq(chain, reference, t, q) - damping).jacobiSvd().singularValues()(0);
+  };
+  auto eta1_at = [&](double t, const Eigen::VectorXd& q) {
+    const ReferenceSample r = reference.evaluate(t, 1);
+    const Eigen::VectorXd dhdt = (h(chain, reference, t + dt, q) - h(chain, reference, t - dt, q)) / (2 * dt);
+    return (dhdq(chain, reference, t, q) * r.qd() + dhdt).norm() / std::min((q - r.q()).norm(), 1.0);
+  };
+  // The kStarts best samples of each, largest first: the starts of the ascent.
+  struct Sample {
+    double value = -1.0, t = 0.0;
+    Eigen::VectorXd q;
+  };
+  constexpr size_t kStarts = 8;
+  std::vector<Sample> best1, best2;
+  auto keep = [](std::vector<Sample>& best, double value, double t, const Eigen::VectorXd& q) {
+    if (best.size() == kStarts && value <= best.back().value) return;
+    const auto at = std::find_if(best.begin(), best.end(), [&](const Sample& s) { return value > s.value; });
+    best.insert(at, Sample{value, t, q});
+    if (best.size() > kStarts) best.pop_back();
+  };
   for (int it = 0; it < 400; ++it) {
     const double t = t_max * it / 399.0 + dt;
     const ReferenceSample r = reference.evaluate(t, 1);
@@ -56,19 +108,28 @@ EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, co
         Eigen::VectorXd dir(n);
         for (int i = 0; i < n; ++i) dir(i) = normal(rng);
         const Eigen::VectorXd q = r.q() + radius * dir.normalized();
-        const Eigen::MatrixXd j = dhdq(chain, reference, t, q);
-        eta.eta2 = std::max(eta.eta2, (j - damping).jacobiSvd().singularValues()(0));
-        const Eigen::VectorXd dhdt =
-            (h(chain, reference, t + dt, q) - h(chain, reference, t - dt, q)) / (2 * dt);
-        eta.eta1 = std::max(eta.eta1, (j * r.qd() + dhdt).norm() / std::min(radius, 1.0));
+        keep(best2, eta2_at(t, q), t, q);
+        keep(best1, eta1_at(t, q), t, q);
       }
     }
     for (int d = 0; d < 4; ++d) {
       Eigen::VectorXd q(n);
       for (int i = 0; i < n; ++i) q(i) = angle(rng);
-      eta.eta2 = std::max(eta.eta2, (dhdq(chain, reference, t, q) - damping).jacobiSvd().singularValues()(0));
+      keep(best2, eta2_at(t, q), t, q);
     }
   }
+  // Local ascent from the best samples of each. eta_1 keeps |q - q_d| >= 1e-2,
+  // the smallest sampled radius: off a free motion its ratio grows without
+  // bound as q -> q_d (the header says why), and no ascent should chase that.
+  const double t_scale = t_max / 399.0;
+  auto anywhere = [](double, const Eigen::VectorXd&) { return true; };
+  auto off_reference = [&](double t, const Eigen::VectorXd& q) {
+    return (q - reference.evaluate(t, 0).q()).norm() >= 1e-2;
+  };
+  for (const Sample& s : best2)
+    eta.eta2 = std::max(eta.eta2, ascend(s.t, s.q, s.value, t_last, t_scale, eta2_at, anywhere));
+  for (const Sample& s : best1)
+    eta.eta1 = std::max(eta.eta1, ascend(s.t, s.q, s.value, t_last, t_scale, eta1_at, off_reference));
   eta.eta1 *= 1.1;
   eta.eta2 *= 1.1;
   return eta;

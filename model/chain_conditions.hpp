@@ -19,7 +19,10 @@
 /// settling time (at least 10 s); for each t, q at qd(t) plus radii 1e-2, 1e-1,
 /// 1, 10 in 4 seeded random directions (eta_1, eta_2), and 4 seeded random q
 /// on the torus (eta_2; D, C, g are 2 pi-periodic in q). dh/dq and dh/dt by
-/// central differences (step 1e-6). Both estimates are multiplied by 1.1.
+/// central differences (step 1e-6). From the 8 best samples of each, a compass
+/// search over (t, q) climbs to a local maximum (eta_1 keeping |q - q_d| >=
+/// 1e-2). Both estimates are then multiplied by 1.1. They are estimates, not
+/// bounds, and the verdicts that use them say so.
 
 #include <Eigen/Dense>
 #include <vector>

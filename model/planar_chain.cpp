@@ -118,6 +118,32 @@ std::vector<Eigen::MatrixXd> PlanarChain::coriolisPerVelocity(const Eigen::Vecto
   return ck;
 }
 
+std::vector<CoriolisTerm> PlanarChain::coriolisTerms() const {
+  const int n = dof();
+  std::vector<CoriolisTerm> terms;
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      if (h_(a, b) == 0.0) continue;
+      // inertiaPartials with only the (a, b) and (b, a) entries, sin(phi_a - phi_b)
+      // factored out: dM_ab/dq_k = dM_ba/dq_k = -h_ab (L_ak - L_bk).
+      std::vector<Eigen::MatrixXd> dd(n);
+      for (int k = 0; k < n; ++k) {
+        Eigen::MatrixXd dm = Eigen::MatrixXd::Zero(n, n);
+        const int selector = (k <= a ? 1 : 0) - (k <= b ? 1 : 0);
+        dm(a, b) = dm(b, a) = -h_(a, b) * selector;
+        dd[k] = congruenceWithOnes(dm);
+      }
+      CoriolisTerm term{a, b, std::vector<Eigen::MatrixXd>(n, Eigen::MatrixXd::Zero(n, n))};
+      for (int k = 0; k < n; ++k)
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j)
+            term.per_velocity[k](i, j) = 0.5 * (dd[k](i, j) + dd[j](i, k) - dd[i](j, k));
+      terms.push_back(std::move(term));
+    }
+  }
+  return terms;
+}
+
 Eigen::MatrixXd PlanarChain::coriolis(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
   checkSize(v, "v");
   const std::vector<Eigen::MatrixXd> ck = coriolisPerVelocity(q);

@@ -21,6 +21,15 @@
 
 namespace lagrange::model {
 
+/// One link pair's share of the Coriolis matrix: for a < b (absolute link
+/// indices, phi the absolute angles),
+///   C_k(q) = sum over pairs of sin(phi_a - phi_b) per_velocity[k],
+/// with per_velocity[k] constant (from h_ab alone).
+struct CoriolisTerm {
+  int a = 0, b = 0;
+  std::vector<Eigen::MatrixXd> per_velocity;
+};
+
 /// Physical parameters of one link.
 struct LinkParams {
   double length = 0.0;   ///< l: joint-to-joint length [m]
@@ -66,6 +75,11 @@ class PlanarChain {
 
   /// The matrices C_k(q) with C(q, v) = sum_k v_k C_k(q).
   std::vector<Eigen::MatrixXd> coriolisPerVelocity(const Eigen::VectorXd& q) const;
+
+  /// The closed form of C: one term per link pair with h_ab != 0. Used for a
+  /// proven bound of ||C(q, y)|| / ||y|| (model/bounds.hpp); C itself is
+  /// computed by coriolisPerVelocity.
+  std::vector<CoriolisTerm> coriolisTerms() const;
 
   /// Gravity vector g(q) = dU/dq [N m].
   Eigen::VectorXd gravity(const Eigen::VectorXd& q) const;

@@ -105,17 +105,41 @@ void Reference::integrateFreeMotion() {
     d << s.tail(n), chain_->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
     return d;
   };
+  std::vector<std::array<long, 3>> argmax(static_cast<size_t>(n), {0, 0, 0});
   for (long k = 0; k <= steps; ++k) {
     nodes_.push_back(x);
     const Eigen::VectorXd d = f(x);
     for (int i = 0; i < n; ++i) {
-      free_bounds_[i][0] = std::max(free_bounds_[i][0], std::abs(x(i)));
-      free_bounds_[i][1] = std::max(free_bounds_[i][1], std::abs(x(n + i)));
-      free_bounds_[i][2] = std::max(free_bounds_[i][2], std::abs(d(n + i)));
+      const double values[3] = {std::abs(x(i)), std::abs(x(n + i)), std::abs(d(n + i))};
+      for (int order = 0; order < 3; ++order) {
+        if (values[order] <= free_bounds_[i][order]) continue;
+        free_bounds_[i][order] = values[order];
+        argmax[i][order] = k;
+      }
     }
     const Eigen::VectorXd k1 = d, k2 = f(x + kFreeStep / 2 * k1), k3 = f(x + kFreeStep / 2 * k2),
                           k4 = f(x + kFreeStep * k3);
     x += kFreeStep / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+  }
+  // Local maximisation between the nodes around each sampled maximum (golden
+  // section on the RK4 interpolant): the peak of a derivative need not fall on a node.
+  const double last = static_cast<double>(nodes_.size() - 1) * kFreeStep;
+  for (int i = 0; i < n; ++i) {
+    for (int order = 0; order < 3; ++order) {
+      const double centre = static_cast<double>(argmax[i][order]) * kFreeStep;
+      auto value = [&](double t) { return std::abs(jointDerivative(i, order, t)); };
+      double lo = std::max(0.0, centre - kFreeStep), hi = std::min(last, centre + kFreeStep);
+      const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
+      double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo), f1 = value(x1), f2 = value(x2);
+      for (int it = 0; it < 40; ++it) {
+        if (f1 > f2) {
+          hi = x2, x2 = x1, f2 = f1, x1 = hi - ratio * (hi - lo), f1 = value(x1);
+        } else {
+          lo = x1, x1 = x2, f1 = f2, x2 = lo + ratio * (hi - lo), f2 = value(x2);
+        }
+      }
+      free_bounds_[i][order] = std::max({free_bounds_[i][order], f1, f2});
+    }
   }
 }
 
@@ -181,7 +205,7 @@ ReferenceSample Reference::evaluate(double t, int max_order) const {
 double Reference::jointBound(int joint, int order) const {
   if (params_.type == ReferenceType::kFreeMotion) {
     if (order > 2) throw std::invalid_argument("reference: free_motion provides derivatives up to the 2nd");
-    return 1.02 * free_bounds_[joint][order];  // sampled at every 1e-4 s node
+    return 1.02 * free_bounds_[joint][order];  // sampled at every 1e-4 s node, refined between nodes
   }
   const double b = params_.offset(joint), c = params_.amplitude(joint);
   const double w = params_.frequency(joint);

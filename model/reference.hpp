@@ -73,7 +73,14 @@ class Reference {
   /// stationary closed form and a sampled supremum over the start-up transient
   /// (t in [0, T_s + 2 pi / w], T_s where exp(-alpha t^3) < 1e-12, 20000
   /// samples per period at least), times a safety factor of 1.02 for sampling.
+  /// free_motion (orders 0..2): the largest value at the integration nodes
+  /// (every 1e-4 s over the horizon), refined by a golden-section search
+  /// between the nodes around it, times 1.02. Only sine's is a proven bound;
+  /// the others are estimates (boundIsExact).
   double jointBound(int joint, int order) const;
+
+  /// Whether jointBound is a closed form (sine) rather than a sampled estimate.
+  bool boundIsExact() const { return params_.type == ReferenceType::kSine; }
 
  private:
   void integrateFreeMotion();

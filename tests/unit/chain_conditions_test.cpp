@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <random>
+
 namespace lagrange::model {
 namespace {
 
@@ -76,6 +80,47 @@ TEST(EtaEstimate, Eta3IsExactAndEta2BoundsTheJacobianTerm) {
   EXPECT_GT(eta.eta2, 250.0);
   EXPECT_LT(eta.eta2, 400.0);  // and not uselessly loose: dh/dq of the Pelican is a few N m/rad
   EXPECT_GT(eta.eta1, 0.0);
+}
+
+// eta_2 is a sampled supremum: the local ascent must carry it at least to the
+// largest value a much denser, independent sampling finds (before the 1.1
+// margin; printed, so a regression shows by how much).
+TEST(EtaEstimate, Eta2ReachesTheLargestValueADenseSamplingFinds) {
+  ChainParams params;
+  params.links = {{0.3, 0.15, 3.0, 0.02}, {0.3, 0.1, 2.0, 0.015}, {0.2, 0.1, 4.0, 0.004}};
+  const PlanarChain chain(params);
+  ReferenceParams p;
+  p.type = ReferenceType::kSine;
+  p.offset = Eigen::Vector3d(0.3, 0.2, -0.4);
+  p.amplitude = Eigen::Vector3d(0.5, 0.8, 1.0);
+  p.frequency = Eigen::Vector3d(2.0, 3.0, 5.0);
+  p.phase = Eigen::Vector3d(0.0, 0.5, 1.0);
+  const Reference reference(p);
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(3);
+  const Eigen::VectorXd kp0 = 2 * ones, kd0 = ones, a0 = 3 * ones, b0 = 3 * ones;
+  const EtaEstimate eta = estimateEta(chain, reference, kp0, kd0, a0, b0);
+  const Eigen::MatrixXd damping = (kp0 + kd0.cwiseProduct(b0)).asDiagonal();
+  auto hAt = [&](double t, const Eigen::VectorXd& q) {
+    const ReferenceSample r = reference.evaluate(t, 2);
+    return Eigen::VectorXd(chain.inertia(q) * r.qdd() + chain.coriolis(q, r.qd()) * r.qd() +
+                           chain.gravity(q));
+  };
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> time(0.0, 10.0), angle(0.0, 2.0 * M_PI);
+  double dense = 0.0;
+  for (int s = 0; s < 40000; ++s) {
+    const double t = time(rng);
+    Eigen::VectorXd q(3);
+    for (int i = 0; i < 3; ++i) q(i) = angle(rng);
+    Eigen::MatrixXd j(3, 3);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::VectorXd e = Eigen::VectorXd::Unit(3, k) * 1e-6;
+      j.col(k) = (hAt(t, q + e) - hAt(t, q - e)) / 2e-6;
+    }
+    dense = std::max(dense, (j - damping).jacobiSvd().singularValues()(0));
+  }
+  std::printf("eta_2 / 1.1 = %.6g, densest sampling's largest %.6g\n", eta.eta2 / 1.1, dense);
+  EXPECT_GE(eta.eta2 / 1.1, dense * (1.0 - 1e-6));
 }
 
 }  // namespace
