@@ -87,6 +87,23 @@ TEST(PlantLimits, TheUsersMaxRateStopsTheRunAndSaysSo) {
   EXPECT_GT(readSummary(out)["tracking"]["samples"].get<long long>(), 0);
 }
 
+// Each constant of a verdict says whether it is proven or an estimate: k_c
+// always proven; k_delta a closed form for a sine reference, an estimate for a
+// free motion; the eta constants of the cascade estimates.
+TEST(GainVerdicts, SayWhichConstantsAreProvenAndWhichEstimated) {
+  const RunResult sine = lagrange("check-gains " + quote(kConfigs + "/rigid_5link.yaml"));
+  EXPECT_NE(sine.output.find("(proven bound from the closed-form Christoffel symbols; largest ratio found"),
+            std::string::npos)
+      << sine.output;
+  EXPECT_NE(sine.output.find("(closed form)]"), std::string::npos) << sine.output;
+  EXPECT_EQ(sine.output.find("rests on the estimated k_delta"), std::string::npos) << sine.output;
+  const RunResult free = lagrange("check-gains " + quote(kConfigs + "/chain_m1_free_motion.yaml"));
+  EXPECT_NE(free.output.find("(estimate: sampled supremum x 1.02)]"), std::string::npos) << free.output;
+  EXPECT_NE(free.output.find("eq. (11)'s verdict rests on the estimated k_delta"), std::string::npos)
+      << free.output;
+  EXPECT_NE(free.output.find("the verdicts below rest on these estimates"), std::string::npos) << free.output;
+}
+
 // No artificial limit on the state: the global claim of Theorem 1, shown at a
 // rate that stands for continuous time (10 kHz; the sampled-data check calls
 // it adequate, within 1 % of the continuous decay rate). From 100 rad, 50 rad/s
