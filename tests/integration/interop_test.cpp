@@ -79,7 +79,9 @@ bool heardStatusFrom(const Events& events, const std::string& process) {
 class Recorder {
  public:
   Recorder(const std::string& url, const std::string& regex) : lcm_(url) {
-    lcm_.subscribe(regex, &Recorder::onMessage, this)->setQueueCapacity(1000000);
+    // A plain function, not subscribe(..., &Recorder::onMessage, this): GCC 12's
+    // UBSan vptr check trips on LCM's member-pointer call (see CMakeLists.txt).
+    lcm_.subscribeFunction(regex, &Recorder::onMessage, this)->setQueueCapacity(1000000);
     thread_ = std::thread([this] {
       while (!stop_) lcm_.handleTimeout(20);
     });
@@ -95,9 +97,9 @@ class Recorder {
   }
 
  private:
-  void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    events_.emplace_back(channel, std::string(static_cast<const char*>(rbuf->data), rbuf->data_size));
+  static void onMessage(const lcm::ReceiveBuffer* rbuf, const std::string& channel, Recorder* self) {
+    std::lock_guard<std::mutex> lock(self->mutex_);
+    self->events_.emplace_back(channel, std::string(static_cast<const char*>(rbuf->data), rbuf->data_size));
   }
   lcm::LCM lcm_;
   std::atomic<bool> stop_{false};
