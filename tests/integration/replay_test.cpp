@@ -9,12 +9,11 @@
 #include <lcm/lcm-cpp.hpp>
 #include <regex>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 
 namespace lagrange::testing {
 namespace {
-
-const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
 
 // One short recording per wiring, shared by the tests below.
 class Recorded : public ::testing::Test {

@@ -7,13 +7,12 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 
 namespace lagrange::testing {
 namespace {
-
-const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
 
 nlohmann::json runInproc(const std::string& config, const std::string& tag, const std::string& sets,
                          int expected_exit = 0) {

@@ -1,0 +1,246 @@
+// Bad input never crashes a process: config errors stop before anything
+// starts, a violated gain condition warns (or refuses under --strict), and
+// malformed or foreign messages are rejected per reason and counted while the
+// run converges.
+#include <gtest/gtest.h>
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "config/scenario.hpp"
+#include "controller/cascaded.hpp"
+#include "controller/theorem1.hpp"
+#include "lagrange/actuator_state_t.hpp"
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_position_t.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "support/configs.hpp"
+#include "support/launch.hpp"
+#include "support/rk4.hpp"
+#include "support/run_log.hpp"
+#include "support/signal_run.hpp"
+#include "transport/checksum.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(BadInput, ConfigErrorsStopBeforeAnyProcessStarts) {
+  struct Case {
+    std::string args, fragment;
+  };
+  const std::vector<Case> cases = {
+      {"--set controller.kd=[-1,2]", "controller.kd: entry 1: expected a positive number"},
+      {"--set controller.gain=3", "controller.gain: unknown key"},
+      {"--set initial_state.q=[1,2,3]", "initial_state.q: expected a list of 2 numbers"},
+      {"--set duration=abc", "duration: expected a finite number, got 'abc'"},
+  };
+  for (const Case& c : cases) {
+    const std::string dir = freshDir("bad");
+    const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, c.args);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(c.fragment), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(fs::path(dir) / "run.lcm")) << "a process started for " << c.args;
+  }
+  const RunResult unwritable = runScenario(kConfigs + "/rigid_2dof.yaml", "/proc/lagrange-cannot-write");
+  EXPECT_EQ(unwritable.exit_code, 2);
+  EXPECT_NE(unwritable.output.find("cannot be created or written"), std::string::npos) << unwritable.output;
+}
+
+TEST(BadInput, ViolatedGainConditionWarnsOrRefusesUnderStrict) {
+  const std::string config = kConfigs + "/rigid_2dof.yaml";
+  const RunResult check = lagrange("check-gains " + quote(config) + " --set controller.kd=0.01");
+  EXPECT_EQ(check.exit_code, 1);
+  EXPECT_NE(check.output.find("VIOLATED"), std::string::npos) << check.output;
+  const std::string dir = freshDir("strict");
+  const RunResult strict = runScenario(config, dir, "--strict --set controller.kd=0.01");
+  EXPECT_EQ(strict.exit_code, 2) << strict.output;
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "run.lcm"));
+}
+
+// Malformed messages are rejected, counted, and the run still converges.
+template <class Msg>
+std::vector<uint8_t> encoded(const Msg& m) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// The run identity the bad-traffic runs use, so that injected messages pass
+// the run check and reach the checks under test.
+constexpr int64_t kTestRunId = 4242;
+
+// A message as a given publisher would send it: this run, a fresh sequence number.
+template <class Msg>
+std::vector<uint8_t> fromPublisher(Msg m, const std::string& publisher, int64_t seq,
+                                   int64_t run_id = kTestRunId) {
+  m.header.run_id = run_id;
+  m.header.publisher = publisher;
+  m.header.publisher_pid = 1;
+  m.header.seq = seq;
+  transport::seal(m);
+  return encoded(m);
+}
+
+// Runs a scenario on the machine's network (inside the test's namespace) at
+// `url` with run id kTestRunId while publishing, every 5 ms for the whole run,
+// the payloads `make(n)` returns for the n-th round on `channel`.
+// Returns the run's result and how many bad messages were sent.
+std::pair<RunResult, int> runUnderBadTraffic(
+    const std::string& config, const std::string& dir, const std::string& url, const std::string& channel,
+    const std::function<std::vector<std::vector<uint8_t>>(int64_t)>& make, const std::string& extra = "") {
+  std::atomic<bool> done{false};
+  RunResult r;
+  std::thread runner([&] {
+    r = runScenario(
+        config, dir,
+        "--no-netns -q --run-id " + std::to_string(kTestRunId) + " --lcm-url '" + url + "' " + extra);
+    done = true;
+  });
+  lcm_t* lcm = lcm_create(url.c_str());
+  int sent = 0;
+  for (int64_t round = 1; !done && lcm; ++round) {
+    for (const auto& p : make(round))
+      lcm_publish(lcm, channel.c_str(), p.data(), static_cast<unsigned>(p.size()));
+    sent += static_cast<int>(make(round).size());
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  runner.join();
+  if (lcm) lcm_destroy(lcm);
+  return {r, sent};
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  return {(std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()};
+}
+
+// Malformed messages are rejected, counted, and the run still converges; the
+// run must neither crash nor stall (a logger that drained "until quiet" once
+// never finished).
+TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
+  const std::string dir = freshDir("garbage");
+  lagrange::plant_position_t wrong_size;  // decodes, but 3 joints on a 2-joint robot
+  wrong_size.header = transport::makeHeader(5, 0.005);
+  wrong_size.num_joints = 3;
+  wrong_size.q = {1, 2, 3};
+  lagrange::plant_position_t nan_msg = wrong_size;
+  nan_msg.num_joints = 2;
+  nan_msg.q = {std::nan(""), 0.0};
+  const std::vector<uint8_t> garbage = {0xde, 0xad, 0xbe, 0xef, 1, 2, 3};
+  const auto [r, sent] = runUnderBadTraffic(
+      kConfigs + "/rigid_2dof.yaml", dir, "udpm://239.255.76.67:7671?ttl=0", "PLANT_POSITION",
+      [&](int64_t n) {
+        return std::vector<std::vector<uint8_t>>{garbage, fromPublisher(wrong_size, "plant", 2 * n),
+                                                 fromPublisher(nan_msg, "plant", 2 * n + 1)};
+      });
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  const long long rejected = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected"];
+  std::printf("sent %d bad messages; the controller rejected %lld\n", sent, rejected);
+  EXPECT_GE(rejected, 3);                         // the fault happened ...
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>());  // ... and the run coped
+  EXPECT_LT(j["timing"]["wall_time"].get<double>(), 30.0) << "the run stalled under bad traffic";
+  const std::string text = readText(dir + "/controller.log");
+  EXPECT_NE(text.find("undecodable"), std::string::npos);
+  EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
+  EXPECT_NE(text.find("non-finite"), std::string::npos);
+  const auto& reasons = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected_by_reason"];
+  EXPECT_GE(reasons["undecodable"].get<long long>(), 1) << reasons.dump();
+  EXPECT_GE(reasons["invalid"].get<long long>(), 2) << reasons.dump();
+}
+
+// Message hygiene: well-formed positions of another run, of a process that is
+// not the plant, and repeats of one sequence number are rejected per reason
+// before any validation, and the run converges. (Their tick would pin a
+// realtime controller, and answering them would stall a lockstep one.)
+TEST(Failure, MessagesOfAnotherRunAnotherPublisherOrRepeatedAreRejected) {
+  const std::string dir = freshDir("hygiene");
+  lagrange::plant_position_t position;
+  position.header = transport::makeHeader(1000000000, 1e6);
+  position.num_joints = 2;
+  position.q = {0.1, 0.2};
+  lagrange::plant_position_t repeated = position;
+  repeated.header = transport::makeHeader(0, 0.0);  // an old tick: harmless even the once it is new
+  const auto [r, sent] =
+      runUnderBadTraffic(kConfigs + "/rigid_2dof.yaml", dir, "udpm://239.255.76.67:7673?ttl=0",
+                         "PLANT_POSITION", [&](int64_t n) {
+                           return std::vector<std::vector<uint8_t>>{
+                               fromPublisher(position, "plant", n, kTestRunId + 1),
+                               fromPublisher(position, "intruder", n), fromPublisher(repeated, "plant", 7)};
+                         });
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["run_id"], kTestRunId);
+  const auto& reasons = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected_by_reason"];
+  std::printf("sent %d foreign messages; the controller rejected %s\n", sent, reasons.dump().c_str());
+  EXPECT_GE(reasons["other_run"].get<long long>(), 3) << reasons.dump();
+  EXPECT_GE(reasons["wrong_publisher"].get<long long>(), 3) << reasons.dump();
+  EXPECT_GE(reasons["old_or_repeated"].get<long long>(), 2) << reasons.dump();  // every copy but the first
+  EXPECT_EQ(reasons["invalid"], 0);
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
+  const std::string text = readText(dir + "/controller.log");
+  EXPECT_NE(text.find("from another run (run_id 4243, this run is 4242"), std::string::npos) << text;
+  EXPECT_NE(text.find("published by 'intruder', expected 'plant'"), std::string::npos) << text;
+  EXPECT_NE(text.find("sequence number 7 of 'plant' not newer than 7"), std::string::npos) << text;
+}
+
+// An ACTUATOR_STATE of the wrong chain order or size reaching the cascaded
+// controller is rejected with the reason, one with the wrong number of torque
+// steps is rejected by the plant, and the m = 1 run converges.
+TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
+  const std::string dir = freshDir("badchain");
+  lagrange::actuator_state_t wrong_order;  // tick far in the future: the plant ignores it
+  wrong_order.header = transport::makeHeader(1000000000, 1e6);
+  wrong_order.input_command_tick = wrong_order.header.tick;
+  wrong_order.num_joints = 2;
+  wrong_order.order = 2;
+  wrong_order.u_commanded = {0.0, 0.0};
+  wrong_order.torque_steps = 1;
+  wrong_order.tau_applied = {{0.0, 0.0}};
+  wrong_order.saturated = {0, 0};
+  wrong_order.xi = {{1.0, 1.0}, {1.0, 1.0}};
+  lagrange::actuator_state_t wrong_size = wrong_order;
+  wrong_size.order = 1;
+  wrong_size.num_joints = 3;
+  wrong_size.u_commanded = {0.0, 0.0, 0.0};
+  wrong_size.tau_applied = {{0.0, 0.0, 0.0}};
+  wrong_size.saturated = {0, 0, 0};
+  wrong_size.xi = {{1.0, 1.0, 1.0}};
+  lagrange::actuator_state_t wrong_steps = wrong_order;  // chain_m1.yaml updates once a period
+  wrong_steps.order = 1;
+  wrong_steps.xi = {{1.0, 1.0}};
+  wrong_steps.torque_steps = 2;
+  wrong_steps.tau_applied = {{0.0, 0.0}, {0.0, 0.0}};
+  const auto [r, sent] = runUnderBadTraffic(
+      kConfigs + "/chain_m1.yaml", dir, "udpm://239.255.76.67:7672?ttl=0", "ACTUATOR_STATE", [&](int64_t n) {
+        return std::vector<std::vector<uint8_t>>{fromPublisher(wrong_order, "actuator", 3 * n),
+                                                 fromPublisher(wrong_size, "actuator", 3 * n + 1),
+                                                 fromPublisher(wrong_steps, "actuator", 3 * n + 2)};
+      });
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  const long long rejected = j["processes"]["controller"]["channels"]["ACTUATOR_STATE"]["rejected"];
+  std::printf("sent %d bad actuator states; the controller rejected %lld\n", sent, rejected);
+  EXPECT_GE(rejected, 2);
+  EXPECT_TRUE(j["tracking"]["met"].get<bool>());
+  const std::string text = readText(dir + "/controller.log");
+  EXPECT_NE(text.find("actuator order is 2, expected 1"), std::string::npos);
+  EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
+  EXPECT_GE(j["processes"]["plant"]["channels"]["ACTUATOR_STATE"]["rejected"].get<long long>(), 2);
+  EXPECT_NE(readText(dir + "/plant.log").find("torque_steps is 2, expected 1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lagrange::testing

@@ -1,0 +1,129 @@
+// Processes that die, are interrupted or freeze: the launcher names them and
+// keeps the outputs; a frozen controller's silence triggers the plant's
+// stale-torque policy and the arm recovers.
+#include <gtest/gtest.h>
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "config/scenario.hpp"
+#include "controller/cascaded.hpp"
+#include "controller/theorem1.hpp"
+#include "lagrange/actuator_state_t.hpp"
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_position_t.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "support/configs.hpp"
+#include "support/launch.hpp"
+#include "support/rk4.hpp"
+#include "support/run_log.hpp"
+#include "support/signal_run.hpp"
+#include "transport/checksum.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs the default scenario for a long time and, once its log holds 100 kB,
+// sends `sig` to the process whose argv[0] ends with `process`.
+// A dead process: the launcher names it and its signal, stops the rest and
+// keeps the log.
+TEST(Failure, KilledControllerIsNamedAndTheLogIsKept) {
+  const std::string dir = freshDir("kill");
+  const SignalledRun run = signalMidRun(dir, kConfigs + "/rigid_2dof.yaml", "lagrange-controller", SIGKILL);
+  ASSERT_TRUE(run.signalled);
+  EXPECT_EQ(run.result.exit_code, 1) << run.result.output;
+  EXPECT_NE(run.result.output.find("process 'controller' was killed by signal 9"), std::string::npos)
+      << run.result.output;
+  EXPECT_GT(readTruth(dir + "/run.lcm").size(), 10u);  // the log is readable
+}
+
+// Ctrl-C: every process stops cleanly, the log and the summary are kept.
+TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
+  const std::string dir = freshDir("interrupt");
+  const SignalledRun run = signalMidRun(dir, kConfigs + "/rigid_2dof.yaml", "bin/lagrange", SIGINT);
+  const RunResult& r = run.result;
+  const bool interrupted = run.signalled;
+  ASSERT_TRUE(interrupted);
+  EXPECT_EQ(r.exit_code, 130) << r.output;
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["status"], "interrupted");
+  for (const char* p : {"plant", "controller", "actuator"})
+    EXPECT_EQ(j["processes"][p]["state"], "interrupted") << p;
+  EXPECT_EQ(findProcess("lagrange-plant", dir), -1) << "a process outlived the launcher";
+  const auto truth = readTruth(dir + "/run.lcm");
+  EXPECT_GT(truth.size(), 10u);
+  EXPECT_EQ(j["tracking"]["samples"].get<size_t>(), truth.size());  // nothing recorded was lost
+}
+
+// Stale inputs: a controller frozen for 300 ms (SIGSTOP) sends nothing; the
+// plant's policy zeroes (or holds) the torque and counts it, the controller
+// refuses the positions that aged while it was frozen, and the arm converges
+// again afterwards.
+class StaleTorquePolicy : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StaleTorquePolicy, TriggersWhenTheControllerStopsAndTheArmRecovers) {
+  const std::string dir = freshDir("stale");
+  std::atomic<bool> done{false};
+  RunResult r;
+  // Under `zero` every scheduling hiccup longer than max_torque_age (default
+  // 2 ms) drops the arm for a period; on a loaded machine those kicks kept it
+  // from settling after the freeze (final error 1e-3..2e-2 in some runs).
+  // Fresh for 20 ms, a torque rides out hiccups while the 300 ms freeze still
+  // zeroes at least 280 periods.
+  const std::string age = GetParam() == "zero" ? " --set realtime.max_torque_age=20" : "";
+  std::thread runner([&] {
+    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir,
+                    "-q --mode realtime --set duration=5 --set realtime.stale_torque=" + GetParam() +
+                        " --set realtime.hold_periods=100" + age);
+    done = true;
+  });
+  bool frozen = false;
+  for (int i = 0; i < 200 && !frozen && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 600000) continue;
+    const pid_t pid = findProcess("lagrange-controller", dir);
+    if (pid > 0 && kill(pid, SIGSTOP) == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      kill(pid, SIGCONT);
+      frozen = true;
+    }
+  }
+  runner.join();
+  ASSERT_TRUE(frozen);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = readSummary(dir);
+  const auto& plant = j["messages"]["stale"]["plant"];
+  const long long zeroed = plant["torque_zeroed"], held = plant["torque_held"];
+  const long long stale_positions = j["messages"]["stale"]["controller"]["stale_inputs"];
+  std::printf("policy %s: torque held %lld periods, zeroed %lld; controller refused %lld stale positions\n",
+              GetParam().c_str(), held, zeroed, stale_positions);
+  if (GetParam() == "hold") {
+    EXPECT_GE(held, 90);     // held for hold_periods = 100 ...
+    EXPECT_GE(zeroed, 100);  // ... then zeroed for the rest of the freeze
+  } else {
+    EXPECT_EQ(held, 0);
+    EXPECT_GE(zeroed, 200);
+  }
+  // stale_positions is printed, not asserted: whether the resumed controller
+  // finds its newest position already too old depends on where in the period
+  // it wakes (0 in some runs, 3-19 in others).
+  EXPECT_GT(j["tracking"]["max_error"].get<double>(), 1e-2);    // the freeze really disturbed the arm
+  EXPECT_LT(j["tracking"]["final_error"].get<double>(), 1e-3);  // and it converged again
+}
+
+INSTANTIATE_TEST_SUITE_P(Policies, StaleTorquePolicy, ::testing::Values("zero", "hold"));
+
+}  // namespace
+}  // namespace lagrange::testing
