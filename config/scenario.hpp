@@ -16,6 +16,7 @@
 
 #include "controller/cascaded.hpp"
 #include "controller/theorem1.hpp"
+#include "model/error.hpp"
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
@@ -23,9 +24,9 @@
 namespace lagrange::config {
 
 /// A user-facing configuration error: names the key, the value and what was expected.
-class ConfigError : public std::runtime_error {
+class ConfigError : public lagrange::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using lagrange::Error::Error;
 };
 
 struct InitialState {

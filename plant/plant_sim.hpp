@@ -24,6 +24,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "model/error.hpp"
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 
@@ -43,9 +44,9 @@ struct PlantEnergy {
 };
 
 /// Why the plant stopped a run: the simulation failed, or a limit the user set was crossed.
-class PlantStopped : public std::runtime_error {
+class PlantStopped : public lagrange::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using lagrange::Error::Error;
 };
 
 /// No artificial limit on the state: the global results are about large

@@ -54,48 +54,33 @@ void headerColumns(Row& row, const lagrange::header_t& h) {
   row.add("sim_time", h.sim_time);
 }
 
+// The columns of each message type after tick and sim_time.
+void columns(Row& row, const lagrange::plant_truth_t& m) {
+  row.add("q", m.q), row.add("qdot", m.qdot), row.add("tau_applied", m.tau_applied);
+  row.add("kinetic_energy", m.kinetic_energy), row.add("potential_energy", m.potential_energy);
+  row.add("total_energy", m.total_energy);
+  row.add("input_actuator_tick", static_cast<double>(m.input_actuator_tick));
+  row.add("torque_source", m.torque_source);
+}
+void columns(Row& row, const lagrange::plant_position_t& m) { row.add("q", m.q); }
+void columns(Row& row, const lagrange::plant_motor_t& m) { row.add("q", m.q), row.add("qdot", m.qdot); }
+void columns(Row& row, const lagrange::control_command_t& m) {
+  row.add("u", m.u), row.add("q_desired", m.q_desired), row.add("q_error", m.q_error);
+  row.add("theta", m.theta), row.add("filter_state", m.filter_state), row.add("xi_error", m.xi_error);
+}
+void columns(Row& row, const lagrange::actuator_state_t& m) {
+  row.add("u_commanded", m.u_commanded), row.add("tau_applied", m.tau_applied), row.add("xi", m.xi);
+}
+
 // The row of one event of a known channel; false if the event is not decodable.
 bool rowOf(const lcm::LogEvent& ev, Row& row, int64_t& tick) {
-  const std::string& ch = ev.channel;
-  if (ch == transport::kPlantTruth) {
-    lagrange::plant_truth_t m;
+  return transport::withChannelMessage(ev.channel, false, [&](auto m) {
     if (!decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
-    row.add("q", m.q), row.add("qdot", m.qdot), row.add("tau_applied", m.tau_applied);
-    row.add("kinetic_energy", m.kinetic_energy), row.add("potential_energy", m.potential_energy);
-    row.add("total_energy", m.total_energy);
-    row.add("input_actuator_tick", static_cast<double>(m.input_actuator_tick));
-    row.add("torque_source", m.torque_source);
+    columns(row, m);
     tick = m.header.tick;
-  } else if (ch == transport::kPlantPosition) {
-    lagrange::plant_position_t m;
-    if (!decodeEvent(ev, m)) return false;
-    headerColumns(row, m.header);
-    row.add("q", m.q);
-    tick = m.header.tick;
-  } else if (ch == transport::kPlantMotor) {
-    lagrange::plant_motor_t m;
-    if (!decodeEvent(ev, m)) return false;
-    headerColumns(row, m.header);
-    row.add("q", m.q), row.add("qdot", m.qdot);
-    tick = m.header.tick;
-  } else if (ch == transport::kControlCommand) {
-    lagrange::control_command_t m;
-    if (!decodeEvent(ev, m)) return false;
-    headerColumns(row, m.header);
-    row.add("u", m.u), row.add("q_desired", m.q_desired), row.add("q_error", m.q_error);
-    row.add("theta", m.theta), row.add("filter_state", m.filter_state), row.add("xi_error", m.xi_error);
-    tick = m.header.tick;
-  } else if (ch == transport::kActuatorState) {
-    lagrange::actuator_state_t m;
-    if (!decodeEvent(ev, m)) return false;
-    headerColumns(row, m.header);
-    row.add("u_commanded", m.u_commanded), row.add("tau_applied", m.tau_applied), row.add("xi", m.xi);
-    tick = m.header.tick;
-  } else {
-    return false;
-  }
-  return true;
+    return true;
+  });
 }
 
 // Wall-clock publish times by tick, for the timing of a realtime run.
@@ -103,18 +88,24 @@ struct PublishTimes {
   std::map<int64_t, int64_t> position, command, actuator;
 };
 
+// The ticks a publish time is filed under: a command's is the position it answers.
+void notePublishTime(const lagrange::plant_position_t& m, PublishTimes& times) {
+  times.position.emplace(m.header.tick, m.header.publish_utime);
+}
+void notePublishTime(const lagrange::control_command_t& m, PublishTimes& times) {
+  times.command.emplace(m.input_position_tick, m.header.publish_utime);
+}
+void notePublishTime(const lagrange::actuator_state_t& m, PublishTimes& times) {
+  times.actuator.emplace(m.header.tick, m.header.publish_utime);
+}
+template <class Other>
+void notePublishTime(const Other&, PublishTimes&) {}  // not part of the timing
+
 void notePublishTime(const lcm::LogEvent& ev, PublishTimes& times) {
-  const std::string& ch = ev.channel;
-  if (ch == transport::kPlantPosition) {
-    lagrange::plant_position_t m;
-    if (decodeEvent(ev, m)) times.position.emplace(m.header.tick, m.header.publish_utime);
-  } else if (ch == transport::kControlCommand) {
-    lagrange::control_command_t m;
-    if (decodeEvent(ev, m)) times.command.emplace(m.input_position_tick, m.header.publish_utime);
-  } else if (ch == transport::kActuatorState) {
-    lagrange::actuator_state_t m;
-    if (decodeEvent(ev, m)) times.actuator.emplace(m.header.tick, m.header.publish_utime);
-  }
+  transport::withChannelMessage(ev.channel, false, [&](auto m) {
+    if (decodeEvent(ev, m)) notePublishTime(m, times);
+    return true;
+  });
 }
 
 // TIMING.csv: per tick, the plant's period error and the latencies from its

@@ -11,6 +11,7 @@
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
+#include "model/error.hpp"
 #include "plant/scenario_plant.hpp"
 #include "tools/progress.hpp"
 #include "transport/builders.hpp"
@@ -37,7 +38,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   // LCM, so both wirings compute with identical doubles.
   Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());  // row j: step j of a period
   const int64_t last_tick = s.lastTick();
-  int exit_code = 0;
+  int exit_code = kExitOk;
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
     const plant::PlantState st = sim.state();
@@ -75,7 +76,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
       progress.update(t, error.value_or(std::nan("")));
       progress.tick();
       if (stop_requested()) {
-        exit_code = 130;
+        exit_code = kExitInterrupted;
         break;
       }
     }
@@ -84,7 +85,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
         sim.stepProfile(tau, s.substepsPerTick());
       } catch (const plant::PlantStopped& stopped) {  // keep what was recorded
         std::cerr << "lagrange run: " << stopped.what() << "\n";
-        exit_code = 1;
+        exit_code = kExitFailed;
         break;
       }
     }

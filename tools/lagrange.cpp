@@ -11,6 +11,7 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
+#include "model/error.hpp"
 #include "tools/replay.hpp"
 #include "tools/report.hpp"
 #include "tools/run_command.hpp"
@@ -32,7 +33,7 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
       suggested = controller::suggestGains(s);
     } catch (const std::range_error& e) {
       std::cout << "\nno suggestion: " << e.what() << "\n";
-      return 1;
+      return kExitFailed;
     }
     const controller::GainReport check = controller::checkGains(suggested);
     std::cout << "\nsuggested gains (the paper's constructive rules; other keys unchanged):\n"
@@ -41,10 +42,10 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
     return check.holds() ? 0 : 1;
   } catch (const config::ConfigError& e) {
     std::cerr << "lagrange check-gains: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "lagrange check-gains: cannot evaluate the gain conditions: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   }
 }
 
@@ -58,18 +59,18 @@ int replay(const std::string& log_path, const std::string& component,
     if (r.divergence) {
       std::cout << "lagrange replay: " << component << " DIVERGED after " << r.commands << " outputs at "
                 << *r.divergence << "\n";
-      return 1;
+      return kExitFailed;
     }
     std::cout << "lagrange replay: " << component << " reproduced all " << r.commands
               << " recorded outputs bit for bit (" << r.events << " events read)\n";
-    return 0;
+    return kExitOk;
   } catch (const tools::ReplayError& e) {
     for (const auto& w : e.warnings()) std::cerr << "lagrange replay: warning: " << w << "\n";
     std::cerr << "lagrange replay: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "lagrange replay: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   }
 }
 
@@ -79,10 +80,10 @@ int report(const std::string& target, std::string out_dir) {
   if (out_dir.empty()) out_dir = (fs::path(log_path).parent_path() / "report").string();
   try {
     tools::printReport(tools::writeReport(log_path, out_dir), out_dir, "lagrange report: ");
-    return 0;
+    return kExitOk;
   } catch (const std::exception& e) {
     std::cerr << "lagrange report: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   }
 }
 

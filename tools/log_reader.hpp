@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/error.hpp"
 #include "transport/checksum.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/safe_decode.hpp"
@@ -20,9 +21,9 @@
 namespace lagrange::tools {
 
 /// A file that is not an LCM log at all, or cannot be opened.
-class LogError : public std::runtime_error {
+class LogError : public lagrange::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using lagrange::Error::Error;
 };
 
 /// What a pass over a log read.

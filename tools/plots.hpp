@@ -11,12 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "model/error.hpp"
+
 namespace lagrange::tools {
 
 /// gnuplot missing or failing; the CSV files are written regardless.
-class PlotError : public std::runtime_error {
+class PlotError : public lagrange::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using lagrange::Error::Error;
 };
 
 /// What the plots need to know about the run.

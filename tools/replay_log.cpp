@@ -16,41 +16,40 @@ struct FirstCopies {
   std::set<int64_t> commands, states, truths;
 };
 
+// Where each message type goes: every position and motor sample by tick; the
+// first copy of each truth, actuator state and command in order too.
+void keep(const lagrange::plant_position_t& m, Recorded& r, FirstCopies&) {
+  r.positions.emplace(m.header.tick, m);
+}
+void keep(const lagrange::plant_truth_t& m, Recorded& r, FirstCopies& seen) {
+  if (seen.truths.insert(m.header.tick).second) r.truths.push_back(m);
+}
+void keep(const lagrange::actuator_state_t& m, Recorded& r, FirstCopies& seen) {
+  if (seen.states.insert(m.header.tick).second) {
+    r.actuator.emplace(m.header.tick, m);
+    r.states.push_back(m);
+  }
+}
+void keep(const lagrange::plant_motor_t& m, Recorded& r, FirstCopies&) { r.motor.emplace(m.header.tick, m); }
+void keep(const lagrange::control_command_t& m, Recorded& r, FirstCopies& seen) {
+  if (seen.commands.insert(m.input_position_tick).second) {
+    r.commands.push_back(m);
+    r.commands_by_tick.emplace(m.header.tick, m);
+  }
+}
+
 // false if the event is on a channel of this project but does not decode.
 bool record(const lcm::LogEvent& ev, Recorded& r, FirstCopies& seen) {
-  const std::string& ch = ev.channel;
-  if (ch == transport::kScenario) {
+  if (ev.channel == transport::kScenario) {
     if (r.scenario) return true;
     r.scenario = scenarioYaml(ev);
     return r.scenario.has_value();
-  } else if (ch == transport::kPlantPosition) {
-    lagrange::plant_position_t m;
-    if (!decodeEvent(ev, m)) return false;
-    r.positions.emplace(m.header.tick, m);
-  } else if (ch == transport::kPlantTruth) {
-    lagrange::plant_truth_t m;
-    if (!decodeEvent(ev, m)) return false;
-    if (seen.truths.insert(m.header.tick).second) r.truths.push_back(m);
-  } else if (ch == transport::kActuatorState) {
-    lagrange::actuator_state_t m;
-    if (!decodeEvent(ev, m)) return false;
-    if (seen.states.insert(m.header.tick).second) {
-      r.actuator.emplace(m.header.tick, m);
-      r.states.push_back(m);
-    }
-  } else if (ch == transport::kPlantMotor) {
-    lagrange::plant_motor_t m;
-    if (!decodeEvent(ev, m)) return false;
-    r.motor.emplace(m.header.tick, m);
-  } else if (ch == transport::kControlCommand) {
-    lagrange::control_command_t m;
-    if (!decodeEvent(ev, m)) return false;
-    if (seen.commands.insert(m.input_position_tick).second) {
-      r.commands.push_back(m);
-      r.commands_by_tick.emplace(m.header.tick, m);
-    }
   }
-  return true;
+  return transport::withChannelMessage(ev.channel, true, [&](auto m) {
+    if (!decodeEvent(ev, m)) return false;
+    keep(m, r, seen);
+    return true;
+  });
 }
 
 std::string show(double x) {

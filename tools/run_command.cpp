@@ -20,6 +20,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
+#include "model/error.hpp"
 #include "tools/inproc_runner.hpp"
 #include "tools/netns.hpp"
 #include "tools/progress.hpp"
@@ -161,7 +162,7 @@ void printResult(const std::string& out_dir) {
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
   std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
-// --check: a completed run that missed its stated metric exits kMetricMissed,
+// --check: a completed run that missed its stated metric exits kExitMetricMissed,
 // naming each metric it missed with its value, so CI can guard a controller.
 int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code) {
   if (!opt.check || exit_code != 0) return exit_code;
@@ -171,10 +172,10 @@ int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code
   } catch (const std::exception&) {
     std::cerr << "lagrange run: --check: summary.json could not be read in " << out_dir
               << "; expected the logger's summary of this run\n";
-    return kMetricMissed;
+    return kExitMetricMissed;
   }
   const auto& t = j.at("tracking");
-  if (t.at("met").get<bool>()) return 0;
+  if (t.at("met").get<bool>()) return kExitOk;
   const double deadline = t.at("convergence_deadline").get<double>();
   auto when = [](const nlohmann::json& ct) {
     return ct.is_null() ? std::string("never") : std::to_string(ct.get<double>()) + " s";
@@ -190,7 +191,7 @@ int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code
                   << c.at("tolerance").get<double>() << " by t = " << deadline << " s: converged "
                   << when(c.at("convergence_time")) << ", final error " << c.at("final_error").get<double>()
                   << "\n";
-  return kMetricMissed;
+  return kExitMetricMissed;
 }
 
 bool runsHere(const RunOptions& opt, const std::string& process) {
@@ -280,7 +281,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     writeEndpoint(out_dir, {url, run_id, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt});
   } catch (const std::exception& e) {
     std::cerr << "lagrange run: " << e.what() << "\n";
-    return 1;
+    return kExitFailed;
   }
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
@@ -292,7 +293,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   int progress_pipe[2];
   if (pipe2(progress_pipe, O_CLOEXEC | O_NONBLOCK) != 0) {
     std::cerr << "lagrange run: cannot create a pipe: " << std::strerror(errno) << "\n";
-    return 1;
+    return kExitFailed;
   }
   ProgressDisplay progress(scenario.duration, opt.quiet);
   ProgressReader progress_reader(progress_pipe[0]);
@@ -320,7 +321,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     if (runsHere(opt, s.name)) supervisor.start(s);
   close(progress_pipe[1]);
 
-  int exit_code = 0;
+  int exit_code = kExitOk;
   nlohmann::json cpu = nlohmann::json::object();
   nlohmann::json supervision = {{"restart", scenario.supervision.restart},
                                 {"restarts", nlohmann::json::object()},
@@ -337,7 +338,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       progress.finish();
       std::cerr << "lagrange run: interrupted; stopping every process\n";
       supervisor.stopAll(5.0);
-      exit_code = 130;
+      exit_code = kExitInterrupted;
       break;
     }
     if (plant_done &&
@@ -347,7 +348,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                 << " s after the plant finished; stopping them\n";
       for (const ChildExit& e : supervisor.stopAll(5.0)) {
         addCpu(cpu, e);
-        if (e.failed() && e.signal != SIGTERM) exit_code = 1;
+        if (e.failed() && e.signal != SIGTERM) exit_code = kExitFailed;
       }
       break;
     }
@@ -370,7 +371,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       for (const ChildExit& other : supervisor.stopAll(5.0))
         if (other.failed() && other.signal != SIGTERM)
           std::cerr << "lagrange run: process '" << other.name << "' " << other.describe() << "\n";
-      exit_code = 1;
+      exit_code = kExitFailed;
       break;
     }
   }
@@ -379,7 +380,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   progress.finish();
   close(progress_pipe[0]);
   if (exit_code == 0) addLauncherFacts(out_dir, cpu, supervision);
-  if (exit_code != 130) writeRunReport(opt, out_dir);
+  if (exit_code != kExitInterrupted) writeRunReport(opt, out_dir);
   if (exit_code == 0 && !opt.quiet) {
     if (runsHere(opt, "logger"))
       printResult(out_dir);
@@ -395,11 +396,11 @@ int runScenario(const RunOptions& opt) {
   if (opt.check && !runsHere(opt, "logger")) {
     std::cerr << "lagrange run: --check reads the run's summary.json, which the logger writes on its own "
                  "host; expected --processes to include logger\n";
-    return 2;
+    return kExitBadInput;
   }
   if (const std::string why = checkProcesses(opt); !why.empty()) {
     std::cerr << "lagrange run: " << why << "\n";
-    return 2;
+    return kExitBadInput;
   }
   config::Scenario scenario;
   std::string out_dir;
@@ -408,23 +409,23 @@ int runScenario(const RunOptions& opt) {
     out_dir = prepareOutDir(opt.out_dir);
   } catch (const config::ConfigError& e) {
     std::cerr << "lagrange run: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   }
 
   if (scenario.mode == "inproc") {
     if (!opt.processes.empty()) {
       std::cerr << "lagrange run: --processes does not apply to mode inproc (one process, no LCM)\n";
-      return 2;
+      return kExitBadInput;
     }
     const controller::GainReport gains = controller::checkGains(scenario);
-    if (!gainsAllowRun(gains, opt)) return 2;
+    if (!gainsAllowRun(gains, opt)) return kExitBadInput;
     writeResolved(scenario, opt.config_path, out_dir);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     ProgressDisplay progress(scenario.duration, opt.quiet);
     const int code = runInProcess(scenario, gains, out_dir, progress, [] { return launcher_signal != 0; });
     progress.finish();
-    if (code != 130) writeRunReport(opt, out_dir);
+    if (code != kExitInterrupted) writeRunReport(opt, out_dir);
     if (code == 0 && !opt.quiet) printResult(out_dir);
     return checkMetric(opt, out_dir, code);
   }
@@ -432,17 +433,17 @@ int runScenario(const RunOptions& opt) {
   if (opt.private_netns && !insidePrivateNetns()) {
     const std::string why = reexecInPrivateNetns(opt.self_argv);
     std::cerr << "lagrange run: " << why << "; install util-linux or run with --no-netns\n";
-    return 1;
+    return kExitFailed;
   }
   if (opt.private_netns) {
     try {
       configureLoopbackMulticast();
     } catch (const std::exception& e) {
       std::cerr << "lagrange run: " << e.what() << "\n";
-      return 1;
+      return kExitFailed;
     }
   }
-  if (!gainsAllowRun(controller::checkGains(scenario), opt)) return 2;
+  if (!gainsAllowRun(controller::checkGains(scenario), opt)) return kExitBadInput;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
 
   return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));

@@ -37,7 +37,6 @@ inline const std::vector<std::string> kProcesses = {"logger", "controller", "act
 /// Exit code: 0 success, 1 a process failed (or the plant stopped a diverging
 /// run), 2 bad input, 3 with --check: the run completed but missed its stated
 /// metric, 130 interrupted.
-inline constexpr int kMetricMissed = 3;
 int runScenario(const RunOptions& options);
 
 }  // namespace lagrange::tools

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "model/error.hpp"
 #include "tools/netns.hpp"
 
 namespace lagrange::tools {
@@ -86,7 +87,7 @@ int runSpy(const SpyOptions& opt) {
     const std::vector<std::string> cmd = spyCommand(url);
     if (opt.print_only) {
       for (const auto& c : cmd) std::cout << c << (&c == &cmd.back() ? "\n" : " ");
-      return 0;
+      return kExitOk;
     }
     if (std::getenv("DISPLAY") == nullptr)
       throw std::runtime_error(
@@ -100,7 +101,7 @@ int runSpy(const SpyOptions& opt) {
                              " (install Debian's default-jre)");
   } catch (const std::exception& e) {
     std::cerr << "lagrange spy: " << e.what() << "\n";
-    return 2;
+    return kExitBadInput;
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <csignal>
 
+#include "model/error.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
@@ -148,10 +149,10 @@ int runProcess(const std::string& name, const std::string& description, int argc
     return body(scenario, node);
   } catch (const config::ConfigError& e) {
     spdlog::error("{}", e.what());
-    return 2;
+    return kExitBadInput;
   } catch (const std::exception& e) {
     spdlog::error("{}: {}", name, e.what());
-    return 1;
+    return kExitFailed;
   }
 }
 
