@@ -28,7 +28,7 @@ int DoMain(int argc, char** argv) {
                   act.step(transport::toEigen(m.u), s.tickPeriod(), s.torqueStepsPerTick());
               return transport::actuatorMessage(out, act.state(), m);
             };
-        if (s.mode == "realtime") {
+        if (s.mode == config::Mode::kRealtime) {
           // Half a period after the plant: the controller has answered.
           return transport::serveRealtime(node, transport::kControlCommand, transport::kActuatorState,
                                           s.dof(), {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);

@@ -134,11 +134,18 @@ struct SupervisionConfig {
   }
 };
 
+/// How the processes are wired (docs/architecture.md): LCM processes in
+/// lockstep or on fixed-rate loops, or one process without LCM.
+enum class Mode { kLockstep, kRealtime, kInproc };
+
+/// "lockstep", "realtime", "inproc": the spelling in scenario files and summary.json.
+const char* toString(Mode mode);
+
 struct Scenario {
   std::string name;
   std::string description;
   double duration = 10.0;  ///< simulated time [s]
-  std::string mode = "lockstep";
+  Mode mode = Mode::kLockstep;
   model::ChainParams robot;
   std::optional<FlexibleConfig> flexible;  ///< robot.flexible
   InitialState initial_state;

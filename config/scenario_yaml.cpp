@@ -23,7 +23,7 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "name" << YAML::Value << s.name;
   out << YAML::Key << "description" << YAML::Value << s.description;
   out << YAML::Key << "duration" << YAML::Value << s.duration;
-  out << YAML::Key << "mode" << YAML::Value << s.mode;
+  out << YAML::Key << "mode" << YAML::Value << toString(s.mode);
 
   out << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;

@@ -104,7 +104,7 @@ int DoMain(int argc, char** argv) {
                     : ctl.step(m.header.sim_time, q, chain_state);
           return transport::commandMessage(out, m.header.tick, m.header.sim_time, inputs);
         };
-        if (s.mode == "realtime") {
+        if (s.mode == config::Mode::kRealtime) {
           // A quarter period after the plant: its position has arrived. The
           // newest chain state is used (latest-value semantics).
           return transport::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(

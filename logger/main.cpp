@@ -97,7 +97,7 @@ int DoMain(int argc, char** argv) {
         // again. In realtime (nothing is re-sent): the contiguous samples.
         auto confirmed = [&] {
           int64_t tick = metrics.lastTick();
-          if (s.mode == "lockstep")
+          if (s.mode == config::Mode::kLockstep)
             for (const auto& entry : coverage) tick = std::min(tick, entry.second.contiguousThrough());
           return tick;
         };

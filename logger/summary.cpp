@@ -14,7 +14,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   using nlohmann::json;
   json j;
   j["scenario"] = s.name;
-  j["mode"] = s.mode;
+  j["mode"] = config::toString(s.mode);
   j["controller"] = {{"type", s.controller.type}};
   if (s.controller.type == "flexible") {
     j["controller"]["motor_rate"] = s.controller.motor_rate;
@@ -143,7 +143,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     processes[name] = {
         {"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message}, {"channels", channels}};
   }
-  if (s.mode == "realtime") {
+  if (s.mode == config::Mode::kRealtime) {
     json loops = json::object();
     json stale = json::object();
     for (const auto& [name, st] : f.final_status) {

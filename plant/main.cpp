@@ -32,8 +32,8 @@ int DoMain(int argc, char** argv) {
       [&](const config::Scenario& s, transport::LcmNode& node) {
         plant::PlantSim sim = plant::plantFor(s);
         transport::StatusReporter status(node);
-        return s.mode == "realtime" ? plant::runRealtime(s, node, sim, status, startup_timeout)
-                                    : plant::runLockstep(s, node, sim, status, startup_timeout);
+        return s.mode == config::Mode::kRealtime ? plant::runRealtime(s, node, sim, status, startup_timeout)
+                                                 : plant::runLockstep(s, node, sim, status, startup_timeout);
       });
 }
 

@@ -28,7 +28,7 @@ PlotSpec specOf(const CsvExport& csv, const std::string& log_path, const std::st
   const config::Scenario& s = *scenario;
   PlotSpec spec;
   spec.dir = out_dir;
-  spec.title = s.name + " (" + s.mode + ", " + s.controller.type + ")";
+  spec.title = s.name + " (" + config::toString(s.mode) + ", " + s.controller.type + ")";
   spec.dof = s.dof();
   spec.chain_order = s.actuator.order;
   spec.flexible = s.flexible.has_value();
@@ -58,7 +58,7 @@ Report writeReport(const std::string& log_path, const std::string& out_dir) {
           " plant samples: the run was cut short (interrupted, a process died) or the log "
           "lost the rest");
   }
-  if (scenario && scenario->mode == "realtime")
+  if (scenario && scenario->mode == config::Mode::kRealtime)
     report.timing_rows = exportTiming(log_path, scenario->tickPeriod(), out_dir);
   try {
     report.plots = drawPlots(spec);

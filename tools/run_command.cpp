@@ -412,7 +412,7 @@ int runScenario(const RunOptions& opt) {
     return kExitBadInput;
   }
 
-  if (scenario.mode == "inproc") {
+  if (scenario.mode == config::Mode::kInproc) {
     if (!opt.processes.empty()) {
       std::cerr << "lagrange run: --processes does not apply to mode inproc (one process, no LCM)\n";
       return kExitBadInput;

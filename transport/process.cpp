@@ -126,8 +126,8 @@ int runProcess(const std::string& name, const std::string& description, int argc
   try {
     const config::Scenario scenario = config::loadScenario(config_path, overrides);
     // Before LCM starts its receive thread, so that the thread inherits it.
-    if (scenario.mode == "realtime" && enterRealtimeScheduling(scenario.realtime.priority) == "other" &&
-        scenario.realtime.priority > 0)
+    if (scenario.mode == config::Mode::kRealtime &&
+        enterRealtimeScheduling(scenario.realtime.priority) == "other" && scenario.realtime.priority > 0)
       spdlog::warn(
           "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
           "the normal scheduler",
