@@ -5,19 +5,19 @@
 ///
 ///   CONTROL_COMMAND -> validate -> IntegratorChain::step -> ACTUATOR_STATE
 
+#include "actuator/actuator_lcm.hpp"
 #include "actuator/integrator_chain.hpp"
-#include "transport/builders.hpp"
+#include "runtime/process.hpp"
+#include "runtime/realtime_responder.hpp"
+#include "runtime/tick_responder.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
-#include "transport/process.hpp"
-#include "transport/realtime_responder.hpp"
-#include "transport/tick_responder.hpp"
 
 namespace lagrange {
 namespace {
 
 int DoMain(int argc, char** argv) {
-  return transport::runProcess(
+  return runtime::runProcess(
       "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).", argc, argv,
       nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
         actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
@@ -26,16 +26,16 @@ int DoMain(int argc, char** argv) {
             [&](const lagrange::control_command_t& m) {
               const actuator::ActuatorOutput out =
                   act.step(transport::toEigen(m.u), s.tickPeriod(), s.torqueStepsPerTick());
-              return transport::actuatorMessage(out, act.state(), m);
+              return actuator::actuatorMessage(out, act.state(), m);
             };
         if (s.mode == config::Mode::kRealtime) {
           // Half a period after the plant: the controller has answered.
-          return transport::serveRealtime(node, transport::kControlCommand, transport::kActuatorState,
-                                          s.dof(), {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);
+          return runtime::serveRealtime(node, transport::kControlCommand, transport::kActuatorState, s.dof(),
+                                        {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);
         }
-        transport::Progress progress;
+        runtime::Progress progress;
         const auto last_state =
-            transport::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
+            runtime::respondPerTick<lagrange::control_command_t, lagrange::actuator_state_t>(
                 node, transport::kControlCommand, transport::kActuatorState, s.dof(), progress,
                 s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
                 [&](const lagrange::control_command_t& m) { return std::optional(compute(m)); });
@@ -44,7 +44,7 @@ int DoMain(int argc, char** argv) {
         // controller waiting for the chain state of the previous tick (lost
         // on the way, or a restarted controller that never saw it) would wait
         // forever: re-send the last state whenever the run stalls.
-        return transport::serveUntilPlantFinished(
+        return runtime::serveUntilPlantFinished(
             node, progress,
             [&] {
               if (*last_state) node.publish(transport::kActuatorState, **last_state);

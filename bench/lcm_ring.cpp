@@ -13,8 +13,10 @@
 #include <lcm/lcm-cpp.hpp>
 #include <vector>
 
+#include "actuator/actuator_lcm.hpp"
+#include "controller/controller_lcm.hpp"
 #include "controller/theorem1.hpp"
-#include "transport/builders.hpp"
+#include "plant/plant_lcm.hpp"
 
 namespace {
 
@@ -50,12 +52,12 @@ int main(int argc, char** argv) {
 
   // Real messages of this joint count give the real sizes.
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(joints);
-  const auto sample = lagrange::transport::plantSample(0, 0.0, zero, zero, zero, 0.0, 0.0, {});
+  const auto sample = lagrange::plant::plantSample(0, 0.0, zero, zero, zero, 0.0, 0.0, {});
   lagrange::controller::Theorem1Output out{zero, zero, zero, zero, zero, Eigen::MatrixXd(0, joints)};
-  const auto command = lagrange::transport::commandMessage(out, 0, 0.0);
+  const auto command = lagrange::controller::commandMessage(out, 0, 0.0);
   lagrange::actuator::ActuatorOutput act{zero,
                                          Eigen::Array<bool, Eigen::Dynamic, 1>::Constant(joints, false)};
-  const auto state = lagrange::transport::actuatorMessage(act, Eigen::MatrixXd(0, joints), command);
+  const auto state = lagrange::actuator::actuatorMessage(act, Eigen::MatrixXd(0, joints), command);
   const std::vector<uint8_t> pos = encode(sample.position), cmd = encode(command), st = encode(state);
 
   // Two forwarders: POS -> CMD and CMD -> ACT.

@@ -101,7 +101,8 @@ struct RealtimeConfig {
 };
 
 /// What may happen to a datagram on one channel (probabilities in [0, 1], times in s).
-/// (faults.channels.NAME; transport/fault_injector.hpp)
+/// (faults.channels.NAME; injected by transport/fault_injector.hpp, which
+/// receives them as transport::FaultRule from runtime/process.cpp)
 struct ChannelFaults {
   double drop = 0.0;
   double duplicate = 0.0;
@@ -109,9 +110,6 @@ struct ChannelFaults {
   double corrupt = 0.0;
   double delay = 0.0;
   double delay_jitter = 0.0;
-  bool any() const {
-    return drop > 0 || duplicate > 0 || reorder > 0 || corrupt > 0 || delay > 0 || delay_jitter > 0;
-  }
 };
 
 /// Seeded fault injection on the sending side (faults.*).

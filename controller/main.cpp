@@ -12,21 +12,21 @@
 #include <spdlog/spdlog.h>
 
 #include "controller/chain_state_buffer.hpp"
+#include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/scenario_controller.hpp"
-#include "transport/builders.hpp"
+#include "runtime/process.hpp"
+#include "runtime/realtime_responder.hpp"
+#include "runtime/tick_responder.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
-#include "transport/process.hpp"
-#include "transport/realtime_responder.hpp"
-#include "transport/tick_responder.hpp"
 
 namespace lagrange {
 namespace {
 
 int DoMain(int argc, char** argv) {
   bool strict = false;
-  return transport::runProcess(
+  return runtime::runProcess(
       "controller",
       "Position-feedback tracking controller over LCM: Theorem 1 (eq. 90) or cascaded (eq. 750).", argc, argv,
       [&](CLI::App& app) {
@@ -94,7 +94,7 @@ int DoMain(int argc, char** argv) {
               });
         }
         auto command = [&](const lagrange::plant_position_t& m, const Eigen::MatrixXd& chain_state,
-                           const Eigen::MatrixXd* motor, transport::InputTicks inputs) {
+                           const Eigen::MatrixXd* motor, controller::InputTicks inputs) {
           const Eigen::VectorXd q = transport::toEigen(m.q);
           const auto out =
               motor ? ctl.stepFlexible(m.header.sim_time, q, motor->row(0).transpose(),
@@ -102,24 +102,24 @@ int DoMain(int argc, char** argv) {
                                            ? std::optional(Eigen::VectorXd(motor->row(1).transpose()))
                                            : std::nullopt)
                     : ctl.step(m.header.sim_time, q, chain_state);
-          return transport::commandMessage(out, m.header.tick, m.header.sim_time, inputs);
+          return controller::commandMessage(out, m.header.tick, m.header.sim_time, inputs);
         };
         if (s.mode == config::Mode::kRealtime) {
           // A quarter period after the plant: its position has arrived. The
           // newest chain state is used (latest-value semantics).
-          return transport::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
+          return runtime::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
               node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
               {s.tickPeriod(), 0.25, s.realtime.max_input_age}, [&](const lagrange::plant_position_t& m) {
-                const transport::InputTicks inputs{ctl.order() > 0 ? xi_valid_for - 1 : -1,
-                                                   ctl.flexible() ? newest_motor_tick : -1};
+                const controller::InputTicks inputs{ctl.order() > 0 ? xi_valid_for - 1 : -1,
+                                                    ctl.flexible() ? newest_motor_tick : -1};
                 return command(m, xi, ctl.flexible() ? &*newest_motor : nullptr, inputs);
               });
         }
         // Lockstep: answer position k only with the chain state of t_k; if
         // ACTUATOR_STATE k-1 has not arrived yet, stay silent: the plant
         // re-sends position k and it is answered then.
-        transport::Progress progress;
-        transport::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
+        runtime::Progress progress;
+        runtime::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
             s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
             [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
@@ -133,7 +133,7 @@ int DoMain(int argc, char** argv) {
               if (!state) return std::nullopt;
               return command(m, *state, nullptr, {m.header.tick - 1, -1});  // tick 0: the initial state
             });
-        return transport::serveUntilPlantFinished(node, progress);
+        return runtime::serveUntilPlantFinished(node, progress);
       });
 }
 

@@ -19,15 +19,15 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 
+#include "config/scenario_lcm.hpp"
 #include "controller/gain_report.hpp"
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tick_coverage.hpp"
 #include "logger/tracking_metrics.hpp"
-#include "transport/builders.hpp"
+#include "runtime/process.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
-#include "transport/process.hpp"
 
 namespace lagrange {
 namespace {
@@ -39,7 +39,7 @@ int DoMain(int argc, char** argv) {
   std::string out_dir = ".";
   double finish_grace = 2.0;
   int progress_fd = -1;
-  return transport::runProcess(
+  return runtime::runProcess(
       "logger", "Records every LCM channel to run.lcm and writes summary.json.", argc, argv,
       [&](CLI::App& app) {
         app.add_option("-o,--out", out_dir, "Directory for run.lcm and summary.json")->capture_default_str();
@@ -54,7 +54,7 @@ int DoMain(int argc, char** argv) {
         const auto wall_start = Clock::now();
         const std::string log_path = (std::filesystem::path(out_dir) / "run.lcm").string();
         logger::EventLog log(log_path);
-        const lagrange::scenario_t scenario = transport::scenarioMessage(s);
+        const lagrange::scenario_t scenario = config::scenarioMessage(s);
         log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
 
         // The sampled-data check waits for the summary: at start it would delay
@@ -62,7 +62,7 @@ int DoMain(int argc, char** argv) {
         controller::GainReport gains = controller::checkGains(s, false);
         logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance,
                                         s.metrics.xi_tolerance);
-        transport::StatusReporter status(node);
+        runtime::StatusReporter status(node);
         logger::RunFacts facts;
         facts.log_path = log_path;
         facts.run_id = node.runId();
@@ -185,7 +185,7 @@ int DoMain(int argc, char** argv) {
         auto next_flush = Clock::now() + std::chrono::milliseconds(100);
         auto next_status = Clock::now() + std::chrono::milliseconds(100);
         auto next_progress_line = Clock::now();
-        while (!transport::stopRequested()) {
+        while (!runtime::stopRequested()) {
           node.handle(20);
           const auto now = Clock::now();
           if (now >= next_scenario) {
@@ -221,11 +221,11 @@ int DoMain(int argc, char** argv) {
         // the others are stopping too: wait (up to the grace) for their final
         // STATUS so the summary says how each ended.
         const auto drain_until =
-            Clock::now() + (transport::stopRequested() ? std::chrono::duration<double>(finish_grace)
-                                                       : std::chrono::duration<double>(0.2));
+            Clock::now() + (runtime::stopRequested() ? std::chrono::duration<double>(finish_grace)
+                                                     : std::chrono::duration<double>(0.2));
         while (Clock::now() < drain_until) {
           const bool got = node.raw().handleTimeout(10) > 0;
-          if (!got && (!transport::stopRequested() || all_reported(""))) break;
+          if (!got && (!runtime::stopRequested() || all_reported(""))) break;
         }
         // Completed means every tick was recorded, however the logger was stopped.
         // (Realtime runs do not re-send: a sample lost on the way is missing
@@ -233,7 +233,7 @@ int DoMain(int argc, char** argv) {
         facts.status = metrics.newestTick() >= s.lastTick() ? "completed" : "interrupted";
         if (facts.status == "completed" && !all_reported("finished"))
           spdlog::warn("not every process reported 'finished' within {} s of the plant", finish_grace);
-        report(transport::stopRequested() ? "interrupted" : "finished");
+        report(runtime::stopRequested() ? "interrupted" : "finished");
         write_progress();  // the final sample, for the launcher's last progress line
         log.flush();
         facts.log_events = log.events();

@@ -10,10 +10,9 @@
 
 #include "plant/plant_loops.hpp"
 #include "plant/scenario_plant.hpp"
-#include "transport/builders.hpp"
+#include "runtime/process.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
-#include "transport/process.hpp"
 
 namespace lagrange {
 namespace {
@@ -22,7 +21,7 @@ using Clock = std::chrono::steady_clock;
 
 int DoMain(int argc, char** argv) {
   double startup_timeout = 30.0;
-  return transport::runProcess(
+  return runtime::runProcess(
       "plant", "ODE simulation of the robot arm; drives the clock of the run.", argc, argv,
       [&](CLI::App& app) {
         app.add_option("--startup-timeout", startup_timeout,
@@ -31,7 +30,7 @@ int DoMain(int argc, char** argv) {
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         plant::PlantSim sim = plant::plantFor(s);
-        transport::StatusReporter status(node);
+        runtime::StatusReporter status(node);
         return s.mode == config::Mode::kRealtime ? plant::runRealtime(s, node, sim, status, startup_timeout)
                                                  : plant::runLockstep(s, node, sim, status, startup_timeout);
       });

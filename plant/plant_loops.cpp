@@ -8,7 +8,7 @@
 #include <optional>
 #include <set>
 
-#include "transport/builders.hpp"
+#include "plant/plant_lcm.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
@@ -18,11 +18,11 @@ namespace lagrange::plant {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-transport::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time,
-                              const Eigen::VectorXd& tau_applied, transport::TorqueInput input) {
+plant::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time,
+                          const Eigen::VectorXd& tau_applied, plant::TorqueInput input) {
   const PlantState st = sim.state();
   const PlantEnergy e = sim.energy();
-  return transport::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input);
+  return plant::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input);
 }
 
 // What the plant publishes at a tick: the measurements (PLANT_MOTOR for
@@ -33,12 +33,12 @@ struct TickMessages {
   lagrange::plant_truth_t truth;
 };
 
-TickMessages tickMessages(const config::Scenario& s, const PlantSim& sim, const transport::PlantSample& out) {
+TickMessages tickMessages(const config::Scenario& s, const PlantSim& sim, const plant::PlantSample& out) {
   TickMessages m{out.position, std::nullopt, out.truth};
   if (s.flexible) {
     const PlantState st = sim.state();
-    m.motor = transport::motorMessage(out.position.header.tick, out.position.header.sim_time, st.motor_q,
-                                      st.motor_qdot, s.flexible->rate_sensor);
+    m.motor = plant::motorMessage(out.position.header.tick, out.position.header.sim_time, st.motor_q,
+                                  st.motor_qdot, s.flexible->rate_sensor);
   }
   return m;
 }
@@ -52,7 +52,7 @@ void publishMeasurements(transport::LcmNode& node, const TickMessages& m) {
 }  // namespace
 
 int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
-                transport::StatusReporter& status, double startup_timeout) {
+                runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
   const int substeps = s.substepsPerTick();
   const int64_t last_tick = s.lastTick();
@@ -102,7 +102,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     const double t = static_cast<double>(k) * s.tickPeriod();
     auto resend_unconfirmed_at = Clock::now() + retransmit;
     while (logger_tick == -2 || k - logger_tick > s.lockstep.logger_window) {
-      if (transport::stopRequested()) break;
+      if (runtime::stopRequested()) break;
       if (logger_tick == -2 && Clock::now() > startup_deadline)
         throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
                                  " s; is it running on the same LCM URL?");
@@ -112,13 +112,12 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         resend_unconfirmed_at = Clock::now() + retransmit;
       }
     }
-    if (transport::stopRequested()) {
+    if (runtime::stopRequested()) {
       status.publish("interrupted", k - 1, t);
       return 0;
     }
-    const transport::TorqueInput input =
-        k == 0 ? transport::TorqueInput{}
-               : transport::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED};
+    const plant::TorqueInput input =
+        k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED};
     const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), input));
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
@@ -131,7 +130,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     awaited_tick = k;
     answered = false;
     auto resend_at = Clock::now() + retransmit;
-    while (!answered && !transport::stopRequested()) {
+    while (!answered && !runtime::stopRequested()) {
       node.handle(5);
       if (!answered && Clock::now() >= resend_at) {
         publishMeasurements(node, out);
@@ -139,7 +138,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         resend_at = Clock::now() + retransmit;
       }
     }
-    if (transport::stopRequested()) {
+    if (runtime::stopRequested()) {
       status.publish("interrupted", k, t);
       return 0;
     }
@@ -151,7 +150,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   // gone away does not keep the plant forever).
   const auto log_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
   auto resend_unconfirmed_at = Clock::now() + retransmit;
-  while (logger_tick < last_tick && Clock::now() < log_deadline && !transport::stopRequested()) {
+  while (logger_tick < last_tick && Clock::now() < log_deadline && !runtime::stopRequested()) {
     node.handle(5);
     if (Clock::now() >= resend_unconfirmed_at) {
       resendUnconfirmed();
@@ -176,7 +175,7 @@ namespace {
 // tick of a realtime run passes unheard.
 void awaitPeers(transport::LcmNode& node, const std::set<std::string>& heard, double timeout) {
   const auto deadline = Clock::now() + std::chrono::duration<double>(timeout);
-  while (heard.size() < 3 && !transport::stopRequested()) {
+  while (heard.size() < 3 && !runtime::stopRequested()) {
     if (Clock::now() > deadline)
       throw std::runtime_error("logger, controller and actuator did not all report within " +
                                std::to_string(timeout) + " s; are they running on the same LCM URL?");
@@ -186,7 +185,7 @@ void awaitPeers(transport::LcmNode& node, const std::set<std::string>& heard, do
 }  // namespace
 
 int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
-                transport::StatusReporter& status, double startup_timeout) {
+                runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
   const int64_t max_age = s.realtime.max_torque_age;
@@ -236,10 +235,10 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
 
   Eigen::MatrixXd tau =
       Eigen::MatrixXd::Zero(torque_steps, n);  // applied over the period ending at the sample
-  transport::TorqueInput applied;              // where tau came from
+  plant::TorqueInput applied;                  // where tau came from
   loop.start();
   auto next_status = transport::monotonicNs() + 500'000'000LL;
-  for (int64_t k = 0; k <= last_tick && !transport::stopRequested(); ++k) {
+  for (int64_t k = 0; k <= last_tick && !runtime::stopRequested(); ++k) {
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
     const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), applied));
@@ -279,7 +278,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
   }
   status.setLoopStats(stats());
-  if (transport::stopRequested()) {
+  if (runtime::stopRequested()) {
     status.publish("interrupted", used_tick, static_cast<double>(used_tick) * s.tickPeriod());
     return 0;
   }

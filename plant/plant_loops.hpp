@@ -15,15 +15,15 @@
 
 #include "config/scenario.hpp"
 #include "plant/plant_sim.hpp"
+#include "runtime/process.hpp"
 #include "transport/lcm_node.hpp"
-#include "transport/process.hpp"
 
 namespace lagrange::plant {
 
 /// Both return the exit code; they publish the final STATUS themselves.
 int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
-                transport::StatusReporter& status, double startup_timeout);
+                runtime::StatusReporter& status, double startup_timeout);
 int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
-                transport::StatusReporter& status, double startup_timeout);
+                runtime::StatusReporter& status, double startup_timeout);
 
 }  // namespace lagrange::plant

@@ -5,16 +5,19 @@
 #include <fstream>
 #include <iostream>
 
+#include "actuator/actuator_lcm.hpp"
 #include "actuator/integrator_chain.hpp"
+#include "config/scenario_lcm.hpp"
+#include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/scenario_controller.hpp"
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
 #include "model/error.hpp"
+#include "plant/plant_lcm.hpp"
 #include "plant/scenario_plant.hpp"
 #include "tools/progress.hpp"
-#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 
@@ -26,7 +29,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   const auto wall_start = std::chrono::steady_clock::now();
   const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
   logger::EventLog log(log_path);
-  log.writeMessage(transport::kScenario, transport::scenarioMessage(s), transport::nowUtime());
+  log.writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
   controller::ScenarioController ctl(s);
@@ -43,10 +46,9 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
     const double t = static_cast<double>(k) * s.tickPeriod();
     const plant::PlantState st = sim.state();
     const plant::PlantEnergy e = sim.energy();
-    const transport::PlantSample sample = transport::plantSample(
+    const plant::PlantSample sample = plant::plantSample(
         k, t, st.q, st.qdot, tau.row(0).transpose(), e.kinetic, e.potential,
-        k == 0 ? transport::TorqueInput{}
-               : transport::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
+        k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
     log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
     log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
@@ -55,19 +57,19 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
     const Eigen::VectorXd q = transport::toEigen(sample.position.q);
     std::optional<controller::Theorem1Output> out;
     if (s.flexible) {
-      const auto motor = transport::motorMessage(k, t, st.motor_q, st.motor_qdot, s.flexible->rate_sensor);
+      const auto motor = plant::motorMessage(k, t, st.motor_q, st.motor_qdot, s.flexible->rate_sensor);
       log.writeMessage(transport::kPlantMotor, motor, motor.header.publish_utime);
-      out = ctl.stepFlexible(sample_time, q, transport::toEigen(motor.q), transport::motorRates(motor));
+      out = ctl.stepFlexible(sample_time, q, transport::toEigen(motor.q), plant::motorRates(motor));
     } else {
       out = ctl.step(sample_time, q, act.state());
     }
-    const transport::InputTicks inputs{ctl.order() > 0 ? k - 1 : -1, s.flexible ? k : -1};
-    const auto command = transport::commandMessage(*out, k, sample_time, inputs);
+    const controller::InputTicks inputs{ctl.order() > 0 ? k - 1 : -1, s.flexible ? k : -1};
+    const auto command = controller::commandMessage(*out, k, sample_time, inputs);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied =
         act.step(transport::toEigen(command.u), s.tickPeriod(), s.torqueStepsPerTick());
-    const auto state = transport::actuatorMessage(applied, act.state(), command);
+    const auto state = actuator::actuatorMessage(applied, act.state(), command);
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
     metrics.addTorque(tau);

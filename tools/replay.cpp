@@ -7,8 +7,8 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "plant/plant_lcm.hpp"
 #include "tools/replay_log.hpp"
-#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 
@@ -60,7 +60,7 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
               const auto& motor = input(rec.motor, cmd.input_motor_tick, transport::kPlantMotor,
                                         transport::kControlCommand, k);
               q2 = transport::toEigen(motor.q);
-              q2dot = transport::motorRates(motor);
+              q2dot = plant::motorRates(motor);
             }
             out = ctl.stepFlexible(position.header.sim_time, q, q2, q2dot);
           } else {

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "plant/plant_lcm.hpp"
 #include "plant/scenario_plant.hpp"
 #include "tools/replay.hpp"
 #include "tools/replay_log.hpp"
-#include "transport/builders.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 
@@ -47,7 +47,7 @@ std::string chooseTorque(const Recorded& rec, const lagrange::plant_truth_t& tru
 
 // First difference between what the plant recorded at a tick and the replayed sample.
 std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& truth,
-                            const transport::PlantSample& replayed, const plant::PlantState& state) {
+                            const plant::PlantSample& replayed, const plant::PlantState& state) {
   const lagrange::plant_truth_t& r = replayed.truth;
   std::string d = compare("PLANT_TRUTH.sim_time", truth.header.sim_time, r.header.sim_time);
   if (d.empty()) d = compare("PLANT_TRUTH.q", truth.q, transport::toEigen(r.q));
@@ -105,9 +105,9 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
       if (d.empty()) {
         const plant::PlantState st = sim.state();
         const plant::PlantEnergy e = sim.energy();
-        const auto replayed = transport::plantSample(k, static_cast<double>(k) * s.tickPeriod(), st.q,
-                                                     st.qdot, tau.row(0).transpose(), e.kinetic, e.potential,
-                                                     {truth.input_actuator_tick, truth.torque_source});
+        const auto replayed = plant::plantSample(k, static_cast<double>(k) * s.tickPeriod(), st.q, st.qdot,
+                                                 tau.row(0).transpose(), e.kinetic, e.potential,
+                                                 {truth.input_actuator_tick, truth.torque_source});
         d = firstDifference(rec, truth, replayed, st);
       }
       ++result.commands;

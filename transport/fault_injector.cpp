@@ -10,7 +10,7 @@ namespace {
 constexpr auto kMaxHold = std::chrono::milliseconds(20);
 }  // namespace
 
-FaultInjector::FaultInjector(lcm::LCM& lcm, std::map<std::string, ChannelFaults> rules, uint64_t seed)
+FaultInjector::FaultInjector(lcm::LCM& lcm, std::map<std::string, FaultRule> rules, uint64_t seed)
     : lcm_(lcm), rules_(std::move(rules)), rng_(seed), worker_([this] { run(); }) {}
 
 FaultInjector::~FaultInjector() {
@@ -22,7 +22,7 @@ FaultInjector::~FaultInjector() {
   worker_.join();
 }
 
-const ChannelFaults* FaultInjector::rulesFor(const std::string& channel) const {
+const FaultRule* FaultInjector::rulesFor(const std::string& channel) const {
   auto it = rules_.find(channel);
   if (it == rules_.end()) it = rules_.find("all");
   return it == rules_.end() || !it->second.any() ? nullptr : &it->second;
@@ -33,7 +33,7 @@ int FaultInjector::send(const std::string& channel, const std::vector<uint8_t>& 
 }
 
 int FaultInjector::publish(const std::string& channel, std::vector<uint8_t> bytes) {
-  const ChannelFaults* rules = rulesFor(channel);
+  const FaultRule* rules = rulesFor(channel);
   if (rules == nullptr) return send(channel, bytes);
   std::unique_lock<std::mutex> lock(mutex_);
   InjectedCounts& count = counts_[channel];

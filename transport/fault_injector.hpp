@@ -21,11 +21,22 @@
 #include <thread>
 #include <vector>
 
-#include "config/scenario.hpp"
-
 namespace lagrange::transport {
 
-using config::ChannelFaults;
+/// What may happen to a datagram on one channel (probabilities in [0, 1],
+/// times in s). The scenario's faults.channels.NAME (config::FaultRule)
+/// becomes one of these in runtime/process.cpp: transport knows no config.
+struct FaultRule {
+  double drop = 0.0;
+  double duplicate = 0.0;
+  double reorder = 0.0;
+  double corrupt = 0.0;
+  double delay = 0.0;
+  double delay_jitter = 0.0;
+  bool any() const {
+    return drop > 0 || duplicate > 0 || reorder > 0 || corrupt > 0 || delay > 0 || delay_jitter > 0;
+  }
+};
 
 /// Faults injected on one channel so far.
 struct InjectedCounts {
@@ -35,7 +46,7 @@ struct InjectedCounts {
 class FaultInjector {
  public:
   /// @param rules per channel; the key "all" applies to channels without their own entry.
-  FaultInjector(lcm::LCM& lcm, std::map<std::string, ChannelFaults> rules, uint64_t seed);
+  FaultInjector(lcm::LCM& lcm, std::map<std::string, FaultRule> rules, uint64_t seed);
   ~FaultInjector();  ///< sends what is still delayed or held, then stops the thread
   FaultInjector(const FaultInjector&) = delete;
   FaultInjector& operator=(const FaultInjector&) = delete;
@@ -53,13 +64,13 @@ class FaultInjector {
     std::string channel;
     std::vector<uint8_t> bytes;
   };
-  const ChannelFaults* rulesFor(const std::string& channel) const;
+  const FaultRule* rulesFor(const std::string& channel) const;
   void schedule(Pending p);
   void run();
   int send(const std::string& channel, const std::vector<uint8_t>& bytes);
 
   lcm::LCM& lcm_;
-  std::map<std::string, ChannelFaults> rules_;
+  std::map<std::string, FaultRule> rules_;
   std::mt19937_64 rng_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -56,7 +56,7 @@ void LcmNode::reject(const std::string& channel, RejectReason why, const std::st
                  process_name_, channel, detail);
 }
 
-void LcmNode::injectFaults(const std::map<std::string, config::ChannelFaults>& rules, uint64_t seed) {
+void LcmNode::injectFaults(const std::map<std::string, FaultRule>& rules, uint64_t seed) {
   faults_ = std::make_unique<FaultInjector>(lcm_, rules, seed);
 }
 

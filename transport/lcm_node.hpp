@@ -83,7 +83,7 @@ class LcmNode {
   }
 
   /// From now on, what this node publishes passes through seeded fault injection (config faults.*).
-  void injectFaults(const std::map<std::string, config::ChannelFaults>& rules, uint64_t seed);
+  void injectFaults(const std::map<std::string, FaultRule>& rules, uint64_t seed);
 
   /// From now on, each datagram reaching this node is lost for it with this
   /// probability (config faults.receivers), before any handler sees it:

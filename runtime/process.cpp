@@ -1,4 +1,4 @@
-#include "transport/process.hpp"
+#include "runtime/process.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -12,7 +12,7 @@
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
 
-namespace lagrange::transport {
+namespace lagrange::runtime {
 
 namespace {
 std::atomic<bool> stop_flag{false};
@@ -21,10 +21,17 @@ void onStopSignal(int) { stop_flag = true; }
 
 bool stopRequested() { return stop_flag.load(); }
 
+std::map<std::string, transport::FaultRule> faultRules(const config::FaultsConfig& faults) {
+  std::map<std::string, transport::FaultRule> rules;
+  for (const auto& [channel, f] : faults.channels)
+    rules[channel] = {f.drop, f.duplicate, f.reorder, f.corrupt, f.delay, f.delay_jitter};
+  return rules;
+}
+
 void StatusReporter::publish(const std::string& state, int64_t last_tick, double sim_time,
                              double tracking_error, const std::string& message) {
   lagrange::status_t s{};
-  s.header = makeHeader(std::max<int64_t>(last_tick, 0), std::max(sim_time, 0.0));
+  s.header = transport::makeHeader(std::max<int64_t>(last_tick, 0), std::max(sim_time, 0.0));
   s.process = node_.processName();
   s.state = state;
   s.last_tick = last_tick;
@@ -35,32 +42,32 @@ void StatusReporter::publish(const std::string& state, int64_t last_tick, double
   s.channels = node_.channelStats();
   bool found = false;
   for (auto& c : s.channels)
-    if (c.channel == kStatus) {
+    if (c.channel == transport::kStatus) {
       c.published++;
       found = true;
     }
   if (!found) {
     lagrange::channel_stats_t c{};
-    c.channel = kStatus;
+    c.channel = transport::kStatus;
     c.published = 1;
     c.received = c.rejected = 0;
     s.channels.push_back(c);
   }
   s.num_channels = static_cast<int32_t>(s.channels.size());
   s.loop = loop_;
-  node_.publish(kStatus, s);
+  node_.publish(transport::kStatus, s);
 }
 
-void watchPlantFinished(LcmNode& node, bool& finished) {
+void watchPlantFinished(transport::LcmNode& node, bool& finished) {
   node.subscribe<lagrange::status_t>(
-      kStatus, [](const auto& m) { return validate(m); },
+      transport::kStatus, [](const auto& m) { return transport::validate(m); },
       [&finished](const lagrange::status_t& m) {
         if (m.process == "plant" && m.state == "finished") finished = true;
       });
 }
 
-int serveUntilPlantFinished(LcmNode& node, const Progress& progress, const std::function<void()>& when_idle,
-                            double idle_seconds) {
+int serveUntilPlantFinished(transport::LcmNode& node, const Progress& progress,
+                            const std::function<void()>& when_idle, double idle_seconds) {
   bool plant_finished = false;
   watchPlantFinished(node, plant_finished);
   StatusReporter status(node);
@@ -127,19 +134,20 @@ int runProcess(const std::string& name, const std::string& description, int argc
     const config::Scenario scenario = config::loadScenario(config_path, overrides);
     // Before LCM starts its receive thread, so that the thread inherits it.
     if (scenario.mode == config::Mode::kRealtime &&
-        enterRealtimeScheduling(scenario.realtime.priority) == "other" && scenario.realtime.priority > 0)
+        transport::enterRealtimeScheduling(scenario.realtime.priority) == "other" &&
+        scenario.realtime.priority > 0)
       spdlog::warn(
           "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
           "the normal scheduler",
           scenario.realtime.priority);
-    LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
+    transport::LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
     // Each process its own stream of draws, the same in every run with this seed.
     const auto seed_for = [&name](uint64_t seed) {
       for (const unsigned char c : name) seed = (seed ^ c) * 1099511628211ULL;
       return seed;
     };
     if (!scenario.faults.channels.empty()) {
-      node.injectFaults(scenario.faults.channels, seed_for(scenario.faults.seed));
+      node.injectFaults(faultRules(scenario.faults), seed_for(scenario.faults.seed));
       spdlog::info("fault injection on: seed {}", scenario.faults.seed);
     }
     if (const auto it = scenario.faults.receiver_drop.find(name); it != scenario.faults.receiver_drop.end()) {
@@ -156,4 +164,4 @@ int runProcess(const std::string& name, const std::string& description, int argc
   }
 }
 
-}  // namespace lagrange::transport
+}  // namespace lagrange::runtime

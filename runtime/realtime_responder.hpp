@@ -10,12 +10,12 @@
 #include <optional>
 #include <string>
 
+#include "runtime/process.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
-#include "transport/process.hpp"
 #include "transport/rate_loop.hpp"
 
-namespace lagrange::transport {
+namespace lagrange::runtime {
 
 struct RealtimeSettings {
   double period = 1e-3;         ///< [s]
@@ -24,11 +24,12 @@ struct RealtimeSettings {
 };
 
 template <class In, class Out>
-int serveRealtime(LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
-                  const RealtimeSettings& settings, const std::function<Out(const In&)>& compute) {
+int serveRealtime(transport::LcmNode& node, const std::string& in_channel, const std::string& out_channel,
+                  int joints, const RealtimeSettings& settings,
+                  const std::function<Out(const In&)>& compute) {
   std::optional<In> latest;
   node.subscribe<In>(
-      in_channel, [joints](const In& m) { return validate(m, joints); },
+      in_channel, [joints](const In& m) { return transport::validate(m, joints); },
       [&latest](const In& m) {
         if (!latest || m.header.tick > latest->header.tick) latest = m;
       });
@@ -39,23 +40,23 @@ int serveRealtime(LcmNode& node, const std::string& in_channel, const std::strin
   Progress progress;
   std::vector<double> ages;
   int64_t missing = 0, stale = 0;
-  auto stats = [&](const FixedRateLoop& loop) {
+  auto stats = [&](const transport::FixedRateLoop& loop) {
     lagrange::loop_stats_t s = loop.stats();
-    setInputStats(s, ages, missing, stale);
+    transport::setInputStats(s, ages, missing, stale);
     return s;
   };
 
-  FixedRateLoop loop(settings.period, settings.phase);
+  transport::FixedRateLoop loop(settings.period, settings.phase);
   status.publish("ready", -1, 0.0);
   loop.start();
-  auto next_status = monotonicNs() + 500'000'000LL;
+  auto next_status = transport::monotonicNs() + 500'000'000LL;
   while (!plant_finished && !stopRequested()) {
     loop.waitNext();
     node.drain();
     if (!latest || latest->header.tick <= progress.last_tick) {
       ++missing;
     } else {
-      const double age = static_cast<double>(nowUtime() - latest->header.publish_utime) * 1e-6;
+      const double age = static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6;
       if (age > settings.max_input_age) {
         ++stale;  // never act on an old sample
       } else {
@@ -64,7 +65,7 @@ int serveRealtime(LcmNode& node, const std::string& in_channel, const std::strin
       }
       progress = {latest->header.tick, latest->header.sim_time};
     }
-    if (monotonicNs() >= next_status) {
+    if (transport::monotonicNs() >= next_status) {
       status.setLoopStats(stats(loop));
       status.publish("running", progress.last_tick, progress.sim_time);
       next_status += 500'000'000LL;
@@ -75,4 +76,4 @@ int serveRealtime(LcmNode& node, const std::string& in_channel, const std::strin
   return 0;
 }
 
-}  // namespace lagrange::transport
+}  // namespace lagrange::runtime

@@ -7,13 +7,14 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "config/scenario.hpp"
 #include "lagrange/loop_stats_t.hpp"
 #include "transport/lcm_node.hpp"
 
-namespace lagrange::transport {
+namespace lagrange::runtime {
 
 /// Default LCM URL: LCM's own default group and port, TTL 0 (never leaves the host).
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
@@ -21,10 +22,13 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 /// True once SIGINT or SIGTERM arrived.
 bool stopRequested();
 
+/// The scenario's faults.channels as the transport's fault rules.
+std::map<std::string, transport::FaultRule> faultRules(const config::FaultsConfig& faults);
+
 /// Publishes this process's STATUS with its channel counters.
 class StatusReporter {
  public:
-  explicit StatusReporter(LcmNode& node) : node_(node) {}
+  explicit StatusReporter(transport::LcmNode& node) : node_(node) {}
   void publish(const std::string& state, int64_t last_tick, double sim_time,
                double tracking_error = std::nan(""), const std::string& message = "");
 
@@ -32,7 +36,7 @@ class StatusReporter {
   void setLoopStats(const lagrange::loop_stats_t& loop) { loop_ = loop; }
 
  private:
-  LcmNode& node_;
+  transport::LcmNode& node_;
   lagrange::loop_stats_t loop_{};
 };
 
@@ -44,7 +48,7 @@ struct Progress {
 
 /// Sets `finished` (which must outlive the node) once the plant reports
 /// STATUS "finished".
-void watchPlantFinished(LcmNode& node, bool& finished);
+void watchPlantFinished(transport::LcmNode& node, bool& finished);
 
 /// The loop of a process that only reacts to messages (controller, actuator):
 /// publishes STATUS "ready", handles messages with periodic "running" reports
@@ -53,12 +57,12 @@ void watchPlantFinished(LcmNode& node, bool& finished);
 /// `when_idle`, if given, runs whenever `progress` has not moved for
 /// `idle_seconds` (the actuator re-sends its last state: nobody else can
 /// re-request it).
-int serveUntilPlantFinished(LcmNode& node, const Progress& progress,
+int serveUntilPlantFinished(transport::LcmNode& node, const Progress& progress,
                             const std::function<void()>& when_idle = {}, double idle_seconds = 0.0);
 
 /// The body of a process: gets the validated scenario and a connected node;
 /// returns the exit code.
-using ProcessBody = std::function<int(const config::Scenario&, LcmNode&)>;
+using ProcessBody = std::function<int(const config::Scenario&, transport::LcmNode&)>;
 
 /// Parses the common options (plus those `add_options` adds), installs the
 /// signal handlers, loads the scenario, connects LCM and runs `body`,
@@ -72,4 +76,4 @@ int runProcess(const std::string& name, const std::string& description, int argc
 /// The LCM URL with recv_buf_size=bytes added (udpm URLs without one only).
 std::string withReceiveBuffer(const std::string& url, int bytes);
 
-}  // namespace lagrange::transport
+}  // namespace lagrange::runtime

@@ -14,21 +14,21 @@
 #include <optional>
 #include <string>
 
+#include "runtime/process.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
-#include "transport/process.hpp"
 
-namespace lagrange::transport {
+namespace lagrange::runtime {
 
 /// Returns the cached output (the answer to the newest tick), for re-sending.
 template <class In, class Out>
 std::shared_ptr<const std::optional<Out>> respondPerTick(
-    LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
+    transport::LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
     Progress& progress, int history, std::function<std::optional<Out>(const In&)> compute) {
   auto cached = std::make_shared<std::optional<Out>>();
   auto sent = std::make_shared<std::map<int64_t, Out>>();  // the last `history` answers, by tick
   node.subscribe<In>(
-      in_channel, [joints](const In& m) { return validate(m, joints); },
+      in_channel, [joints](const In& m) { return transport::validate(m, joints); },
       [&node, &progress, out_channel, compute, cached, sent, history](const In& m) {
         if (m.header.tick <= progress.last_tick) {
           if (const auto it = sent->find(m.header.tick); it != sent->end())
@@ -46,4 +46,4 @@ std::shared_ptr<const std::optional<Out>> respondPerTick(
   return cached;
 }
 
-}  // namespace lagrange::transport
+}  // namespace lagrange::runtime

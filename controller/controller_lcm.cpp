@@ -1,0 +1,27 @@
+#include "controller/controller_lcm.hpp"
+
+#include "transport/messages.hpp"
+
+namespace lagrange::controller {
+
+using transport::toStd;
+
+lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t position_tick, double sim_time,
+                                           InputTicks inputs) {
+  lagrange::control_command_t m;
+  m.header = transport::makeHeader(position_tick, sim_time);
+  m.input_position_tick = position_tick;
+  m.input_actuator_tick = inputs.actuator;
+  m.input_motor_tick = inputs.motor;
+  m.num_joints = static_cast<int32_t>(out.u.size());
+  m.u = toStd(out.u);
+  m.q_desired = toStd(out.q_desired);
+  m.q_error = toStd(out.q_error);
+  m.theta = toStd(out.theta);
+  m.filter_state = toStd(out.filter_state);
+  m.chain_order = static_cast<int32_t>(out.xi_error.rows());
+  for (int i = 0; i < out.xi_error.rows(); ++i) m.xi_error.push_back(toStd(out.xi_error.row(i).transpose()));
+  return m;
+}
+
+}  // namespace lagrange::controller
