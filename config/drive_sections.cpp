@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "config/controller_params.hpp"
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
@@ -48,18 +49,44 @@ void readActuatorSection(MapReader& root, Scenario& s) {
   }
 }
 
+namespace {
+std::string typeList() {
+  std::string list;
+  const std::vector<std::string> types = controllerTypes();
+  for (size_t i = 0; i < types.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == types.size() ? " or " : ", ") + types[i];
+  return list;
+}
+
+// The section of a controller registered outside config (controller/registry.hpp):
+// its declared per-joint parameters, nothing else.
+void readRegisteredController(MapReader& ctl, Scenario& s, const std::vector<ControllerParam>& params) {
+  if (s.actuator.order != 0)
+    ctl.fail("type", "a registered controller commands the joint torque; expected actuator.order 0, got " +
+                         std::to_string(s.actuator.order));
+  std::set<std::string> known = {"type"};
+  for (const ControllerParam& p : params) {
+    s.controller.params[p.key] = ctl.vector(p.key, s.dof(), true, p.positive);
+    known.insert(p.key);
+  }
+  ctl.finish(known);
+}
+}  // namespace
+
 // controller: its type, gains, filter start, stages and motor rate source.
 void readControllerSection(MapReader& root, Scenario& s) {
   const int n = s.dof();
   MapReader ctl = root.map("controller");
   s.controller.type = ctl.text("type");
-  if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible")
-    ctl.fail("type",
-             "unknown controller type '" + s.controller.type + "'; expected: theorem1, cascaded or flexible");
+  const std::vector<ControllerParam>* registered = registeredControllerParams(s.controller.type);
+  if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible" &&
+      registered == nullptr)
+    ctl.fail("type", "unknown controller type '" + s.controller.type + "'; expected: " + typeList());
   if (s.flexible && s.controller.type != "flexible")
     ctl.fail("type",
              "robot.flexible has elastic joints, which only the flexible controller (eq. 830) "
              "drives; expected: type flexible");
+  if (registered) return readRegisteredController(ctl, s, *registered);
   if (s.controller.type == "flexible") {
     if (!s.flexible)
       ctl.fail("type",

@@ -61,8 +61,12 @@ struct ActuatorConfig {
 };
 
 struct ControllerConfig {
-  /// "theorem1" (m = 0), "cascaded" (m >= 1) or "flexible" (the Corollary, eq. 830)
+  /// "theorem1" (m = 0), "cascaded" (m >= 1), "flexible" (the Corollary, eq. 830),
+  /// or a type registered by controller::registerControllerKind
   std::string type = "theorem1";
+  /// A registered type's per-joint parameters, by key (config/controller_params.hpp);
+  /// empty for the paper's types.
+  std::map<std::string, Eigen::VectorXd> params;
   /// "flexible": where q2' comes from: "measured" (the motor's rate sensor) or
   /// "filtered" (dirty derivative a s / (s + a) of q2 with a = motor_rate_pole).
   std::string motor_rate;

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "config/controller_params.hpp"
 #include "config/scenario.hpp"
 
 namespace lagrange::config {
@@ -13,6 +14,41 @@ void emitVector(YAML::Emitter& out, const char* key, const Eigen::VectorXd& v) {
   out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
   for (int i = 0; i < v.size(); ++i) out << v(i);
   out << YAML::EndSeq;
+}
+
+// The keys of the paper's controllers (theorem1, cascaded, flexible).
+void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
+  if (!c.motor_rate.empty()) out << YAML::Key << "motor_rate" << YAML::Value << c.motor_rate;
+  if (c.motor_rate_pole.size() > 0) emitVector(out, "motor_rate_pole", c.motor_rate_pole);
+  emitVector(out, "kp", c.gains.kp);
+  emitVector(out, "kd", c.gains.kd);
+  emitVector(out, "a", c.gains.a);
+  emitVector(out, "b", c.gains.b);
+  if (c.initial_filter_state)
+    emitVector(out, "initial_filter_state", *c.initial_filter_state);
+  else
+    out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
+  if (!c.stages.empty()) {
+    out << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
+    for (size_t i = 0; i < c.stages.size(); ++i) {
+      const auto& st = c.stages[i];
+      out << YAML::BeginMap;
+      emitVector(out, "kp", st.kp);
+      emitVector(out, "kd", st.kd);
+      emitVector(out, "a", st.a);
+      emitVector(out, "b", st.b);
+      if (i < c.stage_starts.size()) {
+        const controller::StageStart& start = c.stage_starts[i];
+        if (start.bumpless)
+          out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
+        else if (start.qc.size() != 0)
+          emitVector(out, "initial_filter_state", start.qc);
+        if (start.zeta.size() != 0) emitVector(out, "initial_zeta", start.zeta);
+      }
+      out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+  }
 }
 }  // namespace
 
@@ -88,39 +124,8 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << s.controller.type;
-  if (!s.controller.motor_rate.empty())
-    out << YAML::Key << "motor_rate" << YAML::Value << s.controller.motor_rate;
-  if (s.controller.motor_rate_pole.size() > 0)
-    emitVector(out, "motor_rate_pole", s.controller.motor_rate_pole);
-  emitVector(out, "kp", s.controller.gains.kp);
-  emitVector(out, "kd", s.controller.gains.kd);
-  emitVector(out, "a", s.controller.gains.a);
-  emitVector(out, "b", s.controller.gains.b);
-  if (s.controller.initial_filter_state)
-    emitVector(out, "initial_filter_state", *s.controller.initial_filter_state);
-  else
-    out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
-  if (!s.controller.stages.empty()) {
-    out << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
-    for (size_t i = 0; i < s.controller.stages.size(); ++i) {
-      const auto& st = s.controller.stages[i];
-      out << YAML::BeginMap;
-      emitVector(out, "kp", st.kp);
-      emitVector(out, "kd", st.kd);
-      emitVector(out, "a", st.a);
-      emitVector(out, "b", st.b);
-      if (i < s.controller.stage_starts.size()) {
-        const controller::StageStart& start = s.controller.stage_starts[i];
-        if (start.bumpless)
-          out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
-        else if (start.qc.size() != 0)
-          emitVector(out, "initial_filter_state", start.qc);
-        if (start.zeta.size() != 0) emitVector(out, "initial_zeta", start.zeta);
-      }
-      out << YAML::EndMap;
-    }
-    out << YAML::EndSeq;
-  }
+  for (const auto& [key, value] : s.controller.params) emitVector(out, key.c_str(), value);
+  if (registeredControllerParams(s.controller.type) == nullptr) emitPaperController(out, s.controller);
   out << YAML::EndMap;
 
   out << YAML::Key << "metrics" << YAML::Value << YAML::BeginMap;

@@ -31,6 +31,10 @@ struct GainReport {
   /// Whether the sampled implementation at the configured rate is adequate:
   /// the continuous-time conditions above say nothing about it.
   SampledDataCheck sampled;
+  /// Set when no stability condition is known for the controller (one
+  /// registered outside the paper): why nothing was checked. The fields
+  /// above are then empty and holds() is false.
+  std::optional<std::string> unchecked;
 
   /// Every evaluated continuous-time condition holds (the theorems' verdict;
   /// the sampled-data check is apart).
@@ -41,9 +45,14 @@ struct GainReport {
   bool propositionHolds() const;
 };
 
+/// The gain check of the scenario's controller (its registry entry's; see
+/// controller/registry.cpp).
 /// @param sampled_data also run the sampled-data check (tens of ms to a second;
 ///        the processes skip it at start and leave `sampled` empty).
 GainReport checkGains(const config::Scenario& scenario, bool sampled_data = true);
+
+/// The check of the paper's controllers (theorem1, cascaded, flexible).
+GainReport checkPaperGains(const config::Scenario& scenario, bool sampled_data);
 
 /// Lines a person reads: each condition's verdict, both sides and margin.
 std::string describe(const GainReport& report);

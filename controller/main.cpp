@@ -14,7 +14,7 @@
 #include "controller/chain_state_buffer.hpp"
 #include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
-#include "controller/scenario_controller.hpp"
+#include "controller/registry.hpp"
 #include "runtime/process.hpp"
 #include "runtime/realtime_responder.hpp"
 #include "runtime/tick_responder.hpp"
@@ -46,21 +46,22 @@ int DoMain(int argc, char** argv) {
           spdlog::warn("{} (running anyway; --strict makes this an error)", controller::describe(gains));
         }
 
-        controller::ScenarioController ctl(s);
+        const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
+        const controller::Needs needs = ctl->needs();
         // The actuator chain's state (cascaded controller): ACTUATOR_STATE of
         // tick k carries xi at t_{k+1}, what position k+1 is answered with.
         // Lockstep looks states up by tick; realtime uses the newest.
         controller::ChainStateBuffer by_tick(s.actuator.initial_state);
         Eigen::MatrixXd xi = s.actuator.initial_state;
         int64_t xi_valid_for = 0;  // the position tick the newest xi belongs to
-        if (ctl.order() > 0) {
+        if (needs.actuator_order > 0) {
           node.subscribe<lagrange::actuator_state_t>(
               transport::kActuatorState,
               [&](const lagrange::actuator_state_t& a) {
                 const std::string why = transport::validate(a, s.dof(), s.torqueStepsPerTick());
-                if (!why.empty() || a.order == ctl.order()) return why;
+                if (!why.empty() || a.order == needs.actuator_order) return why;
                 return "actuator order is " + std::to_string(a.order) + ", expected " +
-                       std::to_string(ctl.order());
+                       std::to_string(needs.actuator_order);
               },
               [&](const lagrange::actuator_state_t& a) {
                 const Eigen::MatrixXd state = transport::toEigen(a.xi);
@@ -75,7 +76,7 @@ int DoMain(int argc, char** argv) {
         controller::ChainStateBuffer motor_by_tick;
         std::optional<Eigen::MatrixXd> newest_motor;
         int64_t newest_motor_tick = -1;
-        if (ctl.flexible()) {
+        if (needs.motor_angles) {
           const bool rates = s.flexible->rate_sensor;
           // Realtime, before the first PLANT_MOTOR: the configured initial motor state.
           newest_motor = Eigen::MatrixXd(rates ? 2 : 1, s.dof());
@@ -95,14 +96,13 @@ int DoMain(int argc, char** argv) {
         }
         auto command = [&](const lagrange::plant_position_t& m, const Eigen::MatrixXd& chain_state,
                            const Eigen::MatrixXd* motor, controller::InputTicks inputs) {
-          const Eigen::VectorXd q = transport::toEigen(m.q);
-          const auto out =
-              motor ? ctl.stepFlexible(m.header.sim_time, q, motor->row(0).transpose(),
-                                       motor->rows() > 1
-                                           ? std::optional(Eigen::VectorXd(motor->row(1).transpose()))
-                                           : std::nullopt)
-                    : ctl.step(m.header.sim_time, q, chain_state);
-          return controller::commandMessage(out, m.header.tick, m.header.sim_time, inputs);
+          controller::ControllerInputs in;
+          in.t = m.header.sim_time;
+          in.q = transport::toEigen(m.q);
+          if (needs.actuator_order > 0) in.xi = chain_state;
+          if (motor) in.motor_q = motor->row(0).transpose();
+          if (motor && needs.motor_rates) in.motor_qdot = motor->row(1).transpose();
+          return controller::commandMessage(ctl->step(in), m.header.tick, m.header.sim_time, inputs);
         };
         if (s.mode == config::Mode::kRealtime) {
           // A quarter period after the plant: its position has arrived. The
@@ -110,9 +110,9 @@ int DoMain(int argc, char** argv) {
           return runtime::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
               node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
               {s.tickPeriod(), 0.25, s.realtime.max_input_age}, [&](const lagrange::plant_position_t& m) {
-                const controller::InputTicks inputs{ctl.order() > 0 ? xi_valid_for - 1 : -1,
-                                                    ctl.flexible() ? newest_motor_tick : -1};
-                return command(m, xi, ctl.flexible() ? &*newest_motor : nullptr, inputs);
+                const controller::InputTicks inputs{needs.actuator_order > 0 ? xi_valid_for - 1 : -1,
+                                                    needs.motor_angles ? newest_motor_tick : -1};
+                return command(m, xi, needs.motor_angles ? &*newest_motor : nullptr, inputs);
               });
         }
         // Lockstep: answer position k only with the chain state of t_k; if
@@ -123,12 +123,12 @@ int DoMain(int argc, char** argv) {
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
             s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
             [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
-              if (ctl.flexible()) {
+              if (needs.motor_angles) {
                 const std::optional<Eigen::MatrixXd> motor = motor_by_tick.take(m.header.tick);
                 if (!motor) return std::nullopt;  // PLANT_MOTOR k not here yet: the plant re-sends both
                 return command(m, xi, &*motor, {-1, m.header.tick});
               }
-              if (ctl.order() == 0) return command(m, xi, nullptr, {});
+              if (needs.actuator_order == 0) return command(m, xi, nullptr, {});
               const std::optional<Eigen::MatrixXd> state = by_tick.take(m.header.tick);
               if (!state) return std::nullopt;
               return command(m, *state, nullptr, {m.header.tick - 1, -1});  // tick 0: the initial state

@@ -7,6 +7,56 @@ nlohmann::json conditionJson(const model::ConditionReport& c) {
   return {{"name", c.name}, {"expression", c.expression}, {"lhs", c.lhs},
           {"rhs", c.rhs},   {"holds", c.holds},           {"margin", c.margin()}};
 }
+
+// gains: the controller's stability conditions and the constants they rest on.
+nlohmann::json gainsJson(const controller::GainReport& g) {
+  using nlohmann::json;
+  if (g.unchecked) return {{"checked", false}, {"why", *g.unchecked}};
+  json j = {
+      {"checked", true},
+      {"condition", g.condition.name},
+      {"expression", g.condition.expression},
+      {"lhs", g.condition.lhs},
+      {"rhs", g.condition.rhs},
+      {"condition_holds", g.holds()},
+      {"margin", g.margin()},
+      {"k_c", g.kc},
+      {"k_c_method", "proven: closed-form Christoffel symbols"},
+      {"k_c_largest_found", g.kc_found},
+      {"k_delta", g.kdelta},
+      {"k_delta_method", g.kdelta_exact ? "closed form" : "estimate: sampled supremum x 1.02"},
+  };
+  json conditions = json::array({conditionJson(g.condition)});
+  for (const auto& c : g.chain) conditions.push_back(conditionJson(c));
+  j["conditions"] = conditions;
+  if (g.eta)
+    j["eta"] = {{"eta1", g.eta->eta1},
+                {"eta2", g.eta->eta2},
+                {"eta3", g.eta->eta3},
+                {"method", "estimate: eta1, eta2 sampled suprema refined by local ascent; eta3 exact"}};
+  if (!g.proposition.empty()) {
+    json proposition = json::array();
+    for (const auto& c : g.proposition) proposition.push_back(conditionJson(c));
+    j["proposition1"] = proposition;
+    j["proposition1_holds"] = g.propositionHolds();
+  }
+  if (!g.warnings.empty()) j["warnings"] = g.warnings;
+  const controller::SampledDataCheck& sd = g.sampled;
+  j["sampled_data"] = {
+      {"rate", sd.rate},
+      {"verdict", sd.verdict},
+      {"why", sd.why},
+      {"spectral_radius", sd.spectral_radius},
+      {"worst_time", sd.worst_time},
+      {"sampled_decay", sd.sampled_decay},
+      {"continuous_decay", sd.continuous_decay},
+      {"fastest_mode", sd.fastest_mode},
+      {"fastest_mode_times_period", sd.fastestModeTimesPeriod()},
+      {"sufficient_rate", sd.sufficient_rate ? json(*sd.sufficient_rate) : json(nullptr)},
+      {"method", "estimate: the discretised closed loop linearised along the reference"},
+  };
+  return j;
+}
 }  // namespace
 
 nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
@@ -16,6 +66,8 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   j["scenario"] = s.name;
   j["mode"] = config::toString(s.mode);
   j["controller"] = {{"type", s.controller.type}};
+  for (const auto& [key, v] : s.controller.params)  // a registered type's keys
+    j["controller"][key] = std::vector<double>(v.data(), v.data() + v.size());
   if (s.controller.type == "flexible") {
     j["controller"]["motor_rate"] = s.controller.motor_rate;
     if (s.controller.motor_rate == "filtered")
@@ -55,49 +107,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     j["tracking"]["chain"] = chain;
   }
   j["torque"] = {{"max_abs", t.max_abs_torque}};
-  j["gains"] = {
-      {"condition", g.condition.name},
-      {"expression", g.condition.expression},
-      {"lhs", g.condition.lhs},
-      {"rhs", g.condition.rhs},
-      {"condition_holds", g.holds()},
-      {"margin", g.margin()},
-      {"k_c", g.kc},
-      {"k_c_method", "proven: closed-form Christoffel symbols"},
-      {"k_c_largest_found", g.kc_found},
-      {"k_delta", g.kdelta},
-      {"k_delta_method", g.kdelta_exact ? "closed form" : "estimate: sampled supremum x 1.02"},
-  };
-  json conditions = json::array({conditionJson(g.condition)});
-  for (const auto& c : g.chain) conditions.push_back(conditionJson(c));
-  j["gains"]["conditions"] = conditions;
-  if (g.eta)
-    j["gains"]["eta"] = {
-        {"eta1", g.eta->eta1},
-        {"eta2", g.eta->eta2},
-        {"eta3", g.eta->eta3},
-        {"method", "estimate: eta1, eta2 sampled suprema refined by local ascent; eta3 exact"}};
-  if (!g.proposition.empty()) {
-    json proposition = json::array();
-    for (const auto& c : g.proposition) proposition.push_back(conditionJson(c));
-    j["gains"]["proposition1"] = proposition;
-    j["gains"]["proposition1_holds"] = g.propositionHolds();
-  }
-  if (!g.warnings.empty()) j["gains"]["warnings"] = g.warnings;
-  const controller::SampledDataCheck& sd = g.sampled;
-  j["gains"]["sampled_data"] = {
-      {"rate", sd.rate},
-      {"verdict", sd.verdict},
-      {"why", sd.why},
-      {"spectral_radius", sd.spectral_radius},
-      {"worst_time", sd.worst_time},
-      {"sampled_decay", sd.sampled_decay},
-      {"continuous_decay", sd.continuous_decay},
-      {"fastest_mode", sd.fastest_mode},
-      {"fastest_mode_times_period", sd.fastestModeTimesPeriod()},
-      {"sufficient_rate", sd.sufficient_rate ? json(*sd.sufficient_rate) : json(nullptr)},
-      {"method", "estimate: the discretised closed loop linearised along the reference"},
-  };
+  j["gains"] = gainsJson(g);
   j["run_id"] = f.run_id;
   j["timing"] = {
       {"sim_time", t.sim_time},

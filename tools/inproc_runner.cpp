@@ -10,7 +10,7 @@
 #include "config/scenario_lcm.hpp"
 #include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
-#include "controller/scenario_controller.hpp"
+#include "controller/registry.hpp"
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
@@ -32,7 +32,8 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   log.writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
-  controller::ScenarioController ctl(s);
+  const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
+  const controller::Needs needs = ctl->needs();
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
   logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
 
@@ -54,17 +55,18 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
 
     const double sample_time = sample.position.header.sim_time;
-    const Eigen::VectorXd q = transport::toEigen(sample.position.q);
-    std::optional<controller::Theorem1Output> out;
+    controller::ControllerInputs in;
+    in.t = sample_time;
+    in.q = transport::toEigen(sample.position.q);
+    if (needs.actuator_order > 0) in.xi = act.state();
     if (s.flexible) {
       const auto motor = plant::motorMessage(k, t, st.motor_q, st.motor_qdot, s.flexible->rate_sensor);
       log.writeMessage(transport::kPlantMotor, motor, motor.header.publish_utime);
-      out = ctl.stepFlexible(sample_time, q, transport::toEigen(motor.q), plant::motorRates(motor));
-    } else {
-      out = ctl.step(sample_time, q, act.state());
+      if (needs.motor_angles) in.motor_q = transport::toEigen(motor.q);
+      if (needs.motor_rates) in.motor_qdot = plant::motorRates(motor);
     }
-    const controller::InputTicks inputs{ctl.order() > 0 ? k - 1 : -1, s.flexible ? k : -1};
-    const auto command = controller::commandMessage(*out, k, sample_time, inputs);
+    const controller::InputTicks inputs{needs.actuator_order > 0 ? k - 1 : -1, needs.motor_angles ? k : -1};
+    const auto command = controller::commandMessage(ctl->step(in), k, sample_time, inputs);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied =

@@ -28,6 +28,10 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
     // Exit 1 when the theory's conditions fail, or when the sampled loop at the
     // configured rate is unstable near the reference ("slow" only warns).
     if (!suggest) return r.holds() && r.sampled.verdict != "unstable" ? 0 : 1;
+    if (r.unchecked) {
+      std::cout << "\nno suggestion: --suggest knows the paper's controllers only\n";
+      return kExitFailed;
+    }
     config::Scenario suggested;
     try {
       suggested = controller::suggestGains(s);

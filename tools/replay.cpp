@@ -2,7 +2,7 @@
 
 #include "actuator/integrator_chain.hpp"
 #include "config/scenario.hpp"
-#include "controller/scenario_controller.hpp"
+#include "controller/registry.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
@@ -45,32 +45,33 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
       log_path, overrides, transport::kControlCommand, [&](const Opened& o, ReplayResult& result) {
         const Recorded& rec = o.rec;
         const config::Scenario& s = o.scenario;
-        controller::ScenarioController ctl(s);
+        const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
+        const controller::Needs needs = ctl->needs();
         for (const auto& cmd : rec.commands) {
           const int64_t k = cmd.input_position_tick;
           const auto& position =
               input(rec.positions, k, transport::kPlantPosition, transport::kControlCommand, k);
-          const Eigen::VectorXd q = transport::toEigen(position.q);
-          controller::Theorem1Output out;
-          if (ctl.flexible()) {
-            Eigen::VectorXd q2 = s.initial_state.motor_q;
-            std::optional<Eigen::VectorXd> q2dot;
-            if (s.flexible->rate_sensor) q2dot = s.initial_state.motor_qdot;
+          controller::ControllerInputs in;
+          in.t = position.header.sim_time;
+          in.q = transport::toEigen(position.q);
+          if (needs.motor_angles) {  // the configured initial state until the first PLANT_MOTOR
+            in.motor_q = s.initial_state.motor_q;
+            if (needs.motor_rates) in.motor_qdot = s.initial_state.motor_qdot;
             if (cmd.input_motor_tick >= 0) {
               const auto& motor = input(rec.motor, cmd.input_motor_tick, transport::kPlantMotor,
                                         transport::kControlCommand, k);
-              q2 = transport::toEigen(motor.q);
-              q2dot = plant::motorRates(motor);
+              in.motor_q = transport::toEigen(motor.q);
+              if (needs.motor_rates) in.motor_qdot = plant::motorRates(motor);
             }
-            out = ctl.stepFlexible(position.header.sim_time, q, q2, q2dot);
-          } else {
-            Eigen::MatrixXd xi = s.actuator.initial_state;
-            if (ctl.order() > 0 && cmd.input_actuator_tick >= 0)
-              xi = transport::toEigen(input(rec.actuator, cmd.input_actuator_tick, transport::kActuatorState,
-                                            transport::kControlCommand, k)
-                                          .xi);
-            out = ctl.step(position.header.sim_time, q, xi);
           }
+          if (needs.actuator_order > 0) {
+            in.xi = s.actuator.initial_state;
+            if (cmd.input_actuator_tick >= 0)
+              in.xi = transport::toEigen(input(rec.actuator, cmd.input_actuator_tick,
+                                               transport::kActuatorState, transport::kControlCommand, k)
+                                             .xi);
+          }
+          const controller::ControllerCommand out = ctl->step(in);
           ++result.commands;
           const std::string d = firstDifference(cmd, out);
           if (!d.empty()) {

@@ -64,7 +64,8 @@ std::string prepareOutDir(const std::string& dir) {
 bool gainsAllowRun(const controller::GainReport& gains, const RunOptions& opt) {
   if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
   if (!gains.holds() && opt.strict) {
-    std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is violated\n";
+    std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is "
+              << (gains.unchecked ? "not checked" : "violated") << "\n";
     return false;
   }
   return true;

@@ -1,0 +1,36 @@
+#include "config/controller_params.hpp"
+
+#include <map>
+#include <stdexcept>
+
+namespace lagrange::config {
+
+namespace {
+const std::vector<std::string> kPaperTypes = {"theorem1", "cascaded", "flexible"};
+
+// A function-local static: registrations run during static initialisation,
+// in any order across translation units.
+std::map<std::string, std::vector<ControllerParam>>& registered() {
+  static std::map<std::string, std::vector<ControllerParam>> types;
+  return types;
+}
+}  // namespace
+
+void registerControllerParams(const std::string& type, std::vector<ControllerParam> params) {
+  for (const auto& t : controllerTypes())
+    if (t == type) throw std::logic_error("controller type '" + type + "' is registered twice");
+  registered()[type] = std::move(params);
+}
+
+const std::vector<ControllerParam>* registeredControllerParams(const std::string& type) {
+  const auto it = registered().find(type);
+  return it == registered().end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> controllerTypes() {
+  std::vector<std::string> types = kPaperTypes;
+  for (const auto& [type, params] : registered()) types.push_back(type);
+  return types;
+}
+
+}  // namespace lagrange::config

@@ -1,0 +1,52 @@
+#include "controller/registry.hpp"
+
+#include <map>
+#include <stdexcept>
+
+#include "controller/paper_controllers.hpp"
+
+namespace lagrange::controller {
+
+namespace {
+// A function-local static, seeded with the paper's controllers at first use,
+// so registrations from other files' static initialisers find it ready.
+std::map<std::string, ControllerKind>& kinds() {
+  static std::map<std::string, ControllerKind> all = [] {
+    std::map<std::string, ControllerKind> paper;
+    for (ControllerKind& k : paperControllerKinds()) paper.emplace(k.type, std::move(k));
+    return paper;
+  }();
+  return all;
+}
+
+const ControllerKind& kindOf(const std::string& type) {
+  const auto it = kinds().find(type);
+  if (it == kinds().end())
+    throw std::logic_error("controller type '" + type + "' is not registered in this program");
+  return it->second;
+}
+}  // namespace
+
+bool registerControllerKind(ControllerKind kind) {
+  if (kinds().count(kind.type) != 0)
+    throw std::logic_error("controller type '" + kind.type + "' is registered twice");
+  config::registerControllerParams(kind.type, kind.keys);
+  const std::string type = kind.type;
+  kinds().emplace(type, std::move(kind));
+  return true;
+}
+
+std::unique_ptr<Controller> makeController(const config::Scenario& s) {
+  return kindOf(s.controller.type).make(s);
+}
+
+GainReport checkGains(const config::Scenario& s, bool sampled_data) {
+  const ControllerKind& kind = kindOf(s.controller.type);
+  if (kind.report) return kind.report(s, sampled_data);
+  GainReport r;
+  r.unchecked = "no stability condition is known for controller type '" + s.controller.type +
+                "': its gains are not checked";
+  return r;
+}
+
+}  // namespace lagrange::controller

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// The controllers a scenario can name in controller.type, each registered
+/// once. The paper's three (theorem1, cascaded, flexible) are registered
+/// here; a new controller registers itself in its own file with one
+/// definition:
+///
+///     const bool registered = lagrange::controller::registerControllerKind({
+///         "my_pd", {{"kp", true, "stiffness [N m/rad]"}}, [](const config::Scenario& s) { ... }});
+///
+/// Its keys are then valid in controller.*, read into
+/// ScenarioConfig::controller.params, written back to config.resolved.yaml,
+/// and every wiring (lockstep, realtime, inproc, replay) runs it. Every
+/// process of a run must know the type: build the project's process mains
+/// with the file linked in (tests/CMakeLists.txt does this for the test
+/// controller) -- see docs/architecture.md, "Adding a controller".
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/controller_params.hpp"
+#include "config/scenario.hpp"
+#include "controller/controller.hpp"
+#include "controller/gain_report.hpp"
+
+namespace lagrange::controller {
+
+struct ControllerKind {
+  std::string type;                           ///< controller.type
+  std::vector<config::ControllerParam> keys;  ///< its keys in controller.*
+  /// Builds it from a validated scenario (controller.params holds its keys).
+  std::function<std::unique_ptr<Controller>(const config::Scenario&)> make;
+  /// Its gain check; empty: no stability condition is known, and the report
+  /// says so (GainReport::unchecked).
+  std::function<GainReport(const config::Scenario&, bool sampled_data)> report;
+};
+
+/// Registers a controller. Returns true, so that a file can register from
+/// a namespace-scope initialiser. @throws std::logic_error if the type is taken.
+bool registerControllerKind(ControllerKind kind);
+
+/// The controller the scenario names. @throws std::logic_error for a type
+/// nobody registered (the config reader rejects those first).
+std::unique_ptr<Controller> makeController(const config::Scenario& s);
+
+}  // namespace lagrange::controller
