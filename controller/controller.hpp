@@ -17,7 +17,9 @@ namespace lagrange::controller {
 /// the actuator chain); the others are diagnostics, carried by
 /// CONTROL_COMMAND and so picked up by the log, the CSV export and the
 /// plots without per-controller code. A controller fills the ones it has
-/// and leaves the others empty (zero length).
+/// and leaves the others empty (zero length); CONTROL_COMMAND's fields are
+/// fixed, so an empty diagnostic is sent as zeros (controller_lcm.cpp).
+/// Diagnostics beyond these five need a message of their own (not yet).
 using ControllerCommand = Theorem1Output;
 
 /// The measurements a controller needs besides the link angles q, which

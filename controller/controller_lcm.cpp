@@ -15,10 +15,14 @@ lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t po
   m.input_motor_tick = inputs.motor;
   m.num_joints = static_cast<int32_t>(out.u.size());
   m.u = toStd(out.u);
-  m.q_desired = toStd(out.q_desired);
-  m.q_error = toStd(out.q_error);
-  m.theta = toStd(out.theta);
-  m.filter_state = toStd(out.filter_state);
+  // A diagnostic the controller does not have (empty) is sent as zeros: the message's fields are fixed.
+  const auto diagnostic = [&out](const Eigen::VectorXd& v) {
+    return v.size() == 0 ? std::vector<double>(out.u.size(), 0.0) : toStd(v);
+  };
+  m.q_desired = diagnostic(out.q_desired);
+  m.q_error = diagnostic(out.q_error);
+  m.theta = diagnostic(out.theta);
+  m.filter_state = diagnostic(out.filter_state);
   m.chain_order = static_cast<int32_t>(out.xi_error.rows());
   for (int i = 0; i < out.xi_error.rows(); ++i) m.xi_error.push_back(toStd(out.xi_error.row(i).transpose()));
   return m;

@@ -71,18 +71,6 @@ TEST_P(ShippedConfig, MeetsItsStatedMetric) {
 INSTANTIATE_TEST_SUITE_P(Configs, ShippedConfig, ::testing::ValuesIn(shippedConfigs()));
 
 // Every u the controller published, in tick order (first copy of each tick).
-std::map<long long, std::vector<double>> readCommands(const std::string& log_path) {
-  lcm::LogFile log(log_path, "r");
-  std::map<long long, std::vector<double>> by_tick;
-  while (const lcm::LogEvent* ev = log.readNextEvent()) {
-    if (ev->channel != "CONTROL_COMMAND") continue;
-    lagrange::control_command_t m;
-    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad CONTROL_COMMAND");
-    by_tick.emplace(m.header.tick, m.u);
-  }
-  return by_tick;
-}
-
 class InprocVsLockstep : public ::testing::TestWithParam<std::string> {};
 
 // The in-process wiring and the LCM processes compute the same trajectory,

@@ -115,6 +115,19 @@ inline std::vector<std::string> readChannels(const std::string& log_path) {
   return out;
 }
 
+/// CONTROL_COMMAND u by tick.
+inline std::map<long long, std::vector<double>> readCommands(const std::string& log_path) {
+  lcm::LogFile log(log_path, "r");
+  std::map<long long, std::vector<double>> by_tick;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    if (ev->channel != "CONTROL_COMMAND") continue;
+    lagrange::control_command_t m;
+    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad CONTROL_COMMAND");
+    by_tick.emplace(m.header.tick, m.u);
+  }
+  return by_tick;
+}
+
 inline nlohmann::json readSummary(const std::string& dir) {
   std::ifstream in(dir + "/summary.json");
   if (!in) throw std::runtime_error("no summary.json in " + dir);
