@@ -20,6 +20,7 @@
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
+#include "transport/fault_rule.hpp"
 
 namespace lagrange::config {
 
@@ -104,17 +105,9 @@ struct RealtimeConfig {
   int priority = 50;             ///< SCHED_FIFO priority of the loops, 0 for the normal scheduler
 };
 
-/// What may happen to a datagram on one channel (probabilities in [0, 1], times in s).
-/// (faults.channels.NAME; injected by transport/fault_injector.hpp, which
-/// receives them as transport::FaultRule from runtime/process.cpp)
-struct ChannelFaults {
-  double drop = 0.0;
-  double duplicate = 0.0;
-  double reorder = 0.0;
-  double corrupt = 0.0;
-  double delay = 0.0;
-  double delay_jitter = 0.0;
-};
+/// What may happen to a datagram on one channel (faults.channels.NAME),
+/// defined once where the transport applies it.
+using ChannelFaults = transport::FaultRule;
 
 /// Seeded fault injection on the sending side (faults.*).
 struct FaultsConfig {

@@ -21,13 +21,6 @@ void onStopSignal(int) { stop_flag = true; }
 
 bool stopRequested() { return stop_flag.load(); }
 
-std::map<std::string, transport::FaultRule> faultRules(const config::FaultsConfig& faults) {
-  std::map<std::string, transport::FaultRule> rules;
-  for (const auto& [channel, f] : faults.channels)
-    rules[channel] = {f.drop, f.duplicate, f.reorder, f.corrupt, f.delay, f.delay_jitter};
-  return rules;
-}
-
 void StatusReporter::publish(const std::string& state, int64_t last_tick, double sim_time,
                              double tracking_error, const std::string& message) {
   lagrange::status_t s{};
@@ -147,7 +140,7 @@ int runProcess(const std::string& name, const std::string& description, int argc
       return seed;
     };
     if (!scenario.faults.channels.empty()) {
-      node.injectFaults(faultRules(scenario.faults), seed_for(scenario.faults.seed));
+      node.injectFaults(scenario.faults.channels, seed_for(scenario.faults.seed));
       spdlog::info("fault injection on: seed {}", scenario.faults.seed);
     }
     if (const auto it = scenario.faults.receiver_drop.find(name); it != scenario.faults.receiver_drop.end()) {

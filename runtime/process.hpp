@@ -22,9 +22,6 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 /// True once SIGINT or SIGTERM arrived.
 bool stopRequested();
 
-/// The scenario's faults.channels as the transport's fault rules.
-std::map<std::string, transport::FaultRule> faultRules(const config::FaultsConfig& faults);
-
 /// Publishes this process's STATUS with its channel counters.
 class StatusReporter {
  public:

@@ -21,22 +21,9 @@
 #include <thread>
 #include <vector>
 
-namespace lagrange::transport {
+#include "transport/fault_rule.hpp"
 
-/// What may happen to a datagram on one channel (probabilities in [0, 1],
-/// times in s). The scenario's faults.channels.NAME (config::FaultRule)
-/// becomes one of these in runtime/process.cpp: transport knows no config.
-struct FaultRule {
-  double drop = 0.0;
-  double duplicate = 0.0;
-  double reorder = 0.0;
-  double corrupt = 0.0;
-  double delay = 0.0;
-  double delay_jitter = 0.0;
-  bool any() const {
-    return drop > 0 || duplicate > 0 || reorder > 0 || corrupt > 0 || delay > 0 || delay_jitter > 0;
-  }
-};
+namespace lagrange::transport {
 
 /// Faults injected on one channel so far.
 struct InjectedCounts {
