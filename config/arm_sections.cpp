@@ -55,8 +55,8 @@ std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
   return c;
 }
 
-model::ReferenceParams readReference(MapReader ref, const model::ChainParams& robot, double duration) {
-  const int n = static_cast<int>(robot.links.size());
+model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, double duration) {
+  const int n = arm->dof();
   model::ReferenceParams p;
   const std::string type = ref.text("type");
   if (type == "sine") {
@@ -69,7 +69,7 @@ model::ReferenceParams readReference(MapReader ref, const model::ChainParams& ro
     p.initial_q = ref.vector("initial_q", n, false, false);
     p.initial_qdot =
         ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
-    p.chain = robot;
+    p.model = std::move(arm);
     p.horizon = duration + 1.0;
     ref.finish({"type", "initial_q", "initial_qdot"});
     return p;
@@ -111,9 +111,9 @@ void readInitialStateSection(MapReader& root, Scenario& s) {
     s.initial_state.motor_q =
         init.has("motor_q")
             ? init.vector("motor_q", n, false, false)
-            : Eigen::VectorXd(s.initial_state.q + model::PlanarChain(s.robot)
-                                                      .gravity(s.initial_state.q)
-                                                      .cwiseQuotient(s.flexible->params.stiffness));
+            : Eigen::VectorXd(
+                  s.initial_state.q +
+                  s.robotModel()->gravity(s.initial_state.q).cwiseQuotient(s.flexible->params.stiffness));
     s.initial_state.motor_qdot =
         init.has("motor_qdot") ? init.vector("motor_qdot", n, false, false) : s.initial_state.qdot;
   } else if (init.has("motor_q") || init.has("motor_qdot")) {

@@ -8,6 +8,7 @@
 
 #include "config/scenario_sections.hpp"
 #include "config/yaml_reader.hpp"
+#include "model/joint_springs.hpp"
 
 namespace lagrange::config {
 
@@ -31,10 +32,13 @@ int Scenario::torqueStepsPerTick() const {
   return actuator.rate > 0.0 ? static_cast<int>(std::llround(actuator.rate / plant.publish_rate)) : 1;
 }
 
-model::ChainParams Scenario::controlModel() const {
-  model::ChainParams p = robot;
-  if (flexible) p.joint_stiffness = flexible->params.stiffness;
-  return p;
+model::RobotModelPtr Scenario::robotModel() const {
+  return std::make_shared<const model::PlanarChain>(robot);
+}
+
+model::RobotModelPtr Scenario::controlModel() const {
+  if (flexible) return std::make_shared<const model::JointSprings>(robotModel(), flexible->params.stiffness);
+  return robotModel();
 }
 
 long long Scenario::lastTick() const { return std::llround(duration * plant.publish_rate); }

@@ -20,6 +20,7 @@
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
+#include "model/robot_model.hpp"
 #include "transport/fault_rule.hpp"
 
 namespace lagrange::config {
@@ -160,9 +161,12 @@ struct Scenario {
   /// Actuator output updates per plant period: actuator.rate / plant.publish_rate.
   int torqueStepsPerTick() const;
   long long lastTick() const;  ///< ticks run from 0 to lastTick() inclusive
+  /// The rigid arm of `robot` (its links; for flexible joints without the springs).
+  /// The one place a robot kind is built from the scenario.
+  model::RobotModelPtr robotModel() const;
   /// The arm as the controller models it: the robot, plus joint springs K q
   /// for flexible joints (g(q1) + K q1 of Example 1; eq. 830c, 608).
-  model::ChainParams controlModel() const;
+  model::RobotModelPtr controlModel() const;
 };
 
 /// Parse and validate YAML text. `overrides` are "dotted.key=value" strings

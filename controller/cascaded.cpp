@@ -76,7 +76,7 @@ void advanceCascade(const CascadedGains& gains, const CascadeSignals& held, doub
   }
 }
 
-CascadedController::CascadedController(const model::PlanarChain& chain, const model::Reference& reference,
+CascadedController::CascadedController(const model::RobotModel& chain, const model::Reference& reference,
                                        CascadedGains gains, std::optional<Eigen::VectorXd> qc0,
                                        const std::vector<StageStart>& starts)
     : gains_(std::move(gains)), stage0_(chain, reference, gains_.stage0, std::move(qc0)) {

@@ -81,7 +81,7 @@ class CascadedController {
   /// (empty: every stage at qc = zeta = 0).
   /// @throws std::invalid_argument on sizes, m < 1, non-positive gains or a
   ///         starts list that does not have m entries.
-  CascadedController(const model::PlanarChain& chain, const model::Reference& reference, CascadedGains gains,
+  CascadedController(const model::RobotModel& chain, const model::Reference& reference, CascadedGains gains,
                      std::optional<Eigen::VectorXd> qc0, const std::vector<StageStart>& starts = {});
 
   struct Output {

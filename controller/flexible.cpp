@@ -5,10 +5,9 @@
 
 namespace lagrange::controller {
 
-FlexibleController::FlexibleController(const model::PlanarChain& link_model,
-                                       const model::Reference& reference, CascadedGains gains,
-                                       std::optional<Eigen::VectorXd> qc0, model::FlexibleParams params,
-                                       std::optional<Eigen::VectorXd> rate_pole,
+FlexibleController::FlexibleController(const model::RobotModel& link_model, const model::Reference& reference,
+                                       CascadedGains gains, std::optional<Eigen::VectorXd> qc0,
+                                       model::FlexibleParams params, std::optional<Eigen::VectorXd> rate_pole,
                                        const std::vector<StageStart>& starts,
                                        std::optional<Eigen::VectorXd> rate_filter_start)
     : cascade_(link_model, reference, std::move(gains), std::move(qc0), starts), params_(std::move(params)) {

@@ -3,7 +3,7 @@
 /// The flexible-joint controller of the Corollary, eq. (830): the cascaded
 /// controller (750) with m = 2 on xi_1 = K q2, xi_2 = K q2', its xi_1* from
 /// eq. (830c) -- the Theorem 1 law on the link model whose g is g(q1) + K q1
-/// (model::ChainParams::joint_stiffness) -- and the motor torque
+/// (model::JointSprings) -- and the motor torque
 ///   tau = K (q2 - q1) + J K^-1 u          (830a),
 /// which makes xi_2' = K q2'' = u exactly on the plant (595).
 ///
@@ -22,12 +22,12 @@ namespace lagrange::controller {
 
 class FlexibleController {
  public:
-  /// @param link_model the links with joint_stiffness = K (see file comment).
+  /// @param link_model the links with their springs K (model::JointSprings; see file comment).
   /// @param rate_pole empty: q2' is measured; else the dirty derivative's pole a [1/s].
   /// @param rate_filter_start filtered q2' only: the estimate filter's state at the
   ///        first sample (empty: bumpless, the estimate starts at 0).
   /// @throws std::invalid_argument unless gains.stages has 2 stages and sizes match.
-  FlexibleController(const model::PlanarChain& link_model, const model::Reference& reference,
+  FlexibleController(const model::RobotModel& link_model, const model::Reference& reference,
                      CascadedGains gains, std::optional<Eigen::VectorXd> qc0, model::FlexibleParams params,
                      std::optional<Eigen::VectorXd> rate_pole, const std::vector<StageStart>& starts = {},
                      std::optional<Eigen::VectorXd> rate_filter_start = std::nullopt);

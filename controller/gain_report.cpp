@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "model/bounds.hpp"
 #include "model/proposition1.hpp"
@@ -28,10 +29,12 @@ double GainReport::margin() const {
 GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {
   GainReport r;
   // For flexible joints the links as the chain (600) sees them: g(q1) + K q1.
-  const model::PlanarChain chain(s.controlModel());
+  const model::RobotModelPtr arm = s.controlModel();
   const model::Reference reference(s.reference);
-  r.kc = model::coriolisBound(chain);
-  r.kc_found = model::coriolisLargestFound(chain);
+  const std::optional<double> proven_kc = model::coriolisBound(*arm);
+  r.kc_found = model::coriolisLargestFound(*arm);
+  r.kc_proven = proven_kc.has_value();
+  r.kc = proven_kc ? *proven_kc : r.kc_found;
   r.kdelta = model::referenceBound(reference);
   r.kdelta_exact = reference.boundIsExact();
   const Theorem1Gains& g0 = s.controller.gains;
@@ -49,7 +52,7 @@ GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {
       r.warnings.push_back(
           "motor_rate: filtered estimates q2' by a dirty derivative; the Corollary assumes xi_2 = K q2' "
           "is measured, so its guarantee does not cover this controller");
-    r.eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
+    r.eta = model::estimateEta(*arm, reference, g0.kp, g0.kd, g0.a, g0.b);
     if (s.controller.stages.size() == 1) {
       const StageGains& g1 = s.controller.stages.at(0);
       r.chain = model::theorem2Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, g1.kp, g1.a, g1.b);
@@ -77,14 +80,27 @@ std::string line(const model::ConditionReport& c) {
 
 std::string describe(const GainReport& r) {
   if (r.unchecked) return "gain conditions NOT CHECKED: " + *r.unchecked;
-  char constants[512];
-  std::snprintf(constants, sizeof constants,
-                "k_c = %.6g (proven bound from the closed-form Christoffel symbols; largest ratio found "
-                "%.6g), k_delta = %.6g (%s)",
-                r.kc, r.kc_found, r.kdelta,
+  char kc[256];
+  if (r.kc_proven)
+    std::snprintf(
+        kc, sizeof kc,
+        "k_c = %.6g (proven bound from the closed-form Christoffel symbols; largest ratio found %.6g)", r.kc,
+        r.kc_found);
+  else
+    std::snprintf(kc, sizeof kc,
+                  "k_c = %.6g (estimate: the largest ratio found; this robot model has no closed form of C "
+                  "to prove a bound from)",
+                  r.kc);
+  char kdelta[128];
+  std::snprintf(kdelta, sizeof kdelta, "k_delta = %.6g (%s)", r.kdelta,
                 r.kdelta_exact ? "closed form" : "estimate: sampled supremum x 1.02");
-  std::string out = line(r.condition) + "  [" + constants + "]";
-  if (!r.kdelta_exact) out += "\n  (eq. (11)'s verdict rests on the estimated k_delta)";
+  std::string out = line(r.condition) + "  [" + kc + ", " + kdelta + "]";
+  if (!r.kc_proven || !r.kdelta_exact)
+    out += std::string("\n  (eq. (11)'s verdict rests on the estimated ") +
+           (!r.kc_proven && !r.kdelta_exact ? "k_c and k_delta"
+            : !r.kc_proven                  ? "k_c"
+                                            : "k_delta") +
+           ")";
   if (r.eta) {
     char eta[320];
     std::snprintf(eta, sizeof eta,

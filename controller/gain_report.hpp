@@ -19,7 +19,8 @@
 namespace lagrange::controller {
 
 struct GainReport {
-  double kc = 0.0;        ///< proven (model::coriolisBound)
+  double kc = 0.0;        ///< model::coriolisBound when kc_proven, else kc_found
+  bool kc_proven = true;  ///< the model has a closed form of C (RobotModel::coriolisTerms)
   double kc_found = 0.0;  ///< the largest ||C(q, y)|| / ||y|| found: how tight kc is
   double kdelta = 0.0;    ///< exact for a sine reference, else a sampled estimate
   bool kdelta_exact = true;

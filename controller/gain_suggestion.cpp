@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -14,9 +15,13 @@ namespace lagrange::controller {
 
 config::Scenario suggestGains(const config::Scenario& in) {
   config::Scenario s = in;
-  const model::PlanarChain chain(s.controlModel());
+  const model::RobotModelPtr arm = s.controlModel();
   const model::Reference reference(s.reference);
-  const double kc = model::coriolisBound(chain), kdelta = model::referenceBound(reference);
+  // Without a closed form of C there is only the largest ratio found; the gain
+  // report printed after the suggestion says that k_c is then an estimate.
+  const std::optional<double> proven_kc = model::coriolisBound(*arm);
+  const double kc = proven_kc ? *proven_kc : model::coriolisLargestFound(*arm);
+  const double kdelta = model::referenceBound(reference);
   Theorem1Gains& g0 = s.controller.gains;
   const int n = s.dof();
   const int m = static_cast<int>(s.controller.stages.size());
@@ -31,7 +36,7 @@ config::Scenario suggestGains(const config::Scenario& in) {
   const double half = (m + 2) / 2.0;
   const double kd0 = 1.1 * (half + (kc * kdelta + half) * ratio * ratio) / (ratio / 4.0 - m);
   g0.kd = Eigen::VectorXd::Constant(n, kd0);
-  const model::EtaEstimate eta = model::estimateEta(chain, reference, g0.kp, g0.kd, g0.a, g0.b);
+  const model::EtaEstimate eta = model::estimateEta(*arm, reference, g0.kp, g0.kd, g0.a, g0.b);
   const double e = eta.eta2 * eta.eta2 + eta.eta3 * eta.eta3;
 
   // Proposition 1: (794a) kp1 = kd1 with kp1, a1 above (794b), (632b), (632c);

@@ -18,7 +18,7 @@ class PaperController : public Controller {
   explicit PaperController(const config::Scenario& s)
       : s_(s), model_(s.controlModel()), reference_(s.reference) {}
   const config::Scenario s_;
-  const model::PlanarChain model_;
+  const model::RobotModelPtr model_;
   const model::Reference reference_;
 };
 
@@ -35,7 +35,7 @@ class Theorem1 final : public PaperController {
   Needs needs() const override { return {}; }
   ControllerCommand step(const ControllerInputs& in) override { return core_->step(in.t, in.q); }
   void reset() override {
-    core_.emplace(model_, reference_, s_.controller.gains, s_.controller.initial_filter_state);
+    core_.emplace(*model_, reference_, s_.controller.gains, s_.controller.initial_filter_state);
   }
 
  private:
@@ -51,7 +51,7 @@ class Cascaded final : public PaperController {
     return withCascade(out, out.cascade.u);
   }
   void reset() override {
-    core_.emplace(model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
+    core_.emplace(*model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
                   s_.controller.initial_filter_state, s_.controller.stage_starts);
   }
 
@@ -69,7 +69,7 @@ class Flexible final : public PaperController {
   }
   void reset() override {
     core_.emplace(
-        model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
+        *model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
         s_.controller.initial_filter_state, s_.flexible->params,
         s_.controller.motor_rate == "filtered" ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
         s_.controller.stage_starts);

@@ -25,7 +25,7 @@ class LoopMap {
   explicit LoopMap(const config::Scenario& s)
       : s_(s),
         control_model_(s.controlModel()),
-        arm_(s.robot),
+        arm_(s.robotModel()),
         reference_(s.reference),
         n_(s.dof()),
         order_(s.actuator.order),
@@ -44,8 +44,9 @@ class LoopMap {
   // The reference's state at t with every filter at rest and the drive at the feedforward.
   Eigen::VectorXd nominal(double t) const {
     const model::ReferenceSample r = reference_.evaluate(t, 2);
-    const Eigen::VectorXd h = control_model_.inertia(r.q()) * r.qdd() +
-                              control_model_.coriolis(r.q(), r.qd()) * r.qd() + control_model_.gravity(r.q());
+    const Eigen::VectorXd h = control_model_->inertia(r.q()) * r.qdd() +
+                              control_model_->coriolis(r.q(), r.qd()) * r.qd() +
+                              control_model_->gravity(r.q());
     Unpacked u = zeros();
     u.q = r.q();
     u.v = r.qd();
@@ -69,7 +70,7 @@ class LoopMap {
     actuator::IntegratorChain drive(n_, order_, std::nullopt, u.xi);
     Unpacked next = u;
     if (flexible_) {
-      FlexibleController ctl(control_model_, reference_, gains, u.qc0, s_.flexible->params,
+      FlexibleController ctl(*control_model_, reference_, gains, u.qc0, s_.flexible->params,
                              filtered_rate_ ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
                              starts, filtered_rate_ ? std::optional(u.rate) : std::nullopt);
       const Eigen::VectorXd tau = ctl.step(t, u.q, u.q2, u.v2).tau;
@@ -79,7 +80,7 @@ class LoopMap {
       next.cascade = ctl.cascade().state();
       if (filtered_rate_) next.rate = ctl.rateFilter()->state();
     } else if (stages_ > 0) {
-      CascadedController ctl(control_model_, reference_, gains, u.qc0, starts);
+      CascadedController ctl(*control_model_, reference_, gains, u.qc0, starts);
       const Eigen::VectorXd command = ctl.step(t, u.q, u.xi).cascade.u;
       integrate(next, drive.step(command, period, torque_steps).tau, period);
       next.xi = drive.state();
@@ -87,7 +88,7 @@ class LoopMap {
       next.qc0 = ctl.stage0().filterState();
       next.cascade = ctl.state();
     } else {
-      Theorem1Controller ctl(control_model_, reference_, s_.controller.gains, u.qc0);
+      Theorem1Controller ctl(*control_model_, reference_, s_.controller.gains, u.qc0);
       const Eigen::VectorXd command = ctl.step(t, u.q).u;
       integrate(next, drive.step(command, period, torque_steps).tau, period);
       ctl.step(t + period, next.q);
@@ -169,7 +170,7 @@ class LoopMap {
     if (flexible_) {
       const Eigen::VectorXd& k = s_.flexible->params.stiffness;
       const double d_min =
-          control_model_.inertia(u.q).selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
+          control_model_->inertia(u.q).selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
       for (int i = 0; i < n_; ++i)
         fastest = std::max(fastest, std::sqrt(k(i) / s_.flexible->params.rotor_inertia(i) + k(i) / d_min));
     }
@@ -200,7 +201,7 @@ class LoopMap {
       return;
     }
     auto acc = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
-      return arm_.acceleration(q, v, tau);
+      return arm_->acceleration(q, v, tau);
     };
     const Eigen::VectorXd q = u.q, v = u.v;
     const Eigen::VectorXd a1 = acc(q, v);
@@ -212,7 +213,7 @@ class LoopMap {
   }
 
   const config::Scenario& s_;
-  model::PlanarChain control_model_, arm_;
+  model::RobotModelPtr control_model_, arm_;
   model::Reference reference_;
   std::optional<model::FlexibleChain> flexible_plant_;
   int n_, order_, stages_;

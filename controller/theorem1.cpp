@@ -16,7 +16,7 @@ void requirePositive(const Eigen::VectorXd& v, const char* name, int n) {
 }
 }  // namespace
 
-Theorem1Controller::Theorem1Controller(const model::PlanarChain& chain, const model::Reference& reference,
+Theorem1Controller::Theorem1Controller(const model::RobotModel& chain, const model::Reference& reference,
                                        Theorem1Gains gains,
                                        std::optional<Eigen::VectorXd> initial_filter_state)
     : chain_(chain),

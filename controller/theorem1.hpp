@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "controller/dirty_derivative.hpp"
-#include "model/planar_chain.hpp"
 #include "model/reference.hpp"
+#include "model/robot_model.hpp"
 
 namespace lagrange::controller {
 
@@ -41,7 +41,7 @@ class Theorem1Controller {
   /// at the first step, so theta(t0) = 0 and the first command has no
   /// damping kick from a filter that has not seen the error yet.
   /// @throws std::invalid_argument on size mismatch or non-positive gains.
-  Theorem1Controller(const model::PlanarChain& chain, const model::Reference& reference, Theorem1Gains gains,
+  Theorem1Controller(const model::RobotModel& chain, const model::Reference& reference, Theorem1Gains gains,
                      std::optional<Eigen::VectorXd> initial_filter_state);
 
   /// u at time t from the measured q. Before computing it, the filter is
@@ -60,7 +60,7 @@ class Theorem1Controller {
   const Theorem1Gains& gains() const { return gains_; }
 
  private:
-  const model::PlanarChain& chain_;
+  const model::RobotModel& chain_;
   const model::Reference& reference_;
   Theorem1Gains gains_;
   DirtyDerivativeFilter filter_;

@@ -21,7 +21,8 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
       {"condition_holds", g.holds()},
       {"margin", g.margin()},
       {"k_c", g.kc},
-      {"k_c_method", "proven: closed-form Christoffel symbols"},
+      {"k_c_method", g.kc_proven ? "proven: closed-form Christoffel symbols"
+                                 : "estimate: largest ratio found (no closed form of C)"},
       {"k_c_largest_found", g.kc_found},
       {"k_delta", g.kdelta},
       {"k_delta_method", g.kdelta_exact ? "closed form" : "estimate: sampled supremum x 1.02"},

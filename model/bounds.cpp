@@ -9,17 +9,19 @@
 
 namespace lagrange::model {
 
-double coriolisGain(const PlanarChain& chain, const Eigen::VectorXd& q) {
-  const int n = chain.dof();
-  const std::vector<Eigen::MatrixXd> ck = chain.coriolisPerVelocity(q);
+double coriolisGain(const RobotModel& model, const Eigen::VectorXd& q) {
+  const int n = model.dof();
+  const std::vector<Eigen::MatrixXd> ck = model.coriolisPerVelocity(q);
   Eigen::MatrixXd row(n, n * n);
   for (int k = 0; k < n; ++k) row.block(0, k * n, n, n) = ck[k];
   return Eigen::JacobiSVD<Eigen::MatrixXd>(row).singularValues()(0);
 }
 
-double coriolisBound(const PlanarChain& chain) {
-  const int n = chain.dof();
-  const std::vector<CoriolisTerm> terms = chain.coriolisTerms();
+std::optional<double> coriolisBound(const RobotModel& model) {
+  const int n = model.dof();
+  const std::optional<std::vector<CoriolisTerm>> closed_form = model.coriolisTerms();
+  if (!closed_form) return std::nullopt;
+  const std::vector<CoriolisTerm>& terms = *closed_form;
   if (terms.empty()) return 0.0;
   double triangle = 0.0;
   Eigen::MatrixXd all(n, static_cast<Eigen::Index>(n) * n * static_cast<Eigen::Index>(terms.size()));
@@ -34,8 +36,8 @@ double coriolisBound(const PlanarChain& chain) {
   return std::min(triangle, cauchy_schwarz);
 }
 
-double coriolisLargestFound(const PlanarChain& chain) {
-  const int n = chain.dof();
+double coriolisLargestFound(const RobotModel& model) {
+  const int n = model.dof();
   if (n == 1) return 0.0;
   std::vector<std::pair<double, Eigen::VectorXd>> samples;
   Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
@@ -43,14 +45,14 @@ double coriolisLargestFound(const PlanarChain& chain) {
     constexpr int kGrid = 7200;
     for (int i = 0; i < kGrid; ++i) {
       q(1) = 2.0 * M_PI * i / kGrid;
-      samples.emplace_back(coriolisGain(chain, q), q);
+      samples.emplace_back(coriolisGain(model, q), q);
     }
   } else {
     std::mt19937_64 rng(20261121);
     std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
     for (int s = 0; s < 20000; ++s) {
       for (int i = 1; i < n; ++i) q(i) = angle(rng);
-      samples.emplace_back(coriolisGain(chain, q), q);
+      samples.emplace_back(coriolisGain(model, q), q);
     }
   }
   const size_t starts = std::min<size_t>(4, samples.size());
@@ -67,7 +69,7 @@ double coriolisLargestFound(const PlanarChain& chain) {
         for (const double sign : {1.0, -1.0}) {
           Eigen::VectorXd trial = at;
           trial(i) += sign * step;
-          const double v = coriolisGain(chain, trial);
+          const double v = coriolisGain(model, trial);
           if (v > value) value = v, at = trial, moved = true;
         }
       }

@@ -8,19 +8,18 @@
 namespace lagrange::model {
 
 namespace {
-Eigen::VectorXd h(const PlanarChain& chain, const Reference& reference, double t, const Eigen::VectorXd& q) {
+Eigen::VectorXd h(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
   const ReferenceSample r = reference.evaluate(t, 2);
-  return chain.inertia(q) * r.qdd() + chain.coriolis(q, r.qd()) * r.qd() + chain.gravity(q);
+  return arm.inertia(q) * r.qdd() + arm.coriolis(q, r.qd()) * r.qd() + arm.gravity(q);
 }
 
-Eigen::MatrixXd dhdq(const PlanarChain& chain, const Reference& reference, double t,
-                     const Eigen::VectorXd& q) {
-  const int n = chain.dof();
+Eigen::MatrixXd dhdq(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
+  const int n = arm.dof();
   const double step = 1e-6;
   Eigen::MatrixXd j(n, n);
   for (int k = 0; k < n; ++k) {
     const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, k) * step;
-    j.col(k) = (h(chain, reference, t, q + e) - h(chain, reference, t, q - e)) / (2 * step);
+    j.col(k) = (h(arm, reference, t, q + e) - h(arm, reference, t, q - e)) / (2 * step);
   }
   return j;
 }
@@ -68,9 +67,9 @@ double ascend(double t, Eigen::VectorXd q, double value_at_start, double t_max, 
 
 }  // namespace
 
-EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, const Eigen::VectorXd& kp0,
+EtaEstimate estimateEta(const RobotModel& arm, const Reference& reference, const Eigen::VectorXd& kp0,
                         const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0, const Eigen::VectorXd& b0) {
-  const int n = chain.dof();
+  const int n = arm.dof();
   EtaEstimate eta;
   eta.eta3 = (kd0.array() * a0.array()).maxCoeff();
   const Eigen::MatrixXd damping = (kp0.array() + kd0.array() * b0.array()).matrix().asDiagonal();
@@ -80,12 +79,12 @@ EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, co
   const double t_max = horizon(reference), dt = 1e-6;
   const double t_last = t_max + dt;  // the sampled t run up to it; dhdt needs t - dt >= 0
   auto eta2_at = [&](double t, const Eigen::VectorXd& q) {
-    return (dhdq(chain, reference, t, q) - damping).jacobiSvd().singularValues()(0);
+    return (dhdq(arm, reference, t, q) - damping).jacobiSvd().singularValues()(0);
   };
   auto eta1_at = [&](double t, const Eigen::VectorXd& q) {
     const ReferenceSample r = reference.evaluate(t, 1);
-    const Eigen::VectorXd dhdt = (h(chain, reference, t + dt, q) - h(chain, reference, t - dt, q)) / (2 * dt);
-    return (dhdq(chain, reference, t, q) * r.qd() + dhdt).norm() / std::min((q - r.q()).norm(), 1.0);
+    const Eigen::VectorXd dhdt = (h(arm, reference, t + dt, q) - h(arm, reference, t - dt, q)) / (2 * dt);
+    return (dhdq(arm, reference, t, q) * r.qd() + dhdt).norm() / std::min((q - r.q()).norm(), 1.0);
   };
   // The kStarts best samples of each, largest first: the starts of the ascent.
   struct Sample {

@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "model/gain_conditions.hpp"
-#include "model/planar_chain.hpp"
 #include "model/reference.hpp"
+#include "model/robot_model.hpp"
 
 namespace lagrange::model {
 
@@ -38,7 +38,7 @@ struct EtaEstimate {
 };
 
 /// Stage-0 gains per joint: kp0, kd0, a0, b0 (all positive).
-EtaEstimate estimateEta(const PlanarChain& chain, const Reference& reference, const Eigen::VectorXd& kp0,
+EtaEstimate estimateEta(const RobotModel& arm, const Reference& reference, const Eigen::VectorXd& kp0,
                         const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0, const Eigen::VectorXd& b0);
 
 /// Eq. (632a-c), with diagonal gains taken conservatively: the smallest

@@ -20,20 +20,21 @@ void validateFlexible(const FlexibleParams& p, int dof) {
   check(p.rotor_inertia, "rotor_inertia");
 }
 
-FlexibleChain::FlexibleChain(const PlanarChain& links, FlexibleParams params)
-    : links_(links), params_(std::move(params)) {
-  validateFlexible(params_, links_.dof());
+FlexibleChain::FlexibleChain(RobotModelPtr links, FlexibleParams params)
+    : links_(std::move(links)), params_(std::move(params)) {
+  if (!links_) throw std::invalid_argument("flexible joints: no arm for the joints to drive");
+  validateFlexible(params_, links_->dof());
 }
 
 std::pair<Eigen::VectorXd, Eigen::VectorXd> FlexibleChain::acceleration(const FlexibleState& x,
                                                                         const Eigen::VectorXd& tau) const {
   const Eigen::VectorXd spring = params_.stiffness.cwiseProduct(x.q2 - x.q1);
-  return {links_.acceleration(x.q1, x.v1, spring), (tau - spring).cwiseQuotient(params_.rotor_inertia)};
+  return {links_->acceleration(x.q1, x.v1, spring), (tau - spring).cwiseQuotient(params_.rotor_inertia)};
 }
 
 double FlexibleChain::energy(const FlexibleState& x) const {
   const Eigen::VectorXd twist = x.q2 - x.q1;
-  return links_.kineticEnergy(x.q1, x.v1) + links_.potentialEnergy(x.q1) +
+  return links_->kineticEnergy(x.q1, x.v1) + links_->potentialEnergy(x.q1) +
          0.5 * x.v2.dot(params_.rotor_inertia.cwiseProduct(x.v2)) +
          0.5 * twist.dot(params_.stiffness.cwiseProduct(twist));
 }

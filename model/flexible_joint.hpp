@@ -3,7 +3,7 @@
 /// Flexible-joint arm, the model (595) of Spong / Burkov:
 ///   D(q1) q1'' + C(q1, q1') q1' + g(q1) = K (q2 - q1),
 ///   J q2'' + K (q2 - q1) = tau,
-/// q1 the link (joint) angles of model::PlanarChain, q2 the motor angles,
+/// q1 the link (joint) angles of the rigid arm (any model::RobotModel), q2 the motor angles,
 /// K = diag(stiffness) > 0, J = diag(rotor_inertia) > 0. No damping.
 ///
 /// The mechanical system this describes exactly (and plant::PlantSim
@@ -23,7 +23,7 @@
 #include <Eigen/Dense>
 #include <utility>
 
-#include "model/planar_chain.hpp"
+#include "model/robot_model.hpp"
 
 namespace lagrange::model {
 
@@ -43,11 +43,12 @@ struct FlexibleState {
 
 class FlexibleChain {
  public:
-  /// @throws std::invalid_argument for bad parameters.
-  FlexibleChain(const PlanarChain& links, FlexibleParams params);
+  /// @param links the rigid arm the elastic joints drive (without springs).
+  /// @throws std::invalid_argument for bad parameters or no arm.
+  FlexibleChain(RobotModelPtr links, FlexibleParams params);
 
-  int dof() const { return links_.dof(); }
-  const PlanarChain& links() const { return links_; }
+  int dof() const { return links_->dof(); }
+  const RobotModel& links() const { return *links_; }
   const FlexibleParams& params() const { return params_; }
 
   /// (q1'', q2'') of (595) under motor torques tau.
@@ -58,7 +59,7 @@ class FlexibleChain {
   double energy(const FlexibleState& x) const;
 
  private:
-  PlanarChain links_;
+  RobotModelPtr links_;
   FlexibleParams params_;
 };
 

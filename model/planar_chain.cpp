@@ -28,11 +28,6 @@ PlanarChain::PlanarChain(ChainParams params) : params_(std::move(params)) {
     if (!(l.com >= 0.0) || !std::isfinite(l.com))
       throw std::invalid_argument(which + "com must be non-negative and finite");
   }
-  if (params_.joint_stiffness.size() != 0 &&
-      (params_.joint_stiffness.size() != n || !(params_.joint_stiffness.array() > 0.0).all() ||
-       !params_.joint_stiffness.allFinite()))
-    throw std::invalid_argument("PlanarChain: joint_stiffness must be empty or " + std::to_string(n) +
-                                " positive finite numbers");
   if (!std::isfinite(params_.gravity)) throw std::invalid_argument("PlanarChain: gravity must be finite");
 
   // c(i, a): lever arm of absolute angle a in the centre of mass of link i.
@@ -47,10 +42,10 @@ PlanarChain::PlanarChain(ChainParams params) : params_(std::move(params)) {
   s_ = c.transpose() * m;
 }
 
-void PlanarChain::checkSize(const Eigen::VectorXd& x, const char* what) const {
-  if (x.size() != dof())
-    throw std::invalid_argument(std::string("PlanarChain: ") + what + " has " + std::to_string(x.size()) +
-                                " entries, expected " + std::to_string(dof()));
+std::vector<std::string> PlanarChain::jointNames() const {
+  std::vector<std::string> names;
+  for (int i = 1; i <= dof(); ++i) names.push_back("joint" + std::to_string(i));
+  return names;
 }
 
 Eigen::VectorXd PlanarChain::absoluteAngles(const Eigen::VectorXd& q) const {
@@ -118,7 +113,7 @@ std::vector<Eigen::MatrixXd> PlanarChain::coriolisPerVelocity(const Eigen::Vecto
   return ck;
 }
 
-std::vector<CoriolisTerm> PlanarChain::coriolisTerms() const {
+std::optional<std::vector<CoriolisTerm>> PlanarChain::coriolisTerms() const {
   const int n = dof();
   std::vector<CoriolisTerm> terms;
   for (int a = 0; a < n; ++a) {
@@ -144,14 +139,6 @@ std::vector<CoriolisTerm> PlanarChain::coriolisTerms() const {
   return terms;
 }
 
-Eigen::MatrixXd PlanarChain::coriolis(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
-  checkSize(v, "v");
-  const std::vector<Eigen::MatrixXd> ck = coriolisPerVelocity(q);
-  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(dof(), dof());
-  for (int k = 0; k < dof(); ++k) c += v(k) * ck[k];
-  return c;
-}
-
 Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
   const Eigen::VectorXd phi = absoluteAngles(q);
@@ -162,7 +149,6 @@ Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {
     suffix += params_.gravity * s_(a) * std::sin(phi(a));
     out(a) = suffix;
   }
-  if (params_.joint_stiffness.size() > 0) out += params_.joint_stiffness.cwiseProduct(q);
   return out;
 }
 
@@ -171,20 +157,7 @@ double PlanarChain::potentialEnergy(const Eigen::VectorXd& q) const {
   const Eigen::VectorXd phi = absoluteAngles(q);
   double u = 0.0;
   for (int a = 0; a < dof(); ++a) u -= params_.gravity * s_(a) * std::cos(phi(a));
-  if (params_.joint_stiffness.size() > 0) u += 0.5 * q.dot(params_.joint_stiffness.cwiseProduct(q));
   return u;
-}
-
-double PlanarChain::kineticEnergy(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
-  checkSize(v, "v");
-  return 0.5 * v.dot(inertia(q) * v);
-}
-
-Eigen::VectorXd PlanarChain::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                          const Eigen::VectorXd& u) const {
-  checkSize(u, "u");
-  const Eigen::VectorXd rhs = u - coriolis(q, v) * v - gravity(q);
-  return inertia(q).llt().solve(rhs);
 }
 
 }  // namespace lagrange::model

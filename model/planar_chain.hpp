@@ -17,18 +17,12 @@
 /// C(q, x) y = C(q, y) x hold by construction.
 
 #include <Eigen/Dense>
+#include <string>
 #include <vector>
 
-namespace lagrange::model {
+#include "model/robot_model.hpp"
 
-/// One link pair's share of the Coriolis matrix: for a < b (absolute link
-/// indices, phi the absolute angles),
-///   C_k(q) = sum over pairs of sin(phi_a - phi_b) per_velocity[k],
-/// with per_velocity[k] constant (from h_ab alone).
-struct CoriolisTerm {
-  int a = 0, b = 0;
-  std::vector<Eigen::MatrixXd> per_velocity;
-};
+namespace lagrange::model {
 
 /// Physical parameters of one link.
 struct LinkParams {
@@ -42,60 +36,46 @@ struct LinkParams {
 struct ChainParams {
   std::vector<LinkParams> links;  ///< base to tip
   double gravity = 9.81;          ///< g [m/s^2], acting downwards in the plane of motion
-  /// Torsional springs from each joint to its zero angle [N m / rad] (empty:
-  /// none): they add K q to g(q) and q^T K q / 2 to the potential energy. Not a
-  /// plant part: this is how the flexible-joint model (595) looks from its links
-  /// once written as the chain (600) (Example 1: g(q1) + K q1).
-  Eigen::VectorXd joint_stiffness;
 };
 
 /// The 2-DOF "Pelican" arm of Kelly, Santibanez and Loria, "Control of Robot
 /// Manipulators in Joint Space", Springer 2005, Table 5.1.
 ChainParams pelicanParams();
 
-/// Dynamics of an n-link planar chain. Immutable after construction; every
-/// function is pure and thread-safe.
-class PlanarChain {
+/// Dynamics of an n-link planar chain: the robot kind "planar_chain".
+/// Immutable after construction; every function is pure and thread-safe.
+class PlanarChain : public RobotModel {
  public:
   /// @throws std::invalid_argument if there are no links, or a length,
   ///         mass or inertia is not positive, or com is negative or not finite.
   explicit PlanarChain(ChainParams params);
 
-  int dof() const { return static_cast<int>(params_.links.size()); }
+  std::string kind() const override { return "planar_chain"; }
+  int dof() const override { return static_cast<int>(params_.links.size()); }
+  /// "joint1" .. "jointN", base to tip.
+  std::vector<std::string> jointNames() const override;
   const ChainParams& params() const { return params_; }
 
-  /// Inertia matrix D(q), n x n, symmetric positive definite.
-  Eigen::MatrixXd inertia(const Eigen::VectorXd& q) const;
+  Eigen::MatrixXd inertia(const Eigen::VectorXd& q) const override;
 
   /// Partial derivatives dD/dq_k, k = 0..n-1.
   std::vector<Eigen::MatrixXd> inertiaPartials(const Eigen::VectorXd& q) const;
 
-  /// Coriolis and centrifugal matrix C(q, v) from Christoffel symbols.
-  Eigen::MatrixXd coriolis(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
+  /// From the Christoffel symbols of inertiaPartials.
+  std::vector<Eigen::MatrixXd> coriolisPerVelocity(const Eigen::VectorXd& q) const override;
 
-  /// The matrices C_k(q) with C(q, v) = sum_k v_k C_k(q).
-  std::vector<Eigen::MatrixXd> coriolisPerVelocity(const Eigen::VectorXd& q) const;
+  /// The closed form of C: one term per link pair (a, b) of absolute link
+  /// angles with h_ab != 0, per_velocity[k] from h_ab alone. Used for a proven
+  /// bound of ||C(q, y)|| / ||y|| (model/bounds.hpp); C itself is computed by
+  /// coriolisPerVelocity.
+  std::optional<std::vector<CoriolisTerm>> coriolisTerms() const override;
 
-  /// The closed form of C: one term per link pair with h_ab != 0. Used for a
-  /// proven bound of ||C(q, y)|| / ||y|| (model/bounds.hpp); C itself is
-  /// computed by coriolisPerVelocity.
-  std::vector<CoriolisTerm> coriolisTerms() const;
+  Eigen::VectorXd gravity(const Eigen::VectorXd& q) const override;
 
-  /// Gravity vector g(q) = dU/dq [N m].
-  Eigen::VectorXd gravity(const Eigen::VectorXd& q) const;
-
-  /// Potential energy U(q) [J], zero when every centre of mass is level with the base joint.
-  double potentialEnergy(const Eigen::VectorXd& q) const;
-
-  /// Kinetic energy v^T D(q) v / 2 [J].
-  double kineticEnergy(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
-
-  /// Forward dynamics: q'' = D(q)^-1 (u - C(q, v) v - g(q)).
-  Eigen::VectorXd acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                               const Eigen::VectorXd& u) const;
+  /// Zero when every centre of mass is level with the base joint.
+  double potentialEnergy(const Eigen::VectorXd& q) const override;
 
  private:
-  void checkSize(const Eigen::VectorXd& x, const char* what) const;
   Eigen::VectorXd absoluteAngles(const Eigen::VectorXd& q) const;
 
   ChainParams params_;

@@ -87,9 +87,8 @@ constexpr int kBinomial[5][5] = {
 }  // namespace
 
 void Reference::integrateFreeMotion() {
-  if (!params_.chain) throw std::invalid_argument("reference: free_motion needs the robot's parameters");
-  chain_.emplace(*params_.chain);
-  const int n = chain_->dof();
+  if (!params_.model) throw std::invalid_argument("reference: free_motion needs the robot's model");
+  const int n = params_.model->dof();
   if (params_.initial_q.size() != n || params_.initial_qdot.size() != n)
     throw std::invalid_argument("reference: free_motion initial_q and initial_qdot need " +
                                 std::to_string(n) + " entries");
@@ -102,7 +101,7 @@ void Reference::integrateFreeMotion() {
   free_bounds_.assign(n, {0.0, 0.0, 0.0});
   auto f = [this, n](const Eigen::VectorXd& s) {
     Eigen::VectorXd d(2 * n);
-    d << s.tail(n), chain_->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
+    d << s.tail(n), params_.model->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
     return d;
   };
   std::vector<std::array<long, 3>> argmax(static_cast<size_t>(n), {0, 0, 0});
@@ -152,10 +151,10 @@ Eigen::VectorXd Reference::freeState(double t) const {
   const double h = t - static_cast<double>(i) * kFreeStep;
   const Eigen::VectorXd& x = nodes_[i];
   if (h <= 0.0) return x;
-  const int n = chain_->dof();
+  const int n = params_.model->dof();
   auto f = [this, n](const Eigen::VectorXd& s) {
     Eigen::VectorXd d(2 * n);
-    d << s.tail(n), chain_->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
+    d << s.tail(n), params_.model->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
     return d;
   };
   const Eigen::VectorXd k1 = f(x), k2 = f(x + h / 2 * k1), k3 = f(x + h / 2 * k2), k4 = f(x + h * k3);
@@ -192,7 +191,7 @@ ReferenceSample Reference::evaluate(double t, int max_order) const {
     s.derivative[0] = x.head(n);
     if (max_order >= 1) s.derivative[1] = x.tail(n);
     if (max_order >= 2)
-      s.derivative[2] = chain_->acceleration(x.head(n), x.tail(n), Eigen::VectorXd::Zero(n));
+      s.derivative[2] = params_.model->acceleration(x.head(n), x.tail(n), Eigen::VectorXd::Zero(n));
     return s;
   }
   for (int k = 0; k <= max_order; ++k) {

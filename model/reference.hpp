@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "model/planar_chain.hpp"
+#include "model/robot_model.hpp"
 
 namespace lagrange::model {
 
@@ -35,9 +35,9 @@ struct ReferenceParams {
   Eigen::VectorXd alpha;      ///< smooth-start rate [1/s^3]; smooth_sine only
 
   // free_motion: the unforced motion D(q)q'' + C(q,q')q' + g(q) = 0 of the
-  // arm `chain` from (initial_q, initial_qdot) -- Assumption 2 of the paper.
+  // arm `model` from (initial_q, initial_qdot) -- Assumption 2 of the paper.
   Eigen::VectorXd initial_q, initial_qdot;  ///< [rad], [rad/s]
-  std::optional<ChainParams> chain;         ///< the arm whose free motion it is
+  RobotModelPtr model;                      ///< the arm whose free motion it is
   double horizon = 0.0;                     ///< integrated over [0, horizon] [s]
 };
 
@@ -91,7 +91,6 @@ class Reference {
   // free_motion only: nodes every kFreeStep seconds, and sampled bounds.
   std::vector<Eigen::VectorXd> nodes_;
   std::vector<std::array<double, 3>> free_bounds_;  ///< per joint, orders 0..2
-  std::optional<PlanarChain> chain_;
 };
 
 const char* toString(ReferenceType type);

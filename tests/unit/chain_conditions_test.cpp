@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <random>
 
+#include "model/planar_chain.hpp"
+
 namespace lagrange::model {
 namespace {
 

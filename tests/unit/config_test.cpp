@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "config/scenario.hpp"
+#include "model/joint_springs.hpp"
 
 namespace lagrange::config {
 namespace {
@@ -193,7 +194,10 @@ TEST(Scenario, FlexibleDefaultsHoldTheLinksAtRestAndRoundTrip) {
   const Eigen::VectorXd spring =
       s.flexible->params.stiffness.cwiseProduct(s.initial_state.motor_q - s.initial_state.q);
   EXPECT_LT((spring - links.gravity(s.initial_state.q)).norm(), 1e-12);
-  EXPECT_EQ(s.controlModel().joint_stiffness, s.flexible->params.stiffness);
+  // The controller's model is the links with their springs (eq. 608).
+  const auto springs = std::dynamic_pointer_cast<const model::JointSprings>(s.controlModel());
+  ASSERT_TRUE(springs);
+  EXPECT_EQ(springs->stiffness(), s.flexible->params.stiffness);
   const Scenario again = parseScenario(toYaml(s), "resolved");
   EXPECT_EQ(toYaml(again), toYaml(s));
   EXPECT_EQ(again.initial_state.motor_q, s.initial_state.motor_q);

@@ -5,22 +5,19 @@
 #include <cmath>
 
 #include "controller/flexible.hpp"
+#include "model/joint_springs.hpp"
+#include "model/planar_chain.hpp"
 
 namespace lagrange::controller {
 namespace {
 
 struct Arm {
   model::FlexibleParams params{Eigen::Vector2d(100.0, 30.0), Eigen::Vector2d(0.05, 0.02)};
-  model::PlanarChain links;
+  model::JointSprings links;
   model::Reference reference;
   CascadedGains gains;
   Arm()
-      : links([this] {
-          model::ChainParams p = model::pelicanParams();
-          p.joint_stiffness = params.stiffness;
-          return p;
-        }()),
-        reference([] {
+      : links(std::make_shared<model::PlanarChain>(model::pelicanParams()), params.stiffness), reference([] {
           model::ReferenceParams r;
           r.type = model::ReferenceType::kSine;
           r.offset = Eigen::Vector2d(0.3, 0.2);

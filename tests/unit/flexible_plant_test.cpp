@@ -66,7 +66,7 @@ TEST(FlexiblePlant, MatchesTheAnalyticModelAndConvergesWithTheStep) {
 
 TEST(FlexiblePlant, ModelAccelerationIsTheEquations) {
   const model::PlanarChain chain(model::pelicanParams());
-  const model::FlexibleChain flexible(chain, flexibleParams(300.0));
+  const model::FlexibleChain flexible(std::make_shared<model::PlanarChain>(chain), flexibleParams(300.0));
   const PlantState s = start();
   const Eigen::Vector2d tau(0.7, -0.2);
   const auto [a1, a2] = flexible.acceleration({s.q, s.qdot, s.motor_q, s.motor_qdot}, tau);
@@ -86,7 +86,7 @@ TEST(FlexiblePlant, ConservesEnergyWithoutInputOrGravity) {
   for (int r = 0; r < 2; ++r) {
     PlantSim sim(weightless, start(), steps[r], p);
     const double e0 = sim.energy().total();
-    const model::FlexibleChain model(model::PlanarChain(weightless), p);
+    const model::FlexibleChain model(std::make_shared<model::PlanarChain>(weightless), p);
     const PlantState s = start();
     EXPECT_NEAR(e0, model.energy({s.q, s.qdot, s.motor_q, s.motor_qdot}), 1e-9 * e0);  // same energy
     double worst = 0.0;

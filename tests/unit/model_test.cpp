@@ -1,10 +1,12 @@
-// Property tests of the planar-chain model on random states (fixed seed),
+// Property tests of the planar-chain model on random states (fixed seed):
+// those of every robot kind (tests/support/robot_model_properties.hpp) and its own,
 // and the Pelican arm against the closed form of Kelly et al.'s book.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "model/planar_chain.hpp"
+#include "support/robot_model_properties.hpp"
 
 namespace lagrange::model {
 namespace {
@@ -19,12 +21,7 @@ ChainParams randomChain(std::mt19937_64& rng, int n) {
   return p;
 }
 
-Eigen::VectorXd randomVector(std::mt19937_64& rng, int n, double scale) {
-  std::uniform_real_distribution<double> u(-scale, scale);
-  Eigen::VectorXd v(n);
-  for (int i = 0; i < n; ++i) v(i) = u(rng);
-  return v;
-}
+using testing::randomVector;
 
 class ChainProperties : public ::testing::TestWithParam<int> {};
 
@@ -33,26 +30,9 @@ TEST_P(ChainProperties, HoldOnRandomStates) {
   std::mt19937_64 rng(42 + n);
   for (int trial = 0; trial < 100; ++trial) {
     const PlanarChain chain(randomChain(rng, n));
-    const Eigen::VectorXd q = randomVector(rng, n, 10.0), v = randomVector(rng, n, 5.0),
-                          z = randomVector(rng, n, 5.0);
-    const Eigen::MatrixXd d = chain.inertia(q);
-    // D symmetric positive definite.
-    EXPECT_LT((d - d.transpose()).norm(), 1e-12);
-    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(d).eigenvalues().minCoeff(), 0.0);
-    // D' - 2C skew-symmetric, with D' = sum_k dD/dq_k v_k from a central difference.
+    testing::expectRobotModelProperties(chain, rng);
+    const Eigen::VectorXd q = randomVector(rng, n, 10.0);
     const double h = 1e-6;
-    const Eigen::MatrixXd d_dot = (chain.inertia(q + h * v) - chain.inertia(q - h * v)) / (2 * h);
-    const Eigen::MatrixXd n_mat = d_dot - 2 * chain.coriolis(q, v);
-    EXPECT_LT((n_mat + n_mat.transpose()).norm(), 1e-6 * (1 + d_dot.norm()));
-    // C(q, x) y = C(q, y) x.
-    EXPECT_LT((chain.coriolis(q, v) * z - chain.coriolis(q, z) * v).norm(), 1e-10);
-    // g = dU/dq.
-    Eigen::VectorXd grad(n);
-    for (int k = 0; k < n; ++k) {
-      Eigen::VectorXd e = Eigen::VectorXd::Unit(n, k) * h;
-      grad(k) = (chain.potentialEnergy(q + e) - chain.potentialEnergy(q - e)) / (2 * h);
-    }
-    EXPECT_LT((grad - chain.gravity(q)).norm(), 1e-6 * (1 + grad.norm()));
     // Analytic inertia partials agree with a finite difference.
     const auto partials = chain.inertiaPartials(q);
     for (int k = 0; k < n; ++k) {
