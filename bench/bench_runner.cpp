@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "plant/planar_chain_world.hpp"
 #include "plant/plant_sim.hpp"
 
 namespace {
@@ -85,7 +86,8 @@ std::string chainConfig(int n) {
 // torque application and angle unwrapping every plant tick needs).
 double odeTicksPerSecond(const std::string& config, int ticks) {
   const auto s = lagrange::config::loadScenario(config, {"plant.physics_step=1.0e-4"});
-  lagrange::plant::PlantSim sim(s.robot, {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
+  lagrange::plant::PlantSim sim(lagrange::plant::planarChainWorld(s.robot),
+                                {s.initial_state.q, s.initial_state.qdot}, s.plant.physics_step);
   const Eigen::VectorXd tau = Eigen::VectorXd::Zero(s.dof());
   const auto start = std::chrono::steady_clock::now();
   for (int k = 0; k < ticks; ++k) sim.step(tau, s.substepsPerTick());

@@ -25,9 +25,9 @@ void releaseOde() {
   if (--ode_users == 0) dCloseODE();
 }
 
-// Absolute angle of a body from the downward vertical: its rotation about z.
-double bodyAngle(dBodyID body) {
-  const dReal* r = dBodyGetRotation(body);  // 3x4 row-major
+// A rotor's angle: its rotation about its hinge, the z axis.
+double rotorAngle(dBodyID rotor) {
+  const dReal* r = dBodyGetRotation(rotor);  // 3x4 row-major
   return std::atan2(r[4], r[0]);
 }
 
@@ -38,25 +38,19 @@ double wrapToNearest(double wrapped, double predicted) {
 
 struct PlantSim::Ode {
   dWorldID world = nullptr;
-  std::vector<dBodyID> bodies;
+  std::unique_ptr<ArmWorld> arm;
   std::vector<dBodyID> rotors;  // flexible joints only
-  std::vector<dJointID> joints;
-  std::vector<double> mass, inertia;
   ~Ode() {
+    arm.reset();
     if (world) dWorldDestroy(world);  // destroys bodies and joints too
   }
 };
 
-PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step,
+PlantSim::PlantSim(const ArmBuilder& arm, const PlantState& initial, double physics_step,
                    std::optional<model::FlexibleParams> flexible, std::optional<double> max_rate)
-    : dof_(static_cast<int>(params.links.size())),
-      physics_step_(physics_step),
-      gravity_(params.gravity),
-      flexible_(std::move(flexible)),
-      max_rate_(max_rate) {
+    : dof_(arm.dof), physics_step_(physics_step), flexible_(std::move(flexible)), max_rate_(max_rate) {
   if (max_rate_ && !(*max_rate_ > 0.0))
     throw std::invalid_argument("plant: max_rate must be positive, got " + std::to_string(*max_rate_));
-  model::PlanarChain validated(params);  // validates the parameters
   if (flexible_) {
     model::validateFlexible(*flexible_, dof_);
     if (initial.motor_q.size() != dof_ || initial.motor_qdot.size() != dof_)
@@ -76,52 +70,10 @@ PlantSim::PlantSim(const model::ChainParams& params, const PlantState& initial, 
   acquireOde();
   ode_ = std::make_unique<Ode>();
   ode_->world = dWorldCreate();
-  dWorldSetGravity(ode_->world, 0.0, -params.gravity, 0.0);
   dWorldSetLinearDamping(ode_->world, 0.0);
   dWorldSetAngularDamping(ode_->world, 0.0);
   dWorldSetMaxAngularSpeed(ode_->world, dInfinity);
-
-  // Place the bodies from the initial state.
-  double phi = 0.0, phidot = 0.0;
-  double jx = 0.0, jy = 0.0;    // position of the current joint
-  double jvx = 0.0, jvy = 0.0;  // velocity of the current joint
-  dBodyID parent = nullptr;
-  for (int i = 0; i < dof_; ++i) {
-    const model::LinkParams& link = params.links[i];
-    phi += initial.q(i);
-    phidot += initial.qdot(i);
-    const double dx = std::sin(phi), dy = -std::cos(phi);                   // link direction
-    const double vx = phidot * std::cos(phi), vy = phidot * std::sin(phi);  // d(direction)/dt
-
-    dBodyID body = dBodyCreate(ode_->world);
-    dMass m;
-    // Body frame at the centre of mass; only the z inertia matters in the
-    // plane, the others are set equal to keep the tensor positive definite.
-    dMassSetParameters(&m, link.mass, 0, 0, 0, link.inertia, link.inertia, link.inertia, 0, 0, 0);
-    dBodySetMass(body, &m);
-    dBodySetPosition(body, jx + link.com * dx, jy + link.com * dy, 0.0);
-    dMatrix3 rot;
-    dRFromAxisAndAngle(rot, 0, 0, 1, phi);
-    dBodySetRotation(body, rot);
-    dBodySetLinearVel(body, jvx + link.com * vx, jvy + link.com * vy, 0.0);
-    dBodySetAngularVel(body, 0, 0, phidot);
-    dBodySetGyroscopicMode(body, 1);
-
-    dJointID joint = dJointCreateHinge(ode_->world, nullptr);
-    dJointAttach(joint, body, parent);  // parent == nullptr: the world
-    dJointSetHingeAnchor(joint, jx, jy, 0.0);
-    dJointSetHingeAxis(joint, 0, 0, 1);
-
-    ode_->bodies.push_back(body);
-    ode_->joints.push_back(joint);
-    ode_->mass.push_back(link.mass);
-    ode_->inertia.push_back(link.inertia);
-    jx += link.length * dx;
-    jy += link.length * dy;
-    jvx += link.length * vx;
-    jvy += link.length * vy;
-    parent = body;
-  }
+  ode_->arm = arm.build(ode_->world, initial.q, initial.qdot);
   q_ = initial.q;
 
   if (flexible_) {
@@ -155,23 +107,15 @@ PlantSim::~PlantSim() {
 }
 
 void PlantSim::updateJointAngles() {
-  double previous_abs = 0.0, previous_rate = 0.0;
-  for (int i = 0; i < dof_; ++i) {
-    const double abs_angle = bodyAngle(ode_->bodies[i]);
-    const double abs_rate = dBodyGetAngularVel(ode_->bodies[i])[2];
-    const double rate = abs_rate - previous_rate;
-    const double wrapped = std::remainder(abs_angle - previous_abs, 2.0 * M_PI);
-    q_(i) = wrapToNearest(wrapped, q_(i) + rate * physics_step_);
-    previous_abs = abs_angle;
-    previous_rate = abs_rate;
-  }
+  const Eigen::VectorXd wrapped = ode_->arm->wrappedJointAngles(), rates = ode_->arm->jointRates();
+  for (int i = 0; i < dof_; ++i) q_(i) = wrapToNearest(wrapped(i), q_(i) + rates(i) * physics_step_);
 }
 
 void PlantSim::checkBounded() const {
   // See the class comment: only a failing simulation or the user's limit stops a run.
-  double worst = 0.0;
-  bool finite = true;
-  auto look = [&](dBodyID b) {
+  double worst = ode_->arm->fastestBodyRate();
+  bool finite = ode_->arm->finite();
+  for (dBodyID b : ode_->rotors) {
     const dReal* w = dBodyGetAngularVel(b);
     const dReal* v = dBodyGetLinearVel(b);
     const dReal* p = dBodyGetPosition(b);
@@ -180,9 +124,7 @@ void PlantSim::checkBounded() const {
       finite = finite && std::isfinite(w[i]) && std::isfinite(v[i]) && std::isfinite(p[i]);
     for (int i = 0; i < 4; ++i) finite = finite && std::isfinite(r[i]);
     worst = std::max(worst, std::abs(w[2]));
-  };
-  for (dBodyID b : ode_->bodies) look(b);
-  for (dBodyID b : ode_->rotors) look(b);
+  }
   const std::string at = "at t = " + std::to_string(time_) + " s";
   if (!finite || !q_.allFinite() || (flexible_ && !motor_q_.allFinite()))
     throw PlantStopped("plant: the simulation diverged " + at + ": the state is no longer finite");
@@ -201,7 +143,7 @@ void PlantSim::checkBounded() const {
 void PlantSim::updateMotorAngles() {
   for (int i = 0; i < dof_; ++i) {
     const double rate = dBodyGetAngularVel(ode_->rotors[i])[2];
-    motor_q_(i) = wrapToNearest(bodyAngle(ode_->rotors[i]), motor_q_(i) + rate * physics_step_);
+    motor_q_(i) = wrapToNearest(rotorAngle(ode_->rotors[i]), motor_q_(i) + rate * physics_step_);
   }
 }
 
@@ -213,11 +155,9 @@ void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
     // Joint torques: the input (rigid) or the springs' (flexible).
     const Eigen::VectorXd joint =
         flexible_ ? Eigen::VectorXd(flexible_->stiffness.cwiseProduct(motor_q_ - q_)) : tau;
-    for (int i = 0; i < dof_; ++i) {
-      dBodyAddTorque(ode_->bodies[i], 0, 0, joint(i));
-      if (i > 0) dBodyAddTorque(ode_->bodies[i - 1], 0, 0, -joint(i));
-      if (flexible_) dBodyAddTorque(ode_->rotors[i], 0, 0, tau(i) - joint(i));
-    }
+    ode_->arm->addJointTorques(joint);
+    if (flexible_)
+      for (int i = 0; i < dof_; ++i) dBodyAddTorque(ode_->rotors[i], 0, 0, tau(i) - joint(i));
     dWorldStep(ode_->world, physics_step_);
     updateJointAngles();
     if (flexible_) updateMotorAngles();
@@ -237,13 +177,7 @@ void PlantSim::stepProfile(const Eigen::MatrixXd& tau, int substeps) {
 PlantState PlantSim::state() const {
   PlantState s;
   s.q = q_;
-  s.qdot.resize(dof_);
-  double previous_rate = 0.0;
-  for (int i = 0; i < dof_; ++i) {
-    const double abs_rate = dBodyGetAngularVel(ode_->bodies[i])[2];
-    s.qdot(i) = abs_rate - previous_rate;
-    previous_rate = abs_rate;
-  }
+  s.qdot = ode_->arm->jointRates();
   if (flexible_) {
     s.motor_q = motor_q_;
     s.motor_qdot.resize(dof_);
@@ -254,14 +188,8 @@ PlantState PlantSim::state() const {
 
 PlantEnergy PlantSim::energy() const {
   PlantEnergy e;
-  for (int i = 0; i < dof_; ++i) {
-    const dReal* v = dBodyGetLinearVel(ode_->bodies[i]);
-    const dReal* w = dBodyGetAngularVel(ode_->bodies[i]);
-    const dReal* p = dBodyGetPosition(ode_->bodies[i]);
-    e.kinetic += 0.5 * ode_->mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
-                 0.5 * ode_->inertia[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-    e.potential += ode_->mass[i] * gravity_ * p[1];
-  }
+  e.kinetic = ode_->arm->kineticEnergy();
+  e.potential = ode_->arm->potentialEnergy();
   if (flexible_) {
     for (int i = 0; i < dof_; ++i) {
       const double w = dBodyGetAngularVel(ode_->rotors[i])[2], twist = motor_q_(i) - q_(i);

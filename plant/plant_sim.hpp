@@ -1,16 +1,17 @@
 #pragma once
 /// @file
-/// ODE simulation of the planar chain of model::PlanarChain: one rigid body per
-/// link, hinge joints about the z axis, gravity -g along y, dWorldStep (the
-/// accurate stepper), no damping and no angular-speed clamp. ODE stays inside
-/// this class (RAII); callers see Eigen vectors only.
+/// ODE simulation of an arm: the world of one robot kind's builder
+/// (plant/arm_world.hpp; the planar chain's in plant/planar_chain_world.hpp),
+/// stepped by dWorldStep (the accurate stepper), no damping and no
+/// angular-speed clamp. ODE stays inside the plant (RAII); callers see Eigen
+/// vectors only.
 ///
 /// Torques are re-applied before every physics sub-step (ODE clears its force
 /// accumulators after each step): joint torque tau_i acts +tau_i on link i and
-/// -tau_i on link i-1. Joint angles are reconstructed from the bodies' absolute
-/// orientations and kept continuous (multi-turn): each sub-step the wrapped
-/// angle is unwrapped towards the angle predicted from the joint rate, so
-/// turns are counted correctly as long as the rate is below pi / physics_step.
+/// -tau_i on its parent. Joint angles, which the bodies show modulo 2 pi, are
+/// kept continuous (multi-turn): each sub-step the wrapped angle is unwrapped
+/// towards the angle predicted from the joint rate, so turns are counted
+/// correctly as long as the rate is below pi / physics_step.
 ///
 /// Flexible joints (model/flexible_joint.hpp): one more body per joint, the
 /// rotor, hinged to the base on the z axis with inertia J_i about it. Each
@@ -26,7 +27,7 @@
 
 #include "model/error.hpp"
 #include "model/flexible_joint.hpp"
-#include "model/planar_chain.hpp"
+#include "plant/arm_world.hpp"
 
 namespace lagrange::plant {
 
@@ -65,13 +66,14 @@ class PlantSim {
   /// The largest rotation of a body in one physics step the simulation follows [rad].
   static constexpr double kMaxTurnPerStep = M_PI / 2.0;
 
+  /// @param arm the robot kind's builder (e.g. planarChainWorld(params)).
   /// @param physics_step ODE step [s], > 0.
   /// @param flexible elastic joints with rotors; then `initial` needs motor_q, motor_qdot
   ///        and the torques of step() act on the rotors.
   /// @param max_rate a limit on any body's angular rate [rad/s] (plant.max_rate); none if unset.
   /// @throws std::invalid_argument on a size mismatch, non-finite state, a bad step
   ///         or bad flexible parameters.
-  PlantSim(const model::ChainParams& params, const PlantState& initial, double physics_step,
+  PlantSim(const ArmBuilder& arm, const PlantState& initial, double physics_step,
            std::optional<model::FlexibleParams> flexible = std::nullopt,
            std::optional<double> max_rate = std::nullopt);
   ~PlantSim();
@@ -105,7 +107,6 @@ class PlantSim {
   int dof_;
   double physics_step_;
   double time_ = 0.0;
-  double gravity_;
   std::unique_ptr<Ode> ode_;
   Eigen::VectorXd q_;        ///< continuous joint angles
   Eigen::VectorXd motor_q_;  ///< continuous motor angles (flexible joints)

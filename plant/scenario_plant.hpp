@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The plant a scenario describes: one place that turns the config into a
-/// PlantSim, for the plant process, the in-process runner and plant replay.
+/// PlantSim, for the plant process, the in-process runner and plant replay,
+/// and the one place the plant picks the builder of the scenario's robot kind.
 
 #include "config/scenario.hpp"
 #include "plant/plant_sim.hpp"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "model/flexible_joint.hpp"
+#include "plant/planar_chain_world.hpp"
 #include "plant/plant_sim.hpp"
 #include "support/rk4.hpp"
 
@@ -39,7 +40,7 @@ double gapToModel(double k, double physics_step) {
   const model::PlanarChain chain(model::pelicanParams());
   const model::FlexibleParams p = flexibleParams(k);
   const PlantState s0 = start();
-  PlantSim sim(model::pelicanParams(), s0, physics_step, p);
+  PlantSim sim(planarChainWorld(model::pelicanParams()), s0, physics_step, p);
   Eigen::VectorXd x(8);
   x << s0.q, s0.qdot, s0.motor_q, s0.motor_qdot;
   const int substeps = static_cast<int>(std::lround(1e-3 / physics_step));
@@ -84,7 +85,7 @@ TEST(FlexiblePlant, ConservesEnergyWithoutInputOrGravity) {
   double drift[2];
   const double steps[2] = {1e-4, 1e-5};
   for (int r = 0; r < 2; ++r) {
-    PlantSim sim(weightless, start(), steps[r], p);
+    PlantSim sim(planarChainWorld(weightless), start(), steps[r], p);
     const double e0 = sim.energy().total();
     const model::FlexibleChain model(std::make_shared<model::PlanarChain>(weightless), p);
     const PlantState s = start();
@@ -111,7 +112,7 @@ TEST(FlexiblePlant, StiffLimitIsTheRigidArmWithTheRotorInertias) {
     PlantState s0 = start();
     s0.motor_q = s0.q;  // no initial twist
     s0.motor_qdot = s0.qdot;
-    PlantSim sim(params, s0, 1e-5, p);
+    PlantSim sim(planarChainWorld(params), s0, 1e-5, p);
     Eigen::VectorXd x(4);
     x << s0.q, s0.qdot;
     double gap = 0.0;
@@ -140,21 +141,21 @@ TEST(FlexiblePlant, StiffLimitIsTheRigidArmWithTheRotorInertias) {
 }
 
 TEST(FlexiblePlant, RejectsBadParameters) {
-  EXPECT_THROW(PlantSim(model::pelicanParams(), start(), 1e-4,
+  EXPECT_THROW(PlantSim(planarChainWorld(model::pelicanParams()), start(), 1e-4,
                         model::FlexibleParams{Eigen::Vector2d(100, 0), Eigen::Vector2d(1, 1)}),
                std::invalid_argument);
-  EXPECT_THROW(PlantSim(model::pelicanParams(), start(), 1e-4,
+  EXPECT_THROW(PlantSim(planarChainWorld(model::pelicanParams()), start(), 1e-4,
                         model::FlexibleParams{Eigen::Vector2d(100, 100), Eigen::Vector2d(-1, 1)}),
                std::invalid_argument);
   PlantState no_motor = start();
   no_motor.motor_q.resize(0);
-  EXPECT_THROW(PlantSim(model::pelicanParams(), no_motor, 1e-4, flexibleParams(100.0)),
+  EXPECT_THROW(PlantSim(planarChainWorld(model::pelicanParams()), no_motor, 1e-4, flexibleParams(100.0)),
                std::invalid_argument);
 }
 
 // A diverging loop stops with a named error instead of ODE's abort.
 TEST(FlexiblePlant, DivergenceIsReportedBeforeOdeAborts) {
-  PlantSim sim(model::pelicanParams(), start(), 1e-4, flexibleParams(100.0));
+  PlantSim sim(planarChainWorld(model::pelicanParams()), start(), 1e-4, flexibleParams(100.0));
   try {
     for (int k = 0; k < 1000; ++k)
       sim.step(Eigen::Vector2d(1e6, -1e6), 10);  // spins everything up without bound

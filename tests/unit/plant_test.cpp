@@ -2,6 +2,7 @@
 // without input, and continuous multi-turn angles.
 #include <gtest/gtest.h>
 
+#include "plant/planar_chain_world.hpp"
 #include "plant/plant_sim.hpp"
 #include "support/rk4.hpp"
 
@@ -24,7 +25,7 @@ double gapOverOneSecond(const model::ChainParams& params, double physics_step) {
     q0(i) = 0.5 - 0.3 * i;
     v0(i) = 0.2 * i - 0.4;
   }
-  PlantSim sim(params, {q0, v0}, physics_step);
+  PlantSim sim(planarChainWorld(params), {q0, v0}, physics_step);
   Eigen::VectorXd x(2 * n);
   x << q0, v0;
   const double period = 1e-3;
@@ -59,7 +60,8 @@ TEST(PlantSim, ThreeLinkChainMatchesTheModelToo) {
 
 TEST(PlantSim, EnergyDriftWithoutTorqueIsSmallAndShrinksWithTheStep) {
   auto drift = [](double dt) {
-    PlantSim sim(model::pelicanParams(), {Eigen::Vector2d(1.0, -0.5), Eigen::Vector2d(2.0, 1.0)}, dt);
+    PlantSim sim(planarChainWorld(model::pelicanParams()),
+                 {Eigen::Vector2d(1.0, -0.5), Eigen::Vector2d(2.0, 1.0)}, dt);
     const double e0 = sim.energy().total();
     double worst = 0.0;
     const int substeps = static_cast<int>(std::lround(1e-3 / dt));
@@ -79,7 +81,7 @@ TEST(PlantSim, EnergyDriftWithoutTorqueIsSmallAndShrinksWithTheStep) {
 TEST(PlantSim, EnergyAgreesWithTheAnalyticModel) {
   const model::PlanarChain chain(model::pelicanParams());
   const Eigen::Vector2d q(0.7, 2.1), v(-1.5, 3.0);
-  PlantSim sim(model::pelicanParams(), {q, v}, 1e-4);
+  PlantSim sim(planarChainWorld(model::pelicanParams()), {q, v}, 1e-4);
   EXPECT_NEAR(sim.energy().kinetic, chain.kineticEnergy(q, v), 1e-12);
   EXPECT_NEAR(sim.energy().potential, chain.potentialEnergy(q), 1e-12);
 }
@@ -88,7 +90,8 @@ TEST(PlantSim, OneLinkSpinsThroughManyTurnsWithoutWrapping) {
   model::ChainParams p;
   p.links = {{0.3, 0.15, 1.0, 0.01}};
   p.gravity = 0.0;
-  PlantSim sim(p, {Eigen::VectorXd::Constant(1, 100.0), Eigen::VectorXd::Constant(1, 30.0)}, 1e-4);
+  PlantSim sim(planarChainWorld(p), {Eigen::VectorXd::Constant(1, 100.0), Eigen::VectorXd::Constant(1, 30.0)},
+               1e-4);
   EXPECT_DOUBLE_EQ(sim.state().q(0), 100.0);
   sim.step(Eigen::VectorXd::Zero(1), 20000);  // 2 s: about 9.5 turns
   // A wrapped angle would be off by a multiple of 2 pi; what remains is the
@@ -110,20 +113,22 @@ TEST(PlantSim, FastMotionRunsUntilTheStepCannotResolveIt) {
   // rate accurately: its constraint stabilisation bleeds speed from a link
   // spinning about an offset centre of mass (measured: about 14 % in 10 ms
   // at 0.06 rad per step), so the angle only has to keep growing.
-  PlantSim fast(p, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 3e4)}, h);
+  PlantSim fast(planarChainWorld(p), {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 3e4)}, h);
   EXPECT_NO_THROW(fast.step(Eigen::VectorXd::Zero(1), 400));
   EXPECT_GT(fast.state().q(0), 20.0);
   try {
-    PlantSim spun(p, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 6e4)}, h);
+    PlantSim spun(planarChainWorld(p), {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 6e4)}, h);
     for (int k = 0; k < 100; ++k) spun.step(Eigen::VectorXd::Constant(1, 1e9), 1);  // ~3e10 rad/s^2
     FAIL() << "expected the simulation to stop past " << resolvable << " rad/s";
   } catch (const PlantStopped& e) {
     EXPECT_NE(std::string(e.what()).find("the simulation diverged"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("pi/2 per physics step"), std::string::npos) << e.what();
   }
-  PlantSim limited(p, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 3e4)}, h, std::nullopt, 2e4);
+  PlantSim limited(planarChainWorld(p), {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 3e4)}, h,
+                   std::nullopt, 2e4);
   EXPECT_THROW(limited.step(Eigen::VectorXd::Zero(1), 1), PlantStopped);
-  EXPECT_THROW(PlantSim(p, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)}, h, std::nullopt, -1.0),
+  EXPECT_THROW(PlantSim(planarChainWorld(p), {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)}, h,
+                        std::nullopt, -1.0),
                std::invalid_argument);
 }
 
@@ -132,7 +137,7 @@ TEST(PlantSim, AnglesAreContinuousAndIntegrateTheRates) {
   // matches the rate (no 2 pi jumps), and q(T) - q(0) is the integral of q'.
   model::ChainParams p = model::pelicanParams();
   p.gravity = 0.0;
-  PlantSim sim(p, {Eigen::Vector2d(100.0, -120.0), Eigen::Vector2d(30.0, -40.0)}, 1e-4);
+  PlantSim sim(planarChainWorld(p), {Eigen::Vector2d(100.0, -120.0), Eigen::Vector2d(30.0, -40.0)}, 1e-4);
   Eigen::VectorXd q = sim.state().q, v = sim.state().qdot, integral = Eigen::Vector2d::Zero();
   const Eigen::VectorXd q0 = q;
   const double dt = 1e-3;
@@ -149,11 +154,14 @@ TEST(PlantSim, AnglesAreContinuousAndIntegrateTheRates) {
 }
 
 TEST(PlantSim, RejectsBadInput) {
-  EXPECT_THROW(PlantSim(model::pelicanParams(), {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}, 1e-4),
+  EXPECT_THROW(PlantSim(planarChainWorld(model::pelicanParams()),
+                        {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}, 1e-4),
                std::invalid_argument);
-  EXPECT_THROW(PlantSim(model::pelicanParams(), {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}, 0.0),
+  EXPECT_THROW(PlantSim(planarChainWorld(model::pelicanParams()),
+                        {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}, 0.0),
                std::invalid_argument);
-  PlantSim sim(model::pelicanParams(), {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}, 1e-4);
+  PlantSim sim(planarChainWorld(model::pelicanParams()), {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()},
+               1e-4);
   EXPECT_THROW(sim.step(Eigen::Vector3d::Zero(), 1), std::invalid_argument);
   EXPECT_THROW(sim.stepProfile(Eigen::MatrixXd::Zero(3, 2), 10),
                std::invalid_argument);  // 3 does not divide 10
@@ -163,8 +171,9 @@ TEST(PlantSim, RejectsBadInput) {
 // part s of the period: the same as stepping each part with that torque.
 TEST(PlantSim, TorqueProfileAppliesEachRowOverItsPartOfThePeriod) {
   const PlantState start{Eigen::Vector2d(0.3, -0.2), Eigen::Vector2d(0.1, 0.0)};
-  PlantSim profiled(model::pelicanParams(), start, 1e-4), stepped(model::pelicanParams(), start, 1e-4),
-      held(model::pelicanParams(), start, 1e-4);
+  PlantSim profiled(planarChainWorld(model::pelicanParams()), start, 1e-4),
+      stepped(planarChainWorld(model::pelicanParams()), start, 1e-4),
+      held(planarChainWorld(model::pelicanParams()), start, 1e-4);
   Eigen::MatrixXd tau(4, 2);
   tau << 1, -1, 2, -2, 3, -3, 4, -4;
   profiled.stepProfile(tau, 20);

@@ -1,0 +1,53 @@
+#pragma once
+/// @file
+/// The plant's seam for robot kinds: what one kind puts into the ODE world
+/// (its link bodies and joints, placed at the initial state, and the direction
+/// of gravity) and how the simulation reads joint angles, rates and energy
+/// back and applies joint torques. plant::PlantSim owns the world, steps it,
+/// unwraps the angles, adds the flexible joints' rotors and stops a failing
+/// run; it knows no kind. One builder per kind (plant/planar_chain_world.hpp).
+
+#include <Eigen/Dense>
+#include <functional>
+#include <memory>
+
+// ODE's world (ODE's dWorldID is dxWorld*), declared rather than included so
+// that the plant's users do not compile against ODE: only plant/ links it.
+struct dxWorld;
+
+namespace lagrange::plant {
+
+/// A kind's arm inside an ODE world. Its bodies and joints belong to the world
+/// (destroyed with it); the object only reads and pushes them.
+class ArmWorld {
+ public:
+  virtual ~ArmWorld() = default;
+
+  virtual int dof() const = 0;
+  /// Adds joint torque tau_i to the bodies' accumulators: + on link i, - on its
+  /// parent (nothing on the fixed base). Called before every physics step.
+  virtual void addJointTorques(const Eigen::VectorXd& tau) = 0;
+  /// The joint angles as the bodies show them, each known only modulo 2 pi [rad].
+  virtual Eigen::VectorXd wrappedJointAngles() const = 0;
+  /// The joint rates [rad/s].
+  virtual Eigen::VectorXd jointRates() const = 0;
+  /// The fastest angular rate of any link body [rad/s] (PlantSim's step limit).
+  virtual double fastestBodyRate() const = 0;
+  /// Whether every body's position, orientation and velocities are finite.
+  virtual bool finite() const = 0;
+  /// Kinetic and potential energy of the links, from the bodies' states [J].
+  virtual double kineticEnergy() const = 0;
+  virtual double potentialEnergy() const = 0;
+};
+
+/// How one kind builds its arm: n joints, and a function that creates the
+/// bodies and joints in `world` at joint angles q and rates qdot (sizes
+/// checked by the caller), sets the world's gravity, and returns the handle.
+struct ArmBuilder {
+  int dof = 0;
+  std::function<std::unique_ptr<ArmWorld>(dxWorld* world, const Eigen::VectorXd& q,
+                                          const Eigen::VectorXd& qdot)>
+      build;
+};
+
+}  // namespace lagrange::plant

@@ -1,0 +1,150 @@
+#include "plant/planar_chain_world.hpp"
+
+#include <ode/ode.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace lagrange::plant {
+
+namespace {
+
+// Absolute angle of a body from the downward vertical: its rotation about z.
+double bodyAngle(dBodyID body) {
+  const dReal* r = dBodyGetRotation(body);  // 3x4 row-major
+  return std::atan2(r[4], r[0]);
+}
+
+class PlanarChainWorld final : public ArmWorld {
+ public:
+  PlanarChainWorld(const model::ChainParams& params, dWorldID world, const Eigen::VectorXd& q,
+                   const Eigen::VectorXd& qdot)
+      : gravity_(params.gravity) {
+    dWorldSetGravity(world, 0.0, -params.gravity, 0.0);
+    // Place the bodies from the initial state.
+    double phi = 0.0, phidot = 0.0;
+    double jx = 0.0, jy = 0.0;    // position of the current joint
+    double jvx = 0.0, jvy = 0.0;  // velocity of the current joint
+    dBodyID parent = nullptr;
+    for (size_t i = 0; i < params.links.size(); ++i) {
+      const model::LinkParams& link = params.links[i];
+      phi += q(static_cast<Eigen::Index>(i));
+      phidot += qdot(static_cast<Eigen::Index>(i));
+      const double dx = std::sin(phi), dy = -std::cos(phi);                   // link direction
+      const double vx = phidot * std::cos(phi), vy = phidot * std::sin(phi);  // d(direction)/dt
+
+      dBodyID body = dBodyCreate(world);
+      dMass m;
+      // Body frame at the centre of mass; only the z inertia matters in the
+      // plane, the others are set equal to keep the tensor positive definite.
+      dMassSetParameters(&m, link.mass, 0, 0, 0, link.inertia, link.inertia, link.inertia, 0, 0, 0);
+      dBodySetMass(body, &m);
+      dBodySetPosition(body, jx + link.com * dx, jy + link.com * dy, 0.0);
+      dMatrix3 rot;
+      dRFromAxisAndAngle(rot, 0, 0, 1, phi);
+      dBodySetRotation(body, rot);
+      dBodySetLinearVel(body, jvx + link.com * vx, jvy + link.com * vy, 0.0);
+      dBodySetAngularVel(body, 0, 0, phidot);
+      dBodySetGyroscopicMode(body, 1);
+
+      dJointID joint = dJointCreateHinge(world, nullptr);
+      dJointAttach(joint, body, parent);  // parent == nullptr: the world
+      dJointSetHingeAnchor(joint, jx, jy, 0.0);
+      dJointSetHingeAxis(joint, 0, 0, 1);
+
+      bodies_.push_back(body);
+      mass_.push_back(link.mass);
+      inertia_.push_back(link.inertia);
+      jx += link.length * dx;
+      jy += link.length * dy;
+      jvx += link.length * vx;
+      jvy += link.length * vy;
+      parent = body;
+    }
+  }
+
+  int dof() const override { return static_cast<int>(bodies_.size()); }
+
+  void addJointTorques(const Eigen::VectorXd& tau) override {
+    for (int i = 0; i < dof(); ++i) {
+      dBodyAddTorque(bodies_[i], 0, 0, tau(i));
+      if (i > 0) dBodyAddTorque(bodies_[i - 1], 0, 0, -tau(i));
+    }
+  }
+
+  Eigen::VectorXd wrappedJointAngles() const override {
+    Eigen::VectorXd wrapped(dof());
+    double previous_abs = 0.0;
+    for (int i = 0; i < dof(); ++i) {
+      const double abs_angle = bodyAngle(bodies_[i]);
+      wrapped(i) = std::remainder(abs_angle - previous_abs, 2.0 * M_PI);
+      previous_abs = abs_angle;
+    }
+    return wrapped;
+  }
+
+  Eigen::VectorXd jointRates() const override {
+    Eigen::VectorXd rates(dof());
+    double previous_rate = 0.0;
+    for (int i = 0; i < dof(); ++i) {
+      const double abs_rate = dBodyGetAngularVel(bodies_[i])[2];
+      rates(i) = abs_rate - previous_rate;
+      previous_rate = abs_rate;
+    }
+    return rates;
+  }
+
+  double fastestBodyRate() const override {
+    double worst = 0.0;
+    for (dBodyID b : bodies_) worst = std::max(worst, std::abs(dBodyGetAngularVel(b)[2]));
+    return worst;
+  }
+
+  bool finite() const override {
+    bool finite = true;
+    for (dBodyID b : bodies_) {
+      const dReal* w = dBodyGetAngularVel(b);
+      const dReal* v = dBodyGetLinearVel(b);
+      const dReal* p = dBodyGetPosition(b);
+      const dReal* r = dBodyGetQuaternion(b);
+      for (int i = 0; i < 3; ++i)
+        finite = finite && std::isfinite(w[i]) && std::isfinite(v[i]) && std::isfinite(p[i]);
+      for (int i = 0; i < 4; ++i) finite = finite && std::isfinite(r[i]);
+    }
+    return finite;
+  }
+
+  double kineticEnergy() const override {
+    double e = 0.0;
+    for (int i = 0; i < dof(); ++i) {
+      const dReal* v = dBodyGetLinearVel(bodies_[i]);
+      const dReal* w = dBodyGetAngularVel(bodies_[i]);
+      e += 0.5 * mass_[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) +
+           0.5 * inertia_[i] * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    }
+    return e;
+  }
+
+  double potentialEnergy() const override {
+    double e = 0.0;
+    for (int i = 0; i < dof(); ++i) e += mass_[i] * gravity_ * dBodyGetPosition(bodies_[i])[1];
+    return e;
+  }
+
+ private:
+  double gravity_;
+  std::vector<dBodyID> bodies_;
+  std::vector<double> mass_, inertia_;
+};
+
+}  // namespace
+
+ArmBuilder planarChainWorld(const model::ChainParams& params) {
+  const model::PlanarChain validated(params);  // refuses bad parameters before any ODE call
+  return {validated.dof(), [params](dWorldID world, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot) {
+            return std::unique_ptr<ArmWorld>(std::make_unique<PlanarChainWorld>(params, world, q, qdot));
+          }};
+}
+
+}  // namespace lagrange::plant
