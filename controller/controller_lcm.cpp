@@ -28,4 +28,12 @@ lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t po
   return m;
 }
 
+Eigen::MatrixXd motorSample(const lagrange::plant_motor_t& m) {
+  const Eigen::VectorXd q2 = transport::toEigen(m.q);
+  Eigen::MatrixXd sample(m.num_rates > 0 ? 2 : 1, q2.size());
+  sample.row(0) = q2.transpose();
+  if (m.num_rates > 0) sample.row(1) = transport::toEigen(m.qdot).transpose();
+  return sample;
+}
+
 }  // namespace lagrange::controller

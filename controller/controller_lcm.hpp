@@ -1,17 +1,23 @@
 #pragma once
 /// @file
-/// CONTROL_COMMAND from a controller's output: one place, used by the
-/// controller process, the in-process runner and the benchmarks alike.
+/// The controller's messages: CONTROL_COMMAND from a controller's output, and
+/// PLANT_MOTOR as its input. One place, used by the controller process, the
+/// in-process runner and the benchmarks alike.
 
 #include <cstdint>
 
 #include "controller/input_assembly.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_motor_t.hpp"
 
 namespace lagrange::controller {
 
 lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t position_tick, double sim_time,
                                            InputTicks inputs = {});
+
+/// PLANT_MOTOR as InputAssembly::motorSample takes it: rows q2 and, when the
+/// message carries rates (a rate sensor), q2'.
+Eigen::MatrixXd motorSample(const lagrange::plant_motor_t& m);
 
 }  // namespace lagrange::controller

@@ -55,12 +55,7 @@ int DoMain(int argc, char** argv) {
         // The measurements besides q that it declared, assembled per tick
         // (lockstep) or newest (realtime) by controller::InputAssembly.
         const bool rate_sensor = s.flexible && s.flexible->rate_sensor;
-        Eigen::MatrixXd initial_motor = Eigen::MatrixXd::Zero(rate_sensor ? 2 : 1, s.dof());
-        if (s.flexible) {
-          initial_motor.row(0) = s.initial_state.motor_q.transpose();
-          if (rate_sensor) initial_motor.row(1) = s.initial_state.motor_qdot.transpose();
-        }
-        controller::InputAssembly assembly(needs, s.actuator.initial_state, initial_motor);
+        controller::InputAssembly assembly = controller::makeInputAssembly(s, needs);
         if (needs.actuator_order > 0) {
           node.subscribe<lagrange::actuator_state_t>(
               transport::kActuatorState,
@@ -79,10 +74,7 @@ int DoMain(int argc, char** argv) {
               transport::kPlantMotor,
               [&](const auto& m) { return transport::validate(m, s.dof(), rate_sensor); },
               [&](const lagrange::plant_motor_t& m) {
-                Eigen::MatrixXd sample(rate_sensor ? 2 : 1, s.dof());
-                sample.row(0) = transport::toEigen(m.q).transpose();
-                if (rate_sensor) sample.row(1) = transport::toEigen(m.qdot).transpose();
-                assembly.motorSample(m.header.tick, sample);
+                assembly.motorSample(m.header.tick, controller::motorSample(m));
               });
         }
         auto command = [&](const lagrange::plant_position_t& m, const controller::AssembledInputs& in) {

@@ -49,4 +49,14 @@ GainReport checkGains(const config::Scenario& s, bool sampled_data) {
   return r;
 }
 
+InputAssembly makeInputAssembly(const config::Scenario& s, const Needs& needs) {
+  const bool rates = s.flexible && s.flexible->rate_sensor;
+  Eigen::MatrixXd initial_motor = Eigen::MatrixXd::Zero(rates ? 2 : 1, s.dof());
+  if (s.flexible) {
+    initial_motor.row(0) = s.initial_state.motor_q.transpose();
+    if (rates) initial_motor.row(1) = s.initial_state.motor_qdot.transpose();
+  }
+  return InputAssembly(needs, s.actuator.initial_state, initial_motor);
+}
+
 }  // namespace lagrange::controller

@@ -24,6 +24,7 @@
 #include "config/scenario.hpp"
 #include "controller/controller.hpp"
 #include "controller/gain_report.hpp"
+#include "controller/input_assembly.hpp"
 
 namespace lagrange::controller {
 
@@ -44,5 +45,10 @@ bool registerControllerKind(ControllerKind kind);
 /// The controller the scenario names. @throws std::logic_error for a type
 /// nobody registered (the config reader rejects those first).
 std::unique_ptr<Controller> makeController(const config::Scenario& s);
+
+/// The input rule for a controller with these needs in scenario s: xi(0) from
+/// actuator.initial_state, and (flexible joints) the initial motor state as
+/// realtime's sample before the first PLANT_MOTOR.
+InputAssembly makeInputAssembly(const config::Scenario& s, const Needs& needs);
 
 }  // namespace lagrange::controller

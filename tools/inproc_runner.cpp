@@ -34,6 +34,8 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   plant::PlantSim sim = plant::plantFor(s);
   const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
   const controller::Needs needs = ctl->needs();
+  // The controller's inputs by the controller process's own rule (lockstep).
+  controller::InputAssembly assembly = controller::makeInputAssembly(s, needs);
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
   logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
 
@@ -55,23 +57,21 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
 
     const double sample_time = sample.position.header.sim_time;
-    controller::ControllerInputs in;
-    in.t = sample_time;
-    in.q = transport::toEigen(sample.position.q);
-    if (needs.actuator_order > 0) in.xi = act.state();
     if (s.flexible) {
       const auto motor = plant::motorMessage(k, t, st.motor_q, st.motor_qdot, s.flexible->rate_sensor);
       log.writeMessage(transport::kPlantMotor, motor, motor.header.publish_utime);
-      if (needs.motor_angles) in.motor_q = transport::toEigen(motor.q);
-      if (needs.motor_rates) in.motor_qdot = plant::motorRates(motor);
+      if (needs.motor_angles) assembly.motorSample(k, controller::motorSample(motor));
     }
-    const controller::InputTicks inputs{needs.actuator_order > 0 ? k - 1 : -1, needs.motor_angles ? k : -1};
-    const auto command = controller::commandMessage(ctl->step(in), k, sample_time, inputs);
+    // Every measurement of tick k is in: the assembly always answers here.
+    const controller::AssembledInputs in =
+        assembly.forTick(k, sample_time, transport::toEigen(sample.position.q)).value();
+    const auto command = controller::commandMessage(ctl->step(in.inputs), k, sample_time, in.ticks);
     log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied =
         act.step(transport::toEigen(command.u), s.tickPeriod(), s.torqueStepsPerTick());
     const auto state = actuator::actuatorMessage(applied, act.state(), command);
+    if (needs.actuator_order > 0) assembly.chainState(k, act.state());
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
     metrics.addTorque(tau);
