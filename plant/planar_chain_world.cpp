@@ -6,15 +6,11 @@
 #include <cmath>
 #include <vector>
 
+#include "plant/ode_body.hpp"
+
 namespace lagrange::plant {
 
 namespace {
-
-// Absolute angle of a body from the downward vertical: its rotation about z.
-double bodyAngle(dBodyID body) {
-  const dReal* r = dBodyGetRotation(body);  // 3x4 row-major
-  return std::atan2(r[4], r[0]);
-}
 
 class PlanarChainWorld final : public ArmWorld {
  public:
@@ -77,7 +73,7 @@ class PlanarChainWorld final : public ArmWorld {
     Eigen::VectorXd wrapped(dof());
     double previous_abs = 0.0;
     for (int i = 0; i < dof(); ++i) {
-      const double abs_angle = bodyAngle(bodies_[i]);
+      const double abs_angle = zRotation(bodies_[i]);
       wrapped(i) = std::remainder(abs_angle - previous_abs, 2.0 * M_PI);
       previous_abs = abs_angle;
     }
@@ -101,19 +97,7 @@ class PlanarChainWorld final : public ArmWorld {
     return worst;
   }
 
-  bool finite() const override {
-    bool finite = true;
-    for (dBodyID b : bodies_) {
-      const dReal* w = dBodyGetAngularVel(b);
-      const dReal* v = dBodyGetLinearVel(b);
-      const dReal* p = dBodyGetPosition(b);
-      const dReal* r = dBodyGetQuaternion(b);
-      for (int i = 0; i < 3; ++i)
-        finite = finite && std::isfinite(w[i]) && std::isfinite(v[i]) && std::isfinite(p[i]);
-      for (int i = 0; i < 4; ++i) finite = finite && std::isfinite(r[i]);
-    }
-    return finite;
-  }
+  bool finite() const override { return std::all_of(bodies_.begin(), bodies_.end(), bodyStateFinite); }
 
   double kineticEnergy() const override {
     double e = 0.0;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "plant/ode_body.hpp"
+
 namespace lagrange::plant {
 
 namespace {
@@ -23,12 +25,6 @@ void acquireOde() {
 void releaseOde() {
   std::lock_guard<std::mutex> lock(ode_init_mutex);
   if (--ode_users == 0) dCloseODE();
-}
-
-// A rotor's angle: its rotation about its hinge, the z axis.
-double rotorAngle(dBodyID rotor) {
-  const dReal* r = dBodyGetRotation(rotor);  // 3x4 row-major
-  return std::atan2(r[4], r[0]);
 }
 
 double wrapToNearest(double wrapped, double predicted) {
@@ -116,14 +112,8 @@ void PlantSim::checkBounded() const {
   double worst = ode_->arm->fastestBodyRate();
   bool finite = ode_->arm->finite();
   for (dBodyID b : ode_->rotors) {
-    const dReal* w = dBodyGetAngularVel(b);
-    const dReal* v = dBodyGetLinearVel(b);
-    const dReal* p = dBodyGetPosition(b);
-    const dReal* r = dBodyGetQuaternion(b);
-    for (int i = 0; i < 3; ++i)
-      finite = finite && std::isfinite(w[i]) && std::isfinite(v[i]) && std::isfinite(p[i]);
-    for (int i = 0; i < 4; ++i) finite = finite && std::isfinite(r[i]);
-    worst = std::max(worst, std::abs(w[2]));
+    finite = finite && bodyStateFinite(b);
+    worst = std::max(worst, std::abs(dBodyGetAngularVel(b)[2]));
   }
   const std::string at = "at t = " + std::to_string(time_) + " s";
   if (!finite || !q_.allFinite() || (flexible_ && !motor_q_.allFinite()))
@@ -143,7 +133,7 @@ void PlantSim::checkBounded() const {
 void PlantSim::updateMotorAngles() {
   for (int i = 0; i < dof_; ++i) {
     const double rate = dBodyGetAngularVel(ode_->rotors[i])[2];
-    motor_q_(i) = wrapToNearest(rotorAngle(ode_->rotors[i]), motor_q_(i) + rate * physics_step_);
+    motor_q_(i) = wrapToNearest(zRotation(ode_->rotors[i]), motor_q_(i) + rate * physics_step_);
   }
 }
 
