@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 
+#include "plant/lockstep_protocol.hpp"
 #include "plant/plant_lcm.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -54,63 +55,47 @@ void publishMeasurements(transport::LcmNode& node, const TickMessages& m) {
 int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
                 runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
-  const int substeps = s.substepsPerTick();
   const int64_t last_tick = s.lastTick();
-  const auto retransmit = std::chrono::duration<double>(s.lockstep.retransmit_timeout);
+  LockstepProtocol<TickMessages> protocol(
+      {last_tick, s.lockstep.logger_window,
+       std::chrono::duration_cast<Clock::duration>(
+           std::chrono::duration<double>(s.lockstep.retransmit_timeout))});
 
   const int torque_steps = s.torqueStepsPerTick();
-  int64_t awaited_tick = -1;
-  bool answered = false;
   Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(torque_steps, n);  // row j: held over step j of the period
   node.subscribe<lagrange::actuator_state_t>(
       transport::kActuatorState,
       [n, torque_steps](const auto& m) { return transport::validate(m, n, torque_steps); },
       [&](const lagrange::actuator_state_t& m) {
-        if (m.header.tick != awaited_tick || answered) return;  // stale or duplicate
-        tau = transport::toEigen(m.tau_applied);
-        answered = true;
+        if (protocol.actuatorState(m.header.tick)) tau = transport::toEigen(m.tau_applied);
       });
-  int64_t logger_tick = -2;  // -2: no logger heard yet
   node.subscribe<lagrange::status_t>(
       transport::kStatus, [](const auto& m) { return transport::validate(m); },
       [&](const lagrange::status_t& m) {
-        if (m.process == "logger") logger_tick = std::max(logger_tick, m.last_tick);
+        if (m.process == "logger") protocol.loggerConfirmed(m.last_tick);
       });
-
-  // Ticks the logger has not confirmed (its STATUS last_tick: every message
-  // of every tick up to it recorded), re-sent while the logger holds the run
-  // back, so a datagram lost on the way to the log is sent again, not lost.
-  // The measurements go too: the controller and the actuator answer them
-  // with the commands and states they sent for those ticks, which the
-  // logger may be the one to lack.
-  std::map<int64_t, TickMessages> unconfirmed;
-  long long log_resends = 0;  // ticks re-sent for the logger
-  auto resendUnconfirmed = [&] {
-    unconfirmed.erase(unconfirmed.begin(), unconfirmed.upper_bound(logger_tick));
-    for (const auto& [tick, sent] : unconfirmed) {
-      publishMeasurements(node, sent);
-      node.publish(transport::kPlantTruth, sent.truth);
+  // The measurements go with the truth: the controller and the actuator
+  // answer a re-sent tick with what they sent for it, which the logger may
+  // be the one to lack.
+  auto resendForLogger = [&] {
+    for (const TickMessages* sent : protocol.logResendsDue(Clock::now())) {
+      publishMeasurements(node, *sent);
+      node.publish(transport::kPlantTruth, sent->truth);
     }
-    log_resends += static_cast<long long>(unconfirmed.size());
   };
 
   status.publish("ready", -1, 0.0);
   const auto startup_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
-  long long retransmits = 0;
   auto next_status = Clock::now();
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
-    auto resend_unconfirmed_at = Clock::now() + retransmit;
-    while (logger_tick == -2 || k - logger_tick > s.lockstep.logger_window) {
-      if (runtime::stopRequested()) break;
-      if (logger_tick == -2 && Clock::now() > startup_deadline)
+    protocol.awaitLogger(Clock::now());
+    while (!protocol.mayPublish(k) && !runtime::stopRequested()) {
+      if (!protocol.loggerHeard() && Clock::now() > startup_deadline)
         throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
                                  " s; is it running on the same LCM URL?");
       node.handle(5);
-      if (logger_tick != -2 && Clock::now() >= resend_unconfirmed_at) {
-        resendUnconfirmed();
-        resend_unconfirmed_at = Clock::now() + retransmit;
-      }
+      resendForLogger();
     }
     if (runtime::stopRequested()) {
       status.publish("interrupted", k - 1, t);
@@ -121,22 +106,14 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), input));
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
-    unconfirmed.emplace(k, out);
-    unconfirmed.erase(unconfirmed.begin(), unconfirmed.upper_bound(logger_tick));  // bounded by the window
+    protocol.published(k, out, Clock::now());
     if (Clock::now() >= next_status) {
       status.publish("running", k, t);
       next_status = Clock::now() + std::chrono::milliseconds(500);
     }
-    awaited_tick = k;
-    answered = false;
-    auto resend_at = Clock::now() + retransmit;
-    while (!answered && !runtime::stopRequested()) {
+    while (!protocol.answered() && !runtime::stopRequested()) {
       node.handle(5);
-      if (!answered && Clock::now() >= resend_at) {
-        publishMeasurements(node, out);
-        ++retransmits;
-        resend_at = Clock::now() + retransmit;
-      }
+      if (protocol.positionResendDue(Clock::now())) publishMeasurements(node, out);
     }
     if (runtime::stopRequested()) {
       status.publish("interrupted", k, t);
@@ -144,21 +121,19 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
     // The last tick's command is awaited too, so every message of the
     // ring is delivered before the plant reports "finished".
-    if (k < last_tick) sim.stepProfile(tau, substeps);
+    if (k < last_tick) sim.stepProfile(tau, s.substepsPerTick());
   }
   // The end: every sample in the log first (bounded: a logger that has
   // gone away does not keep the plant forever).
   const auto log_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
-  auto resend_unconfirmed_at = Clock::now() + retransmit;
-  while (logger_tick < last_tick && Clock::now() < log_deadline && !runtime::stopRequested()) {
+  protocol.awaitLogger(Clock::now());
+  while (!protocol.allConfirmed() && Clock::now() < log_deadline && !runtime::stopRequested()) {
     node.handle(5);
-    if (Clock::now() >= resend_unconfirmed_at) {
-      resendUnconfirmed();
-      resend_unconfirmed_at = Clock::now() + retransmit;
-    }
+    resendForLogger();
   }
-  if (logger_tick < last_tick)
-    spdlog::warn("the logger confirmed every message up to tick {} of {}", logger_tick, last_tick);
+  if (!protocol.allConfirmed())
+    spdlog::warn("the logger confirmed every message up to tick {} of {}", protocol.loggerTick(), last_tick);
+  const long long retransmits = protocol.retransmits(), log_resends = protocol.logResends();
   if (retransmits > 0 || log_resends > 0)
     spdlog::info("re-sent {} position samples nobody answered, and {} ticks the logger had not confirmed",
                  retransmits, log_resends);

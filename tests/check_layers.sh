@@ -50,7 +50,9 @@ check "config knows no LCM or process (only scenario_lcm does)" \
   "transport|runtime|logger|tools|lagrange|plant" $(all_but_lcm_and_main config)
 allow=""
 check "message translation sits below the process scaffolding" \
-  "runtime|logger|tools" */*_lcm.hpp */*_lcm.cpp
+  "runtime|logger|tools" $(ls */*_lcm.hpp */*_lcm.cpp | grep -v '^logger/')
+check "the logger's message translation knows its metrics core, no process scaffolding" \
+  "runtime|tools" logger/*_lcm.hpp logger/*_lcm.cpp
 check "runtime is scaffolding: it includes no process, logger or tool" \
   "logger|tools|plant|controller|actuator" runtime/*.hpp runtime/*.cpp
 

@@ -3,6 +3,7 @@
 /// Channel names of DESIGN section 4, in one place.
 
 #include <string>
+#include <vector>
 
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
@@ -19,14 +20,39 @@ inline constexpr const char* kActuatorState = "ACTUATOR_STATE";
 inline constexpr const char* kStatus = "STATUS";
 inline constexpr const char* kScenario = "SCENARIO";
 
+/// What the project knows of each of its channels besides the message type
+/// (withChannelMessage below): who publishes it, and whether it carries one
+/// message per tick of the run.
+struct ChannelInfo {
+  const char* name;
+  const char* publisher;  ///< the only process publishing it; "" for STATUS (every process)
+  bool per_tick;          ///< one message per tick: recorded, covered, exported, replayed
+  bool flexible_only;     ///< exists only for flexible joints (PLANT_MOTOR)
+};
+
+/// The channel registry: every channel of DESIGN section 4, per-tick ones in
+/// publishing order.
+inline constexpr ChannelInfo kChannelTable[] = {
+    {kPlantPosition, "plant", true, false},    {kPlantTruth, "plant", true, false},
+    {kPlantMotor, "plant", true, true},        {kControlCommand, "controller", true, false},
+    {kActuatorState, "actuator", true, false}, {kStatus, "", false, false},
+    {kScenario, "logger", false, false},
+};
+
 /// The only process that publishes on `channel`, or "" for STATUS (every
 /// process) and channels of others.
 inline const char* publisherOf(const std::string& channel) {
-  if (channel == kPlantPosition || channel == kPlantTruth || channel == kPlantMotor) return "plant";
-  if (channel == kControlCommand) return "controller";
-  if (channel == kActuatorState) return "actuator";
-  if (channel == kScenario) return "logger";
+  for (const ChannelInfo& info : kChannelTable)
+    if (channel == info.name) return info.publisher;
   return "";
+}
+
+/// The per-tick channels of a run, PLANT_MOTOR only with flexible joints.
+inline std::vector<std::string> perTickChannels(bool flexible) {
+  std::vector<std::string> channels;
+  for (const ChannelInfo& info : kChannelTable)
+    if (info.per_tick && (flexible || !info.flexible_only)) channels.emplace_back(info.name);
+  return channels;
 }
 
 /// The one dispatch from a per-tick channel's name to its message type: calls

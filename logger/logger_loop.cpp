@@ -1,0 +1,180 @@
+#include "logger/logger_loop.hpp"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "config/scenario_lcm.hpp"
+#include "controller/gain_report.hpp"
+#include "logger/event_log.hpp"
+#include "logger/metrics_lcm.hpp"
+#include "logger/run_end.hpp"
+#include "logger/summary.hpp"
+#include "logger/tick_confirmation.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "runtime/process.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::logger {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The validation of the logger's inputs: the run's joints; PLANT_MOTOR with
+// the rate row the scenario promises.
+template <class Msg>
+transport::Rejection validateFor(const config::Scenario& s, const Msg& m) {
+  if constexpr (std::is_same_v<Msg, lagrange::plant_motor_t>)
+    return transport::validate(m, s.dof(), s.flexible->rate_sensor);
+  else
+    return transport::validate(m, s.dof());
+}
+
+// Best effort: a full pipe drops a line, never blocks the logger.
+void writeProgress(int fd, const TrackingMetrics& metrics) {
+  if (fd < 0) return;
+  const std::string line =
+      std::to_string(metrics.lastTime()) + " " + std::to_string(metrics.lastError()) + "\n";
+  [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
+}
+
+}  // namespace
+
+int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options) {
+  const auto wall_start = Clock::now();
+  const std::string log_path = (std::filesystem::path(options.out_dir) / "run.lcm").string();
+  EventLog log(log_path);
+  const lagrange::scenario_t scenario = config::scenarioMessage(s);
+  log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
+
+  // The sampled-data check waits for the summary: at start it would delay
+  // this process while a realtime run's first ticks go by.
+  controller::GainReport gains = controller::checkGains(s, false);
+  TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
+  runtime::StatusReporter status(node);
+  RunFacts facts;
+  facts.log_path = log_path;
+  facts.run_id = node.runId();
+  const std::vector<std::string> per_tick = transport::perTickChannels(s.flexible.has_value());
+  TickConfirmation confirmation(per_tick, s.lastTick(), s.mode == config::Mode::kLockstep,
+                                s.lockstep.logger_window);
+  RunEnd end(
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.finish_grace)));
+
+  // Record first, then interpret: the log keeps every message, even ones
+  // the validators below reject. Every channel but LCM's own self-test:
+  // LCM 1.3.1 queues LCM_SELF_TEST without counting it for subscribers,
+  // then lets it consume the queue count of a '.*' subscription, which
+  // then silently skips the next counted message -- the first samples of
+  // a run went missing from run.lcm that way (one run in ~50).
+  // SCENARIO too is left out: the log starts with it (above), and the
+  // copies this logger publishes for stock loggers need no recording.
+  node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$).*",
+                    [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+                      log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
+                    });
+  // Every per-tick channel the same way: the metrics take what they need
+  // (metrics_lcm.hpp), then the tick counts as recorded. Every copy counts,
+  // in any order: one re-sent by the plant, or overtaken by a later one, is
+  // still a message of the run.
+  for (const std::string& channel : per_tick) {
+    transport::withChannelMessage(channel, false, [&](auto type) {
+      using Msg = decltype(type);
+      node.subscribe<Msg>(
+          channel, [&s](const Msg& m) { return validateFor(s, m); },
+          [&, channel](const Msg& m) {
+            observe(metrics, m);
+            confirmation.record(channel, m.header.tick, metrics.lastTick());
+          },
+          transport::LcmNode::Order::kAcceptReordered);
+      return true;
+    });
+  }
+  node.subscribe<lagrange::status_t>(
+      transport::kStatus, [](const auto& m) { return transport::validate(m); },
+      [&](const lagrange::status_t& m) {
+        if (m.process == "logger") return;
+        facts.final_status[m.process] = m;
+        end.processState(m.process, m.state, Clock::now());
+      });
+
+  auto report = [&](const char* state) {
+    const int64_t acked = confirmation.acknowledge(metrics.lastTick());
+    status.publish(state, acked, static_cast<double>(std::max<int64_t>(acked, 0)) * s.tickPeriod(),
+                   metrics.lastError());
+  };
+  report("ready");
+  // The scenario on LCM, now and every second: a stock lcm-logger
+  // started before or during the run records it, so its log replays.
+  auto next_scenario = Clock::now();
+  auto next_flush = Clock::now() + std::chrono::milliseconds(100);
+  auto next_status = Clock::now() + std::chrono::milliseconds(100);
+  auto next_progress_line = Clock::now();
+  while (!runtime::stopRequested()) {
+    node.handle(20);
+    const auto now = Clock::now();
+    if (now >= next_scenario) {
+      node.publish(transport::kScenario, scenario);
+      next_scenario = now + std::chrono::seconds(1);
+    }
+    if (now >= next_flush) {
+      log.flush();
+      next_flush = now + std::chrono::milliseconds(100);
+    }
+    if (confirmation.acknowledgementDue() || now >= next_status) {
+      report("running");
+      if (now >= next_progress_line) {
+        next_progress_line = now + std::chrono::milliseconds(100);
+        writeProgress(options.progress_fd, metrics);
+      }
+      next_status = now + std::chrono::milliseconds(100);
+    }
+    if (end.due(now, confirmation.confirmed(metrics.lastTick()) >= s.lastTick())) break;
+  }
+  // Drain what is still queued, then close the log before the summary.
+  // Bounded in time: other traffic on the URL (another publisher, a
+  // flood) must not keep the logger from finishing. When interrupted,
+  // the others are stopping too: wait (up to the grace) for their final
+  // STATUS so the summary says how each ended.
+  const auto drain_until =
+      Clock::now() + (runtime::stopRequested() ? std::chrono::duration<double>(options.finish_grace)
+                                               : std::chrono::duration<double>(0.2));
+  while (Clock::now() < drain_until) {
+    const bool got = node.raw().handleTimeout(10) > 0;
+    if (!got && (!runtime::stopRequested() || end.allReported(""))) break;
+  }
+  // Completed means every tick was recorded, however the logger was stopped.
+  // (Realtime runs do not re-send: a sample lost on the way is missing
+  // from the log -- log.missing_samples -- but the run still completed.)
+  facts.status = metrics.newestTick() >= s.lastTick() ? "completed" : "interrupted";
+  if (facts.status == "completed" && !end.allReported("finished"))
+    spdlog::warn("not every process reported 'finished' within {} s of the plant", options.finish_grace);
+  report(runtime::stopRequested() ? "interrupted" : "finished");
+  writeProgress(options.progress_fd, metrics);  // the final sample, for the launcher's last progress line
+  log.flush();
+  facts.log_events = log.events();
+  facts.missing_ticks = confirmation.missingUpTo(metrics.newestTick());
+  lagrange::status_t own{};  // zeroed: its loop statistics are not measured
+  own.process = "logger";
+  own.state = facts.status == "completed" ? "finished" : "interrupted";
+  own.last_tick = metrics.lastTick();
+  own.channels = node.channelStats();
+  own.num_channels = static_cast<int32_t>(own.channels.size());
+  facts.final_status["logger"] = own;
+  facts.wall_time = std::chrono::duration<double>(Clock::now() - wall_start).count();
+
+  gains.sampled = controller::checkSampledData(s);
+  const auto summary = makeSummary(s, metrics.summary(), gains, facts);
+  const std::string summary_path = (std::filesystem::path(options.out_dir) / "summary.json").string();
+  std::ofstream out(summary_path);
+  out << summary.dump(2) << "\n";
+  if (!out) throw std::runtime_error("cannot write '" + summary_path + "'");
+  spdlog::info("wrote {} events to {} and {}", facts.log_events, log_path, summary_path);
+  return 0;
+}
+
+}  // namespace lagrange::logger

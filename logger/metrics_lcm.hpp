@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// What the live tracking metrics take from each per-tick message: the
+/// truth's q, the command's chain errors, the applied torque. Every other
+/// message is only recorded (the overload for any message does nothing), so
+/// the logger subscribes to every per-tick channel the same way.
+
+#include "lagrange/actuator_state_t.hpp"
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_truth_t.hpp"
+#include "logger/tracking_metrics.hpp"
+#include "transport/messages.hpp"
+
+namespace lagrange::logger {
+
+inline void observe(TrackingMetrics& metrics, const lagrange::plant_truth_t& m) {
+  metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q));
+}
+inline void observe(TrackingMetrics& metrics, const lagrange::control_command_t& m) {
+  metrics.addChainErrors(m.header.tick, m.header.sim_time, m.xi_error);
+}
+inline void observe(TrackingMetrics& metrics, const lagrange::actuator_state_t& m) {
+  metrics.addTorque(transport::toEigen(m.tau_applied));
+}
+template <class Msg>
+void observe(TrackingMetrics&, const Msg&) {}
+
+}  // namespace lagrange::logger

@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// When the logger stops recording, without LCM or clock: once the plant has
+/// reported "finished" and so have the controller and the actuator, or a
+/// grace period after the plant finished -- or, since the plant's final
+/// STATUS can be lost like any datagram, a grace period after every tick of
+/// the run was confirmed.
+
+#include <chrono>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace lagrange::logger {
+
+class RunEnd {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  explicit RunEnd(Clock::duration grace) : grace_(grace) {}
+
+  /// The state in a STATUS of `process`, received at `now`.
+  void processState(const std::string& process, const std::string& state, Clock::time_point now) {
+    states_[process] = state;
+    if (process == "plant" && state == "finished" && !plant_finished_at_) plant_finished_at_ = now;
+  }
+
+  /// True when plant, controller and actuator have all reported `state` (or,
+  /// with `state` empty, any state past "ready" and "running").
+  bool allReported(const std::string& state) const {
+    for (const char* process : {"plant", "controller", "actuator"}) {
+      const auto it = states_.find(process);
+      if (it == states_.end()) return false;
+      const std::string& reported = it->second;
+      if (state.empty() ? (reported == "ready" || reported == "running") : reported != state) return false;
+    }
+    return true;
+  }
+
+  /// Whether to stop recording at `now`; `every_tick_confirmed` says whether
+  /// the confirmed tick has reached the run's last.
+  bool due(Clock::time_point now, bool every_tick_confirmed) {
+    if (plant_finished_at_ && (allReported("finished") || now - *plant_finished_at_ > grace_)) return true;
+    if (!every_tick_confirmed) return false;
+    if (!all_ticks_at_) all_ticks_at_ = now;
+    return now - *all_ticks_at_ > grace_;
+  }
+
+ private:
+  Clock::duration grace_;
+  std::map<std::string, std::string> states_;
+  std::optional<Clock::time_point> plant_finished_at_, all_ticks_at_;
+};
+
+}  // namespace lagrange::logger
