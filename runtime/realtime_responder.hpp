@@ -11,6 +11,7 @@
 #include <string>
 
 #include "runtime/process.hpp"
+#include "runtime/status_reporter.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
@@ -23,12 +24,12 @@ struct RealtimeSettings {
   double max_input_age = 5e-3;  ///< [s]
 };
 
-template <class In, class Out>
-int serveRealtime(transport::LcmNode& node, const std::string& in_channel, const std::string& out_channel,
-                  int joints, const RealtimeSettings& settings,
-                  const std::function<Out(const In&)>& compute) {
+/// `Node` is transport::LcmNode in the processes (a fake node in tests).
+template <class In, class Out, class Node>
+int serveRealtime(Node& node, const std::string& in_channel, const std::string& out_channel, int joints,
+                  const RealtimeSettings& settings, const std::function<Out(const In&)>& compute) {
   std::optional<In> latest;
-  node.subscribe<In>(
+  node.template subscribe<In>(
       in_channel, [joints](const In& m) { return transport::validate(m, joints); },
       [&latest](const In& m) {
         if (!latest || m.header.tick > latest->header.tick) latest = m;
@@ -36,7 +37,7 @@ int serveRealtime(transport::LcmNode& node, const std::string& in_channel, const
   bool plant_finished = false;
   watchPlantFinished(node, plant_finished);
 
-  StatusReporter status(node);
+  BasicStatusReporter<Node> status(node);
   Progress progress;
   std::vector<double> ages;
   int64_t missing = 0, stale = 0;

@@ -8,6 +8,7 @@
 /// may decline (empty result) when another input of the tick is still
 /// missing; the tick is then answered when the plant re-sends it.
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -15,19 +16,21 @@
 #include <string>
 
 #include "runtime/process.hpp"
+#include "runtime/status_reporter.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
 
 namespace lagrange::runtime {
 
 /// Returns the cached output (the answer to the newest tick), for re-sending.
-template <class In, class Out>
+/// `Node` is transport::LcmNode in the processes (a fake node in tests).
+template <class In, class Out, class Node>
 std::shared_ptr<const std::optional<Out>> respondPerTick(
-    transport::LcmNode& node, const std::string& in_channel, const std::string& out_channel, int joints,
-    Progress& progress, int history, std::function<std::optional<Out>(const In&)> compute) {
+    Node& node, const std::string& in_channel, const std::string& out_channel, int joints, Progress& progress,
+    int history, std::function<std::optional<Out>(const In&)> compute) {
   auto cached = std::make_shared<std::optional<Out>>();
   auto sent = std::make_shared<std::map<int64_t, Out>>();  // the last `history` answers, by tick
-  node.subscribe<In>(
+  node.template subscribe<In>(
       in_channel, [joints](const In& m) { return transport::validate(m, joints); },
       [&node, &progress, out_channel, compute, cached, sent, history](const In& m) {
         if (m.header.tick <= progress.last_tick) {
@@ -44,6 +47,46 @@ std::shared_ptr<const std::optional<Out>> respondPerTick(
         while (static_cast<int>(sent->size()) > history) sent->erase(sent->begin());
       });
   return cached;
+}
+
+/// The loop of a process that only reacts to messages (controller, actuator):
+/// publishes STATUS "ready", handles messages with periodic "running" reports
+/// until the plant reports "finished" or a stop signal arrives, then
+/// publishes the final STATUS. Returns the exit code (0).
+/// `when_idle`, if given, runs whenever `progress` has not moved for
+/// `idle_seconds` (the actuator re-sends its last state: nobody else can
+/// re-request it).
+template <class Node>
+int serveUntilPlantFinished(Node& node, const Progress& progress, const std::function<void()>& when_idle = {},
+                            double idle_seconds = 0.0) {
+  using Clock = std::chrono::steady_clock;
+  bool plant_finished = false;
+  watchPlantFinished(node, plant_finished);
+  BasicStatusReporter<Node> status(node);
+  status.publish("ready", progress.last_tick, progress.sim_time);
+  auto next_status = Clock::now() + std::chrono::milliseconds(500);
+  const auto idle_period = std::chrono::duration<double>(idle_seconds);
+  int64_t seen_tick = progress.last_tick;
+  auto moved_at = Clock::now();
+  while (!plant_finished && !stopRequested()) {
+    if (!node.handle(when_idle ? 5 : 50)) throw std::runtime_error("LCM receive failed");
+    if (when_idle) {
+      const auto now = Clock::now();
+      if (progress.last_tick != seen_tick) {
+        seen_tick = progress.last_tick;
+        moved_at = now;
+      } else if (now - moved_at >= idle_period) {
+        when_idle();
+        moved_at = now;
+      }
+    }
+    if (Clock::now() >= next_status) {
+      status.publish("running", progress.last_tick, progress.sim_time);
+      next_status += std::chrono::milliseconds(500);
+    }
+  }
+  status.publish(plant_finished ? "finished" : "interrupted", progress.last_tick, progress.sim_time);
+  return 0;
 }
 
 }  // namespace lagrange::runtime
