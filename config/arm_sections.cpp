@@ -58,14 +58,9 @@ std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
 model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, double duration) {
   const int n = arm->dof();
   model::ReferenceParams p;
-  const std::string type = ref.text("type");
-  if (type == "sine") {
-    p.type = model::ReferenceType::kSine;
-  } else if (type == "smooth_sine") {
-    p.type = model::ReferenceType::kSmoothSine;
-  } else if (type == "free_motion") {
+  p.type = ref.choice("type", model::kReferenceTypeNames, "reference type");
+  if (p.type == model::ReferenceType::kFreeMotion) {
     // The unforced motion of this very arm (Assumption 2), over the run and a second more.
-    p.type = model::ReferenceType::kFreeMotion;
     p.initial_q = ref.vector("initial_q", n, false, false);
     p.initial_qdot =
         ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
@@ -73,8 +68,6 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
     p.horizon = duration + 1.0;
     ref.finish({"type", "initial_q", "initial_qdot"});
     return p;
-  } else {
-    ref.fail("type", "unknown reference type '" + type + "'; expected: sine, smooth_sine or free_motion");
   }
   p.offset = ref.vector("offset", n, true, false);
   p.amplitude = ref.vector("amplitude", n, true, false);

@@ -101,15 +101,12 @@ void readControllerSection(MapReader& root, Scenario& s) {
                "missing; the paper does not say where q2' comes from: expected measured (the "
                "motor's rate sensor, robot.flexible.rate_sensor: true) or filtered (a dirty "
                "derivative of q2)");
-    s.controller.motor_rate = ctl.text("motor_rate");
-    if (s.controller.motor_rate != "measured" && s.controller.motor_rate != "filtered")
-      ctl.fail("motor_rate",
-               "unknown choice '" + s.controller.motor_rate + "'; expected: measured or filtered");
-    if (s.controller.motor_rate == "measured" && !s.flexible->rate_sensor)
+    s.controller.motor_rate = ctl.choice("motor_rate", kMotorRateNames, "choice");
+    if (s.controller.motor_rate == MotorRate::kMeasured && !s.flexible->rate_sensor)
       ctl.fail("motor_rate",
                "measured needs a motor rate sensor; expected robot.flexible.rate_sensor: true, "
                "or motor_rate: filtered");
-    if (s.controller.motor_rate == "filtered")
+    if (s.controller.motor_rate == MotorRate::kFiltered)
       s.controller.motor_rate_pole = ctl.has("motor_rate_pole") ? ctl.vector("motor_rate_pole", n, true, true)
                                                                 : Eigen::VectorXd::Constant(n, 300.0);
     else if (ctl.has("motor_rate_pole"))

@@ -34,9 +34,7 @@ void readRealtimeSection(MapReader& root, Scenario& s) {
   MapReader r = root.map("realtime");
   s.realtime.max_torque_age = r.integer("max_torque_age", s.realtime.max_torque_age);
   if (s.realtime.max_torque_age < 1) r.fail("max_torque_age", "expected a whole number of periods >= 1");
-  s.realtime.stale_torque = r.text("stale_torque", s.realtime.stale_torque);
-  if (s.realtime.stale_torque != "zero" && s.realtime.stale_torque != "hold")
-    r.fail("stale_torque", "unknown policy '" + s.realtime.stale_torque + "'; expected: zero or hold");
+  s.realtime.stale_torque = r.choice("stale_torque", kStaleTorqueNames, "policy", s.realtime.stale_torque);
   s.realtime.hold_periods = r.integer("hold_periods", s.realtime.hold_periods);
   if (s.realtime.hold_periods < 0) r.fail("hold_periods", "expected a whole number >= 0");
   s.realtime.max_input_age = r.positive("max_input_age", s.realtime.max_input_age);

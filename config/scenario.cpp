@@ -12,18 +12,6 @@
 
 namespace lagrange::config {
 
-const char* toString(Mode mode) {
-  switch (mode) {
-    case Mode::kLockstep:
-      return "lockstep";
-    case Mode::kRealtime:
-      return "realtime";
-    case Mode::kInproc:
-      return "inproc";
-  }
-  return "lockstep";  // not reached: every enumerator is handled above
-}
-
 int Scenario::substepsPerTick() const {
   return static_cast<int>(std::llround(tickPeriod() / plant.physics_step));
 }
@@ -80,16 +68,7 @@ Scenario readScenario(MapReader root) {
   s.name = root.text("name");
   s.description = root.text("description", "");
   s.duration = root.positive("duration");
-  const std::string mode = root.text("mode", toString(s.mode));
-  if (mode == "lockstep") {
-    s.mode = Mode::kLockstep;
-  } else if (mode == "realtime") {
-    s.mode = Mode::kRealtime;
-  } else if (mode == "inproc") {
-    s.mode = Mode::kInproc;
-  } else {
-    root.fail("mode", "unknown mode '" + mode + "'; expected: lockstep, realtime or inproc");
-  }
+  s.mode = root.choice("mode", kModeNames, "mode", s.mode);
 
   using namespace sections;
   readRobotSection(root, s);

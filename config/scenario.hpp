@@ -22,6 +22,7 @@
 #include "model/reference.hpp"
 #include "model/robot_model.hpp"
 #include "transport/fault_rule.hpp"
+#include "util/enum_names.hpp"
 
 namespace lagrange::config {
 
@@ -62,6 +63,19 @@ struct ActuatorConfig {
   Eigen::MatrixXd initial_state;              ///< m x n: xi_1(0) .. xi_m(0)
 };
 
+/// Where the flexible controller's q2' comes from (controller.motor_rate):
+/// the motor's rate sensor, or a dirty derivative a s / (s + a) of q2 with
+/// a = motor_rate_pole.
+enum class MotorRate { kMeasured, kFiltered };
+inline constexpr util::EnumName<MotorRate> kMotorRateNames[] = {{MotorRate::kMeasured, "measured"},
+                                                                {MotorRate::kFiltered, "filtered"}};
+
+/// What the realtime plant does without a fresh torque (realtime.stale_torque):
+/// hold the newest one for hold_periods more, or apply zero at once.
+enum class StaleTorque { kHold, kZero };
+inline constexpr util::EnumName<StaleTorque> kStaleTorqueNames[] = {{StaleTorque::kZero, "zero"},
+                                                                    {StaleTorque::kHold, "hold"}};
+
 struct ControllerConfig {
   /// "theorem1" (m = 0), "cascaded" (m >= 1), "flexible" (the Corollary, eq. 830),
   /// or a type registered by controller::registerControllerKind
@@ -69,9 +83,8 @@ struct ControllerConfig {
   /// A registered type's per-joint parameters, by key (config/controller_params.hpp);
   /// empty for the paper's types.
   std::map<std::string, Eigen::VectorXd> params;
-  /// "flexible": where q2' comes from: "measured" (the motor's rate sensor) or
-  /// "filtered" (dirty derivative a s / (s + a) of q2 with a = motor_rate_pole).
-  std::string motor_rate;
+  /// "flexible": where q2' comes from (unset for the other types).
+  std::optional<MotorRate> motor_rate;
   Eigen::VectorXd motor_rate_pole;             ///< [1/s], "filtered" only
   controller::Theorem1Gains gains;             ///< stage 0 (kp0, kd0, a0, b0 for "cascaded")
   std::vector<controller::StageGains> stages;  ///< "cascaded": stages 1..m
@@ -100,7 +113,7 @@ struct RealtimeConfig {
   /// Ticks a torque may lag the plant's current tick before it is stale
   /// (its source position was published more than this many periods ago).
   int max_torque_age = 2;
-  std::string stale_torque = "hold";  ///< "hold" the last torque for hold_periods more, or "zero"
+  StaleTorque stale_torque = StaleTorque::kHold;
   int hold_periods = 20;
   double max_input_age = 0.005;  ///< controller and actuator skip inputs older than this [s]
   int priority = 50;             ///< SCHED_FIFO priority of the loops, 0 for the normal scheduler
@@ -133,9 +146,10 @@ struct SupervisionConfig {
 /// How the processes are wired (docs/architecture.md): LCM processes in
 /// lockstep or on fixed-rate loops, or one process without LCM.
 enum class Mode { kLockstep, kRealtime, kInproc };
-
-/// "lockstep", "realtime", "inproc": the spelling in scenario files and summary.json.
-const char* toString(Mode mode);
+/// The spelling in scenario files and summary.json.
+inline constexpr util::EnumName<Mode> kModeNames[] = {
+    {Mode::kLockstep, "lockstep"}, {Mode::kRealtime, "realtime"}, {Mode::kInproc, "inproc"}};
+inline const char* toString(Mode mode) { return util::nameOf(kModeNames, mode); }
 
 struct Scenario {
   std::string name;

@@ -18,7 +18,8 @@ void emitVector(YAML::Emitter& out, const char* key, const Eigen::VectorXd& v) {
 
 // The keys of the paper's controllers (theorem1, cascaded, flexible).
 void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
-  if (!c.motor_rate.empty()) out << YAML::Key << "motor_rate" << YAML::Value << c.motor_rate;
+  if (c.motor_rate)
+    out << YAML::Key << "motor_rate" << YAML::Value << util::nameOf(kMotorRateNames, *c.motor_rate);
   if (c.motor_rate_pole.size() > 0) emitVector(out, "motor_rate_pole", c.motor_rate_pole);
   emitVector(out, "kp", c.gains.kp);
   emitVector(out, "kd", c.gains.kd);
@@ -141,7 +142,8 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "realtime" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "max_torque_age" << YAML::Value << s.realtime.max_torque_age;
-  out << YAML::Key << "stale_torque" << YAML::Value << s.realtime.stale_torque;
+  out << YAML::Key << "stale_torque" << YAML::Value
+      << util::nameOf(kStaleTorqueNames, s.realtime.stale_torque);
   out << YAML::Key << "hold_periods" << YAML::Value << s.realtime.hold_periods;
   out << YAML::Key << "max_input_age" << YAML::Value << s.realtime.max_input_age;
   out << YAML::Key << "priority" << YAML::Value << s.realtime.priority;

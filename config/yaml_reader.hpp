@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "util/enum_names.hpp"
+
 namespace lagrange::config {
 
 class MapReader {
@@ -37,6 +39,19 @@ class MapReader {
   Eigen::VectorXd vector(const std::string& key, int n, bool allow_scalar, bool positive_only);
   std::optional<Eigen::VectorXd> optionalVector(const std::string& key, int n, bool allow_scalar,
                                                 bool positive_only);
+
+  /// One of an enum's names (util/enum_names.hpp); an unknown one fails with
+  /// "unknown WHAT 'value'; expected: a, b or c". Required, or `fallback`.
+  template <class E, std::size_t N>
+  E choice(const std::string& key, const util::EnumName<E> (&names)[N], const std::string& what) {
+    const std::string value = text(key);
+    if (const std::optional<E> e = util::enumFrom(names, value)) return *e;
+    fail(key, "unknown " + what + " '" + value + "'; expected: " + util::choicesOf(names));
+  }
+  template <class E, std::size_t N>
+  E choice(const std::string& key, const util::EnumName<E> (&names)[N], const std::string& what, E fallback) {
+    return has(key) ? choice(key, names, what) : fallback;
+  }
 
   MapReader map(const std::string& key);  ///< required sub-map
 

@@ -48,7 +48,7 @@ GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {
           ") is not a free motion of the " + (s.flexible ? "arm with its springs (eq. 608)" : "arm") +
           ": Assumption 2, a hypothesis of Theorems 2 and 3" + (s.flexible ? " and the Corollary" : "") +
           ", does not hold, so their guarantee does not apply to this run");
-    if (s.controller.type == "flexible" && s.controller.motor_rate == "filtered")
+    if (s.controller.type == "flexible" && s.controller.motor_rate == config::MotorRate::kFiltered)
       r.warnings.push_back(
           "motor_rate: filtered estimates q2' by a dirty derivative; the Corollary assumes xi_2 = K q2' "
           "is measured, so its guarantee does not cover this controller");

@@ -62,7 +62,7 @@ class Cascaded final : public PaperController {
 class Flexible final : public PaperController {
  public:
   explicit Flexible(const config::Scenario& s) : PaperController(s) { reset(); }
-  Needs needs() const override { return {0, true, s_.controller.motor_rate == "measured"}; }
+  Needs needs() const override { return {0, true, s_.controller.motor_rate == config::MotorRate::kMeasured}; }
   ControllerCommand step(const ControllerInputs& in) override {
     const FlexibleController::Output out = core_->step(in.t, in.q, in.motor_q, in.motor_qdot);
     return withCascade(out.cascade, out.tau);
@@ -71,7 +71,7 @@ class Flexible final : public PaperController {
     core_.emplace(
         *model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
         s_.controller.initial_filter_state, s_.flexible->params,
-        s_.controller.motor_rate == "filtered" ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
+        s_.controller.motor_rate == config::MotorRate::kFiltered ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
         s_.controller.stage_starts);
   }
 

@@ -31,7 +31,7 @@ class LoopMap {
         order_(s.actuator.order),
         stages_(static_cast<int>(s.controller.stages.size())),
         flexible_(s.controller.type == "flexible"),
-        filtered_rate_(flexible_ && s.controller.motor_rate == "filtered") {
+        filtered_rate_(flexible_ && s.controller.motor_rate == config::MotorRate::kFiltered) {
     if (flexible_) flexible_plant_.emplace(arm_, s.flexible->params);
   }
 

@@ -99,15 +99,16 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       [&](const lagrange::status_t& m) {
         if (m.process == "logger") return;
         facts.final_status[m.process] = m;
-        end.processState(m.process, m.state, Clock::now());
+        // validate() admitted only known states
+        end.processState(m.process, *util::enumFrom(transport::kProcessStateNames, m.state), Clock::now());
       });
 
-  auto report = [&](const char* state) {
+  auto report = [&](runtime::State state) {
     const int64_t acked = confirmation.acknowledge(metrics.lastTick());
     status.publish(state, acked, static_cast<double>(std::max<int64_t>(acked, 0)) * s.tickPeriod(),
                    metrics.lastError());
   };
-  report("ready");
+  report(runtime::State::kReady);
   // The scenario on LCM, now and every second: a stock lcm-logger
   // started before or during the run records it, so its log replays.
   auto next_scenario = Clock::now();
@@ -126,7 +127,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       next_flush = now + std::chrono::milliseconds(100);
     }
     if (confirmation.acknowledgementDue() || now >= next_status) {
-      report("running");
+      report(runtime::State::kRunning);
       if (now >= next_progress_line) {
         next_progress_line = now + std::chrono::milliseconds(100);
         writeProgress(options.progress_fd, metrics);
@@ -145,22 +146,23 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
                                                : std::chrono::duration<double>(0.2));
   while (Clock::now() < drain_until) {
     const bool got = node.raw().handleTimeout(10) > 0;
-    if (!got && (!runtime::stopRequested() || end.allReported(""))) break;
+    if (!got && (!runtime::stopRequested() || end.allEnded())) break;
   }
   // Completed means every tick was recorded, however the logger was stopped.
   // (Realtime runs do not re-send: a sample lost on the way is missing
   // from the log -- log.missing_samples -- but the run still completed.)
   facts.status = metrics.newestTick() >= s.lastTick() ? "completed" : "interrupted";
-  if (facts.status == "completed" && !end.allReported("finished"))
+  if (facts.status == "completed" && !end.allReported(runtime::State::kFinished))
     spdlog::warn("not every process reported 'finished' within {} s of the plant", options.finish_grace);
-  report(runtime::stopRequested() ? "interrupted" : "finished");
+  report(runtime::stopRequested() ? runtime::State::kInterrupted : runtime::State::kFinished);
   writeProgress(options.progress_fd, metrics);  // the final sample, for the launcher's last progress line
   log.flush();
   facts.log_events = log.events();
   facts.missing_ticks = confirmation.missingUpTo(metrics.newestTick());
   lagrange::status_t own{};  // zeroed: its loop statistics are not measured
   own.process = "logger";
-  own.state = facts.status == "completed" ? "finished" : "interrupted";
+  own.state = transport::toString(facts.status == "completed" ? runtime::State::kFinished
+                                                              : runtime::State::kInterrupted);
   own.last_tick = metrics.lastTick();
   own.channels = node.channelStats();
   own.num_channels = static_cast<int32_t>(own.channels.size());

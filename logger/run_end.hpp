@@ -11,6 +11,8 @@
 #include <optional>
 #include <string>
 
+#include "transport/process_state.hpp"
+
 namespace lagrange::logger {
 
 class RunEnd {
@@ -19,36 +21,46 @@ class RunEnd {
 
   explicit RunEnd(Clock::duration grace) : grace_(grace) {}
 
+  using State = transport::ProcessState;
+
   /// The state in a STATUS of `process`, received at `now`.
-  void processState(const std::string& process, const std::string& state, Clock::time_point now) {
+  void processState(const std::string& process, State state, Clock::time_point now) {
     states_[process] = state;
-    if (process == "plant" && state == "finished" && !plant_finished_at_) plant_finished_at_ = now;
+    if (process == "plant" && state == State::kFinished && !plant_finished_at_) plant_finished_at_ = now;
   }
 
-  /// True when plant, controller and actuator have all reported `state` (or,
-  /// with `state` empty, any state past "ready" and "running").
-  bool allReported(const std::string& state) const {
-    for (const char* process : {"plant", "controller", "actuator"}) {
-      const auto it = states_.find(process);
-      if (it == states_.end()) return false;
-      const std::string& reported = it->second;
-      if (state.empty() ? (reported == "ready" || reported == "running") : reported != state) return false;
-    }
-    return true;
+  /// True when plant, controller and actuator have all reported `state`.
+  bool allReported(State state) const {
+    return allOthers([state](State reported) { return reported == state; });
+  }
+  /// True when plant, controller and actuator have all reported an end (finished or interrupted).
+  bool allEnded() const {
+    return allOthers(
+        [](State reported) { return reported == State::kFinished || reported == State::kInterrupted; });
   }
 
   /// Whether to stop recording at `now`; `every_tick_confirmed` says whether
   /// the confirmed tick has reached the run's last.
   bool due(Clock::time_point now, bool every_tick_confirmed) {
-    if (plant_finished_at_ && (allReported("finished") || now - *plant_finished_at_ > grace_)) return true;
+    if (plant_finished_at_ && (allReported(State::kFinished) || now - *plant_finished_at_ > grace_))
+      return true;
     if (!every_tick_confirmed) return false;
     if (!all_ticks_at_) all_ticks_at_ = now;
     return now - *all_ticks_at_ > grace_;
   }
 
  private:
+  template <class Predicate>
+  bool allOthers(Predicate holds) const {
+    for (const char* process : {"plant", "controller", "actuator"}) {
+      const auto it = states_.find(process);
+      if (it == states_.end() || !holds(it->second)) return false;
+    }
+    return true;
+  }
+
   Clock::duration grace_;
-  std::map<std::string, std::string> states_;
+  std::map<std::string, State> states_;
   std::optional<Clock::time_point> plant_finished_at_, all_ticks_at_;
 };
 

@@ -70,8 +70,9 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   for (const auto& [key, v] : s.controller.params)  // a registered type's keys
     j["controller"][key] = std::vector<double>(v.data(), v.data() + v.size());
   if (s.controller.type == "flexible") {
-    j["controller"]["motor_rate"] = s.controller.motor_rate;
-    if (s.controller.motor_rate == "filtered")
+    if (s.controller.motor_rate)
+      j["controller"]["motor_rate"] = util::nameOf(config::kMotorRateNames, *s.controller.motor_rate);
+    if (s.controller.motor_rate == config::MotorRate::kFiltered)
       j["controller"]["motor_rate_pole"] =
           std::vector<double>(s.controller.motor_rate_pole.data(),
                               s.controller.motor_rate_pole.data() + s.controller.motor_rate_pole.size());

@@ -6,17 +6,6 @@
 
 namespace lagrange::model {
 
-const char* toString(ReferenceType type) {
-  switch (type) {
-    case ReferenceType::kSine:
-      return "sine";
-    case ReferenceType::kSmoothSine:
-      return "smooth_sine";
-    default:
-      return "free_motion";
-  }
-}
-
 namespace {
 constexpr double kFreeStep = 1e-4;
 }  // namespace

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "model/robot_model.hpp"
+#include "util/enum_names.hpp"
 
 namespace lagrange::model {
 
@@ -93,6 +94,11 @@ class Reference {
   std::vector<std::array<double, 3>> free_bounds_;  ///< per joint, orders 0..2
 };
 
-const char* toString(ReferenceType type);
+/// The spelling in scenario files (reference.type).
+inline constexpr util::EnumName<ReferenceType> kReferenceTypeNames[] = {
+    {ReferenceType::kSine, "sine"},
+    {ReferenceType::kSmoothSine, "smooth_sine"},
+    {ReferenceType::kFreeMotion, "free_motion"}};
+inline const char* toString(ReferenceType type) { return util::nameOf(kReferenceTypeNames, type); }
 
 }  // namespace lagrange::model

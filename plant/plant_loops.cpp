@@ -16,6 +16,8 @@
 
 namespace lagrange::plant {
 
+using State = transport::ProcessState;
+
 namespace {
 using Clock = std::chrono::steady_clock;
 
@@ -84,7 +86,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
   };
 
-  status.publish("ready", -1, 0.0);
+  status.publish(State::kReady, -1, 0.0);
   const auto startup_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
   auto next_status = Clock::now();
   for (int64_t k = 0; k <= last_tick; ++k) {
@@ -98,7 +100,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       resendForLogger();
     }
     if (runtime::stopRequested()) {
-      status.publish("interrupted", k - 1, t);
+      status.publish(State::kInterrupted, k - 1, t);
       return 0;
     }
     const plant::TorqueInput input =
@@ -108,7 +110,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     node.publish(transport::kPlantTruth, out.truth);
     protocol.published(k, out, Clock::now());
     if (Clock::now() >= next_status) {
-      status.publish("running", k, t);
+      status.publish(State::kRunning, k, t);
       next_status = Clock::now() + std::chrono::milliseconds(500);
     }
     while (!protocol.answered() && !runtime::stopRequested()) {
@@ -116,7 +118,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       if (protocol.positionResendDue(Clock::now())) publishMeasurements(node, out);
     }
     if (runtime::stopRequested()) {
-      status.publish("interrupted", k, t);
+      status.publish(State::kInterrupted, k, t);
       return 0;
     }
     // The last tick's command is awaited too, so every message of the
@@ -140,7 +142,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   // Three times: the others end on it, and a datagram can be lost.
   for (int copy = 0; copy < 3; ++copy)
     status.publish(
-        "finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
+        State::kFinished, last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
         "retransmits=" + std::to_string(retransmits) + " log_resends=" + std::to_string(log_resends));
   return 0;
 }
@@ -164,7 +166,8 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
   const int64_t max_age = s.realtime.max_torque_age;
-  const int64_t hold_limit = s.realtime.stale_torque == "hold" ? max_age + s.realtime.hold_periods : max_age;
+  const int64_t hold_limit =
+      s.realtime.stale_torque == config::StaleTorque::kHold ? max_age + s.realtime.hold_periods : max_age;
 
   // Publish times of recent position samples, for the end-to-end latency.
   constexpr int64_t kRing = 4096;
@@ -191,7 +194,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
           peers.insert(m.process);
       });
 
-  status.publish("ready", -1, 0.0);
+  status.publish(State::kReady, -1, 0.0);
   awaitPeers(node, peers, startup_timeout);
 
   transport::FixedRateLoop loop(s.tickPeriod(), 0.0);
@@ -248,17 +251,17 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
 
     if (transport::monotonicNs() >= next_status) {
       status.setLoopStats(stats());
-      status.publish("running", k, t);
+      status.publish(State::kRunning, k, t);
       next_status += 500'000'000LL;
     }
   }
   status.setLoopStats(stats());
   if (runtime::stopRequested()) {
-    status.publish("interrupted", used_tick, static_cast<double>(used_tick) * s.tickPeriod());
+    status.publish(State::kInterrupted, used_tick, static_cast<double>(used_tick) * s.tickPeriod());
     return 0;
   }
   if (held + zeroed > 0) spdlog::warn("stale torque: held {} periods, zeroed {} periods", held, zeroed);
-  status.publish("finished", last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
+  status.publish(State::kFinished, last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
                  "torque_held=" + std::to_string(held) + " torque_zeroed=" + std::to_string(zeroed));
   return 0;
 }

@@ -48,7 +48,7 @@ int serveRealtime(Node& node, const std::string& in_channel, const std::string& 
   };
 
   transport::FixedRateLoop loop(settings.period, settings.phase);
-  status.publish("ready", -1, 0.0);
+  status.publish(State::kReady, -1, 0.0);
   loop.start();
   auto next_status = transport::monotonicNs() + 500'000'000LL;
   while (!plant_finished && !stopRequested()) {
@@ -68,12 +68,13 @@ int serveRealtime(Node& node, const std::string& in_channel, const std::string& 
     }
     if (transport::monotonicNs() >= next_status) {
       status.setLoopStats(stats(loop));
-      status.publish("running", progress.last_tick, progress.sim_time);
+      status.publish(State::kRunning, progress.last_tick, progress.sim_time);
       next_status += 500'000'000LL;
     }
   }
   status.setLoopStats(stats(loop));
-  status.publish(plant_finished ? "finished" : "interrupted", progress.last_tick, progress.sim_time);
+  status.publish(plant_finished ? State::kFinished : State::kInterrupted, progress.last_tick,
+                 progress.sim_time);
   return 0;
 }
 

@@ -14,8 +14,11 @@
 #include "transport/channels.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
+#include "transport/process_state.hpp"
 
 namespace lagrange::runtime {
+
+using State = transport::ProcessState;  ///< what STATUS reports
 
 /// Publishes this process's STATUS with its channel counters.
 template <class Node>
@@ -23,12 +26,12 @@ class BasicStatusReporter {
  public:
   explicit BasicStatusReporter(Node& node) : node_(node) {}
 
-  void publish(const std::string& state, int64_t last_tick, double sim_time,
-               double tracking_error = std::nan(""), const std::string& message = "") {
+  void publish(State state, int64_t last_tick, double sim_time, double tracking_error = std::nan(""),
+               const std::string& message = "") {
     lagrange::status_t s{};
     s.header = transport::makeHeader(std::max<int64_t>(last_tick, 0), std::max(sim_time, 0.0));
     s.process = node_.processName();
-    s.state = state;
+    s.state = transport::toString(state);
     s.last_tick = last_tick;
     s.tracking_error = tracking_error;
     s.message = message;
@@ -76,7 +79,7 @@ void watchPlantFinished(Node& node, bool& finished) {
   node.template subscribe<lagrange::status_t>(
       transport::kStatus, [](const lagrange::status_t& m) { return transport::validate(m); },
       [&finished](const lagrange::status_t& m) {
-        if (m.process == "plant" && m.state == "finished") finished = true;
+        if (m.process == "plant" && m.state == transport::toString(State::kFinished)) finished = true;
       });
 }
 

@@ -63,7 +63,7 @@ int serveUntilPlantFinished(Node& node, const Progress& progress, const std::fun
   bool plant_finished = false;
   watchPlantFinished(node, plant_finished);
   BasicStatusReporter<Node> status(node);
-  status.publish("ready", progress.last_tick, progress.sim_time);
+  status.publish(State::kReady, progress.last_tick, progress.sim_time);
   auto next_status = Clock::now() + std::chrono::milliseconds(500);
   const auto idle_period = std::chrono::duration<double>(idle_seconds);
   int64_t seen_tick = progress.last_tick;
@@ -81,11 +81,12 @@ int serveUntilPlantFinished(Node& node, const Progress& progress, const std::fun
       }
     }
     if (Clock::now() >= next_status) {
-      status.publish("running", progress.last_tick, progress.sim_time);
+      status.publish(State::kRunning, progress.last_tick, progress.sim_time);
       next_status += std::chrono::milliseconds(500);
     }
   }
-  status.publish(plant_finished ? "finished" : "interrupted", progress.last_tick, progress.sim_time);
+  status.publish(plant_finished ? State::kFinished : State::kInterrupted, progress.last_tick,
+                 progress.sim_time);
   return 0;
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <initializer_list>
 
+#include "transport/process_state.hpp"
+
 namespace lagrange::transport {
 
 int64_t nowUtime() {
@@ -109,6 +111,8 @@ std::string validate(const lagrange::actuator_state_t& m, int joints, int torque
 
 std::string validate(const lagrange::status_t& m) {
   if (m.process.empty()) return "empty process name";
+  if (!util::enumFrom(kProcessStateNames, m.state))
+    return "unknown state '" + m.state + "'; expected " + util::choicesOf(kProcessStateNames);
   if (static_cast<int>(m.channels.size()) != m.num_channels) return "channel count mismatch";
   return checkHeader(m.header);
 }

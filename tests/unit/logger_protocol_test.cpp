@@ -60,20 +60,22 @@ TEST(TickConfirmation, MissingTicksPerChannelAndForeignOnesIgnored) {
 
 const RunEnd::Clock::time_point t0{};
 
+using State = RunEnd::State;
+
 TEST(RunEnd, EndsWhenEveryProcessFinished) {
   RunEnd end(milliseconds(2000));
-  end.processState("plant", "finished", t0);
+  end.processState("plant", State::kFinished, t0);
   EXPECT_FALSE(end.due(t0, false)) << "controller and actuator have not finished yet";
-  end.processState("controller", "finished", t0);
-  end.processState("actuator", "running", t0);
+  end.processState("controller", State::kFinished, t0);
+  end.processState("actuator", State::kRunning, t0);
   EXPECT_FALSE(end.due(t0 + milliseconds(10), false));
-  end.processState("actuator", "finished", t0);
+  end.processState("actuator", State::kFinished, t0);
   EXPECT_TRUE(end.due(t0 + milliseconds(10), false));
 }
 
 TEST(RunEnd, EndsAGraceAfterThePlantWhenOthersAreSilent) {
   RunEnd end(milliseconds(2000));
-  end.processState("plant", "finished", t0);
+  end.processState("plant", State::kFinished, t0);
   EXPECT_FALSE(end.due(t0 + milliseconds(2000), false));
   EXPECT_TRUE(end.due(t0 + milliseconds(2001), false));
 }
@@ -86,16 +88,16 @@ TEST(RunEnd, EndsAGraceAfterEveryTickWhenThePlantsStatusIsLost) {
   EXPECT_TRUE(end.due(t0 + milliseconds(2501), true));
 }
 
-TEST(RunEnd, AllReportedWithoutAStateMeansEveryoneEndedSomehow) {
+TEST(RunEnd, AllEndedMeansEveryoneFinishedOrWasInterrupted) {
   RunEnd end(milliseconds(2000));
-  end.processState("plant", "interrupted", t0);
-  end.processState("controller", "finished", t0);
-  EXPECT_FALSE(end.allReported(""));
-  end.processState("actuator", "ready", t0);
-  EXPECT_FALSE(end.allReported("")) << "ready is not an end";
-  end.processState("actuator", "interrupted", t0);
-  EXPECT_TRUE(end.allReported(""));
-  EXPECT_FALSE(end.allReported("finished"));
+  end.processState("plant", State::kInterrupted, t0);
+  end.processState("controller", State::kFinished, t0);
+  EXPECT_FALSE(end.allEnded());
+  end.processState("actuator", State::kReady, t0);
+  EXPECT_FALSE(end.allEnded()) << "ready is not an end";
+  end.processState("actuator", State::kInterrupted, t0);
+  EXPECT_TRUE(end.allEnded());
+  EXPECT_FALSE(end.allReported(State::kFinished));
 }
 
 }  // namespace
