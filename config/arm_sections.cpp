@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
 #include "model/planar_chain.hpp"
 
@@ -33,14 +34,14 @@ model::ChainParams readRobot(MapReader robot) {
       if (p.com < 0.0) link.fail("com", "expected a number >= 0 (distance joint to centre of mass)");
       p.mass = link.positive("mass");
       p.inertia = link.positive("inertia");
-      link.finish({"length", "com", "mass", "inertia"});
+      link.finish(keys::kLink);
       params.links.push_back(p);
     }
   }
   params.gravity = robot.number("gravity", params.gravity);
   if (params.gravity < 0.0)
     robot.fail("gravity", "expected a number >= 0 [m/s^2], got " + std::to_string(params.gravity));
-  robot.finish({"preset", "links", "gravity", "flexible"});
+  robot.finish(keys::kRobot);
   return params;
 }
 
@@ -51,7 +52,7 @@ std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
   c.params.stiffness = f.vector("stiffness", n, true, true);
   c.params.rotor_inertia = f.vector("rotor_inertia", n, true, true);
   c.rate_sensor = f.boolean("rate_sensor", false);
-  f.finish({"stiffness", "rotor_inertia", "rate_sensor"});
+  f.finish(keys::kFlexible);
   return c;
 }
 
@@ -66,7 +67,7 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
         ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
     p.model = std::move(arm);
     p.horizon = duration + 1.0;
-    ref.finish({"type", "initial_q", "initial_qdot"});
+    ref.finish(keys::kFreeMotionReference);
     return p;
   }
   p.offset = ref.vector("offset", n, true, false);
@@ -81,7 +82,7 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
   } else if (ref.has("alpha")) {
     ref.fail("alpha", "only a smooth_sine reference has alpha");
   }
-  ref.finish({"type", "offset", "amplitude", "frequency", "phase", "alpha"});
+  ref.finish(keys::kSineReference);
   return p;
 }
 
@@ -112,7 +113,7 @@ void readInitialStateSection(MapReader& root, Scenario& s) {
   } else if (init.has("motor_q") || init.has("motor_qdot")) {
     init.fail(init.has("motor_q") ? "motor_q" : "motor_qdot", "only an arm with robot.flexible has motors");
   }
-  init.finish({"q", "qdot", "motor_q", "motor_qdot"});
+  init.finish(keys::kInitialState);
 }
 
 // reference: a sine, a smooth sine or the arm's own free motion.
@@ -127,7 +128,7 @@ void readPlantSection(MapReader& root, Scenario& s) {
     s.plant.physics_step = plant.positive("physics_step", s.plant.physics_step);
     s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
     if (plant.has("max_rate")) s.plant.max_rate = plant.positive("max_rate");
-    plant.finish({"physics_step", "publish_rate", "max_rate"});
+    plant.finish(keys::kPlant);
     const double ratio = s.tickPeriod() / s.plant.physics_step;
     if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
       plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "config/controller_params.hpp"
+#include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
@@ -45,7 +46,7 @@ void readActuatorSection(MapReader& root, Scenario& s) {
         s.actuator.initial_state.row(i) = row.vector("row", n, true, false).transpose();
       }
     }
-    act.finish({"order", "rate", "saturation", "initial_state"});
+    act.finish(keys::kActuator);
   }
 }
 
@@ -145,7 +146,7 @@ void readControllerSection(MapReader& root, Scenario& s) {
           start.qc = st.vector("initial_filter_state", n, true, false);
       }
       s.controller.stage_starts.push_back(start);
-      st.finish({"kp", "kd", "a", "b", "initial_filter_state", "initial_zeta"});
+      st.finish(keys::kStage);
     }
   } else if (ctl.has("stages")) {
     ctl.fail("stages", "only the cascaded and flexible controllers have stages");
@@ -162,8 +163,7 @@ void readControllerSection(MapReader& root, Scenario& s) {
   } else {
     s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
   }
-  ctl.finish(
-      {"type", "kp", "kd", "a", "b", "initial_filter_state", "stages", "motor_rate", "motor_rate_pole"});
+  ctl.finish(keys::kPaperController);
 }
 
 }  // namespace lagrange::config::sections

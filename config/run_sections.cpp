@@ -2,69 +2,88 @@
 /// How the run is judged and carried out: metrics, lockstep, realtime,
 /// supervision, faults (config/scenario_sections.hpp).
 
+#include <limits>
 #include <set>
 
+#include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
 
+using namespace field;
+constexpr int kNoLimit = std::numeric_limits<int>::max();
+
 // metrics: what counts as converged.
-void readMetricsSection(MapReader& root, Scenario& s) {
-  if (!root.has("metrics")) return;
-  MapReader m = root.map("metrics");
-  s.metrics.tolerance = m.positive("tolerance", s.metrics.tolerance);
-  s.metrics.convergence_deadline = m.positive("convergence_deadline", s.metrics.convergence_deadline);
-  s.metrics.xi_tolerance = m.positive("xi_tolerance", s.metrics.xi_tolerance);
-  m.finish({"tolerance", "convergence_deadline", "xi_tolerance"});
+const Fields<MetricsConfig>& metricsFields() {
+  static const Fields<MetricsConfig> fields = {
+      positive("tolerance", &MetricsConfig::tolerance),
+      positive("convergence_deadline", &MetricsConfig::convergence_deadline),
+      positive("xi_tolerance", &MetricsConfig::xi_tolerance),
+  };
+  return fields;
 }
 
 // lockstep: re-send timing and the logger's window.
-void readLockstepSection(MapReader& root, Scenario& s) {
-  if (!root.has("lockstep")) return;
-  MapReader l = root.map("lockstep");
-  s.lockstep.retransmit_timeout = l.positive("retransmit_timeout", s.lockstep.retransmit_timeout);
-  s.lockstep.logger_window = l.integer("logger_window", s.lockstep.logger_window);
-  if (s.lockstep.logger_window < 1) l.fail("logger_window", "expected a whole number >= 1");
-  l.finish({"retransmit_timeout", "logger_window"});
+const Fields<LockstepConfig>& lockstepFields() {
+  static const Fields<LockstepConfig> fields = {
+      positive("retransmit_timeout", &LockstepConfig::retransmit_timeout),
+      integer("logger_window", &LockstepConfig::logger_window, 1, kNoLimit, "expected a whole number >= 1"),
+  };
+  return fields;
 }
 
 // realtime: stale-torque policy, input ages, scheduling.
-void readRealtimeSection(MapReader& root, Scenario& s) {
-  if (!root.has("realtime")) return;
-  MapReader r = root.map("realtime");
-  s.realtime.max_torque_age = r.integer("max_torque_age", s.realtime.max_torque_age);
-  if (s.realtime.max_torque_age < 1) r.fail("max_torque_age", "expected a whole number of periods >= 1");
-  s.realtime.stale_torque = r.choice("stale_torque", kStaleTorqueNames, "policy", s.realtime.stale_torque);
-  s.realtime.hold_periods = r.integer("hold_periods", s.realtime.hold_periods);
-  if (s.realtime.hold_periods < 0) r.fail("hold_periods", "expected a whole number >= 0");
-  s.realtime.max_input_age = r.positive("max_input_age", s.realtime.max_input_age);
-  s.realtime.priority = r.integer("priority", s.realtime.priority);
-  if (s.realtime.priority < 0 || s.realtime.priority > 99)
-    r.fail("priority", "expected a SCHED_FIFO priority from 1 to 99, or 0 for the normal scheduler");
-  r.finish({"max_torque_age", "stale_torque", "hold_periods", "max_input_age", "priority"});
+const Fields<RealtimeConfig>& realtimeFields() {
+  static const Fields<RealtimeConfig> fields = {
+      integer("max_torque_age", &RealtimeConfig::max_torque_age, 1, kNoLimit,
+              "expected a whole number of periods >= 1"),
+      choice("stale_torque", &RealtimeConfig::stale_torque, kStaleTorqueNames, "policy"),
+      integer("hold_periods", &RealtimeConfig::hold_periods, 0, kNoLimit, "expected a whole number >= 0"),
+      positive("max_input_age", &RealtimeConfig::max_input_age),
+      integer("priority", &RealtimeConfig::priority, 0, 99,
+              "expected a SCHED_FIFO priority from 1 to 99, or 0 for the normal scheduler"),
+  };
+  return fields;
 }
 
 // supervision: which processes are restarted when they die.
+const Fields<SupervisionConfig>& supervisionFields() {
+  static const Fields<SupervisionConfig> fields = {
+      {"restart",
+       [](MapReader& sv, SupervisionConfig& c) {
+         if (!sv.has("restart")) return;
+         const YAML::Node list = sv.child("restart");
+         if (!list.IsSequence())
+           sv.fail("restart", "expected a list of processes to restart when they die, e.g. [controller]");
+         for (const auto& item : list) {
+           const std::string name = item.IsScalar() ? item.as<std::string>() : "";
+           if (name != "controller" && name != "actuator")
+             sv.fail("restart",
+                     "cannot restart '" + name +
+                         "'; expected controller and/or actuator (the plant holds the simulated arm, the "
+                         "logger the log)");
+           if (!c.restarts(name)) c.restart.push_back(name);
+         }
+       },
+       [](YAML::Emitter& out, const SupervisionConfig& c) {
+         out << YAML::Key << "restart" << YAML::Value << YAML::Flow << c.restart;
+       }},
+      integer("max_restarts", &SupervisionConfig::max_restarts, 0, kNoLimit, "expected a whole number >= 0"),
+  };
+  return fields;
+}
+
+void readMetricsSection(MapReader& root, Scenario& s) {
+  if (root.has("metrics")) readFields(root.map("metrics"), s.metrics, metricsFields());
+}
+void readLockstepSection(MapReader& root, Scenario& s) {
+  if (root.has("lockstep")) readFields(root.map("lockstep"), s.lockstep, lockstepFields());
+}
+void readRealtimeSection(MapReader& root, Scenario& s) {
+  if (root.has("realtime")) readFields(root.map("realtime"), s.realtime, realtimeFields());
+}
 void readSupervisionSection(MapReader& root, Scenario& s) {
-  if (!root.has("supervision")) return;
-  MapReader sv = root.map("supervision");
-  if (sv.has("restart")) {
-    const YAML::Node list = sv.child("restart");
-    if (!list.IsSequence())
-      sv.fail("restart", "expected a list of processes to restart when they die, e.g. [controller]");
-    for (const auto& item : list) {
-      const std::string name = item.IsScalar() ? item.as<std::string>() : "";
-      if (name != "controller" && name != "actuator")
-        sv.fail("restart",
-                "cannot restart '" + name +
-                    "'; expected controller and/or actuator (the plant holds the simulated arm, the "
-                    "logger the log)");
-      if (!s.supervision.restarts(name)) s.supervision.restart.push_back(name);
-    }
-  }
-  s.supervision.max_restarts = sv.integer("max_restarts", s.supervision.max_restarts);
-  if (s.supervision.max_restarts < 0) sv.fail("max_restarts", "expected a whole number >= 0");
-  sv.finish({"restart", "max_restarts"});
+  if (root.has("supervision")) readFields(root.map("supervision"), s.supervision, supervisionFields());
 }
 
 namespace {
@@ -105,7 +124,7 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       if (rule.delay < 0.0) c.fail("delay", "expected a time >= 0 [s]");
       rule.delay_jitter = c.number("delay_jitter", 0.0);
       if (rule.delay_jitter < 0.0) c.fail("delay_jitter", "expected a time >= 0 [s]");
-      c.finish({"drop", "duplicate", "reorder", "corrupt", "delay", "delay_jitter"});
+      c.finish(keys::kChannelFaults);
       s.faults.channels[name] = rule;
     }
     channels.finish(names);
@@ -119,11 +138,11 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       names.insert(name);
       MapReader r = receivers.map(name);
       s.faults.receiver_drop[name] = probability(r, "drop");
-      r.finish({"drop"});
+      r.finish(keys::kReceiverFaults);
     }
     receivers.finish(names);
   }
-  f.finish({"seed", "channels", "receivers"});
+  f.finish(keys::kFaults);
 }
 
 }  // namespace lagrange::config::sections

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/yaml_reader.hpp"
 #include "model/joint_springs.hpp"
@@ -82,8 +83,7 @@ Scenario readScenario(MapReader root) {
   readRealtimeSection(root, s);
   readSupervisionSection(root, s);
   readFaultsSection(root, s);
-  root.finish({"name", "description", "duration", "mode", "robot", "initial_state", "reference", "plant",
-               "actuator", "controller", "metrics", "lockstep", "realtime", "supervision", "faults"});
+  root.finish(keys::kTop);
   return s;
 }
 

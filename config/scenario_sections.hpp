@@ -5,6 +5,7 @@
 /// expected (ConfigError). Internal to lagrange_config.
 #pragma once
 
+#include "config/fields.hpp"
 #include "config/scenario.hpp"
 #include "config/yaml_reader.hpp"
 
@@ -20,7 +21,12 @@ void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 void readActuatorSection(MapReader& root, Scenario& s);    ///< after plant
 void readControllerSection(MapReader& root, Scenario& s);  ///< after actuator
 
-// How the run is judged and run (run_sections.cpp).
+// How the run is judged and run (run_sections.cpp): the sections described
+// field by field (config/fields.hpp), read and written from one description.
+const Fields<MetricsConfig>& metricsFields();
+const Fields<LockstepConfig>& lockstepFields();
+const Fields<RealtimeConfig>& realtimeFields();
+const Fields<SupervisionConfig>& supervisionFields();
 void readMetricsSection(MapReader& root, Scenario& s);
 void readLockstepSection(MapReader& root, Scenario& s);
 void readRealtimeSection(MapReader& root, Scenario& s);

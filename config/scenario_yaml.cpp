@@ -6,6 +6,7 @@
 
 #include "config/controller_params.hpp"
 #include "config/scenario.hpp"
+#include "config/scenario_sections.hpp"
 
 namespace lagrange::config {
 
@@ -129,30 +130,15 @@ std::string toYaml(const Scenario& s) {
   if (registeredControllerParams(s.controller.type) == nullptr) emitPaperController(out, s.controller);
   out << YAML::EndMap;
 
-  out << YAML::Key << "metrics" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "tolerance" << YAML::Value << s.metrics.tolerance;
-  out << YAML::Key << "convergence_deadline" << YAML::Value << s.metrics.convergence_deadline;
-  out << YAML::Key << "xi_tolerance" << YAML::Value << s.metrics.xi_tolerance;
-  out << YAML::EndMap;
-
-  out << YAML::Key << "lockstep" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "retransmit_timeout" << YAML::Value << s.lockstep.retransmit_timeout;
-  out << YAML::Key << "logger_window" << YAML::Value << s.lockstep.logger_window;
-  out << YAML::EndMap;
-
-  out << YAML::Key << "realtime" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "max_torque_age" << YAML::Value << s.realtime.max_torque_age;
-  out << YAML::Key << "stale_torque" << YAML::Value
-      << util::nameOf(kStaleTorqueNames, s.realtime.stale_torque);
-  out << YAML::Key << "hold_periods" << YAML::Value << s.realtime.hold_periods;
-  out << YAML::Key << "max_input_age" << YAML::Value << s.realtime.max_input_age;
-  out << YAML::Key << "priority" << YAML::Value << s.realtime.priority;
-  out << YAML::EndMap;
-
-  out << YAML::Key << "supervision" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "restart" << YAML::Value << YAML::Flow << s.supervision.restart;
-  out << YAML::Key << "max_restarts" << YAML::Value << s.supervision.max_restarts;
-  out << YAML::EndMap;
+  auto section = [&out](const char* key, const auto& value, const auto& fields) {
+    out << YAML::Key << key << YAML::Value << YAML::BeginMap;
+    writeFields(out, value, fields);
+    out << YAML::EndMap;
+  };
+  section("metrics", s.metrics, sections::metricsFields());
+  section("lockstep", s.lockstep, sections::lockstepFields());
+  section("realtime", s.realtime, sections::realtimeFields());
+  section("supervision", s.supervision, sections::supervisionFields());
 
   out << YAML::Key << "faults" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "seed" << YAML::Value << s.faults.seed;

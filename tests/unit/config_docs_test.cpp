@@ -1,0 +1,61 @@
+// docs/configuration.md cannot drift from what the readers accept: every key
+// a scenario may hold (config::keys::documentedKeys(), the same lists and
+// field descriptions the readers reject unknown keys with) has its row, and
+// every row names a key that exists.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "config/scenario_keys.hpp"
+
+namespace lagrange::config {
+namespace {
+
+// Row key -> the row's whole text, for every row of the keys table (its first
+// cell holds one or more keys in backticks).
+std::map<std::string, std::string> documentedRows() {
+  std::ifstream in(std::string(LAGRANGE_SOURCE_DIR) + "/docs/configuration.md");
+  std::map<std::string, std::string> rows;
+  std::string line;
+  const std::regex backticked("`([^`]+)`");
+  while (std::getline(in, line)) {
+    if (line.rfind("| `", 0) != 0) continue;
+    const std::string first_cell = line.substr(1, line.find('|', 1) - 1);
+    for (std::sregex_iterator it(first_cell.begin(), first_cell.end(), backticked), end; it != end; ++it)
+      rows[(*it)[1]] = line;
+  }
+  return rows;
+}
+
+TEST(ConfigDocs, EveryKeyHasItsRow) {
+  const auto rows = documentedRows();
+  ASSERT_GT(rows.size(), 40u) << "the table of docs/configuration.md was not found or not parsed";
+  for (const keys::DocumentedKey& key : keys::documentedKeys()) {
+    const auto row = rows.find(key.row);
+    if (row == rows.end()) {
+      ADD_FAILURE() << "docs/configuration.md has no row for `" << key.row << "`";
+      continue;
+    }
+    if (!key.inside.empty()) {
+      EXPECT_TRUE(std::regex_search(row->second, std::regex("\\b" + key.inside + "\\b")))
+          << "the row of `" << key.row << "` does not describe its key " << key.inside;
+    }
+  }
+}
+
+TEST(ConfigDocs, EveryRowIsAKeyTheReadersAccept) {
+  std::set<std::string> known;
+  for (const keys::DocumentedKey& key : keys::documentedKeys()) known.insert(key.row);
+  for (const auto& [row, text] : documentedRows())
+    EXPECT_EQ(known.count(row), 1u) << "docs/configuration.md documents `" << row
+                                    << "`, which no reader accepts";
+}
+
+}  // namespace
+}  // namespace lagrange::config
