@@ -49,12 +49,19 @@ std::vector<int64_t> ticks(const std::vector<Position>& sent) {
   return out;
 }
 
-TEST(TickResponder, AnswersEachTickOnceAndARepeatFromWhatItSent) {
-  FakeNode node("controller");
+// A responder keeping the answers of the last `history` ticks, on a fake node.
+class TickResponder : public ::testing::Test {
+ protected:
+  std::shared_ptr<const std::optional<Position>> start(int history) {
+    return respondPerTick<Position, Position>(node, kIn, kOut, kJoints, progress, history, std::ref(compute));
+  }
+  FakeNode node{"controller"};
   Progress progress;
   Answerer compute;
-  const auto newest =
-      respondPerTick<Position, Position>(node, kIn, kOut, kJoints, progress, 8, std::ref(compute));
+};
+
+TEST_F(TickResponder, AnswersEachTickOnceAndARepeatFromWhatItSent) {
+  const auto newest = start(8);
   for (int64_t k : {0, 1, 1, 2}) node.deliver(kIn, position(k));
   const auto sent = node.published<Position>(kOut);
   EXPECT_EQ(ticks(sent), (std::vector<int64_t>{0, 1, 1, 2}));
@@ -65,9 +72,7 @@ TEST(TickResponder, AnswersEachTickOnceAndARepeatFromWhatItSent) {
   EXPECT_EQ((*newest)->header.tick, 2);
 }
 
-TEST(TickResponder, ADeclinedTickIsAnsweredWhenItComesAgain) {
-  FakeNode node("controller");
-  Progress progress;
+TEST_F(TickResponder, ADeclinedTickIsAnsweredWhenItComesAgain) {
   bool ready = false;
   respondPerTick<Position, Position>(node, kIn, kOut, kJoints, progress, 8,
                                      [&](const Position& in) -> std::optional<Position> {
@@ -83,11 +88,8 @@ TEST(TickResponder, ADeclinedTickIsAnsweredWhenItComesAgain) {
   EXPECT_EQ(progress.last_tick, 0);
 }
 
-TEST(TickResponder, TicksOlderThanItsHistoryAreIgnored) {
-  FakeNode node("actuator");
-  Progress progress;
-  Answerer compute;
-  respondPerTick<Position, Position>(node, kIn, kOut, kJoints, progress, 2, std::ref(compute));
+TEST_F(TickResponder, TicksOlderThanItsHistoryAreIgnored) {
+  start(2);
   for (int64_t k = 0; k <= 4; ++k) node.deliver(kIn, position(k));
   node.deliver(kIn, position(1));  // past the history of 2: not answered, not computed again
   node.deliver(kIn, position(3));  // within it: answered again
@@ -95,11 +97,8 @@ TEST(TickResponder, TicksOlderThanItsHistoryAreIgnored) {
   EXPECT_EQ(compute.calls, 5);
 }
 
-TEST(TickResponder, AnInvalidInputNeverReachesTheCore) {
-  FakeNode node("controller");
-  Progress progress;
-  Answerer compute;
-  respondPerTick<Position, Position>(node, kIn, kOut, kJoints, progress, 8, std::ref(compute));
+TEST_F(TickResponder, AnInvalidInputNeverReachesTheCore) {
+  start(8);
   node.deliver(kIn, position(0, 0.0, kJoints + 1));
   node.deliver(kIn, position(1, std::nan("")));
   EXPECT_EQ(node.rejected(), 2);
