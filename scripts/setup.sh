@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config git
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java
   gnuplot-nox  # lagrange report's plots
+  liburdfdom-dev liborocos-kdl-dev  # URDF arms: the document, the dynamics
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless
   iproute2 util-linux

@@ -1,0 +1,278 @@
+#include "model/urdf_arm.hpp"
+
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <kdl/chain.hpp>
+#include <kdl/chaindynparam.hpp>
+#include <kdl/chainidsolver_recursive_newton_euler.hpp>
+#include <sstream>
+
+#include "model/error.hpp"
+
+namespace lagrange::model {
+
+namespace {
+
+KDL::Frame toKdl(const urdf::Pose& p) {
+  return KDL::Frame(KDL::Rotation::Quaternion(p.rotation.x, p.rotation.y, p.rotation.z, p.rotation.w),
+                    KDL::Vector(p.position.x, p.position.y, p.position.z));
+}
+
+// A link's inertia in the link's frame: URDF gives it about the centre of
+// mass in the <inertial><origin> frame; KDL wants it about the centre of mass
+// in the link frame.
+KDL::RigidBodyInertia toKdl(const urdf::InertialSharedPtr& i) {
+  if (!i) return KDL::RigidBodyInertia::Zero();
+  const KDL::Frame origin = toKdl(i->origin);
+  const KDL::RotationalInertia in_origin(i->ixx, i->iyy, i->izz, i->ixy, i->ixz, i->iyz);
+  return origin * KDL::RigidBodyInertia(i->mass, KDL::Vector::Zero(), in_origin);
+}
+
+bool isArmJoint(const urdf::Joint& j) {
+  return j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS;
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE:
+      return "revolute";
+    case urdf::Joint::CONTINUOUS:
+      return "continuous";
+    case urdf::Joint::PRISMATIC:
+      return "prismatic";
+    case urdf::Joint::FLOATING:
+      return "floating";
+    case urdf::Joint::PLANAR:
+      return "planar";
+    case urdf::Joint::FIXED:
+      return "fixed";
+    default:
+      return "unknown";
+  }
+}
+
+// The inertia of a whole subtree, every joint in it held at zero, in the
+// frame of its root link.
+KDL::RigidBodyInertia subtreeInertia(const urdf::Link& link) {
+  KDL::RigidBodyInertia total = toKdl(link.inertial);
+  for (const urdf::LinkSharedPtr& child : link.child_links)
+    total = total + toKdl(child->parent_joint->parent_to_joint_origin_transform) * subtreeInertia(*child);
+  return total;
+}
+
+Eigen::Matrix3d toEigen(const KDL::RotationalInertia& i) {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(i.data);
+}
+Eigen::Vector3d toEigen(const KDL::Vector& v) { return {v.x(), v.y(), v.z()}; }
+
+KDL::JntArray toKdl(const Eigen::VectorXd& v) {
+  KDL::JntArray out(static_cast<unsigned>(v.size()));
+  out.data = v;
+  return out;
+}
+
+}  // namespace
+
+struct UrdfArm::Impl {
+  UrdfChainSpec spec;
+  KDL::Chain chain;
+  KDL::Vector gravity;
+  std::vector<std::string> joint_names;
+  std::vector<std::string> notes;
+  std::vector<UrdfBody> bodies;
+};
+
+std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
+  const std::string where = spec.source.empty() ? "robot.urdf" : spec.source;
+  const urdf::ModelInterfaceSharedPtr robot = urdf::parseURDF(spec.xml);
+  if (!robot) throw Error(where + ": not a valid URDF document (urdfdom could not parse it)");
+  auto known_links = [&] {
+    std::vector<urdf::LinkSharedPtr> links;
+    robot->getLinks(links);
+    std::vector<std::string> names;
+    for (const auto& l : links) names.push_back(l->name);
+    std::sort(names.begin(), names.end());
+    std::string list;
+    for (size_t i = 0; i < names.size(); ++i) list += (i ? ", " : "") + names[i];
+    return list;
+  };
+  const urdf::LinkConstSharedPtr base = robot->getLink(spec.base_link);
+  if (!base)
+    throw Error(where + ": no link '" + spec.base_link + "' (base_link); its links: " + known_links());
+  urdf::LinkConstSharedPtr tip = robot->getLink(spec.tip_link);
+  if (!tip) throw Error(where + ": no link '" + spec.tip_link + "' (tip_link); its links: " + known_links());
+
+  // The path, tip up to base.
+  std::vector<urdf::LinkConstSharedPtr> path;
+  for (urdf::LinkConstSharedPtr l = tip; l != base; l = l->getParent()) {
+    if (!l->getParent())
+      throw Error(where + ": tip_link '" + spec.tip_link + "' is not below base_link '" + spec.base_link +
+                  "'");
+    path.push_back(l);
+  }
+  std::reverse(path.begin(), path.end());  // base's child first
+
+  auto impl = std::make_unique<Impl>();
+  impl->spec = spec;
+  impl->gravity = KDL::Vector(0.0, 0.0, -spec.gravity);
+  for (size_t i = 0; i < path.size(); ++i) {
+    const urdf::Link& link = *path[i];
+    const urdf::Joint& joint = *link.parent_joint;
+    if (!isArmJoint(joint) && joint.type != urdf::Joint::FIXED)
+      throw Error(where + ": joint '" + joint.name + "' on the chain from '" + spec.base_link + "' to '" +
+                  spec.tip_link + "' is " + typeName(joint.type) +
+                  "; expected revolute, continuous or fixed");
+    // The link with every branch off the chain lumped into it.
+    KDL::RigidBodyInertia inertia = toKdl(link.inertial);
+    const urdf::LinkConstSharedPtr next = i + 1 < path.size() ? path[i + 1] : nullptr;
+    for (const urdf::LinkSharedPtr& child : link.child_links) {
+      if (child == next) continue;
+      inertia =
+          inertia + toKdl(child->parent_joint->parent_to_joint_origin_transform) * subtreeInertia(*child);
+      impl->notes.push_back("joint '" + child->parent_joint->name + "' (" +
+                            typeName(child->parent_joint->type) + ") is off the chain: held at 0, link '" +
+                            child->name +
+                            "' and what hangs from it "
+                            "lumped into '" +
+                            link.name + "'");
+    }
+    const KDL::Frame origin = toKdl(joint.parent_to_joint_origin_transform);
+    KDL::Joint kdl_joint(joint.name, KDL::Joint::None);
+    if (isArmJoint(joint)) {
+      const KDL::Vector axis(joint.axis.x, joint.axis.y, joint.axis.z);
+      kdl_joint = KDL::Joint(joint.name, origin.p, origin.M * axis, KDL::Joint::RotAxis);
+      impl->joint_names.push_back(joint.name);
+      std::ostringstream unused;
+      if (joint.limits && joint.type == urdf::Joint::REVOLUTE)
+        unused << " <limit lower=" << joint.limits->lower << " upper=" << joint.limits->upper << ">";
+      if (joint.dynamics && (joint.dynamics->damping != 0.0 || joint.dynamics->friction != 0.0))
+        unused << " <dynamics damping=" << joint.dynamics->damping << " friction=" << joint.dynamics->friction
+               << ">";
+      if (!unused.str().empty())
+        impl->notes.push_back("joint '" + joint.name + "':" + unused.str() +
+                              " not applied (the model is lossless, eq. 10, without joint limits)");
+    }
+    impl->chain.addSegment(KDL::Segment(link.name, kdl_joint, origin, inertia));
+  }
+  if (impl->joint_names.empty())
+    throw Error(where + ": no revolute or continuous joint between '" + spec.base_link + "' and '" +
+                spec.tip_link + "'");
+
+  // The moving bodies at q = 0: fixed segments merged into the body before them.
+  KDL::Frame frame = KDL::Frame::Identity();
+  // Fixed segments before the first joint belong to the base: they never move.
+  std::vector<KDL::RigidBodyInertia> body_inertia;  // in the base frame
+  for (const KDL::Segment& segment : impl->chain.segments) {
+    const KDL::Frame joint_frame = frame;  // the parent's frame: the joint's origin and axis are in it
+    frame = frame * segment.pose(0.0);
+    const KDL::RigidBodyInertia in_base = frame * segment.getInertia();
+    if (segment.getJoint().getType() == KDL::Joint::None) {
+      if (!body_inertia.empty()) body_inertia.back() = body_inertia.back() + in_base;
+      continue;
+    }
+    UrdfBody body;
+    body.link = segment.getName();
+    body.joint = segment.getJoint().getName();
+    body.joint_anchor = toEigen(joint_frame * segment.getJoint().JointOrigin());
+    body.joint_axis = toEigen(joint_frame.M * segment.getJoint().JointAxis()).normalized();
+    impl->bodies.push_back(body);
+    body_inertia.push_back(in_base);
+  }
+  for (size_t b = 0; b < impl->bodies.size(); ++b) {
+    KDL::RigidBodyInertia in_base = body_inertia[b];
+    UrdfBody& body = impl->bodies[b];
+    body.mass = in_base.getMass();
+    const KDL::Vector com = body.mass > 0.0 ? in_base.getCOG() : KDL::Vector::Zero();
+    body.com = toEigen(com);
+    // KDL keeps the rotational inertia about the frame's origin: move it to the centre of mass.
+    body.inertia = toEigen(in_base.RefPoint(com).getRotationalInertia());
+  }
+  return std::shared_ptr<const UrdfArm>(new UrdfArm(std::move(impl)));
+}
+
+UrdfArm::UrdfArm(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+UrdfArm::~UrdfArm() = default;
+
+int UrdfArm::dof() const { return static_cast<int>(impl_->joint_names.size()); }
+std::vector<std::string> UrdfArm::jointNames() const { return impl_->joint_names; }
+const std::vector<std::string>& UrdfArm::notes() const { return impl_->notes; }
+const std::vector<UrdfBody>& UrdfArm::bodies() const { return impl_->bodies; }
+const UrdfChainSpec& UrdfArm::spec() const { return impl_->spec; }
+
+// KDL's solvers keep scratch space: one per call keeps the model constant and
+// safe to share between threads (model/robot_model.hpp's contract).
+Eigen::MatrixXd UrdfArm::inertia(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  KDL::ChainDynParam dyn(impl_->chain, impl_->gravity);
+  KDL::JntSpaceInertiaMatrix d(static_cast<unsigned>(dof()));
+  dyn.JntToMass(toKdl(q), d);
+  return d.data;
+}
+
+Eigen::VectorXd UrdfArm::velocityTerms(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  checkSize(q, "q");
+  checkSize(v, "v");
+  KDL::ChainDynParam dyn(impl_->chain, impl_->gravity);
+  KDL::JntArray h(static_cast<unsigned>(dof()));
+  dyn.JntToCoriolis(toKdl(q), toKdl(v), h);
+  return h.data;
+}
+
+Eigen::VectorXd UrdfArm::coriolisTimes(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                       const Eigen::VectorXd& w) const {
+  checkSize(w, "w");
+  return 0.25 * (velocityTerms(q, v + w) - velocityTerms(q, v - w));
+}
+
+Eigen::MatrixXd UrdfArm::coriolis(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
+  const int n = dof();
+  Eigen::MatrixXd c(n, n);
+  for (int j = 0; j < n; ++j) c.col(j) = coriolisTimes(q, v, Eigen::VectorXd::Unit(n, j));
+  return c;
+}
+
+std::vector<Eigen::MatrixXd> UrdfArm::coriolisPerVelocity(const Eigen::VectorXd& q) const {
+  const int n = dof();
+  std::vector<Eigen::MatrixXd> ck;
+  for (int k = 0; k < n; ++k) ck.push_back(coriolis(q, Eigen::VectorXd::Unit(n, k)));
+  return ck;
+}
+
+Eigen::VectorXd UrdfArm::gravity(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  KDL::ChainDynParam dyn(impl_->chain, impl_->gravity);
+  KDL::JntArray g(static_cast<unsigned>(dof()));
+  dyn.JntToGravity(toKdl(q), g);
+  return g.data;
+}
+
+double UrdfArm::potentialEnergy(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  KDL::Frame frame = KDL::Frame::Identity();
+  double u = 0.0;
+  int j = 0;
+  for (const KDL::Segment& segment : impl_->chain.segments) {
+    const bool moves = segment.getJoint().getType() != KDL::Joint::None;
+    frame = frame * segment.pose(moves ? q(j++) : 0.0);
+    const KDL::RigidBodyInertia& inertia = segment.getInertia();
+    if (inertia.getMass() > 0.0)
+      u += inertia.getMass() * impl_->spec.gravity * (frame * inertia.getCOG()).z();
+  }
+  return u;
+}
+
+Eigen::VectorXd UrdfArm::inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                         const Eigen::VectorXd& a) const {
+  checkSize(q, "q");
+  checkSize(v, "v");
+  checkSize(a, "a");
+  KDL::ChainIdSolver_RNE rne(impl_->chain, impl_->gravity);
+  KDL::JntArray tau(static_cast<unsigned>(dof()));
+  const KDL::Wrenches no_external(impl_->chain.getNrOfSegments(), KDL::Wrench::Zero());
+  if (rne.CartToJnt(toKdl(q), toKdl(v), toKdl(a), no_external, tau) < 0)
+    throw std::runtime_error("urdf model: KDL's inverse dynamics failed");
+  return tau.data;
+}
+
+}  // namespace lagrange::model
