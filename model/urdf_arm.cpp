@@ -275,4 +275,10 @@ Eigen::VectorXd UrdfArm::inverseDynamics(const Eigen::VectorXd& q, const Eigen::
   return tau.data;
 }
 
+Eigen::VectorXd UrdfArm::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                      const Eigen::VectorXd& u) const {
+  checkSize(u, "u");
+  return inertia(q).llt().solve(u - velocityTerms(q, v) - gravity(q));
+}
+
 }  // namespace lagrange::model

@@ -35,6 +35,9 @@ class ArmWorld {
   virtual double fastestBodyRate() const = 0;
   /// Whether every body's position, orientation and velocities are finite.
   virtual bool finite() const = 0;
+  /// The largest distance between the two bodies' points of any joint [m]:
+  /// how far ODE's maximal coordinates have let the chain come apart.
+  virtual double jointSeparation() const = 0;
   /// Kinetic and potential energy of the links, from the bodies' states [J].
   virtual double kineticEnergy() const = 0;
   virtual double potentialEnergy() const = 0;

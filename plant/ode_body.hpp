@@ -22,6 +22,16 @@ inline bool bodyStateFinite(dBodyID body) {
   return finite;
 }
 
+/// The distance between a hinge's anchor as its first body carries it and as
+/// its second body (or the world) does [m].
+inline double hingeSeparation(dJointID joint) {
+  dVector3 a1, a2;
+  dJointGetHingeAnchor(joint, a1);
+  dJointGetHingeAnchor2(joint, a2);
+  return std::sqrt((a1[0] - a2[0]) * (a1[0] - a2[0]) + (a1[1] - a2[1]) * (a1[1] - a2[1]) +
+                   (a1[2] - a2[2]) * (a1[2] - a2[2]));
+}
+
 /// The body's rotation about the z axis [rad], in (-pi, pi]: the absolute
 /// angle of a planar link (from the downward vertical) or of a rotor.
 inline double zRotation(dBodyID body) {

@@ -50,6 +50,7 @@ class PlanarChainWorld final : public ArmWorld {
       dJointSetHingeAxis(joint, 0, 0, 1);
 
       bodies_.push_back(body);
+      joints_.push_back(joint);
       mass_.push_back(link.mass);
       inertia_.push_back(link.inertia);
       jx += link.length * dx;
@@ -97,6 +98,12 @@ class PlanarChainWorld final : public ArmWorld {
     return worst;
   }
 
+  double jointSeparation() const override {
+    double worst = 0.0;
+    for (dJointID j : joints_) worst = std::max(worst, hingeSeparation(j));
+    return worst;
+  }
+
   bool finite() const override { return std::all_of(bodies_.begin(), bodies_.end(), bodyStateFinite); }
 
   double kineticEnergy() const override {
@@ -119,6 +126,7 @@ class PlanarChainWorld final : public ArmWorld {
  private:
   double gravity_;
   std::vector<dBodyID> bodies_;
+  std::vector<dJointID> joints_;
   std::vector<double> mass_, inertia_;
 };
 

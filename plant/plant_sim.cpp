@@ -176,6 +176,8 @@ PlantState PlantSim::state() const {
   return s;
 }
 
+double PlantSim::jointSeparation() const { return ode_->arm->jointSeparation(); }
+
 PlantEnergy PlantSim::energy() const {
   PlantEnergy e;
   e.kinetic = ode_->arm->kineticEnergy();

@@ -94,6 +94,8 @@ class PlantSim {
   PlantState state() const;
   PlantEnergy energy() const;
   double time() const { return time_; }
+  /// How far the joints have come apart in ODE's maximal coordinates [m] (ArmWorld::jointSeparation).
+  double jointSeparation() const;
   double physicsStep() const { return physics_step_; }
   int dof() const { return dof_; }
 

@@ -20,7 +20,7 @@ Eigen::VectorXd rk4Step(const F& f, double t, const Eigen::VectorXd& x, double h
 }
 
 /// x = [q; q'] of eq. (10) under a torque held constant over the step.
-inline Eigen::VectorXd armStep(const model::PlanarChain& chain, const Eigen::VectorXd& x,
+inline Eigen::VectorXd armStep(const model::RobotModel& chain, const Eigen::VectorXd& x,
                                const Eigen::VectorXd& tau, double h) {
   const int n = chain.dof();
   auto f = [&](double, const Eigen::VectorXd& s) {
