@@ -3,6 +3,9 @@
 /// joints), initial_state, reference, plant (config/scenario_sections.hpp).
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
@@ -12,13 +15,50 @@ namespace lagrange::config::sections {
 
 namespace {
 
+// robot.urdf: the document (inline, or from a file relative to the scenario's
+// folder) and the chain in it, built into the model here so that every
+// problem is named before anything runs.
+void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
+  MapReader u = robot.map("urdf");
+  UrdfRobotConfig c;
+  c.base_link = u.text("base_link");
+  c.tip_link = u.text("tip_link");
+  c.file = u.text("file", "");
+  if (u.has("xml")) {
+    c.xml = u.text("xml");
+  } else if (c.file.empty()) {
+    u.fail("file", "missing; expected the URDF file of the arm (or its text as robot.urdf.xml)");
+  } else {
+    const std::filesystem::path path = std::filesystem::path(c.file).is_relative()
+                                           ? std::filesystem::path(base_dir) / c.file
+                                           : std::filesystem::path(c.file);
+    std::ifstream in(path);
+    if (!in) u.fail("file", "cannot read '" + path.string() + "'; expected a readable URDF file");
+    std::stringstream text;
+    text << in.rdbuf();
+    c.xml = text.str();
+  }
+  u.finish(keys::kUrdf);
+  try {
+    s.urdf_model = model::UrdfArm::build(
+        {c.xml, c.file.empty() ? "robot.urdf.xml" : c.file, c.base_link, c.tip_link, s.robot.gravity});
+  } catch (const lagrange::Error& e) {
+    robot.fail("urdf", e.what());
+  }
+  s.urdf = c;
+}
+
 model::ChainParams readRobot(MapReader robot) {
   model::ChainParams params;
   const bool has_preset = robot.has("preset");
   const bool has_links = robot.has("links");
-  if (has_preset == has_links)
-    robot.fail("links", "give exactly one of robot.preset (pelican) or robot.links");
-  if (has_preset) {
+  const bool has_urdf = robot.has("urdf");
+  if (int(has_preset) + int(has_links) + int(has_urdf) != 1)
+    robot.fail("links", "give exactly one of robot.preset (pelican), robot.links or robot.urdf");
+  if (has_urdf) {
+    // The chain is read by readUrdf; here only what it shares with the planar chain.
+    robot.child("urdf");
+  } else if (has_preset) {
     const std::string preset = robot.text("preset");
     if (preset != "pelican") robot.fail("preset", "unknown preset '" + preset + "'; expected: pelican");
     params = model::pelicanParams();
@@ -88,9 +128,13 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
 
 }  // namespace
 
-// robot: a preset or a list of links, gravity, and robot.flexible for elastic joints.
-void readRobotSection(MapReader& root, Scenario& s) {
+// robot: a preset, a list of links or a URDF arm; gravity; and robot.flexible for elastic joints.
+void readRobotSection(MapReader& root, Scenario& s, const std::string& base_dir) {
   s.robot = readRobot(root.map("robot"));
+  if (root.map("robot").has("urdf")) {
+    readUrdf(root.map("robot"), s, base_dir);
+    s.robot.links.clear();
+  }
   s.flexible = readFlexible(root.map("robot"), s.dof());
 }
 

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -22,6 +23,7 @@ int Scenario::torqueStepsPerTick() const {
 }
 
 model::RobotModelPtr Scenario::robotModel() const {
+  if (urdf_model) return urdf_model;
   return std::make_shared<const model::PlanarChain>(robot);
 }
 
@@ -64,7 +66,7 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
   chain.back()[parts.back()] = value;
 }
 
-Scenario readScenario(MapReader root) {
+Scenario readScenario(MapReader root, const std::string& source) {
   Scenario s;
   s.name = root.text("name");
   s.description = root.text("description", "");
@@ -72,7 +74,7 @@ Scenario readScenario(MapReader root) {
   s.mode = root.choice("mode", kModeNames, "mode", s.mode);
 
   using namespace sections;
-  readRobotSection(root, s);
+  readRobotSection(root, s, std::filesystem::path(source).parent_path().string());
   readInitialStateSection(root, s);
   readReferenceSection(root, s);
   readPlantSection(root, s);
@@ -107,7 +109,7 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
                       (root.IsSequence() ? "list" : "single value"));
   for (const auto& o : overrides) applyOverride(root, o);
   try {
-    return readScenario(MapReader(root, ""));
+    return readScenario(MapReader(root, ""), source);
   } catch (const ConfigError& e) {
     const std::string what = e.what();
     // Prefix the source so the user knows which file (or --set) was wrong.

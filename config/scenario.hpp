@@ -21,6 +21,7 @@
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
 #include "model/robot_model.hpp"
+#include "model/urdf_arm.hpp"
 #include "transport/fault_rule.hpp"
 #include "util/enum_names.hpp"
 
@@ -43,6 +44,16 @@ struct InitialState {
 struct FlexibleConfig {
   model::FlexibleParams params;  ///< stiffness K, rotor_inertia J
   bool rate_sensor = false;      ///< the plant publishes q2' on PLANT_MOTOR
+};
+
+/// robot.urdf: the serial chain of a URDF arm (model/urdf_arm.hpp).
+struct UrdfRobotConfig {
+  std::string file;  ///< where the document was read from, as written ("" when given inline)
+  /// The URDF document itself. config.resolved.yaml and the SCENARIO message
+  /// carry it, so a log replays without the file; when given, it is used and
+  /// `file` is not read again.
+  std::string xml;
+  std::string base_link, tip_link;
 };
 
 struct PlantConfig {
@@ -156,7 +167,10 @@ struct Scenario {
   std::string description;
   double duration = 10.0;  ///< simulated time [s]
   Mode mode = Mode::kLockstep;
-  model::ChainParams robot;
+  model::ChainParams robot;             ///< the planar chain (its gravity also a URDF arm's)
+  std::optional<UrdfRobotConfig> urdf;  ///< robot.urdf: a URDF arm instead of robot.links
+  /// The URDF arm, built once when the scenario is read (robotModel() returns it).
+  std::shared_ptr<const model::UrdfArm> urdf_model;
   std::optional<FlexibleConfig> flexible;  ///< robot.flexible
   InitialState initial_state;
   model::ReferenceParams reference;
@@ -169,7 +183,7 @@ struct Scenario {
   SupervisionConfig supervision;
   FaultsConfig faults;
 
-  int dof() const { return static_cast<int>(robot.links.size()); }
+  int dof() const { return urdf_model ? urdf_model->dof() : static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }
   int substepsPerTick() const;
   /// Actuator output updates per plant period: actuator.rate / plant.publish_rate.

@@ -27,8 +27,9 @@ std::vector<DocumentedKey> documentedKeys() {
   add(out, "", kTop,
       {"robot", "initial_state", "reference", "plant", "actuator", "controller", "metrics", "lockstep",
        "realtime", "supervision", "faults"});
-  add(out, "robot.", kRobot, {"flexible"});
+  add(out, "robot.", kRobot, {"flexible", "urdf"});
   addInside(out, "robot.links", kLink);
+  add(out, "robot.urdf.", kUrdf);
   add(out, "robot.flexible.", kFlexible);
   add(out, "initial_state.", kInitialState);
   add(out, "reference.", kSineReference);

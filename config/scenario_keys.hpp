@@ -17,7 +17,8 @@ using Keys = std::set<std::string>;
 inline const Keys kTop = {"name",          "description", "duration", "mode",        "robot",
                           "initial_state", "reference",   "plant",    "actuator",    "controller",
                           "metrics",       "lockstep",    "realtime", "supervision", "faults"};
-inline const Keys kRobot = {"preset", "links", "gravity", "flexible"};
+inline const Keys kRobot = {"preset", "links", "urdf", "gravity", "flexible"};
+inline const Keys kUrdf = {"file", "xml", "base_link", "tip_link"};
 inline const Keys kLink = {"length", "com", "mass", "inertia"};
 inline const Keys kFlexible = {"stiffness", "rotor_inertia", "rate_sensor"};
 inline const Keys kInitialState = {"q", "qdot", "motor_q", "motor_qdot"};

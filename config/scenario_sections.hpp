@@ -12,7 +12,8 @@
 namespace lagrange::config::sections {
 
 // The arm and its task (arm_sections.cpp).
-void readRobotSection(MapReader& root, Scenario& s);
+/// `base_dir`: where robot.urdf.file is looked for when relative (the scenario file's folder).
+void readRobotSection(MapReader& root, Scenario& s, const std::string& base_dir);
 void readInitialStateSection(MapReader& root, Scenario& s);  ///< after robot
 void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot and duration
 void readPlantSection(MapReader& root, Scenario& s);         ///< after duration

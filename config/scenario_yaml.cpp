@@ -65,13 +65,22 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;
-  out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
-  for (const auto& l : s.robot.links) {
-    out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length << YAML::Key
-        << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value << l.mass << YAML::Key
-        << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
+  if (s.urdf) {
+    out << YAML::Key << "urdf" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "file" << YAML::Value << s.urdf->file;
+    out << YAML::Key << "base_link" << YAML::Value << s.urdf->base_link;
+    out << YAML::Key << "tip_link" << YAML::Value << s.urdf->tip_link;
+    out << YAML::Key << "xml" << YAML::Value << YAML::DoubleQuoted << s.urdf->xml;
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
+    for (const auto& l : s.robot.links) {
+      out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length << YAML::Key
+          << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value << l.mass << YAML::Key
+          << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
   }
-  out << YAML::EndSeq;
   if (s.flexible) {
     out << YAML::Key << "flexible" << YAML::Value << YAML::BeginMap;
     emitVector(out, "stiffness", s.flexible->params.stiffness);

@@ -60,8 +60,12 @@ std::string prepareOutDir(const std::string& dir) {
   return fs::absolute(dir).string();
 }
 
-// Prints the gain report; false when --strict forbids running.
-bool gainsAllowRun(const controller::GainReport& gains, const RunOptions& opt) {
+// Prints what the robot's model leaves out of its description (URDF limits,
+// damping, lumped branches) and the gain report; false when --strict forbids running.
+bool gainsAllowRun(const config::Scenario& scenario, const controller::GainReport& gains,
+                   const RunOptions& opt) {
+  if (!opt.quiet && scenario.urdf_model)
+    for (const std::string& note : scenario.urdf_model->notes()) std::cout << "robot.urdf: " << note << "\n";
   if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
   if (!gains.holds() && opt.strict) {
     std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is "
@@ -419,7 +423,7 @@ int runScenario(const RunOptions& opt) {
       return kExitBadInput;
     }
     const controller::GainReport gains = controller::checkGains(scenario);
-    if (!gainsAllowRun(gains, opt)) return kExitBadInput;
+    if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
     writeResolved(scenario, opt.config_path, out_dir);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
@@ -444,7 +448,7 @@ int runScenario(const RunOptions& opt) {
       return kExitFailed;
     }
   }
-  if (!gainsAllowRun(controller::checkGains(scenario), opt)) return kExitBadInput;
+  if (!gainsAllowRun(scenario, controller::checkGains(scenario), opt)) return kExitBadInput;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
 
   return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));

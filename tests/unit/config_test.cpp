@@ -78,7 +78,7 @@ INSTANTIATE_TEST_SUITE_P(
             {"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1, colour: red}]"},
             "robot.links[0].colour: unknown key"},
         BadCase{{"robot.links=[{length: 1, com: 0.5, mass: 1, inertia: 0.1}]"},
-                "give exactly one of robot.preset (pelican) or robot.links"},
+                "give exactly one of robot.preset (pelican), robot.links or robot.urdf"},
         BadCase{{"robot.preset=null", "robot.links=[{length: 1, com: 0.5, mass: 0, inertia: 0.1}]"},
                 "robot.links[0].mass: expected a positive number"},
         BadCase{{"controller.kp=abc"}, "controller.kp: expected a list of 2 positive numbers"},
