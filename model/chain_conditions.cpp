@@ -10,7 +10,9 @@ namespace lagrange::model {
 namespace {
 Eigen::VectorXd h(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
   const ReferenceSample r = reference.evaluate(t, 2);
-  return arm.inertia(q) * r.qdd() + arm.coriolis(q, r.qd()) * r.qd() + arm.gravity(q);
+  // D q_d'' + C(q, q_d') q_d' + g: one inverse-dynamics call (a kind without
+  // its own computes exactly this expression; a URDF arm needs no C for it).
+  return arm.inverseDynamics(q, r.qd(), r.qdd());
 }
 
 Eigen::MatrixXd dhdq(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
