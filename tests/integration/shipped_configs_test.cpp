@@ -51,19 +51,19 @@ TEST_P(ShippedConfig, MeetsItsStatedMetric) {
     EXPECT_EQ(j["gains"]["conditions"].size(), 4u);
     EXPECT_FALSE(j["gains"]["condition_holds"].get<bool>());
     EXPECT_TRUE(j["gains"].contains("eta"));
-    const bool free_motion = GetParam().find("free_motion") != std::string::npos ||
-                             GetParam().rfind("flexible", 0) == 0;  // the flexible configs follow (608)
+    const bool free_motion = scenario.reference.type == model::ReferenceType::kFreeMotion;
     if (!free_motion)
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("not a free motion"), std::string::npos);
-    else if (GetParam().find("filtered_rate") != std::string::npos)  // outside the Corollary, and said
+    else if (scenario.controller.motor_rate ==
+             config::MotorRate::kFiltered)  // outside the Corollary, and said
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("Corollary assumes"), std::string::npos);
     else
       EXPECT_FALSE(j["gains"].contains("warnings"));
   }
-  if (GetParam().rfind("flexible", 0) == 0) {  // the motor side is recorded, and said how q2' was had
+  if (scenario.flexible) {  // the motor side is recorded, and said how q2' was had
     EXPECT_EQ(j["messages"]["PLANT_MOTOR"]["published"], j["messages"]["PLANT_POSITION"]["published"]);
     EXPECT_EQ(j["controller"]["motor_rate"].get<std::string>(),
-              GetParam().find("filtered") == std::string::npos ? "measured" : "filtered");
+              util::nameOf(config::kMotorRateNames, *scenario.controller.motor_rate));
   }
   const auto truth = readTruth(dir + "/run.lcm");
   for (const auto& sample : truth) ASSERT_TRUE(sample.q.allFinite() && sample.qdot.allFinite());
