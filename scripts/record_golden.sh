@@ -4,6 +4,8 @@
 # intended; review `git diff --stat tests/data` and commit the logs with the
 # change. Each log: one scenario, 1 s of simulated time, run over LCM in a
 # private network namespace. tests/integration/golden_test.cpp replays them.
+# Usage: record_golden.sh [NAME...] -- only the named recordings (a new one
+# joins without re-recording the others); all of them without arguments.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh >/dev/null
@@ -18,6 +20,7 @@ recordings=(
   "chain_m2_lockstep configs/chain_m2.yaml --mode lockstep"
   "flexible_2dof_filtered_rate_lockstep configs/flexible_2dof_filtered_rate.yaml --mode lockstep"
   "chain_m1_realtime configs/chain_m1.yaml --mode realtime"
+  "panda_theorem1_lockstep configs/panda_theorem1.yaml --mode lockstep"
 )
 # How many outputs `lagrange replay LOG --component C` reproduced; empty if it did not replay exactly.
 reproduced() {
@@ -26,6 +29,7 @@ reproduced() {
 
 for entry in "${recordings[@]}"; do
   read -r name config extra <<<"$entry"
+  if (($# > 0)) && [[ " $* " != *" $name "* ]]; then continue; fi
   # A realtime run may end before the controller or actuator answered the last
   # sample or two; golden_test.cpp wants at least 1000 of the 1001 answers, so
   # such a recording is made again (a few attempts).

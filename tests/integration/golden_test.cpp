@@ -20,7 +20,8 @@ const char* kRerecord = "\n(if this change of the outputs is intended: bash scri
 std::string golden(const std::string& name) { return kGolden + name + ".lcm"; }
 
 const std::vector<std::string> kLogs = {"rigid_2dof_lockstep", "chain_m2_lockstep",
-                                        "flexible_2dof_filtered_rate_lockstep", "chain_m1_realtime"};
+                                        "flexible_2dof_filtered_rate_lockstep", "chain_m1_realtime",
+                                        "panda_theorem1_lockstep"};  // a URDF arm, its URDF text in SCENARIO
 
 // How many outputs `lagrange replay` says it reproduced, or -1.
 long long reproduced(const RunResult& r) {
