@@ -68,11 +68,12 @@ class Flexible final : public PaperController {
     return withCascade(out.cascade, out.tau);
   }
   void reset() override {
-    core_.emplace(
-        *model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
-        s_.controller.initial_filter_state, s_.flexible->params,
-        s_.controller.motor_rate == config::MotorRate::kFiltered ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
-        s_.controller.stage_starts);
+    core_.emplace(*model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
+                  s_.controller.initial_filter_state, s_.flexible->params,
+                  s_.controller.motor_rate == config::MotorRate::kFiltered
+                      ? std::optional(s_.controller.motor_rate_pole)
+                      : std::nullopt,
+                  s_.controller.stage_starts);
   }
 
  private:

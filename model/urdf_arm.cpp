@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "model/error.hpp"
+#include "util/enum_names.hpp"
 
 namespace lagrange::model {
 
@@ -33,24 +34,15 @@ bool isArmJoint(const urdf::Joint& j) {
   return j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS;
 }
 
-const char* typeName(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE:
-      return "revolute";
-    case urdf::Joint::CONTINUOUS:
-      return "continuous";
-    case urdf::Joint::PRISMATIC:
-      return "prismatic";
-    case urdf::Joint::FLOATING:
-      return "floating";
-    case urdf::Joint::PLANAR:
-      return "planar";
-    case urdf::Joint::FIXED:
-      return "fixed";
-    default:
-      return "unknown";
-  }
-}
+// urdf::Joint's type is an unnamed enum: its values as int.
+constexpr util::EnumName<int> kJointTypeNames[] = {{urdf::Joint::UNKNOWN, "unknown"},
+                                                   {urdf::Joint::REVOLUTE, "revolute"},
+                                                   {urdf::Joint::CONTINUOUS, "continuous"},
+                                                   {urdf::Joint::PRISMATIC, "prismatic"},
+                                                   {urdf::Joint::FLOATING, "floating"},
+                                                   {urdf::Joint::PLANAR, "planar"},
+                                                   {urdf::Joint::FIXED, "fixed"}};
+const char* typeName(int type) { return util::nameOf(kJointTypeNames, type); }
 
 // The inertia of a whole subtree, every joint in it held at zero, in the
 // frame of its root link.

@@ -5,7 +5,9 @@
 
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace lagrange::plant {
 
@@ -30,6 +32,27 @@ inline double hingeSeparation(dJointID joint) {
   dJointGetHingeAnchor2(joint, a2);
   return std::sqrt((a1[0] - a2[0]) * (a1[0] - a2[0]) + (a1[1] - a2[1]) * (a1[1] - a2[1]) +
                    (a1[2] - a2[2]) * (a1[2] - a2[2]));
+}
+
+/// The largest hingeSeparation of `joints` [m] (ArmWorld::jointSeparation).
+inline double largestHingeSeparation(const std::vector<dJointID>& joints) {
+  double worst = 0.0;
+  for (dJointID j : joints) worst = std::max(worst, hingeSeparation(j));
+  return worst;
+}
+
+/// Whether every body's state is finite (ArmWorld::finite).
+inline bool allBodiesFinite(const std::vector<dBodyID>& bodies) {
+  return std::all_of(bodies.begin(), bodies.end(), bodyStateFinite);
+}
+
+/// sum of m_i g h_i over the bodies, h_i their centres' coordinate `up`
+/// (0, 1, 2: x, y, z) against gravity [J].
+inline double heightEnergy(const std::vector<dBodyID>& bodies, const std::vector<double>& mass,
+                           double gravity, int up) {
+  double e = 0.0;
+  for (size_t i = 0; i < bodies.size(); ++i) e += mass[i] * gravity * dBodyGetPosition(bodies[i])[up];
+  return e;
 }
 
 /// The body's rotation about the z axis [rad], in (-pi, pi]: the absolute

@@ -98,13 +98,8 @@ class PlanarChainWorld final : public ArmWorld {
     return worst;
   }
 
-  double jointSeparation() const override {
-    double worst = 0.0;
-    for (dJointID j : joints_) worst = std::max(worst, hingeSeparation(j));
-    return worst;
-  }
-
-  bool finite() const override { return std::all_of(bodies_.begin(), bodies_.end(), bodyStateFinite); }
+  double jointSeparation() const override { return largestHingeSeparation(joints_); }
+  bool finite() const override { return allBodiesFinite(bodies_); }
 
   double kineticEnergy() const override {
     double e = 0.0;
@@ -117,11 +112,7 @@ class PlanarChainWorld final : public ArmWorld {
     return e;
   }
 
-  double potentialEnergy() const override {
-    double e = 0.0;
-    for (int i = 0; i < dof(); ++i) e += mass_[i] * gravity_ * dBodyGetPosition(bodies_[i])[1];
-    return e;
-  }
+  double potentialEnergy() const override { return heightEnergy(bodies_, mass_, gravity_, 1); }
 
  private:
   double gravity_;
