@@ -40,8 +40,8 @@ Theorem1Controller::Theorem1Controller(const model::RobotModel& chain, const mod
 Eigen::VectorXd Theorem1Controller::law(const model::ReferenceSample& ref, const Eigen::VectorXd& q,
                                         const Eigen::VectorXd& theta) const {
   const Eigen::VectorXd q_error = q - ref.q();
-  return -gains_.kp.cwiseProduct(q_error) - gains_.kd.cwiseProduct(theta) + chain_.inertia(q) * ref.qdd() +
-         chain_.coriolis(q, ref.qd()) * ref.qd() + chain_.gravity(q);
+  const Eigen::VectorXd feedback = -gains_.kp.cwiseProduct(q_error) - gains_.kd.cwiseProduct(theta);
+  return chain_.plusInverseDynamics(feedback, q, ref.qd(), ref.qdd());
 }
 
 Theorem1Output Theorem1Controller::step(double t, const Eigen::VectorXd& q) {

@@ -22,6 +22,11 @@ Eigen::VectorXd RobotModel::inverseDynamics(const Eigen::VectorXd& q, const Eige
   return inertia(q) * a + coriolis(q, v) * v + gravity(q);
 }
 
+Eigen::VectorXd RobotModel::plusInverseDynamics(const Eigen::VectorXd& base, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd& v, const Eigen::VectorXd& a) const {
+  return base + inertia(q) * a + coriolis(q, v) * v + gravity(q);
+}
+
 Eigen::VectorXd RobotModel::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                          const Eigen::VectorXd& u) const {
   checkSize(u, "u");

@@ -61,6 +61,14 @@ class RobotModel {
   /// Inverse dynamics D(q) a + C(q, v) v + g(q) [N m].
   virtual Eigen::VectorXd inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                           const Eigen::VectorXd& a) const;
+  /// base + D(q) a + C(q, v) v + g(q): a control law's feedback plus its
+  /// feedforward, as the controllers compute it every tick. The default adds
+  /// the terms one by one, in this order (the planar chain's published
+  /// torques depend on that order to the last bit); a kind with a cheaper
+  /// inverse dynamics (the URDF arm: one recursive Newton-Euler call, no C)
+  /// overrides it.
+  virtual Eigen::VectorXd plusInverseDynamics(const Eigen::VectorXd& base, const Eigen::VectorXd& q,
+                                              const Eigen::VectorXd& v, const Eigen::VectorXd& a) const;
   /// Forward dynamics q'' = D(q)^-1 (u - C(q, v) v - g(q)).
   virtual Eigen::VectorXd acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                        const Eigen::VectorXd& u) const;
