@@ -33,7 +33,11 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
                                            ? std::filesystem::path(base_dir) / c.file
                                            : std::filesystem::path(c.file);
     std::ifstream in(path);
-    if (!in) u.fail("file", "cannot read '" + path.string() + "'; expected a readable URDF file");
+    if (!in)
+      u.fail("file",
+             "cannot read '" + c.file + "'; expected a readable URDF file" +
+                 (std::filesystem::path(c.file).is_relative() ? ", relative to the scenario's folder" : "") +
+                 " (looked at '" + path.string() + "')");
     std::stringstream text;
     text << in.rdbuf();
     c.xml = text.str();

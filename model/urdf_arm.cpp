@@ -1,8 +1,11 @@
 #include "model/urdf_arm.hpp"
 
+#include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <kdl/chain.hpp>
 #include <kdl/chaindynparam.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
@@ -44,12 +47,62 @@ constexpr util::EnumName<int> kJointTypeNames[] = {{urdf::Joint::UNKNOWN, "unkno
                                                    {urdf::Joint::FIXED, "fixed"}};
 const char* typeName(int type) { return util::nameOf(kJointTypeNames, type); }
 
+std::string number(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+std::string moments(const Eigen::Vector3d& m) {
+  std::ostringstream out;
+  out << m(0) << ", " << m(1) << ", " << m(2);
+  return out.str();
+}
+
+// A link's <inertial>, checked, in the link's frame. Accepted: no <inertial>
+// or mass 0 with a zero tensor (a massless frame, as URDFs write tool and
+// flange frames); a positive mass with a positive definite tensor whose
+// principal moments obey the triangle inequality (each at most the sum of the
+// other two: a rigid body's mass cannot be distributed otherwise). The
+// tolerance of 1e-9 relative lets the limit cases through: a thin rod (one
+// moment zero is still refused: not definite) and a flat plate (equality).
+KDL::RigidBodyInertia linkInertia(const urdf::Link& link, const std::string& where) {
+  const urdf::InertialSharedPtr& i = link.inertial;
+  if (!i) return KDL::RigidBodyInertia::Zero();
+  const std::string what = where + ": link '" + link.name + "': ";
+  Eigen::Matrix3d tensor;
+  tensor << i->ixx, i->ixy, i->ixz, i->ixy, i->iyy, i->iyz, i->ixz, i->iyz, i->izz;
+  if (!std::isfinite(i->mass) || !tensor.allFinite())
+    throw Error(what +
+                "<inertial> has a value that is not a finite number; expected finite mass and inertia");
+  if (i->mass < 0.0)
+    throw Error(what + "mass " + number(i->mass) +
+                " kg; expected a positive mass (or 0 for a massless frame)");
+  if (i->mass == 0.0) {
+    if (!tensor.isZero(0.0))
+      throw Error(what +
+                  "mass 0 with a non-zero inertia tensor; expected a positive mass, or a zero tensor for a "
+                  "massless frame");
+    return KDL::RigidBodyInertia::Zero();
+  }
+  const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(tensor).eigenvalues();
+  if (m(0) <= 0.0)
+    throw Error(what + "the inertia tensor is not positive definite (principal moments " + moments(m) +
+                " kg m^2); expected all three positive");
+  if (m(2) > (m(0) + m(1)) * (1.0 + 1e-9))
+    throw Error(what + "the inertia tensor's principal moments " + moments(m) +
+                " kg m^2 violate the triangle inequality (the largest exceeds the sum of the other two); "
+                "expected the moments of a physical body");
+  return toKdl(i);
+}
+
 // The inertia of a whole subtree, every joint in it held at zero, in the
 // frame of its root link.
-KDL::RigidBodyInertia subtreeInertia(const urdf::Link& link) {
-  KDL::RigidBodyInertia total = toKdl(link.inertial);
+KDL::RigidBodyInertia subtreeInertia(const urdf::Link& link, const std::string& where) {
+  KDL::RigidBodyInertia total = linkInertia(link, where);
   for (const urdf::LinkSharedPtr& child : link.child_links)
-    total = total + toKdl(child->parent_joint->parent_to_joint_origin_transform) * subtreeInertia(*child);
+    total =
+        total + toKdl(child->parent_joint->parent_to_joint_origin_transform) * subtreeInertia(*child, where);
   return total;
 }
 
@@ -64,6 +117,24 @@ KDL::JntArray toKdl(const Eigen::VectorXd& v) {
   return out;
 }
 
+// urdfdom reports why a document is refused through console_bridge, which
+// prints to stderr by default: collect its words for our error message
+// instead. The handler is process-wide state, set only for the parse.
+class ParserMessages : public console_bridge::OutputHandler {
+ public:
+  std::string text;
+  urdf::ModelInterfaceSharedPtr parse(const std::string& xml) {
+    console_bridge::useOutputHandler(this);
+    urdf::ModelInterfaceSharedPtr robot = urdf::parseURDF(xml);
+    console_bridge::restorePreviousOutputHandler();
+    return robot;
+  }
+  void log(const std::string& message, console_bridge::LogLevel level, const char*, int) override {
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
+    text += (text.empty() ? "" : "; ") + message;
+  }
+};
+
 }  // namespace
 
 struct UrdfArm::Impl {
@@ -77,8 +148,11 @@ struct UrdfArm::Impl {
 
 std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
   const std::string where = spec.source.empty() ? "robot.urdf" : spec.source;
-  const urdf::ModelInterfaceSharedPtr robot = urdf::parseURDF(spec.xml);
-  if (!robot) throw Error(where + ": not a valid URDF document (urdfdom could not parse it)");
+  ParserMessages messages;
+  const urdf::ModelInterfaceSharedPtr robot = messages.parse(spec.xml);
+  if (!robot)
+    throw Error(where + ": not a valid URDF document (urdfdom: " +
+                (messages.text.empty() ? "could not parse it" : messages.text) + ")");
   auto known_links = [&] {
     std::vector<urdf::LinkSharedPtr> links;
     robot->getLinks(links);
@@ -98,9 +172,14 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
   // The path, tip up to base.
   std::vector<urdf::LinkConstSharedPtr> path;
   for (urdf::LinkConstSharedPtr l = tip; l != base; l = l->getParent()) {
-    if (!l->getParent())
+    if (!l->getParent()) {
+      std::string above;
+      for (urdf::LinkConstSharedPtr a = tip->getParent(); a; a = a->getParent())
+        above += (above.empty() ? "" : ", ") + a->name;
       throw Error(where + ": tip_link '" + spec.tip_link + "' is not below base_link '" + spec.base_link +
-                  "'");
+                  "' (the links above it: " + (above.empty() ? "none" : above) +
+                  "); expected two links on one serial chain, the base above the tip");
+    }
     path.push_back(l);
   }
   std::reverse(path.begin(), path.end());  // base's child first
@@ -116,12 +195,12 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
                   spec.tip_link + "' is " + typeName(joint.type) +
                   "; expected revolute, continuous or fixed");
     // The link with every branch off the chain lumped into it.
-    KDL::RigidBodyInertia inertia = toKdl(link.inertial);
+    KDL::RigidBodyInertia inertia = linkInertia(link, where);
     const urdf::LinkConstSharedPtr next = i + 1 < path.size() ? path[i + 1] : nullptr;
     for (const urdf::LinkSharedPtr& child : link.child_links) {
       if (child == next) continue;
-      inertia =
-          inertia + toKdl(child->parent_joint->parent_to_joint_origin_transform) * subtreeInertia(*child);
+      inertia = inertia +
+                toKdl(child->parent_joint->parent_to_joint_origin_transform) * subtreeInertia(*child, where);
       impl->notes.push_back("joint '" + child->parent_joint->name + "' (" +
                             typeName(child->parent_joint->type) + ") is off the chain: held at 0, link '" +
                             child->name +
@@ -175,6 +254,11 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
     KDL::RigidBodyInertia in_base = body_inertia[b];
     UrdfBody& body = impl->bodies[b];
     body.mass = in_base.getMass();
+    // ODE needs a positive mass in every moving body, and D(q) would be
+    // singular without one.
+    if (!(body.mass > 0.0))
+      throw Error(where + ": joint '" + body.joint + "' moves no mass (link '" + body.link +
+                  "' and the links fixed to it are massless); expected a positive mass on every moving body");
     const KDL::Vector com = body.mass > 0.0 ? in_base.getCOG() : KDL::Vector::Zero();
     body.com = toEigen(com);
     // KDL keeps the rotational inertia about the frame's origin: move it to the centre of mass.

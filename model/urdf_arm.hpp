@@ -57,7 +57,9 @@ class UrdfArm : public RobotModel {
  public:
   /// @throws model::Error naming the source and what is wrong: unparsable
   ///         URDF, an unknown link (the known ones listed), a tip not below
-  ///         the base, a prismatic or floating joint on the chain, no joint.
+  ///         the base, a prismatic or floating joint on the chain, no joint,
+  ///         a negative mass, an inertia tensor that is not positive definite
+  ///         or violates the triangle inequality, a joint that moves no mass.
   static std::shared_ptr<const UrdfArm> build(const UrdfChainSpec& spec);
   ~UrdfArm() override;
 

@@ -166,7 +166,82 @@ TEST(UrdfArm, BadChainsAreNamed) {
   EXPECT_NE(message("panda_link0", "panda_leftfinger").find("joint 'panda_finger_joint1' on the chain"),
             std::string::npos);
   EXPECT_NE(message("panda_link0", "panda_link0").find("no revolute or continuous joint"), std::string::npos);
-  EXPECT_THROW(UrdfArm::build({"<robot", "broken.urdf", "a", "b", 9.81}), lagrange::Error);
+  const std::string broken = [] {
+    try {
+      UrdfArm::build({"<robot", "broken.urdf", "a", "b", 9.81});
+    } catch (const lagrange::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  }();
+  // urdfdom's own words are in the message (not on stderr).
+  EXPECT_NE(broken.find("broken.urdf: not a valid URDF document (urdfdom: "), std::string::npos) << broken;
+  EXPECT_NE(broken.find("Failed to"), std::string::npos) << broken;
+}
+
+// One moving link whose <inertial> is `inertial`, with a massless tool frame
+// fixed to it (as URDFs write flanges: mass 0, zero tensor, accepted).
+std::string oneLinkUrdf(const std::string& inertial) {
+  return "<robot name='one'><link name='base'/><link name='arm'>" + inertial +
+         "</link><link name='tool'><inertial><mass value='0'/><inertia ixx='0' iyy='0' izz='0' ixy='0' "
+         "ixz='0' iyz='0'/></inertial></link>"
+         "<joint name='shoulder' type='revolute'><parent link='base'/><child link='arm'/><axis xyz='0 0 1'/>"
+         "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint>"
+         "<joint name='flange' type='fixed'><parent link='arm'/><child link='tool'/></joint></robot>";
+}
+
+std::string inertial(const std::string& mass, const std::string& ixx, const std::string& iyy,
+                     const std::string& izz, const std::string& ixy = "0") {
+  return "<inertial><origin xyz='0.1 0 0'/><mass value='" + mass + "'/><inertia ixx='" + ixx + "' iyy='" +
+         iyy + "' izz='" + izz + "' ixy='" + ixy + "' ixz='0' iyz='0'/></inertial>";
+}
+
+std::string buildError(const std::string& xml) {
+  try {
+    UrdfArm::build({xml, "arm.urdf", "base", "tool", 9.81});
+  } catch (const lagrange::Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(UrdfArm, BadMassesAndInertiasAreNamed) {
+  // A good link builds, the massless tool frame included.
+  EXPECT_EQ(buildError(oneLinkUrdf(inertial("1", "0.01", "0.02", "0.025"))), "no error");
+  // A flat plate (largest moment = sum of the others) is a physical body.
+  EXPECT_EQ(buildError(oneLinkUrdf(inertial("1", "0.01", "0.02", "0.03"))), "no error");
+  EXPECT_NE(buildError(oneLinkUrdf(inertial("-1", "0.01", "0.02", "0.025")))
+                .find("arm.urdf: link 'arm': mass -1 kg; expected a positive mass"),
+            std::string::npos);
+  EXPECT_NE(buildError(oneLinkUrdf(inertial("0", "0.01", "0.02", "0.025")))
+                .find("link 'arm': mass 0 with a non-zero inertia tensor"),
+            std::string::npos);
+  // Massless throughout: nothing for the joint to move.
+  EXPECT_NE(buildError(oneLinkUrdf(inertial("0", "0", "0", "0")))
+                .find("arm.urdf: joint 'shoulder' moves no mass (link 'arm'"),
+            std::string::npos);
+  EXPECT_NE(buildError(oneLinkUrdf("")).find("joint 'shoulder' moves no mass"), std::string::npos);
+  // ixy = 0.02 makes the xy block indefinite: moments 0.015 -+ 0.0206, 0.025.
+  const std::string indefinite = buildError(oneLinkUrdf(inertial("1", "0.01", "0.02", "0.025", "0.02")));
+  EXPECT_NE(indefinite.find("link 'arm': the inertia tensor is not positive definite (principal moments "
+                            "-0.00561553, 0.025, 0.0356155 kg m^2)"),
+            std::string::npos)
+      << indefinite;
+  EXPECT_NE(buildError(oneLinkUrdf(inertial("1", "0.01", "0.02", "0"))).find("not positive definite"),
+            std::string::npos);
+  const std::string triangle = buildError(oneLinkUrdf(inertial("1", "0.01", "0.02", "0.04")));
+  EXPECT_NE(
+      triangle.find("link 'arm': the inertia tensor's principal moments 0.01, 0.02, 0.04 kg m^2 violate "
+                    "the triangle inequality"),
+      std::string::npos)
+      << triangle;
+  // A branch off the chain is checked too: its mass is lumped into the model.
+  std::string branch = oneLinkUrdf(inertial("1", "0.01", "0.02", "0.025"));
+  branch.insert(branch.find("</robot>"),
+                "<link name='finger'>" + inertial("-0.5", "0.01", "0.01", "0.01") +
+                    "</link><joint name='grip' type='prismatic'><parent link='arm'/><child link='finger'/>"
+                    "<axis xyz='1 0 0'/><limit lower='0' upper='0.1' effort='1' velocity='1'/></joint>");
+  EXPECT_NE(buildError(branch).find("link 'finger': mass -0.5 kg"), std::string::npos);
 }
 
 }  // namespace
