@@ -44,9 +44,7 @@ class LoopMap {
   // The reference's state at t with every filter at rest and the drive at the feedforward.
   Eigen::VectorXd nominal(double t) const {
     const model::ReferenceSample r = reference_.evaluate(t, 2);
-    const Eigen::VectorXd h = control_model_->inertia(r.q()) * r.qdd() +
-                              control_model_->coriolis(r.q(), r.qd()) * r.qd() +
-                              control_model_->gravity(r.q());
+    const Eigen::VectorXd h = control_model_->inverseDynamics(r.q(), r.qd(), r.qdd());
     Unpacked u = zeros();
     u.q = r.q();
     u.v = r.qd();

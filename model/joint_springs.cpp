@@ -19,6 +19,13 @@ Eigen::VectorXd JointSprings::gravity(const Eigen::VectorXd& q) const {
   return out;
 }
 
+Eigen::VectorXd JointSprings::inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                              const Eigen::VectorXd& a) const {
+  Eigen::VectorXd out = links_->inverseDynamics(q, v, a);
+  out += stiffness_.cwiseProduct(q);
+  return out;
+}
+
 double JointSprings::potentialEnergy(const Eigen::VectorXd& q) const {
   double u = links_->potentialEnergy(q);
   u += 0.5 * q.dot(stiffness_.cwiseProduct(q));

@@ -41,6 +41,9 @@ class JointSprings : public RobotModel {
 
   /// g(q) + K q.
   Eigen::VectorXd gravity(const Eigen::VectorXd& q) const override;
+  /// The arm's inverse dynamics + K q.
+  Eigen::VectorXd inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  const Eigen::VectorXd& a) const override;
   /// U(q) + q^T K q / 2.
   double potentialEnergy(const Eigen::VectorXd& q) const override;
 

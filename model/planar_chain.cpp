@@ -139,6 +139,32 @@ std::optional<std::vector<CoriolisTerm>> PlanarChain::coriolisTerms() const {
   return terms;
 }
 
+Eigen::VectorXd PlanarChain::inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                             const Eigen::VectorXd& a) const {
+  checkSize(q, "q");
+  checkSize(v, "v");
+  checkSize(a, "a");
+  const int n = dof();
+  // In absolute angles phi = L q (rates w = L v, accelerations al = L a) the
+  // Euler-Lagrange equations of M_ab = I_a delta_ab + h_ab cos(phi_a - phi_b) are
+  //   tau_a = I_a al_a + sum_b h_ab (cos(phi_a - phi_b) al_b + sin(phi_a - phi_b) w_b^2) + g s_a sin(phi_a),
+  // and the joint torques are L^T tau (suffix sums). With cos(x - y) =
+  // cx cy + sx sy and sin(x - y) = sx cy - cx sy this is four products with
+  // h: O(n^2), where D a + C v v from the Christoffel partials is O(n^4).
+  const Eigen::VectorXd phi = absoluteAngles(q), w = absoluteAngles(v), al = absoluteAngles(a);
+  const Eigen::ArrayXd c = phi.array().cos(), s = phi.array().sin(), w2 = w.array().square();
+  Eigen::ArrayXd inertia(n);
+  for (int i = 0; i < n; ++i) inertia(i) = params_.links[i].inertia;
+  const Eigen::ArrayXd tau = inertia * al.array() + c * (h_ * (c * al.array()).matrix()).array() +
+                             s * (h_ * (s * al.array()).matrix()).array() +
+                             s * (h_ * (c * w2).matrix()).array() - c * (h_ * (s * w2).matrix()).array() +
+                             params_.gravity * s_.array() * s;
+  Eigen::VectorXd out(n);
+  double suffix = 0.0;
+  for (int i = n - 1; i >= 0; --i) out(i) = (suffix += tau(i));
+  return out;
+}
+
 Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
   const Eigen::VectorXd phi = absoluteAngles(q);

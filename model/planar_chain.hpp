@@ -72,6 +72,11 @@ class PlanarChain : public RobotModel {
 
   Eigen::VectorXd gravity(const Eigen::VectorXd& q) const override;
 
+  /// D(q) a + C(q, v) v + g(q) in closed form, O(n^2), without forming C:
+  /// the controllers' feedforward every tick.
+  Eigen::VectorXd inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                  const Eigen::VectorXd& a) const override;
+
   /// Zero when every centre of mass is level with the base joint.
   double potentialEnergy(const Eigen::VectorXd& q) const override;
 

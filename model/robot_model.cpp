@@ -24,13 +24,13 @@ Eigen::VectorXd RobotModel::inverseDynamics(const Eigen::VectorXd& q, const Eige
 
 Eigen::VectorXd RobotModel::plusInverseDynamics(const Eigen::VectorXd& base, const Eigen::VectorXd& q,
                                                 const Eigen::VectorXd& v, const Eigen::VectorXd& a) const {
-  return base + inertia(q) * a + coriolis(q, v) * v + gravity(q);
+  return base + inverseDynamics(q, v, a);
 }
 
 Eigen::VectorXd RobotModel::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                          const Eigen::VectorXd& u) const {
   checkSize(u, "u");
-  const Eigen::VectorXd rhs = u - coriolis(q, v) * v - gravity(q);
+  const Eigen::VectorXd rhs = u - inverseDynamics(q, v, Eigen::VectorXd::Zero(dof()));
   return inertia(q).llt().solve(rhs);
 }
 

@@ -58,18 +58,18 @@ class RobotModel {
   /// Potential energy U(q) [J]; its zero is the kind's to choose.
   virtual double potentialEnergy(const Eigen::VectorXd& q) const = 0;
 
-  /// Inverse dynamics D(q) a + C(q, v) v + g(q) [N m].
+  /// Inverse dynamics D(q) a + C(q, v) v + g(q) [N m]. The default forms D
+  /// and C; a kind overrides it with its O(n) or O(n^2) algorithm (the planar
+  /// chain's closed form, the URDF arm's recursive Newton-Euler), which the
+  /// controllers' feedforward and the forward dynamics then use.
   virtual Eigen::VectorXd inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                           const Eigen::VectorXd& a) const;
-  /// base + D(q) a + C(q, v) v + g(q): a control law's feedback plus its
-  /// feedforward, as the controllers compute it every tick. The default adds
-  /// the terms one by one, in this order (the planar chain's published
-  /// torques depend on that order to the last bit); a kind with a cheaper
-  /// inverse dynamics (the URDF arm: one recursive Newton-Euler call, no C)
-  /// overrides it.
-  virtual Eigen::VectorXd plusInverseDynamics(const Eigen::VectorXd& base, const Eigen::VectorXd& q,
-                                              const Eigen::VectorXd& v, const Eigen::VectorXd& a) const;
-  /// Forward dynamics q'' = D(q)^-1 (u - C(q, v) v - g(q)).
+  /// base + inverseDynamics(q, v, a): a control law's feedback plus its
+  /// feedforward, as the controllers compute it every tick.
+  Eigen::VectorXd plusInverseDynamics(const Eigen::VectorXd& base, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd& v, const Eigen::VectorXd& a) const;
+  /// Forward dynamics q'' = D(q)^-1 (u - C(q, v) v - g(q)), the bias terms
+  /// from inverseDynamics(q, v, 0).
   virtual Eigen::VectorXd acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                        const Eigen::VectorXd& u) const;
   /// Kinetic energy v^T D(q) v / 2 [J].

@@ -309,9 +309,24 @@ Eigen::MatrixXd UrdfArm::coriolis(const Eigen::VectorXd& q, const Eigen::VectorX
 }
 
 std::vector<Eigen::MatrixXd> UrdfArm::coriolisPerVelocity(const Eigen::VectorXd& q) const {
+  // C_k e_j = C(q, e_k) e_j = (h(e_k + e_j) - h(e_k) - h(e_j)) / 2 (h is a
+  // quadratic form in v), symmetric in k and j: n (n + 1) / 2 KDL calls where
+  // polarisation column by column takes 2 n^2. The gain reports sample C at
+  // thousands of states (model/bounds.hpp), which this makes 3.5x cheaper.
   const int n = dof();
-  std::vector<Eigen::MatrixXd> ck;
-  for (int k = 0; k < n; ++k) ck.push_back(coriolis(q, Eigen::VectorXd::Unit(n, k)));
+  std::vector<Eigen::VectorXd> diagonal(n);
+  for (int k = 0; k < n; ++k) diagonal[k] = velocityTerms(q, Eigen::VectorXd::Unit(n, k));
+  std::vector<Eigen::MatrixXd> ck(n, Eigen::MatrixXd(n, n));
+  for (int k = 0; k < n; ++k) {
+    ck[k].col(k) = diagonal[k];
+    for (int j = k + 1; j < n; ++j) {
+      const Eigen::VectorXd column =
+          0.5 * (velocityTerms(q, Eigen::VectorXd::Unit(n, k) + Eigen::VectorXd::Unit(n, j)) - diagonal[k] -
+                 diagonal[j]);
+      ck[k].col(j) = column;
+      ck[j].col(k) = column;
+    }
+  }
   return ck;
 }
 
@@ -350,11 +365,4 @@ Eigen::VectorXd UrdfArm::inverseDynamics(const Eigen::VectorXd& q, const Eigen::
     throw std::runtime_error("urdf model: KDL's inverse dynamics failed");
   return tau.data;
 }
-
-Eigen::VectorXd UrdfArm::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                      const Eigen::VectorXd& u) const {
-  checkSize(u, "u");
-  return inertia(q).llt().solve(u - velocityTerms(q, v) - gravity(q));
-}
-
 }  // namespace lagrange::model

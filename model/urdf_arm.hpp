@@ -76,14 +76,6 @@ class UrdfArm : public RobotModel {
   double potentialEnergy(const Eigen::VectorXd& q) const override;
   Eigen::VectorXd inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                   const Eigen::VectorXd& a) const override;
-  /// base + inverseDynamics(q, v, a): one KDL call per tick on the controller's path.
-  Eigen::VectorXd plusInverseDynamics(const Eigen::VectorXd& base, const Eigen::VectorXd& q,
-                                      const Eigen::VectorXd& v, const Eigen::VectorXd& a) const override {
-    return base + inverseDynamics(q, v, a);
-  }
-  /// D(q)^-1 (u - h(q, v) - g(q)), without forming C.
-  Eigen::VectorXd acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                               const Eigen::VectorXd& u) const override;
 
   /// What the URDF holds that the model does not apply, and what was lumped
   /// (one sentence each, for the processes to log at start).

@@ -41,6 +41,12 @@ inline void expectRobotModelProperties(const model::RobotModel& arm, std::mt1993
     grad(k) = (arm.potentialEnergy(q + e) - arm.potentialEnergy(q - e)) / (2 * h);
   }
   EXPECT_LT((grad - arm.gravity(q)).norm(), 1e-6 * (1 + grad.norm()));
+  // The kind's inverse dynamics is D a + C(q, v) v + g (a kind's own
+  // algorithm against the matrices), and the controllers' sum adds it.
+  const Eigen::VectorXd a = randomVector(rng, n, 5.0), base = randomVector(rng, n, 5.0);
+  const Eigen::VectorXd by_matrices = d * a + arm.coriolis(q, v) * v + arm.gravity(q);
+  EXPECT_LT((arm.inverseDynamics(q, v, a) - by_matrices).norm(), 1e-10 * (1 + by_matrices.norm()));
+  EXPECT_EQ(arm.plusInverseDynamics(base, q, v, a), base + arm.inverseDynamics(q, v, a));
   // Forward and inverse dynamics invert each other; kinetic energy is v^T D v / 2.
   const Eigen::VectorXd u = randomVector(rng, n, 20.0);
   EXPECT_LT((arm.inverseDynamics(q, v, arm.acceleration(q, v, u)) - u).norm(), 1e-9 * (1 + u.norm()));
