@@ -28,6 +28,7 @@ namespace {
 
 int DoMain(int argc, char** argv) {
   bool strict = false;
+  controller::GainReport gains;
   return runtime::runProcess(
       "controller",
       "Position-feedback tracking controller over LCM: the scenario's controller.type (Theorem 1, eq. 90; "
@@ -38,9 +39,9 @@ int DoMain(int argc, char** argv) {
             "--strict", strict,
             "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
       },
+      // The launcher prints the sampled-data check; here it would only delay the first tick.
+      [&](const config::Scenario& s) { gains = controller::checkGains(s, false); },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        // The launcher prints the sampled-data check; here it would only delay the first tick.
-        const controller::GainReport gains = controller::checkGains(s, false);
         if (gains.holds()) {
           spdlog::info("{}", controller::describe(gains));
         } else if (strict) {

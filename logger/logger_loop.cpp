@@ -44,16 +44,14 @@ void writeProgress(int fd, const TrackingMetrics& metrics) {
 
 }  // namespace
 
-int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options) {
+int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options,
+              controller::GainReport gains) {
   const auto wall_start = Clock::now();
   const std::string log_path = (std::filesystem::path(options.out_dir) / "run.lcm").string();
   EventLog log(log_path);
   const lagrange::scenario_t scenario = config::scenarioMessage(s);
   log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
 
-  // The sampled-data check waits for the summary: at start it would delay
-  // this process while a realtime run's first ticks go by.
-  controller::GainReport gains = controller::checkGains(s, false);
   TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
   runtime::StatusReporter status(node);
   RunFacts facts;

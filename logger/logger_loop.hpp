@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/scenario.hpp"
+#include "controller/gain_report.hpp"
 #include "transport/lcm_node.hpp"
 
 namespace lagrange::logger {
@@ -19,7 +20,11 @@ struct LoggerOptions {
   int progress_fd = -1;       ///< "SIM_TIME ERROR" lines every 100 ms for the launcher; -1: none
 };
 
-/// Returns the exit code; throws std::runtime_error if summary.json cannot be written.
-int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options);
+/// `gains`: the scenario's gain report without the sampled-data check
+/// (controller::checkGains(s, false)), computed before the run starts; the
+/// check is added at the end, for summary.json. Returns the exit code; throws
+/// std::runtime_error if summary.json cannot be written.
+int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options,
+              controller::GainReport gains);
 
 }  // namespace lagrange::logger

@@ -20,6 +20,7 @@ constexpr int kLoggerReceiveBuffer = 4 << 20;
 
 int DoMain(int argc, char** argv) {
   logger::LoggerOptions options;
+  controller::GainReport gains;
   return runtime::runProcess(
       "logger", "Records every LCM channel to run.lcm and writes summary.json.", argc, argv,
       [&](CLI::App& app) {
@@ -32,8 +33,11 @@ int DoMain(int argc, char** argv) {
                        "File descriptor to write progress lines to (\"SIM_TIME ERROR\" every 100 ms); "
                        "the launcher uses it for its progress display");
       },
+      // The gain report goes into summary.json; computed here, under the
+      // normal scheduler (runtime/process.hpp).
+      [&](const config::Scenario& s) { gains = controller::checkGains(s, false); },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        return logger::runLogger(s, node, options);
+        return logger::runLogger(s, node, options, gains);
       },
       // Every message of the run lands here: ask for a deep socket buffer.
       kLoggerReceiveBuffer);

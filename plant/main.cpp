@@ -28,6 +28,7 @@ int DoMain(int argc, char** argv) {
                        "Seconds to wait for the logger before giving up")
             ->capture_default_str();
       },
+      nullptr,
       [&](const config::Scenario& s, transport::LcmNode& node) {
         plant::PlantSim sim = plant::plantFor(s);
         runtime::StatusReporter status(node);

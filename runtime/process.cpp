@@ -28,8 +28,8 @@ std::string withReceiveBuffer(const std::string& url, int bytes) {
 }
 
 int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
-               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body,
-               int receive_buffer_bytes) {
+               const std::function<void(CLI::App&)>& add_options, const ProcessPrepare& prepare,
+               const ProcessBody& body, int receive_buffer_bytes) {
   CLI::App app{description, "lagrange-" + name};
   std::string config_path;
   std::string url = kDefaultLcmUrl;
@@ -56,6 +56,7 @@ int runProcess(const std::string& name, const std::string& description, int argc
 
   try {
     const config::Scenario scenario = config::loadScenario(config_path, overrides);
+    if (prepare) prepare(scenario);
     // Before LCM starts its receive thread, so that the thread inherits it.
     if (scenario.mode == config::Mode::kRealtime &&
         transport::enterRealtimeScheduling(scenario.realtime.priority) == "other" &&

@@ -26,14 +26,23 @@ bool stopRequested();
 /// returns the exit code.
 using ProcessBody = std::function<int(const config::Scenario&, transport::LcmNode&)>;
 
+/// Start-up work that takes a while (the gain report: its k_c estimate on a
+/// URDF arm is about a second of CPU). It runs after the scenario is loaded
+/// and before the process enters SCHED_FIFO: threads of one FIFO priority do
+/// not preempt each other, so work done there would hold a core from the
+/// realtime loops of the processes already running (a 1.2 s stall of the
+/// actuator's loop at the start of a realtime Panda run, before this hook).
+using ProcessPrepare = std::function<void(const config::Scenario&)>;
+
 /// Parses the common options (plus those `add_options` adds), installs the
-/// signal handlers, loads the scenario, connects LCM and runs `body`,
+/// signal handlers, loads the scenario, runs `prepare` (may be empty),
+/// connects LCM and runs `body`,
 /// translating exceptions into messages and exit codes. A positive
 /// receive_buffer_bytes asks the kernel for that UDP receive buffer
 /// (LCM's recv_buf_size; capped by net.core.rmem_max, and LCM warns then).
 int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
-               const std::function<void(CLI::App&)>& add_options, const ProcessBody& body,
-               int receive_buffer_bytes = 0);
+               const std::function<void(CLI::App&)>& add_options, const ProcessPrepare& prepare,
+               const ProcessBody& body, int receive_buffer_bytes = 0);
 
 /// The LCM URL with recv_buf_size=bytes added (udpm URLs without one only).
 std::string withReceiveBuffer(const std::string& url, int bytes);
