@@ -19,10 +19,15 @@ namespace lagrange::controller {
 namespace {
 
 // The closed loop's one-period map, its state packed in one vector:
-// [q, q', (q2, q2'), xi (m x n, cascaded), qc0, cascade qc + zeta (s x n), (rate filter)].
+// [q, q', (q2, q2'), xi (m x n, cascaded), qc0, cascade qc + zeta (s x n), (rate filter),
+//  (pending torque: steps x n)].
+// With `one_period_delay` (the realtime wiring: the plant steps over
+// [t_k, t_{k+1}] with the newest torque it has at t_k, which answered q(t_{k-1}))
+// the drive's output waits one period in the pending rows; without it (lockstep,
+// in-process) the torque computed from q(t_k) acts over [t_k, t_{k+1}].
 class LoopMap {
  public:
-  explicit LoopMap(const config::Scenario& s)
+  LoopMap(const config::Scenario& s, bool one_period_delay)
       : s_(s),
         control_model_(s.controlModel()),
         arm_(s.robotModel()),
@@ -31,7 +36,9 @@ class LoopMap {
         order_(s.actuator.order),
         stages_(static_cast<int>(s.controller.stages.size())),
         flexible_(s.controller.type == "flexible"),
-        filtered_rate_(flexible_ && s.controller.motor_rate == config::MotorRate::kFiltered) {
+        filtered_rate_(flexible_ && s.controller.motor_rate == config::MotorRate::kFiltered),
+        delayed_(one_period_delay),
+        steps_(s.torqueStepsPerTick()) {
     if (flexible_) flexible_plant_.emplace(arm_, s.flexible->params);
   }
 
@@ -39,7 +46,10 @@ class LoopMap {
   // (theta_i = qc_i + b_i xi_i* + zeta_i), so the implementation's state is
   // not minimal: (qc_i + d, zeta_i - d) is a neutral mode no output sees. The
   // map keeps the sum in qc_i and zeta_i at zero.
-  int size() const { return n_ * ((flexible_ ? 4 : 2) + order_ + 1 + stages_ + (filtered_rate_ ? 1 : 0)); }
+  int size() const {
+    return n_ *
+           ((flexible_ ? 4 : 2) + order_ + 1 + stages_ + (filtered_rate_ ? 1 : 0) + (delayed_ ? steps_ : 0));
+  }
 
   // The reference's state at t with every filter at rest and the drive at the feedforward.
   Eigen::VectorXd nominal(double t) const {
@@ -48,6 +58,7 @@ class LoopMap {
     Unpacked u = zeros();
     u.q = r.q();
     u.v = r.qd();
+    if (delayed_) u.pending.rowwise() = h.transpose();  // the drive at the feedforward
     if (order_ > 0) u.xi.row(0) = h.transpose();
     if (stages_ > 0) u.cascade.qc.row(0) = -(s_.controller.stages[0].b.cwiseProduct(h)).transpose();
     if (flexible_) {
@@ -72,7 +83,7 @@ class LoopMap {
                              filtered_rate_ ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
                              starts, filtered_rate_ ? std::optional(u.rate) : std::nullopt);
       const Eigen::VectorXd tau = ctl.step(t, u.q, u.q2, u.v2).tau;
-      integrate(next, drive.step(tau, period, torque_steps).tau, period);
+      drive_plant(next, drive.step(tau, period, torque_steps).tau, period);
       ctl.step(t + period, next.q, next.q2, next.v2);  // advances the filters over the period
       next.qc0 = ctl.cascade().stage0().filterState();
       next.cascade = ctl.cascade().state();
@@ -80,7 +91,7 @@ class LoopMap {
     } else if (stages_ > 0) {
       CascadedController ctl(*control_model_, reference_, gains, u.qc0, starts);
       const Eigen::VectorXd command = ctl.step(t, u.q, u.xi).cascade.u;
-      integrate(next, drive.step(command, period, torque_steps).tau, period);
+      drive_plant(next, drive.step(command, period, torque_steps).tau, period);
       next.xi = drive.state();
       ctl.step(t + period, next.q, next.xi);
       next.qc0 = ctl.stage0().filterState();
@@ -88,7 +99,7 @@ class LoopMap {
     } else {
       Theorem1Controller ctl(*control_model_, reference_, s_.controller.gains, u.qc0);
       const Eigen::VectorXd command = ctl.step(t, u.q).u;
-      integrate(next, drive.step(command, period, torque_steps).tau, period);
+      drive_plant(next, drive.step(command, period, torque_steps).tau, period);
       ctl.step(t + period, next.q);
       next.qc0 = ctl.filterState();
     }
@@ -111,7 +122,7 @@ class LoopMap {
  private:
   struct Unpacked {
     Eigen::VectorXd q, v, q2, v2, qc0, rate;
-    Eigen::MatrixXd xi;
+    Eigen::MatrixXd xi, pending;
     CascadeState cascade;
   };
 
@@ -121,6 +132,7 @@ class LoopMap {
     if (flexible_) u.q2 = u.v2 = Eigen::VectorXd::Zero(n_);
     if (filtered_rate_) u.rate = Eigen::VectorXd::Zero(n_);
     u.xi = Eigen::MatrixXd::Zero(order_, n_);
+    u.pending = Eigen::MatrixXd::Zero(delayed_ ? steps_ : 0, n_);
     u.cascade.qc = u.cascade.zeta = Eigen::MatrixXd::Zero(stages_, n_);
     return u;
   }
@@ -140,6 +152,7 @@ class LoopMap {
     put(u.qc0);
     putRows(u.cascade.qc + u.cascade.zeta);
     if (filtered_rate_) put(u.rate);
+    putRows(u.pending);
     return x;
   }
 
@@ -156,7 +169,16 @@ class LoopMap {
     take(u.qc0);
     takeRows(u.cascade.qc);
     if (filtered_rate_) take(u.rate);
+    takeRows(u.pending);
     return u;
+  }
+
+  // The plant over one period under the drive's output `rows`, now or (the
+  // realtime wiring) after the rows pending from the previous sample.
+  void drive_plant(Unpacked& next, const Eigen::MatrixXd& rows, double period) const {
+    if (!delayed_) return integrate(next, rows, period);
+    integrate(next, next.pending, period);
+    next.pending = rows;
   }
 
   // The plant under the held torque rows, by RK4 of the analytic model. The
@@ -215,7 +237,8 @@ class LoopMap {
   model::Reference reference_;
   std::optional<model::FlexibleChain> flexible_plant_;
   int n_, order_, stages_;
-  bool flexible_, filtered_rate_;
+  bool flexible_, filtered_rate_, delayed_;
+  int steps_;
 };
 
 double spectralRadius(const Eigen::MatrixXd& j) {
@@ -257,7 +280,10 @@ namespace {
 SampledDataCheck check(const config::Scenario& s) {
   SampledDataCheck c;
   c.rate = s.plant.publish_rate;
-  const LoopMap loop(s);
+  c.one_period_delay = s.mode == config::Mode::kRealtime;
+  const LoopMap loop(s, c.one_period_delay);
+  // The continuous loop is the limit of either wiring as T -> 0: from the map without the delay.
+  const LoopMap undelayed(s, false);
   const int steps = s.torqueStepsPerTick();
   std::vector<double> instants;
   std::vector<Eigen::VectorXd> points;
@@ -276,7 +302,7 @@ SampledDataCheck check(const config::Scenario& s) {
   };
   c.continuous_decay = INFINITY;
   for (size_t i = 0; i < instants.size(); ++i) {
-    const Modes m = continuousModes(loop, points[i], instants[i], s.tickPeriod());
+    const Modes m = continuousModes(undelayed, undelayed.nominal(instants[i]), instants[i], s.tickPeriod());
     if (!m.resolved) {
       c.verdict = "not assessed";
       c.why =
@@ -350,11 +376,12 @@ std::string describe(const SampledDataCheck& c) {
   char buf[768];
   std::string verdict = c.verdict;
   std::transform(verdict.begin(), verdict.end(), verdict.begin(), ::toupper);
-  std::snprintf(buf, sizeof buf,
-                "sampled-data check at %g Hz: %s: %s; spectral radius %.6g (t = %.3g s), fastest continuous "
-                "mode |lambda| T = %.3g",
-                c.rate, verdict.c_str(), c.why.c_str(), c.spectral_radius, c.worst_time,
-                c.fastestModeTimesPeriod());
+  std::snprintf(
+      buf, sizeof buf,
+      "sampled-data check at %g Hz%s: %s: %s; spectral radius %.6g (t = %.3g s), fastest continuous "
+      "mode |lambda| T = %.3g",
+      c.rate, c.one_period_delay ? " with the realtime wiring's one-period delay" : "", verdict.c_str(),
+      c.why.c_str(), c.spectral_radius, c.worst_time, c.fastestModeTimesPeriod());
   std::string out = buf;
   if (!c.adequate() && c.verdict != "not assessed")
     out += c.sufficient_rate ? "; " + std::to_string(static_cast<long long>(*c.sufficient_rate)) +

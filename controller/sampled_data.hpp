@@ -26,11 +26,15 @@
 ///    the continuous loop's (sigma_d >= 0.5 sigma_c); "slow" when rho < 1 but
 ///    not that fast; "unstable" when rho >= 1. Otherwise the smallest rate of
 ///    rate x 2^k (k <= 10) that is adequate is reported as sufficient.
+///  - The realtime wiring (mode realtime) is modelled with its one period of
+///    delay: the plant steps over [t_k, t_{k+1}] with the torque that answered
+///    q(t_{k-1}), so the drive's output waits a period in the map's state.
+///    Lockstep and in-process runs apply the torque answering q(t_k) at once.
 /// Limits (it is an estimate, and says so): it is local (small errors: the
 /// global question is the theorems'), frozen in time (exact for a set point,
 /// an approximation for references slow next to the loop), ignores actuator
-/// saturation, the realtime wiring's one-period delays and ODE's integration
-/// error, and samples kInstants instants, not every t.
+/// saturation, the realtime wiring's late and lost messages and ODE's
+/// integration error, and samples kInstants instants, not every t.
 
 #include <optional>
 #include <string>
@@ -52,6 +56,9 @@ struct SampledDataCheck {
   std::string verdict;                    ///< "adequate", "slow", "unstable" or "not assessed"
   std::string why;                        ///< one sentence behind the verdict
   std::optional<double> sufficient_rate;  ///< when not adequate: a rate that is [Hz]
+  /// The realtime wiring: the torque answering q(t_k) acts over [t_{k+1}, t_{k+2}]
+  /// (lockstep and in-process: over [t_k, t_{k+1}]).
+  bool one_period_delay = false;
 
   bool adequate() const { return verdict == "adequate"; }
   /// fastest_mode T: how close the fastest continuous mode is to the sampling rate.

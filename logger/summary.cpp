@@ -54,6 +54,7 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
       {"fastest_mode", sd.fastest_mode},
       {"fastest_mode_times_period", sd.fastestModeTimesPeriod()},
       {"sufficient_rate", sd.sufficient_rate ? json(*sd.sufficient_rate) : json(nullptr)},
+      {"one_period_delay", sd.one_period_delay},
       {"method", "estimate: the discretised closed loop linearised along the reference"},
   };
   return j;
