@@ -115,6 +115,14 @@ class ScriptBuilder {
     sections_.back().text = out_.str();
   }
 
+  // " (panda_joint1)" for joint j of a robot with named joints; "" for the
+  // planar chain, whose names are its numbers.
+  std::string named(int j) const {
+    if (j >= static_cast<int>(spec_.joint_names.size())) return "";
+    const std::string& name = spec_.joint_names[j];
+    return name == "joint" + std::to_string(j + 1) ? "" : " (" + name + ")";
+  }
+
   void trackingError() {
     const std::string norm = normOf(command_, "q_error", spec_.dof);
     if (norm.empty()) return;
@@ -151,8 +159,8 @@ class ScriptBuilder {
     if (q.empty() && command_.empty()) return;
     auto& o = begin("joints.png", "joint angles q and references q_d", spec_.dof);
     for (int j = 0; j < spec_.dof; ++j) {
-      o << "set xlabel \"time t [s]\"\nset ylabel " << quoted("q" + std::to_string(j + 1) + " [rad]")
-        << "\nplot ";
+      o << "set xlabel \"time t [s]\"\nset ylabel "
+        << quoted("q" + std::to_string(j + 1) + named(j) + " [rad]") << "\nplot ";
       std::string sep;
       if (const std::string c = column(q, indexed("q", j)); !c.empty())
         o << series(q_channel, c, "q" + std::to_string(j + 1) + " (" + q_channel + ")", "lw 2"), sep = ", ";
@@ -172,7 +180,7 @@ class ScriptBuilder {
       for (int j = 0; j < spec_.dof; ++j)
         o << (j ? ", " : "")
           << series(transport::kPlantTruth, column(truth_, indexed("tau_applied", j)),
-                    "τ" + std::to_string(j + 1));
+                    "τ" + std::to_string(j + 1) + named(j));
       o << "\n";
       end();
     }
@@ -183,7 +191,7 @@ class ScriptBuilder {
       for (int j = 0; j < spec_.dof; ++j)
         o << (j ? ", " : "")
           << series(transport::kControlCommand, column(command_, indexed("u", j)),
-                    "u" + std::to_string(j + 1));
+                    "u" + std::to_string(j + 1) + named(j));
       o << "\n";
       end();
     }
@@ -194,7 +202,8 @@ class ScriptBuilder {
     auto& o = begin("filter_states.png", "dirty-derivative filter: output θ and state q_c", spec_.dof);
     for (int j = 0; j < spec_.dof; ++j) {
       const std::string n = std::to_string(j + 1);
-      o << "set xlabel \"time t [s]\"\nset ylabel " << quoted("joint " + n + " [rad/s]") << "\nplot "
+      o << "set xlabel \"time t [s]\"\nset ylabel " << quoted("joint " + n + named(j) + " [rad/s]")
+        << "\nplot "
         << series(transport::kControlCommand, column(command_, indexed("theta", j)),
                   "θ" + n + " = q_c + b q~", "lw 2")
         << ", "
@@ -214,7 +223,7 @@ class ScriptBuilder {
       for (int j = 0; j < spec_.dof; ++j)
         o << (j ? ", " : "")
           << series(transport::kActuatorState, column(actuator_, indexed(indexed("xi", i), j)),
-                    "joint " + std::to_string(j + 1));
+                    "joint " + std::to_string(j + 1) + named(j));
       o << "\n";
     }
     end();
@@ -225,7 +234,7 @@ class ScriptBuilder {
     auto& o = begin("motors.png", "motor angles q2 and link angles q1 (elastic joints)", spec_.dof);
     for (int j = 0; j < spec_.dof; ++j) {
       const std::string n = std::to_string(j + 1);
-      o << "set xlabel \"time t [s]\"\nset ylabel " << quoted("joint " + n + " [rad]") << "\nplot "
+      o << "set xlabel \"time t [s]\"\nset ylabel " << quoted("joint " + n + named(j) + " [rad]") << "\nplot "
         << series(transport::kPlantMotor, column(motor_, indexed("q", j)), "motor q2_" + n, "lw 2");
       if (const std::string c = column(truth_, indexed("q", j)); !c.empty())
         o << ", " << series(transport::kPlantTruth, c, "link q1_" + n, "lw 1.5 dt 2");

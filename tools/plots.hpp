@@ -29,6 +29,9 @@ struct PlotSpec {
   int chain_order = 0;     ///< actuator integrators m (stage plots when > 0)
   bool flexible = false;   ///< motor positions plotted against the links'
   double tolerance = 0.0;  ///< metrics.tolerance [rad], drawn on the error plot (0: none)
+  /// The robot's joint names, base to tip (a URDF arm's), shown next to the
+  /// joint numbers; empty, or the planar chain's "joint1".., for numbers alone.
+  std::vector<std::string> joint_names;
 };
 
 /// What the CSV files in `dir` say about the run, for a log without a scenario.

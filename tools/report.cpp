@@ -33,6 +33,7 @@ PlotSpec specOf(const CsvExport& csv, const std::string& log_path, const std::st
   spec.chain_order = s.actuator.order;
   spec.flexible = s.flexible.has_value();
   spec.tolerance = s.metrics.tolerance;
+  spec.joint_names = s.robotModel()->jointNames();
   return spec;
 }
 }  // namespace

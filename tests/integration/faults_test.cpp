@@ -53,8 +53,8 @@ void expectTheFaultFreeRun(const std::string& clean_dir, const std::string& faul
 }
 
 // One lockstep run per wiring: the rigid arm (Theorem 1), an integrator chain
-// (ACTUATOR_STATE also feeds the controller) and the flexible-joint arm
-// (PLANT_MOTOR with the motor rates).
+// (ACTUATOR_STATE also feeds the controller), the flexible-joint arm
+// (PLANT_MOTOR with the motor rates) and a URDF arm (seven joints).
 class LockstepUnderFaults : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LockstepUnderFaults, DropsDuplicatesReorderingAndCorruptionLeaveTheTrajectoryBitIdentical) {
@@ -93,7 +93,7 @@ TEST_P(LockstepUnderFaults, DropsDuplicatesReorderingAndCorruptionLeaveTheTrajec
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, LockstepUnderFaults,
-                         ::testing::Values("rigid_2dof", "chain_m2", "flexible_2dof"));
+                         ::testing::Values("rigid_2dof", "chain_m2", "flexible_2dof", "panda_theorem1"));
 
 // Loss that only one receiver sees (faults.receivers), as on a real network
 // where one host misses a datagram the others got: every process loses 5 %

@@ -66,6 +66,7 @@ TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
       {"flexible_2dof_filtered_rate_lockstep", with(kEveryRun, {"motors.png"}),
        "flexible_2dof_filtered_rate (lockstep, flexible)"},
       {"chain_m1_realtime", with(with(kEveryRun, chain), {"timing.png"}), "chain_m1 (realtime, cascaded)"},
+      {"panda_theorem1_lockstep", kEveryRun, "panda_theorem1 (lockstep, theorem1)"},
   };
   for (const auto& [log, expected, title] : cases) {
     const std::string out = freshDir("report-" + log);
@@ -77,6 +78,32 @@ TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
     const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("\"" + title + ": tracking error norm"), std::string::npos) << log;
   }
+}
+
+// A URDF arm's seven joints: one panel per joint, each named by the URDF's
+// joint name next to its number, tall enough to read (260 px a panel); the
+// torque legend names them too. The planar chain's panels keep numbers alone.
+TEST(Report, AUrdfArmsPlotsNameItsJoints) {
+  const std::string out = freshDir("report-panda");
+  ASSERT_EQ(
+      lagrange("report " + quote(kGolden + "panda_theorem1_lockstep.lcm") + " -o " + quote(out)).exit_code,
+      0);
+  std::ifstream script(out + "/plots.gp");
+  const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+  for (int j = 1; j <= 7; ++j) {
+    const std::string n = std::to_string(j);
+    EXPECT_NE(text.find("set ylabel \"q" + n + " (panda_joint" + n + ") [rad]\""), std::string::npos) << j;
+    EXPECT_NE(text.find("title \"τ" + n + " (panda_joint" + n + ")\""), std::string::npos) << j;
+  }
+  EXPECT_GE(pngSize(out + "/joints.png").second, 7u * 260u);
+  const std::string planar = freshDir("report-planar");
+  ASSERT_EQ(
+      lagrange("report " + quote(kGolden + "rigid_2dof_lockstep.lcm") + " -o " + quote(planar)).exit_code, 0);
+  std::ifstream planar_script(planar + "/plots.gp");
+  const std::string planar_text((std::istreambuf_iterator<char>(planar_script)),
+                                std::istreambuf_iterator<char>());
+  EXPECT_NE(planar_text.find("set ylabel \"q1 [rad]\""), std::string::npos);
+  EXPECT_EQ(planar_text.find("(joint1)"), std::string::npos);
 }
 
 TEST(Report, RealtimeTimingTableHasARowPerTick) {

@@ -63,6 +63,22 @@ TEST(Supervision, ARestartedCascadedControllerResumesALockstepRun) {
   EXPECT_EQ(j["tracking"]["samples"], 5001);
 }
 
+// A URDF arm's controller killed mid-run and restarted: the fresh process
+// builds the arm from the URDF text in its config and takes over.
+TEST(Supervision, ARestartedControllerOfAUrdfArmResumesALockstepRun) {
+  const std::string dir = freshDir("restart-panda");
+  const SignalledRun run = signalMidRun(
+      dir, std::string(LAGRANGE_SOURCE_DIR) + "/configs/panda_theorem1.yaml", "lagrange-controller", SIGKILL,
+      "-q --set duration=4 --set supervision.restart=[controller]", 2'000'000);
+  ASSERT_TRUE(run.signalled);
+  ASSERT_EQ(run.result.exit_code, 0) << run.result.output;
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["supervision"]["restarts"]["controller"], 1) << j["supervision"].dump();
+  EXPECT_EQ(j["tracking"]["samples"], 4001);
+  EXPECT_LT(j["tracking"]["final_error"].get<double>(), j["tracking"]["tolerance"].get<double>())
+      << j["tracking"].dump();
+}
+
 TEST(Supervision, WithTheRestartsUsedUpTheRunStopsAndNamesTheProcess) {
   const std::string dir = freshDir("restart-none-left");
   const SignalledRun run = signalMidRun(
