@@ -63,6 +63,38 @@ TEST(SampledDataCheck, WarnsOnRigid5linkAt1kHzAndTheRunsConfirmIt) {
   EXPECT_EQ(sufficient["gains"]["sampled_data"]["verdict"], "adequate");
 }
 
+// A URDF arm behind m = 1..4 integrators gets every check a planar chain
+// gets, with the same keys: eq. (11) on the estimated k_c, the eta estimates,
+// eq. (632) for m = 1, Theorem 3 and Proposition 1 for m >= 2, and the
+// sampled-data verdict -- each saying what it rests on.
+TEST(GainVerdicts, AUrdfArmBehindAnActuatorChainGetsEveryCheck) {
+  for (int m = 1; m <= 4; ++m) {
+    SCOPED_TRACE("m = " + std::to_string(m));
+    std::string stages = "[", initial = "[";
+    for (int i = 0; i < m; ++i) {
+      stages += std::string(i ? ", " : "") + "{kp: 1000.0, kd: 1.0, a: 2000.0, b: 2000.0}";
+      initial += std::string(i ? ", " : "") + "0.0";
+    }
+    const RunResult r = lagrange("check-gains " + quote(kConfigs + "/ur5_theorem1.yaml") +
+                                 " --set controller.type=cascaded --set actuator.order=" + std::to_string(m) +
+                                 " --set 'actuator.initial_state=" + initial +
+                                 "]' --set 'controller.stages=" + stages + "]'");
+    EXPECT_NE(r.output.find("eq. (11)'s verdict rests on the estimated k_c"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("estimated eta_1 = "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the verdicts below rest on these estimates"), std::string::npos) << r.output;
+    if (m == 1) {
+      EXPECT_NE(r.output.find("gain condition eq. (632"), std::string::npos) << r.output;
+    } else {
+      EXPECT_NE(r.output.find("gain condition A Hurwitz (Theorem 3)"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("Proposition 1 (constructive, sufficient for Theorem 3)"), std::string::npos)
+          << r.output;
+      EXPECT_NE(r.output.find("gain condition eq. (795b)"), std::string::npos) << r.output;
+    }
+    EXPECT_NE(r.output.find("sampled-data check at 1000 Hz: "), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("nan"), std::string::npos) << r.output;
+  }
+}
+
 // The realtime wiring's delay: the plant steps with the newest torque it has,
 // which answered the previous sample, so the torque acts a period later than
 // in lockstep. The Panda's light wrist at 1 kHz is adequate without that delay
