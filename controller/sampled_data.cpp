@@ -83,7 +83,7 @@ class LoopMap {
                              filtered_rate_ ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
                              starts, filtered_rate_ ? std::optional(u.rate) : std::nullopt);
       const Eigen::VectorXd tau = ctl.step(t, u.q, u.q2, u.v2).tau;
-      drive_plant(next, drive.step(tau, period, torque_steps).tau, period);
+      drivePlant(next, drive.step(tau, period, torque_steps).tau, period);
       ctl.step(t + period, next.q, next.q2, next.v2);  // advances the filters over the period
       next.qc0 = ctl.cascade().stage0().filterState();
       next.cascade = ctl.cascade().state();
@@ -91,7 +91,7 @@ class LoopMap {
     } else if (stages_ > 0) {
       CascadedController ctl(*control_model_, reference_, gains, u.qc0, starts);
       const Eigen::VectorXd command = ctl.step(t, u.q, u.xi).cascade.u;
-      drive_plant(next, drive.step(command, period, torque_steps).tau, period);
+      drivePlant(next, drive.step(command, period, torque_steps).tau, period);
       next.xi = drive.state();
       ctl.step(t + period, next.q, next.xi);
       next.qc0 = ctl.stage0().filterState();
@@ -99,7 +99,7 @@ class LoopMap {
     } else {
       Theorem1Controller ctl(*control_model_, reference_, s_.controller.gains, u.qc0);
       const Eigen::VectorXd command = ctl.step(t, u.q).u;
-      drive_plant(next, drive.step(command, period, torque_steps).tau, period);
+      drivePlant(next, drive.step(command, period, torque_steps).tau, period);
       ctl.step(t + period, next.q);
       next.qc0 = ctl.filterState();
     }
@@ -175,7 +175,7 @@ class LoopMap {
 
   // The plant over one period under the drive's output `rows`, now or (the
   // realtime wiring) after the rows pending from the previous sample.
-  void drive_plant(Unpacked& next, const Eigen::MatrixXd& rows, double period) const {
+  void drivePlant(Unpacked& next, const Eigen::MatrixXd& rows, double period) const {
     if (!delayed_) return integrate(next, rows, period);
     integrate(next, next.pending, period);
     next.pending = rows;

@@ -63,9 +63,10 @@ std::string moments(const Eigen::Vector3d& m) {
 // or mass 0 with a zero tensor (a massless frame, as URDFs write tool and
 // flange frames); a positive mass with a positive definite tensor whose
 // principal moments obey the triangle inequality (each at most the sum of the
-// other two: a rigid body's mass cannot be distributed otherwise). The
-// tolerance of 1e-9 relative lets the limit cases through: a thin rod (one
-// moment zero is still refused: not definite) and a flat plate (equality).
+// other two: a rigid body's mass cannot be distributed otherwise). A flat
+// plate, the largest moment equal to the sum of the others, passes (1e-9
+// relative for rounding); a thin rod, one moment zero, is refused as not
+// definite.
 KDL::RigidBodyInertia linkInertia(const urdf::Link& link, const std::string& where) {
   const urdf::InertialSharedPtr& i = link.inertial;
   if (!i) return KDL::RigidBodyInertia::Zero();
@@ -125,9 +126,10 @@ class ParserMessages : public console_bridge::OutputHandler {
   std::string text;
   urdf::ModelInterfaceSharedPtr parse(const std::string& xml) {
     console_bridge::useOutputHandler(this);
-    urdf::ModelInterfaceSharedPtr robot = urdf::parseURDF(xml);
-    console_bridge::restorePreviousOutputHandler();
-    return robot;
+    struct Restore {  // also when urdfdom throws: never leave a handler that is gone
+      ~Restore() { console_bridge::restorePreviousOutputHandler(); }
+    } restore;
+    return urdf::parseURDF(xml);
   }
   void log(const std::string& message, console_bridge::LogLevel level, const char*, int) override {
     if (level < console_bridge::CONSOLE_BRIDGE_LOG_WARN) return;
