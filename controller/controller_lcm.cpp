@@ -15,10 +15,7 @@ lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t po
   m.input_motor_tick = inputs.motor;
   m.num_joints = static_cast<int32_t>(out.u.size());
   m.u = toStd(out.u);
-  // A diagnostic the controller does not have (empty) is sent as zeros: the message's fields are fixed.
-  const auto diagnostic = [&out](const Eigen::VectorXd& v) {
-    return v.size() == 0 ? std::vector<double>(out.u.size(), 0.0) : toStd(v);
-  };
+  const auto diagnostic = [&out](const Eigen::VectorXd& v) { return toStd(asPublished(v, out.u.size())); };
   m.q_desired = diagnostic(out.q_desired);
   m.q_error = diagnostic(out.q_error);
   m.theta = diagnostic(out.theta);
@@ -26,6 +23,10 @@ lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t po
   m.chain_order = static_cast<int32_t>(out.xi_error.rows());
   for (int i = 0; i < out.xi_error.rows(); ++i) m.xi_error.push_back(toStd(out.xi_error.row(i).transpose()));
   return m;
+}
+
+Eigen::VectorXd asPublished(const Eigen::VectorXd& diagnostic, Eigen::Index joints) {
+  return diagnostic.size() == 0 ? Eigen::VectorXd::Zero(joints) : diagnostic;
 }
 
 Eigen::MatrixXd motorSample(const lagrange::plant_motor_t& m) {

@@ -20,4 +20,9 @@ lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t po
 /// message carries rates (a rate sensor), q2'.
 Eigen::MatrixXd motorSample(const lagrange::plant_motor_t& m);
 
+/// A diagnostic as CONTROL_COMMAND carries it: the message's fields are fixed,
+/// so one the controller does not have (empty) goes out as `joints` zeros.
+/// Replay compares a recorded command with what this makes of the replayed one.
+Eigen::VectorXd asPublished(const Eigen::VectorXd& diagnostic, Eigen::Index joints);
+
 }  // namespace lagrange::controller

@@ -2,6 +2,7 @@
 
 #include "actuator/integrator_chain.hpp"
 #include "config/scenario.hpp"
+#include "controller/controller_lcm.hpp"
 #include "controller/registry.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
@@ -19,10 +20,16 @@ namespace {
 using namespace replay_log;
 
 std::string firstDifference(const lagrange::control_command_t& rec, const controller::Theorem1Output& out) {
+  const Eigen::Index n = out.u.size();
+  // The diagnostics as the controller process publishes them (an empty one as zeros).
+  const Eigen::VectorXd q_desired = controller::asPublished(out.q_desired, n),
+                        q_error = controller::asPublished(out.q_error, n),
+                        theta = controller::asPublished(out.theta, n),
+                        filter_state = controller::asPublished(out.filter_state, n);
   for (auto [field, values, replayed] :
-       {std::tuple{"u", &rec.u, &out.u}, std::tuple{"q_desired", &rec.q_desired, &out.q_desired},
-        std::tuple{"q_error", &rec.q_error, &out.q_error}, std::tuple{"theta", &rec.theta, &out.theta},
-        std::tuple{"filter_state", &rec.filter_state, &out.filter_state}}) {
+       {std::tuple{"u", &rec.u, &out.u}, std::tuple{"q_desired", &rec.q_desired, &q_desired},
+        std::tuple{"q_error", &rec.q_error, &q_error}, std::tuple{"theta", &rec.theta, &theta},
+        std::tuple{"filter_state", &rec.filter_state, &filter_state}}) {
     const std::string d = compare(field, *values, *replayed);
     if (!d.empty()) return d;
   }

@@ -157,9 +157,13 @@ void printResult(const std::string& out_dir) {
     std::printf("  convergence time      %.3f s (deadline %.3f s: %s)\n", t["convergence_time"].get<double>(),
                 t["convergence_deadline"].get<double>(), t["met"].get<bool>() ? "met" : "MISSED");
   std::printf("  max |torque|          %.3f N m\n", j["torque"]["max_abs"].get<double>());
-  std::printf("  gain condition        %s (margin %.4g)\n",
-              j["gains"]["condition_holds"].get<bool>() ? "holds" : "VIOLATED",
-              j["gains"]["margin"].get<double>());
+  // A controller without a known stability condition has no verdict to print.
+  if (j["gains"].value("checked", true))
+    std::printf("  gain condition        %s (margin %.4g)\n",
+                j["gains"]["condition_holds"].get<bool>() ? "holds" : "VIOLATED",
+                j["gains"]["margin"].get<double>());
+  else
+    std::printf("  gain condition        not checked (%s)\n", j["gains"].value("why", "").c_str());
   std::printf("  sim %.2f s in %.2f s wall (%.1fx real time)\n", j["timing"]["sim_time"].get<double>(),
               j["timing"]["wall_time"].get<double>(), j["timing"]["realtime_factor"].get<double>());
   std::string files;
