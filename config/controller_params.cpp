@@ -14,12 +14,23 @@ std::map<std::string, std::vector<ControllerParam>>& registered() {
   static std::map<std::string, std::vector<ControllerParam>> types;
   return types;
 }
+
+std::map<std::string, bool>& setPoint() {
+  static std::map<std::string, bool> types;
+  return types;
+}
 }  // namespace
 
-void registerControllerParams(const std::string& type, std::vector<ControllerParam> params) {
+void registerControllerParams(const std::string& type, std::vector<ControllerParam> params, bool set_point) {
   for (const auto& t : controllerTypes())
     if (t == type) throw std::logic_error("controller type '" + type + "' is registered twice");
   registered()[type] = std::move(params);
+  setPoint()[type] = set_point;
+}
+
+bool isSetPointController(const std::string& type) {
+  const auto it = setPoint().find(type);
+  return it != setPoint().end() && it->second;
 }
 
 const std::vector<ControllerParam>* registeredControllerParams(const std::string& type) {

@@ -20,10 +20,15 @@ struct ControllerParam {
 };
 
 /// Makes `type` a valid controller.type with these keys (the actuator order
-/// must be 0: the command is the joint torque). Called by
-/// controller::registerControllerKind. @throws std::logic_error if `type` is
-/// already taken.
-void registerControllerParams(const std::string& type, std::vector<ControllerParam> params);
+/// must be 0: the command is the joint torque). With `set_point`, the
+/// controller regulates to a constant q_d, and the reader refuses any other
+/// reference. Called by controller::registerControllerKind. @throws
+/// std::logic_error if `type` is already taken.
+void registerControllerParams(const std::string& type, std::vector<ControllerParam> params,
+                              bool set_point = false);
+
+/// Whether a registered type regulates to a constant q_d only.
+bool isSetPointController(const std::string& type);
 
 /// The keys of a registered type; nullptr for the paper's types and unknown ones.
 const std::vector<ControllerParam>* registeredControllerParams(const std::string& type);

@@ -65,6 +65,14 @@ void readRegisteredController(MapReader& ctl, Scenario& s, const std::vector<Con
   if (s.actuator.order != 0)
     ctl.fail("type", "a registered controller commands the joint torque; expected actuator.order 0, got " +
                          std::to_string(s.actuator.order));
+  if (isSetPointController(s.controller.type)) {
+    const bool constant =
+        s.reference.type == model::ReferenceType::kSine && (s.reference.amplitude.array() == 0.0).all();
+    if (!constant)
+      ctl.fail("type", s.controller.type +
+                           " regulates to a constant q_d; expected reference.type sine with amplitude 0 on "
+                           "every joint (q_d = offset)");
+  }
   std::set<std::string> known = {"type"};
   for (const ControllerParam& p : params) {
     s.controller.params[p.key] = ctl.vector(p.key, s.dof(), true, p.positive);

@@ -36,6 +36,8 @@ struct ControllerKind {
   /// Its gain check; empty: no stability condition is known, and the report
   /// says so (GainReport::unchecked).
   std::function<GainReport(const config::Scenario&, bool sampled_data)> report;
+  /// It regulates to a constant q_d: the config refuses any other reference.
+  bool set_point = false;
 };
 
 /// Registers a controller. Returns true, so that a file can register from

@@ -50,10 +50,9 @@ std::string writeConfig() {
 TEST(ControllerSeam, TheStockProgramsDoNotKnowTheTestController) {
   const RunResult r = lagrange("check-gains " + quote(writeConfig()));
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(
-      r.output.find(
-          "unknown controller type 'test_pd'; expected: theorem1, cascaded, flexible or pd_plus_differenced"),
-      std::string::npos)
+  EXPECT_NE(r.output.find("unknown controller type 'test_pd'; expected: theorem1, cascaded, flexible, "
+                          "pd_plus_differenced or set_point"),
+            std::string::npos)
       << r.output;
 }
 
