@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
 
   // Real messages of this joint count give the real sizes.
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(joints);
-  const auto sample = lagrange::plant::plantSample(0, 0.0, zero, zero, zero, 0.0, 0.0, {});
+  const auto sample = lagrange::plant::plantSample(0, 0.0, zero, zero, zero, 0.0, 0.0, {}, zero);
   lagrange::controller::Theorem1Output out{zero, zero, zero, zero, zero, Eigen::MatrixXd(0, joints)};
   const auto command = lagrange::controller::commandMessage(out, 0, 0.0);
   lagrange::actuator::ActuatorOutput act{zero,

@@ -2,8 +2,10 @@
 /// How the run is judged and carried out: metrics, lockstep, realtime,
 /// supervision, faults (config/scenario_sections.hpp).
 
+#include <cmath>
 #include <limits>
 #include <set>
+#include <sstream>
 
 #include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
@@ -87,6 +89,12 @@ void readSupervisionSection(MapReader& root, Scenario& s) {
 }
 
 namespace {
+std::string shortNumber(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
 double probability(MapReader& map, const char* key) {
   const double p = map.number(key, 0.0);
   if (p < 0.0 || p > 1.0) map.fail(key, "expected a probability from 0 to 1");
@@ -96,6 +104,42 @@ double probability(MapReader& map, const char* key) {
 
 // faults: seeded fault injection per channel (sending side) and per
 // receiving process.
+// sensors: the joint-angle sensor between the plant and PLANT_POSITION.
+void readSensorsSection(MapReader& root, Scenario& s) {
+  if (!root.has("sensors")) return;
+  MapReader r = root.map("sensors");
+  SensorsConfig c;
+  const int seed = r.integer("seed", 1);
+  if (seed < 0) r.fail("seed", "expected a whole number >= 0");
+  c.seed = static_cast<uint64_t>(seed);
+  const int n = s.dof();
+  c.counts_per_revolution = Eigen::VectorXd::Zero(n);
+  c.noise_sigma = Eigen::VectorXd::Zero(n);
+  if (r.has("position")) {
+    MapReader p = r.map("position");
+    if (p.has("counts_per_revolution")) {
+      c.counts_per_revolution = p.vector("counts_per_revolution", n, true, false);
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (c.counts_per_revolution(i) < 0.0 ||
+            c.counts_per_revolution(i) != std::floor(c.counts_per_revolution(i)))
+          p.fail("counts_per_revolution", "expected whole numbers >= 0 (0: not quantised), got " +
+                                              shortNumber(c.counts_per_revolution(i)));
+    }
+    if (p.has("noise_sigma")) {
+      c.noise_sigma = p.vector("noise_sigma", n, true, false);
+      if ((c.noise_sigma.array() < 0.0).any())
+        p.fail("noise_sigma",
+               "expected standard deviations >= 0 [rad], got " + shortNumber(c.noise_sigma.minCoeff()));
+    }
+    c.delay = p.integer("delay", 0);
+    if (c.delay < 0)
+      p.fail("delay", "expected a whole number of samples >= 0, got " + std::to_string(c.delay));
+    p.finish(keys::kPositionSensor);
+  }
+  r.finish(keys::kSensors);
+  s.sensors = c;
+}
+
 void readFaultsSection(MapReader& root, Scenario& s) {
   if (!root.has("faults")) return;
   MapReader f = root.map("faults");

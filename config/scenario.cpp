@@ -85,6 +85,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readRealtimeSection(root, s);
   readSupervisionSection(root, s);
   readFaultsSection(root, s);
+  readSensorsSection(root, s);
   root.finish(keys::kTop);
   return s;
 }

@@ -143,6 +143,15 @@ struct FaultsConfig {
   std::map<std::string, double> receiver_drop;
 };
 
+/// The sensors in the plant's measurement path (sensors.*; plant/position_sensor.hpp):
+/// PLANT_POSITION carries their readings, PLANT_TRUTH the true angles.
+struct SensorsConfig {
+  uint64_t seed = 1;                      ///< the noise's draws
+  Eigen::VectorXd counts_per_revolution;  ///< per joint; 0: not quantised
+  Eigen::VectorXd noise_sigma;            ///< per joint [rad]; 0: no noise
+  int delay = 0;                          ///< whole samples
+};
+
 /// What the launcher does when a process dies (supervision.*).
 struct SupervisionConfig {
   /// Processes restarted when they die: "controller", "actuator". The plant
@@ -182,6 +191,7 @@ struct Scenario {
   RealtimeConfig realtime;
   SupervisionConfig supervision;
   FaultsConfig faults;
+  std::optional<SensorsConfig> sensors;  ///< absent: PLANT_POSITION carries the true angles
 
   int dof() const { return urdf_model ? urdf_model->dof() : static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }

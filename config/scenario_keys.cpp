@@ -26,7 +26,7 @@ std::vector<DocumentedKey> documentedKeys() {
   // Sections are not rows: their keys are.
   add(out, "", kTop,
       {"robot", "initial_state", "reference", "plant", "actuator", "controller", "metrics", "lockstep",
-       "realtime", "supervision", "faults"});
+       "realtime", "supervision", "faults", "sensors"});
   add(out, "robot.", kRobot, {"flexible", "urdf"});
   addInside(out, "robot.links", kLink);
   add(out, "robot.urdf.", kUrdf);
@@ -47,6 +47,8 @@ std::vector<DocumentedKey> documentedKeys() {
   add(out, "faults.", kFaults, {"channels", "receivers"});
   addInside(out, "faults.channels.NAME", kChannelFaults);
   out.push_back({"faults.receivers.PROCESS.drop", ""});
+  add(out, "sensors.", kSensors, {"position"});
+  add(out, "sensors.position.", kPositionSensor);
   return out;
 }
 

@@ -14,9 +14,9 @@ namespace lagrange::config::keys {
 
 using Keys = std::set<std::string>;
 
-inline const Keys kTop = {"name",          "description", "duration", "mode",        "robot",
-                          "initial_state", "reference",   "plant",    "actuator",    "controller",
-                          "metrics",       "lockstep",    "realtime", "supervision", "faults"};
+inline const Keys kTop = {"name",      "description", "duration", "mode",       "robot",   "initial_state",
+                          "reference", "plant",       "actuator", "controller", "metrics", "lockstep",
+                          "realtime",  "supervision", "faults",   "sensors"};
 inline const Keys kRobot = {"preset", "links", "urdf", "gravity", "flexible"};
 inline const Keys kUrdf = {"file", "xml", "base_link", "tip_link"};
 inline const Keys kLink = {"length", "com", "mass", "inertia"};
@@ -33,6 +33,8 @@ inline const Keys kStage = {"kp", "kd", "a", "b", "initial_filter_state", "initi
 inline const Keys kFaults = {"seed", "channels", "receivers"};
 inline const Keys kChannelFaults = {"drop", "duplicate", "reorder", "corrupt", "delay", "delay_jitter"};
 inline const Keys kReceiverFaults = {"drop"};
+inline const Keys kSensors = {"seed", "position"};
+inline const Keys kPositionSensor = {"counts_per_revolution", "noise_sigma", "delay"};
 
 /// A key as docs/configuration.md's table names it: `row` is the dotted key
 /// of its row (list items as [i], map entries by a capital placeholder such

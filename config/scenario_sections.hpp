@@ -33,5 +33,6 @@ void readLockstepSection(MapReader& root, Scenario& s);
 void readRealtimeSection(MapReader& root, Scenario& s);
 void readSupervisionSection(MapReader& root, Scenario& s);
 void readFaultsSection(MapReader& root, Scenario& s);
+void readSensorsSection(MapReader& root, Scenario& s);
 
 }  // namespace lagrange::config::sections

@@ -170,6 +170,16 @@ std::string toYaml(const Scenario& s) {
   out << YAML::EndMap;
   out << YAML::EndMap;
 
+  if (s.sensors) {
+    out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "seed" << YAML::Value << s.sensors->seed;
+    out << YAML::Key << "position" << YAML::Value << YAML::BeginMap;
+    emitVector(out, "counts_per_revolution", s.sensors->counts_per_revolution);
+    emitVector(out, "noise_sigma", s.sensors->noise_sigma);
+    out << YAML::Key << "delay" << YAML::Value << s.sensors->delay;
+    out << YAML::EndMap << YAML::EndMap;
+  }
+
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

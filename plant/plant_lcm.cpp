@@ -10,14 +10,14 @@ using transport::toStd;
 
 PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                         const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy,
-                        TorqueInput input) {
+                        TorqueInput input, const Eigen::VectorXd& q_measured) {
   PlantSample o;
   o.position.header = makeHeader(tick, sim_time);
   o.position.num_joints = static_cast<int32_t>(q.size());
-  o.position.q = toStd(q);
+  o.position.q = toStd(q_measured);
   o.truth.header = o.position.header;
   o.truth.num_joints = o.position.num_joints;
-  o.truth.q = o.position.q;
+  o.truth.q = toStd(q);
   o.truth.qdot = toStd(qdot);
   o.truth.tau_applied = toStd(tau_applied);
   o.truth.kinetic_energy = kinetic_energy;

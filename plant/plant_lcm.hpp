@@ -28,9 +28,11 @@ struct TorqueInput {
 };
 
 /// tau_applied: the torque applied over the period that ended at this tick, chosen as `input` says.
+/// q_measured: what the joint-angle sensor read (PLANT_POSITION; plant/position_sensor.hpp);
+/// q, the true angles, goes to PLANT_TRUTH.
 PlantSample plantSample(int64_t tick, double sim_time, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                         const Eigen::VectorXd& tau_applied, double kinetic_energy, double potential_energy,
-                        TorqueInput input);
+                        TorqueInput input, const Eigen::VectorXd& q_measured);
 
 /// PLANT_MOTOR of a flexible-joint arm; motor_qdot is sent only when with_rates.
 lagrange::plant_motor_t motorMessage(int64_t tick, double sim_time, const Eigen::VectorXd& motor_q,

@@ -10,6 +10,7 @@
 
 #include "plant/lockstep_protocol.hpp"
 #include "plant/plant_lcm.hpp"
+#include "plant/scenario_plant.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
@@ -21,11 +22,13 @@ using State = transport::ProcessState;
 namespace {
 using Clock = std::chrono::steady_clock;
 
-plant::PlantSample sample(const PlantSim& sim, int64_t tick, double sim_time,
+// Called once per tick, in tick order: the sensor keeps its delay line and noise draws.
+plant::PlantSample sample(const PlantSim& sim, PositionSensor& sensor, int64_t tick, double sim_time,
                           const Eigen::VectorXd& tau_applied, plant::TorqueInput input) {
   const PlantState st = sim.state();
   const PlantEnergy e = sim.energy();
-  return plant::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input);
+  return plant::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input,
+                            sensor.measure(st.q));
 }
 
 // What the plant publishes at a tick: the measurements (PLANT_MOTOR for
@@ -58,6 +61,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
                 runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
+  PositionSensor sensor = positionSensorFor(s);
   LockstepProtocol<TickMessages> protocol(
       {last_tick, s.lockstep.logger_window,
        std::chrono::duration_cast<Clock::duration>(
@@ -105,7 +109,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
     const plant::TorqueInput input =
         k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED};
-    const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), input));
+    const TickMessages out = tickMessages(s, sim, sample(sim, sensor, k, t, tau.row(0).transpose(), input));
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
     protocol.published(k, out, Clock::now());
@@ -165,6 +169,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
                 runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
+  PositionSensor sensor = positionSensorFor(s);
   const int64_t max_age = s.realtime.max_torque_age;
   const int64_t hold_limit =
       s.realtime.stale_torque == config::StaleTorque::kHold ? max_age + s.realtime.hold_periods : max_age;
@@ -219,7 +224,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   for (int64_t k = 0; k <= last_tick && !runtime::stopRequested(); ++k) {
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const TickMessages out = tickMessages(s, sim, sample(sim, k, t, tau.row(0).transpose(), applied));
+    const TickMessages out = tickMessages(s, sim, sample(sim, sensor, k, t, tau.row(0).transpose(), applied));
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
     published_utime[k % kRing] = out.position.header.publish_utime;

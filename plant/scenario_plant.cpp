@@ -12,4 +12,10 @@ PlantSim plantFor(const config::Scenario& s) {
       s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt, s.plant.max_rate);
 }
 
+PositionSensor positionSensorFor(const config::Scenario& s) {
+  if (!s.sensors) return PositionSensor(s.dof());
+  return PositionSensor(
+      s.dof(), {s.sensors->counts_per_revolution, s.sensors->noise_sigma, s.sensors->delay, s.sensors->seed});
+}
+
 }  // namespace lagrange::plant

@@ -32,6 +32,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   log.writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
+  plant::PositionSensor sensor = plant::positionSensorFor(s);
   const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
   const controller::Needs needs = ctl->needs();
   // The controller's inputs by the controller process's own rule (lockstep).
@@ -51,7 +52,8 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
     const plant::PlantEnergy e = sim.energy();
     const plant::PlantSample sample = plant::plantSample(
         k, t, st.q, st.qdot, tau.row(0).transpose(), e.kinetic, e.potential,
-        k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
+        k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED},
+        sensor.measure(st.q));
     log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
     log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));

@@ -58,7 +58,7 @@ std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& 
   if (d.empty()) d = compare("PLANT_TRUTH.total_energy", truth.total_energy, r.total_energy);
   const int64_t k = truth.header.tick;
   if (const auto it = rec.positions.find(k); d.empty() && it != rec.positions.end())
-    d = compare("PLANT_POSITION.q", it->second.q, state.q);
+    d = compare("PLANT_POSITION.q", it->second.q, transport::toEigen(replayed.position.q));
   if (const auto it = rec.motor.find(k); d.empty() && it != rec.motor.end()) {
     d = compare("PLANT_MOTOR.q", it->second.q, state.motor_q);
     if (d.empty() && it->second.num_rates > 0)
@@ -82,6 +82,7 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
     const Recorded& rec = o.rec;
     const config::Scenario& s = o.scenario;
     plant::PlantSim sim = plant::plantFor(s);
+    plant::PositionSensor sensor = plant::positionSensorFor(s);  // its draws again, tick by tick
     Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());
     int64_t expected_tick = 0;
     for (const auto& truth : inTickOrder(rec.truths)) {
@@ -105,9 +106,9 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
       if (d.empty()) {
         const plant::PlantState st = sim.state();
         const plant::PlantEnergy e = sim.energy();
-        const auto replayed = plant::plantSample(k, static_cast<double>(k) * s.tickPeriod(), st.q, st.qdot,
-                                                 tau.row(0).transpose(), e.kinetic, e.potential,
-                                                 {truth.input_actuator_tick, truth.torque_source});
+        const auto replayed = plant::plantSample(
+            k, static_cast<double>(k) * s.tickPeriod(), st.q, st.qdot, tau.row(0).transpose(), e.kinetic,
+            e.potential, {truth.input_actuator_tick, truth.torque_source}, sensor.measure(st.q));
         d = firstDifference(rec, truth, replayed, st);
       }
       ++result.commands;

@@ -128,6 +128,19 @@ inline std::map<long long, std::vector<double>> readCommands(const std::string& 
   return by_tick;
 }
 
+/// PLANT_POSITION q (what the sensor read) by tick, first copy of each.
+inline std::map<long long, std::vector<double>> readPositions(const std::string& log_path) {
+  lcm::LogFile log(log_path, "r");
+  std::map<long long, std::vector<double>> by_tick;
+  while (const lcm::LogEvent* ev = log.readNextEvent()) {
+    if (ev->channel != "PLANT_POSITION") continue;
+    lagrange::plant_position_t m;
+    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad PLANT_POSITION");
+    by_tick.emplace(m.header.tick, m.q);
+  }
+  return by_tick;
+}
+
 inline nlohmann::json readSummary(const std::string& dir) {
   std::ifstream in(dir + "/summary.json");
   if (!in) throw std::runtime_error("no summary.json in " + dir);
