@@ -74,6 +74,9 @@ struct Baseline {
   const char* report;  // what the run prints about its gains
 };
 
+// Test names and messages show the type, not the struct's bytes.
+void PrintTo(const Baseline& b, std::ostream* os) { *os << b.type; }
+
 class Baselines : public ::testing::TestWithParam<Baseline> {};
 
 TEST_P(Baselines, RunTheSameInLockstepAndInProcessMeetTheirMetricAndReplay) {
