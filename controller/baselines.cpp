@@ -6,6 +6,7 @@
 /// run knows the types.
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "controller/pd_plus_differenced.hpp"
 #include "controller/registry.hpp"
@@ -14,48 +15,37 @@
 namespace lagrange::controller {
 namespace {
 
-class PdPlusDifferencedController final : public Controller {
+// A core stepping on (t, q) alone -- the position-only baselines -- as a
+// Controller. The model and the reference live here; the core refers to them.
+template <class Core>
+class PositionOnly final : public Controller {
  public:
-  explicit PdPlusDifferencedController(const config::Scenario& s)
+  template <class... Gains>
+  PositionOnly(const config::Scenario& s, Gains&&... gains)
       : model_(s.robotModel()),
         reference_(s.reference),
-        core_(*model_, reference_, s.controller.params.at("kp"), s.controller.params.at("kd")) {}
-  Needs needs() const override { return {}; }  // positions only
+        core_(*model_, reference_, std::forward<Gains>(gains)...) {}
+  Needs needs() const override { return {}; }
   ControllerCommand step(const ControllerInputs& in) override { return core_.step(in.t, in.q); }
   void reset() override { core_.reset(); }
 
  private:
   const model::RobotModelPtr model_;
   const model::Reference reference_;
-  PdPlusDifferenced core_;
+  Core core_;
 };
 
 // PD+ with a differenced velocity claims nothing (docs/baselines.md): no gain
 // condition, and the report says its gains are not checked.
-const bool kRegistered = registerControllerKind(
-    {"pd_plus_differenced",
-     {{"kp", true, "stiffness Kp [N m / rad]"},
-      {"kd", true, "damping Kd on the differenced velocity [N m s / rad]"}},
-     [](const config::Scenario& s) { return std::make_unique<PdPlusDifferencedController>(s); },
-     {}});
-
-class SetPointController final : public Controller {
- public:
-  explicit SetPointController(const config::Scenario& s)
-      : model_(s.robotModel()),
-        reference_(s.reference),
-        core_(*model_, reference_,
-              {s.controller.params.at("kp"), s.controller.params.at("kd"), s.controller.params.at("a"),
-               s.controller.params.at("b")}) {}
-  Needs needs() const override { return {}; }  // positions only
-  ControllerCommand step(const ControllerInputs& in) override { return core_.step(in.t, in.q); }
-  void reset() override { core_.reset(); }
-
- private:
-  const model::RobotModelPtr model_;
-  const model::Reference reference_;
-  SetPoint core_;
-};
+const bool kPdPlusDifferencedRegistered =
+    registerControllerKind({"pd_plus_differenced",
+                            {{"kp", true, "stiffness Kp [N m / rad]"},
+                             {"kd", true, "damping Kd on the differenced velocity [N m s / rad]"}},
+                            [](const config::Scenario& s) {
+                              return std::make_unique<PositionOnly<PdPlusDifferenced>>(
+                                  s, s.controller.params.at("kp"), s.controller.params.at("kd"));
+                            },
+                            {}});
 
 // Kelly (1993) states no condition beyond positive gains: the report says so
 // instead of inventing one. The sampled-data check covers the paper's
@@ -75,7 +65,11 @@ const bool kSetPointRegistered =
                              {"kd", true, "damping Kd on the filtered rate theta [N m s / rad when b = a]"},
                              {"a", true, "filter pole a [1/s]"},
                              {"b", true, "filter gain b [1/s]"}},
-                            [](const config::Scenario& s) { return std::make_unique<SetPointController>(s); },
+                            [](const config::Scenario& s) {
+                              const auto& p = s.controller.params;
+                              return std::make_unique<PositionOnly<SetPoint>>(
+                                  s, Theorem1Gains{p.at("kp"), p.at("kd"), p.at("a"), p.at("b")});
+                            },
                             setPointReport,
                             /*set_point=*/true});
 
