@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "controller/nicosia_tomei.hpp"
 #include "controller/pd_plus_differenced.hpp"
 #include "controller/registry.hpp"
 #include "controller/set_point.hpp"
@@ -72,6 +73,31 @@ const bool kSetPointRegistered =
                             },
                             setPointReport,
                             /*set_point=*/true});
+
+// Nicosia and Tomei's conditions bound the gains by the model's and the
+// reference's constants and hold in a region around the reference: not
+// evaluated here, and the report says so.
+GainReport nicosiaTomeiReport(const config::Scenario&, bool) {
+  GainReport r;
+  r.unchecked =
+      "nicosia_tomei: Nicosia and Tomei (IEEE TAC 1990) prove local tracking, for gains large enough in "
+      "terms of the model's and the reference's bounds; those conditions are not evaluated here, and the "
+      "sampled implementation is not assessed";
+  return r;
+}
+
+const bool kNicosiaTomeiRegistered =
+    registerControllerKind({"nicosia_tomei",
+                            {{"kp", true, "stiffness Kp [N m / rad]"},
+                             {"kd", true, "damping Kd on the estimated velocity [N m s / rad]"},
+                             {"lp", true, "observer gain Lp on q - qh in zh' [1/s^2]"},
+                             {"ld", true, "observer gain Ld on q - qh in qh' [1/s]"}},
+                            [](const config::Scenario& s) {
+                              const auto& p = s.controller.params;
+                              return std::make_unique<PositionOnly<NicosiaTomei>>(
+                                  s, NicosiaTomeiGains{p.at("kp"), p.at("kd"), p.at("lp"), p.at("ld")});
+                            },
+                            nicosiaTomeiReport});
 
 }  // namespace
 }  // namespace lagrange::controller

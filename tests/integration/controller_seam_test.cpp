@@ -51,7 +51,7 @@ TEST(ControllerSeam, TheStockProgramsDoNotKnowTheTestController) {
   const RunResult r = lagrange("check-gains " + quote(writeConfig()));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("unknown controller type 'test_pd'; expected: theorem1, cascaded, flexible, "
-                          "pd_plus_differenced or set_point"),
+                          "nicosia_tomei, pd_plus_differenced or set_point"),
             std::string::npos)
       << r.output;
 }
