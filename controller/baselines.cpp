@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "controller/berghuis_nijmeijer.hpp"
 #include "controller/nicosia_tomei.hpp"
 #include "controller/pd_plus_differenced.hpp"
 #include "controller/registry.hpp"
@@ -98,6 +99,29 @@ const bool kNicosiaTomeiRegistered =
                                   s, NicosiaTomeiGains{p.at("kp"), p.at("kd"), p.at("lp"), p.at("ld")});
                             },
                             nicosiaTomeiReport});
+
+GainReport berghuisNijmeijerReport(const config::Scenario&, bool) {
+  GainReport r;
+  r.unchecked =
+      "berghuis_nijmeijer: Berghuis and Nijmeijer (IEEE TRA 1993) prove semiglobal exponential tracking, "
+      "the region of attraction growing with the gains; their conditions are not evaluated here, and the "
+      "sampled implementation is not assessed";
+  return r;
+}
+
+const bool kBerghuisNijmeijerRegistered = registerControllerKind(
+    {"berghuis_nijmeijer",
+     {{"kp", true, "stiffness Kp [N m / rad]"},
+      {"kd", true, "damping Kd on q0' - qr' [N m s / rad]"},
+      {"lambda", true, "Lambda in qr' = q_d' - Lambda (qh - q_d) [1/s]"},
+      {"lp", true, "observer gain Lp on q - qh in zh' [1/s^2]"},
+      {"ld", true, "observer gain Ld on q - qh in qh' [1/s]"}},
+     [](const config::Scenario& s) {
+       const auto& p = s.controller.params;
+       return std::make_unique<PositionOnly<BerghuisNijmeijer>>(
+           s, BerghuisNijmeijerGains{p.at("kp"), p.at("kd"), p.at("lambda"), p.at("lp"), p.at("ld")});
+     },
+     berghuisNijmeijerReport});
 
 }  // namespace
 }  // namespace lagrange::controller

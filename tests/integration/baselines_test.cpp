@@ -97,6 +97,35 @@ metrics:
   convergence_deadline: 2.0
 )";
 
+// Berghuis and Nijmeijer's controller-observer from 0.3 rad off the sinusoid.
+constexpr const char* kBerghuisNijmeijer = R"(name: berghuis_nijmeijer_pelican
+duration: 3.0
+mode: lockstep
+robot:
+  preset: pelican
+initial_state:
+  q: [0.4, -0.1]
+  qdot: [0.0, 0.0]
+reference:
+  type: sine
+  offset: [0.1, 0.2]
+  amplitude: [0.5, 0.3]
+  frequency: [2.0, 3.0]
+plant:
+  physics_step: 1.0e-4
+  publish_rate: 1000
+controller:
+  type: berghuis_nijmeijer
+  kp: [150.0, 10.0]
+  kd: [15.0, 1.0]
+  lambda: [10.0, 10.0]
+  lp: [2500.0, 2500.0]
+  ld: [100.0, 100.0]
+metrics:
+  tolerance: 1.0e-3
+  convergence_deadline: 2.0
+)";
+
 struct Baseline {
   const char* type;
   const char* config;
@@ -138,7 +167,9 @@ INSTANTIATE_TEST_SUITE_P(
         Baseline{"pd_plus_differenced", kPdPlusDifferenced,
                  "no stability condition is known for controller type 'pd_plus_differenced'"},
         Baseline{"set_point", kSetPoint, "Kelly (IFAC 1993) proves global asymptotic regulation"},
-        Baseline{"nicosia_tomei", kNicosiaTomei, "Nicosia and Tomei (IEEE TAC 1990) prove local tracking"}),
+        Baseline{"nicosia_tomei", kNicosiaTomei, "Nicosia and Tomei (IEEE TAC 1990) prove local tracking"},
+        Baseline{"berghuis_nijmeijer", kBerghuisNijmeijer,
+                 "Berghuis and Nijmeijer (IEEE TRA 1993) prove semiglobal exponential tracking"}),
     [](const ::testing::TestParamInfo<Baseline>& param) { return std::string(param.param.type); });
 
 }  // namespace

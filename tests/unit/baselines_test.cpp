@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "controller/berghuis_nijmeijer.hpp"
 #include "controller/nicosia_tomei.hpp"
 #include "controller/pd_plus_differenced.hpp"
 #include "controller/set_point.hpp"
@@ -192,41 +193,32 @@ TEST(SetPoint, RegulatesAndFollowsItsContinuousLoop) {
 const NicosiaTomeiGains kObserverGains{kKp, kKd, Eigen::Vector2d(2500.0, 2500.0),
                                        Eigen::Vector2d(100.0, 100.0)};
 
-// The continuous Nicosia-Tomei loop, x = [q, q', qh, zh], and the sampled one
-// (the core at period T, the arm by RK4 under the held torque): the largest
-// |q gap| over 3 s from 0.1 rad off the reference at rest, and the final
-// tracking error of each.
+// An observer-based loop, x = [q, q', qh, zh], continuous (RK4 of `f`) and
+// sampled (the core at period T, the arm by RK4 under the held torque): the
+// largest |q gap| over 3 s from `offset` off the reference at rest, and the
+// final tracking error of each.
 struct ObserverRun {
   double gap = 0.0, sampled_final = 0.0, continuous_final = 0.0;
 };
-ObserverRun observerRun(double period) {
+template <class Core, class Gains, class F>
+ObserverRun observerRun(double period, const Gains& gains, const Eigen::Vector2d& offset, const F& f) {
   const model::PlanarChain arm(model::pelicanParams());
   const model::Reference ref = sine();
-  const NicosiaTomeiGains& g = kObserverGains;
-  const Eigen::Vector2d q0 = ref.evaluate(0.0, 0).q() + Eigen::Vector2d(0.1, -0.1);
-  auto f = [&](double t, const Eigen::VectorXd& s) {
-    const Eigen::VectorXd q = s.head(2), v = s.segment(2, 2), qh = s.segment(4, 2), zh = s.tail(2);
-    const Eigen::VectorXd qh_dot = zh + g.ld.cwiseProduct(q - qh);
-    const model::ReferenceSample r = ref.evaluate(t, 2);
-    const Eigen::VectorXd u = arm.inertia(q) * r.qdd() + arm.coriolis(q, qh_dot) * r.qd() + arm.gravity(q) -
-                              g.kp.cwiseProduct(q - r.q()) - g.kd.cwiseProduct(qh_dot - r.qd());
-    Eigen::VectorXd d(8);
-    d << v, arm.acceleration(q, v, u), qh_dot, arm.acceleration(q, qh_dot, u) + g.lp.cwiseProduct(q - qh);
-    return d;
-  };
+  const Eigen::Vector2d q0 = ref.evaluate(0.0, 0).q() + offset;
   Eigen::VectorXd x(8);
   x << q0, Eigen::Vector2d::Zero(), q0, Eigen::Vector2d::Zero();
-  NicosiaTomei ctl(arm, ref, g);
+  Core ctl(arm, ref, gains);
   Eigen::VectorXd y(4);
   y << q0, Eigen::Vector2d::Zero();
   const double h = 1e-4;
   const int substeps = static_cast<int>(std::lround(period / h));
   ObserverRun run;
   double t = 0.0;
+  auto continuous = [&](double tau, const Eigen::VectorXd& state) { return f(arm, ref, tau, state); };
   for (int k = 0; k < static_cast<int>(std::lround(3.0 / period)); ++k) {
     const Eigen::VectorXd u = ctl.step(t, y.head(2)).u;
     for (int i = 0; i < substeps; ++i, t += h) {
-      x = testing::rk4Step(f, t, x, h);
+      x = testing::rk4Step(continuous, t, x, h);
       y = testing::armStep(arm, y, u, h);
     }
     run.gap = std::max(run.gap, (x.head(2) - y.head(2)).cwiseAbs().maxCoeff());
@@ -237,11 +229,29 @@ ObserverRun observerRun(double period) {
   return run;
 }
 
+// Nicosia and Tomei's continuous loop.
+Eigen::VectorXd nicosiaTomeiLoop(const model::RobotModel& arm, const model::Reference& ref, double t,
+                                 const Eigen::VectorXd& s) {
+  const NicosiaTomeiGains& g = kObserverGains;
+  const Eigen::VectorXd q = s.head(2), v = s.segment(2, 2), qh = s.segment(4, 2), zh = s.tail(2);
+  const Eigen::VectorXd qh_dot = zh + g.ld.cwiseProduct(q - qh);
+  const model::ReferenceSample r = ref.evaluate(t, 2);
+  const Eigen::VectorXd u = arm.inertia(q) * r.qdd() + arm.coriolis(q, qh_dot) * r.qd() + arm.gravity(q) -
+                            g.kp.cwiseProduct(q - r.q()) - g.kd.cwiseProduct(qh_dot - r.qd());
+  Eigen::VectorXd d(8);
+  d << v, arm.acceleration(q, v, u), qh_dot, arm.acceleration(q, qh_dot, u) + g.lp.cwiseProduct(q - qh);
+  return d;
+}
+
+ObserverRun nicosiaTomeiRun(double period) {
+  return observerRun<NicosiaTomei>(period, kObserverGains, Eigen::Vector2d(0.1, -0.1), nicosiaTomeiLoop);
+}
+
 // Local tracking, as the paper claims: from near the reference both loops
 // converge, and the sampled one follows the continuous one, closer with a
 // shorter period.
 TEST(NicosiaTomei, TracksLocallyAndFollowsItsContinuousLoop) {
-  const ObserverRun at1ms = observerRun(1e-3), at_quarter = observerRun(2.5e-4);
+  const ObserverRun at1ms = nicosiaTomeiRun(1e-3), at_quarter = nicosiaTomeiRun(2.5e-4);
   std::printf(
       "nicosia_tomei vs its continuous loop, 3 s: max |q gap| %.3g rad at 1 ms, %.3g at 0.25 ms; "
       "final |q~| %.3g (continuous), %.3g (1 ms), %.3g (0.25 ms)\n",
@@ -263,6 +273,60 @@ TEST(NicosiaTomei, TheFirstCommandUsesTheStartingObserver) {
   EXPECT_LT(first.theta.norm(), 1e-15);
   EXPECT_LT((first.u - pdPlus(arm, ref, 0.0, q0, Eigen::Vector2d::Zero())).norm(), 1e-9);
   EXPECT_THROW(ctl.step(0.0, q0), std::invalid_argument) << "time must advance";
+}
+
+const BerghuisNijmeijerGains kBnGains{kKp, kKd, Eigen::Vector2d(10.0, 10.0), Eigen::Vector2d(2500.0, 2500.0),
+                                      Eigen::Vector2d(100.0, 100.0)};
+
+// Berghuis and Nijmeijer's continuous loop.
+Eigen::VectorXd berghuisNijmeijerLoop(const model::RobotModel& arm, const model::Reference& ref, double t,
+                                      const Eigen::VectorXd& s) {
+  const BerghuisNijmeijerGains& g = kBnGains;
+  const Eigen::VectorXd q = s.head(2), v = s.segment(2, 2), qh = s.segment(4, 2), zh = s.tail(2);
+  const model::ReferenceSample r = ref.evaluate(t, 2);
+  const Eigen::VectorXd e = q - qh, qh_dot = zh + g.ld.cwiseProduct(e);
+  const Eigen::VectorXd qr_dot = r.qd() - g.lambda.cwiseProduct(qh - r.q());
+  const Eigen::VectorXd qr_ddot = r.qdd() - g.lambda.cwiseProduct(qh_dot - r.qd());
+  const Eigen::VectorXd q0_dot = qh_dot - g.lambda.cwiseProduct(qh - q);
+  const Eigen::VectorXd u = arm.inertia(q) * qr_ddot + arm.coriolis(q, q0_dot) * qr_dot + arm.gravity(q) -
+                            g.kd.cwiseProduct(q0_dot - qr_dot) - g.kp.cwiseProduct(q - r.q());
+  Eigen::VectorXd d(8);
+  d << v, arm.acceleration(q, v, u), qh_dot, qr_ddot + g.lp.cwiseProduct(e);
+  return d;
+}
+
+// Semiglobal tracking, as the paper claims: from 0.3 rad off, both loops
+// converge, the sampled one following the continuous one to first order in T.
+TEST(BerghuisNijmeijer, TracksAndFollowsItsContinuousLoop) {
+  auto run = [](double period) {
+    return observerRun<BerghuisNijmeijer>(period, kBnGains, Eigen::Vector2d(0.3, -0.3),
+                                          berghuisNijmeijerLoop);
+  };
+  const ObserverRun at1ms = run(1e-3), at_quarter = run(2.5e-4);
+  std::printf(
+      "berghuis_nijmeijer vs its continuous loop, 3 s: max |q gap| %.3g rad at 1 ms, %.3g at 0.25 ms; "
+      "final |q~| %.3g (continuous), %.3g (1 ms), %.3g (0.25 ms)\n",
+      at1ms.gap, at_quarter.gap, at1ms.continuous_final, at1ms.sampled_final, at_quarter.sampled_final);
+  EXPECT_LT(at1ms.continuous_final, 1e-4);
+  EXPECT_LT(at1ms.sampled_final, 1e-4);
+  EXPECT_LT(at1ms.gap, 5e-3);
+  EXPECT_LT(at_quarter.gap, 0.4 * at1ms.gap);
+}
+
+TEST(BerghuisNijmeijer, TheFirstCommandUsesTheStartingObserver) {
+  const model::PlanarChain arm(model::pelicanParams());
+  const model::Reference ref = sine();
+  BerghuisNijmeijer ctl(arm, ref, kBnGains);
+  const Eigen::Vector2d q0(0.4, -0.3);
+  const Theorem1Output first = ctl.step(0.0, q0);
+  // qh = q0 and zh = 0: qh' = 0, so q0' = 0 and qr' = q_d' - Lambda (q0 - q_d).
+  const model::ReferenceSample r = ref.evaluate(0.0, 2);
+  const Eigen::VectorXd qr_dot = r.qd() - kBnGains.lambda.cwiseProduct(q0 - r.q());
+  const Eigen::VectorXd qr_ddot = r.qdd() + kBnGains.lambda.cwiseProduct(r.qd());
+  const Eigen::VectorXd expected = arm.inertia(q0) * qr_ddot + arm.gravity(q0) +
+                                   kBnGains.kd.cwiseProduct(qr_dot) - kBnGains.kp.cwiseProduct(q0 - r.q());
+  EXPECT_LT(first.theta.norm(), 1e-15);
+  EXPECT_LT((first.u - expected).norm(), 1e-9);
 }
 
 }  // namespace
