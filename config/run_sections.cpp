@@ -1,6 +1,6 @@
 /// @file
 /// How the run is judged and carried out: metrics, lockstep, realtime,
-/// supervision, faults (config/scenario_sections.hpp).
+/// supervision, faults, sensors (config/scenario_sections.hpp).
 
 #include <cmath>
 #include <limits>
@@ -102,8 +102,6 @@ double probability(MapReader& map, const char* key) {
 }
 }  // namespace
 
-// faults: seeded fault injection per channel (sending side) and per
-// receiving process.
 // sensors: the joint-angle sensor between the plant and PLANT_POSITION.
 void readSensorsSection(MapReader& root, Scenario& s) {
   if (!root.has("sensors")) return;
@@ -140,6 +138,8 @@ void readSensorsSection(MapReader& root, Scenario& s) {
   s.sensors = c;
 }
 
+// faults: seeded fault injection per channel (sending side) and per
+// receiving process.
 void readFaultsSection(MapReader& root, Scenario& s) {
   if (!root.has("faults")) return;
   MapReader f = root.map("faults");

@@ -7,8 +7,10 @@
 #    bar, lcm-spy): sanitized code runs several times slower, which they
 #    would see as a slow machine, not as a bug;
 #  - the per-config sweeps and the long default-run comparisons (10 s runs of
-#    every shipped scenario): the same code paths as the tests kept, at a
-#    cost that would push the suite past 20 minutes.
+#    every shipped scenario), the URDF arm's gain checks for m = 1..4 and the
+#    Panda under faults: the same code paths as the tests kept (the Panda's
+#    golden log, its restarted controller, the other faults runs), at a cost
+#    that would push the suite past 20 minutes.
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
@@ -20,6 +22,6 @@ cmake --build build-asan -j2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-timing='Progress\.|Spy\.|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops'
-sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.'
+timing='Progress\.|Spy\.|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay'
+sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*panda'
 exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -E "$timing|$sweeps" "$@"
