@@ -4,8 +4,10 @@
 /// outside the paper: each programme that reads scenarios links this object
 /// (controller/CMakeLists.txt, lagrange_baselines), so every process of a
 /// run knows the types.
+#include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "controller/berghuis_nijmeijer.hpp"
@@ -37,6 +39,16 @@ class PositionOnly final : public Controller {
   Core core_;
 };
 
+// The gain report of a baseline whose paper's claim the tool states but does
+// not evaluate (GainReport::unchecked carries the sentence).
+std::function<GainReport(const config::Scenario&, bool)> claimOnly(std::string claim) {
+  return [claim = std::move(claim)](const config::Scenario&, bool) {
+    GainReport r;
+    r.unchecked = claim;
+    return r;
+  };
+}
+
 // PD+ with a differenced velocity claims nothing (docs/baselines.md): no gain
 // condition, and the report says its gains are not checked.
 const bool kPdPlusDifferencedRegistered =
@@ -52,15 +64,6 @@ const bool kPdPlusDifferencedRegistered =
 // Kelly (1993) states no condition beyond positive gains: the report says so
 // instead of inventing one. The sampled-data check covers the paper's
 // controllers only.
-GainReport setPointReport(const config::Scenario&, bool) {
-  GainReport r;
-  r.unchecked =
-      "set_point: Kelly (IFAC 1993) proves global asymptotic regulation to a constant q_d for every positive "
-      "kp, kd, a, b with exact gravity compensation, so there is no further condition to check; the sampled "
-      "implementation is not assessed";
-  return r;
-}
-
 const bool kSetPointRegistered =
     registerControllerKind({"set_point",
                             {{"kp", true, "stiffness Kp [N m / rad]"},
@@ -72,42 +75,30 @@ const bool kSetPointRegistered =
                               return std::make_unique<PositionOnly<SetPoint>>(
                                   s, Theorem1Gains{p.at("kp"), p.at("kd"), p.at("a"), p.at("b")});
                             },
-                            setPointReport,
+                            claimOnly("set_point: Kelly (IFAC 1993) proves global asymptotic regulation to a "
+                                      "constant q_d for every positive kp, kd, a, b with exact gravity "
+                                      "compensation, so there is no further condition to check; the sampled "
+                                      "implementation is not assessed"),
                             /*set_point=*/true});
 
 // Nicosia and Tomei's conditions bound the gains by the model's and the
 // reference's constants and hold in a region around the reference: not
 // evaluated here, and the report says so.
-GainReport nicosiaTomeiReport(const config::Scenario&, bool) {
-  GainReport r;
-  r.unchecked =
-      "nicosia_tomei: Nicosia and Tomei (IEEE TAC 1990) prove local tracking, for gains large enough in "
-      "terms of the model's and the reference's bounds; those conditions are not evaluated here, and the "
-      "sampled implementation is not assessed";
-  return r;
-}
-
-const bool kNicosiaTomeiRegistered =
-    registerControllerKind({"nicosia_tomei",
-                            {{"kp", true, "stiffness Kp [N m / rad]"},
-                             {"kd", true, "damping Kd on the estimated velocity [N m s / rad]"},
-                             {"lp", true, "observer gain Lp on q - qh in zh' [1/s^2]"},
-                             {"ld", true, "observer gain Ld on q - qh in qh' [1/s]"}},
-                            [](const config::Scenario& s) {
-                              const auto& p = s.controller.params;
-                              return std::make_unique<PositionOnly<NicosiaTomei>>(
-                                  s, NicosiaTomeiGains{p.at("kp"), p.at("kd"), p.at("lp"), p.at("ld")});
-                            },
-                            nicosiaTomeiReport});
-
-GainReport berghuisNijmeijerReport(const config::Scenario&, bool) {
-  GainReport r;
-  r.unchecked =
-      "berghuis_nijmeijer: Berghuis and Nijmeijer (IEEE TRA 1993) prove semiglobal exponential tracking, "
-      "the region of attraction growing with the gains; their conditions are not evaluated here, and the "
-      "sampled implementation is not assessed";
-  return r;
-}
+const bool kNicosiaTomeiRegistered = registerControllerKind(
+    {"nicosia_tomei",
+     {{"kp", true, "stiffness Kp [N m / rad]"},
+      {"kd", true, "damping Kd on the estimated velocity [N m s / rad]"},
+      {"lp", true, "observer gain Lp on q - qh in zh' [1/s^2]"},
+      {"ld", true, "observer gain Ld on q - qh in qh' [1/s]"}},
+     [](const config::Scenario& s) {
+       const auto& p = s.controller.params;
+       return std::make_unique<PositionOnly<NicosiaTomei>>(
+           s, NicosiaTomeiGains{p.at("kp"), p.at("kd"), p.at("lp"), p.at("ld")});
+     },
+     claimOnly(
+         "nicosia_tomei: Nicosia and Tomei (IEEE TAC 1990) prove local tracking, for gains large enough in "
+         "terms of the model's and the reference's bounds; those conditions are not evaluated here, and the "
+         "sampled implementation is not assessed")});
 
 const bool kBerghuisNijmeijerRegistered = registerControllerKind(
     {"berghuis_nijmeijer",
@@ -121,7 +112,10 @@ const bool kBerghuisNijmeijerRegistered = registerControllerKind(
        return std::make_unique<PositionOnly<BerghuisNijmeijer>>(
            s, BerghuisNijmeijerGains{p.at("kp"), p.at("kd"), p.at("lambda"), p.at("lp"), p.at("ld")});
      },
-     berghuisNijmeijerReport});
+     claimOnly(
+         "berghuis_nijmeijer: Berghuis and Nijmeijer (IEEE TRA 1993) prove semiglobal exponential tracking, "
+         "the region of attraction growing with the gains; their conditions are not evaluated here, and the "
+         "sampled implementation is not assessed")});
 
 }  // namespace
 }  // namespace lagrange::controller
