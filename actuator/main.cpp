@@ -30,8 +30,10 @@ int DoMain(int argc, char** argv) {
             };
         if (s.mode == config::Mode::kRealtime) {
           // Half a period after the plant: the controller has answered.
-          return runtime::serveRealtime(node, transport::kControlCommand, transport::kActuatorState, s.dof(),
-                                        {s.tickPeriod(), 0.5, s.realtime.max_input_age}, compute);
+          return runtime::serveRealtime<lagrange::control_command_t, lagrange::actuator_state_t>(
+              node, transport::kControlCommand, transport::kActuatorState, s.dof(),
+              {s.tickPeriod(), 0.5, s.realtime.max_input_age},
+              [&](const lagrange::control_command_t& m) { return std::optional(compute(m)); });
         }
         runtime::Progress progress;
         const auto last_state =

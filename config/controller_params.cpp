@@ -15,22 +15,23 @@ std::map<std::string, std::vector<ControllerParam>>& registered() {
   return types;
 }
 
-std::map<std::string, bool>& setPoint() {
-  static std::map<std::string, bool> types;
+std::map<std::string, ControllerTraits>& traitsByType() {
+  static std::map<std::string, ControllerTraits> types;
   return types;
 }
 }  // namespace
 
-void registerControllerParams(const std::string& type, std::vector<ControllerParam> params, bool set_point) {
+void registerControllerParams(const std::string& type, std::vector<ControllerParam> params,
+                              ControllerTraits traits) {
   for (const auto& t : controllerTypes())
     if (t == type) throw std::logic_error("controller type '" + type + "' is registered twice");
   registered()[type] = std::move(params);
-  setPoint()[type] = set_point;
+  traitsByType()[type] = traits;
 }
 
-bool isSetPointController(const std::string& type) {
-  const auto it = setPoint().find(type);
-  return it != setPoint().end() && it->second;
+ControllerTraits controllerTraits(const std::string& type) {
+  const auto it = traitsByType().find(type);
+  return it == traitsByType().end() ? ControllerTraits{} : it->second;
 }
 
 const std::vector<ControllerParam>* registeredControllerParams(const std::string& type) {

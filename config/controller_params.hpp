@@ -19,16 +19,24 @@ struct ControllerParam {
   std::string doc;        ///< what it is, with its unit (error messages, docs)
 };
 
-/// Makes `type` a valid controller.type with these keys (the actuator order
-/// must be 0: the command is the joint torque). With `set_point`, the
-/// controller regulates to a constant q_d, and the reader refuses any other
-/// reference. Called by controller::registerControllerKind. @throws
-/// std::logic_error if `type` is already taken.
-void registerControllerParams(const std::string& type, std::vector<ControllerParam> params,
-                              bool set_point = false);
+/// What the reader demands of a scenario for a registered type.
+struct ControllerTraits {
+  /// It regulates to a constant q_d: any other reference is refused.
+  bool set_point = false;
+  /// It reads measured joint rates: a scenario without a velocity sensor
+  /// (sensors.velocity) is refused.
+  bool measures_velocity = false;
+};
 
-/// Whether a registered type regulates to a constant q_d only.
-bool isSetPointController(const std::string& type);
+/// Makes `type` a valid controller.type with these keys (the actuator order
+/// must be 0: the command is the joint torque). Called by
+/// controller::registerControllerKind. @throws std::logic_error if `type` is
+/// already taken.
+void registerControllerParams(const std::string& type, std::vector<ControllerParam> params,
+                              ControllerTraits traits = {});
+
+/// The traits of a registered type (defaults for the paper's and unknown ones).
+ControllerTraits controllerTraits(const std::string& type);
 
 /// The keys of a registered type; nullptr for the paper's types and unknown ones.
 const std::vector<ControllerParam>* registeredControllerParams(const std::string& type);

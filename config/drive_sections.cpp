@@ -65,7 +65,13 @@ void readRegisteredController(MapReader& ctl, Scenario& s, const std::vector<Con
   if (s.actuator.order != 0)
     ctl.fail("type", "a registered controller commands the joint torque; expected actuator.order 0, got " +
                          std::to_string(s.actuator.order));
-  if (isSetPointController(s.controller.type)) {
+  const ControllerTraits traits = controllerTraits(s.controller.type);
+  if (traits.measures_velocity && !s.velocitySensor())
+    ctl.fail("type", s.controller.type +
+                         " feeds back measured joint rates, and this scenario declares no velocity sensor; "
+                         "expected a sensors.velocity section (e.g. sensors: {velocity: {noise_sigma: 0}}), "
+                         "or a position-only controller");
+  if (traits.set_point) {
     const bool constant =
         s.reference.type == model::ReferenceType::kSine && (s.reference.amplitude.array() == 0.0).all();
     if (!constant)

@@ -102,7 +102,35 @@ double probability(MapReader& map, const char* key) {
 }
 }  // namespace
 
-// sensors: the joint-angle sensor between the plant and PLANT_POSITION.
+namespace {
+// One sensors.<quantity> map: counts_per_revolution (angles only), noise_sigma, delay.
+JointSensorConfig readJointSensor(MapReader& p, int n, bool angles, const keys::Keys& known) {
+  JointSensorConfig c;
+  c.counts_per_revolution = Eigen::VectorXd::Zero(n);
+  c.noise_sigma = Eigen::VectorXd::Zero(n);
+  if (angles && p.has("counts_per_revolution")) {
+    c.counts_per_revolution = p.vector("counts_per_revolution", n, true, false);
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (c.counts_per_revolution(i) < 0.0 ||
+          c.counts_per_revolution(i) != std::floor(c.counts_per_revolution(i)))
+        p.fail("counts_per_revolution",
+               "expected whole numbers >= 0 (0: not quantised), got " + shortNumber(c.counts_per_revolution(i)));
+  }
+  if (p.has("noise_sigma")) {
+    c.noise_sigma = p.vector("noise_sigma", n, true, false);
+    if ((c.noise_sigma.array() < 0.0).any())
+      p.fail("noise_sigma", std::string("expected standard deviations >= 0 [") + (angles ? "rad" : "rad/s") +
+                                "], got " + shortNumber(c.noise_sigma.minCoeff()));
+  }
+  c.delay = p.integer("delay", 0);
+  if (c.delay < 0) p.fail("delay", "expected a whole number of samples >= 0, got " + std::to_string(c.delay));
+  p.finish(known);
+  return c;
+}
+}  // namespace
+
+// sensors: the joint-angle sensor between the plant and PLANT_POSITION, the
+// velocity sensor (PLANT_RATE) and the motor-angle sensor of flexible joints.
 void readSensorsSection(MapReader& root, Scenario& s) {
   if (!root.has("sensors")) return;
   MapReader r = root.map("sensors");
@@ -111,28 +139,21 @@ void readSensorsSection(MapReader& root, Scenario& s) {
   if (seed < 0) r.fail("seed", "expected a whole number >= 0");
   c.seed = static_cast<uint64_t>(seed);
   const int n = s.dof();
-  c.counts_per_revolution = Eigen::VectorXd::Zero(n);
-  c.noise_sigma = Eigen::VectorXd::Zero(n);
+  c.position.counts_per_revolution = Eigen::VectorXd::Zero(n);
+  c.position.noise_sigma = Eigen::VectorXd::Zero(n);
   if (r.has("position")) {
     MapReader p = r.map("position");
-    if (p.has("counts_per_revolution")) {
-      c.counts_per_revolution = p.vector("counts_per_revolution", n, true, false);
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (c.counts_per_revolution(i) < 0.0 ||
-            c.counts_per_revolution(i) != std::floor(c.counts_per_revolution(i)))
-          p.fail("counts_per_revolution", "expected whole numbers >= 0 (0: not quantised), got " +
-                                              shortNumber(c.counts_per_revolution(i)));
-    }
-    if (p.has("noise_sigma")) {
-      c.noise_sigma = p.vector("noise_sigma", n, true, false);
-      if ((c.noise_sigma.array() < 0.0).any())
-        p.fail("noise_sigma",
-               "expected standard deviations >= 0 [rad], got " + shortNumber(c.noise_sigma.minCoeff()));
-    }
-    c.delay = p.integer("delay", 0);
-    if (c.delay < 0)
-      p.fail("delay", "expected a whole number of samples >= 0, got " + std::to_string(c.delay));
-    p.finish(keys::kPositionSensor);
+    c.position = readJointSensor(p, n, true, keys::kPositionSensor);
+  }
+  if (r.has("velocity")) {
+    MapReader v = r.map("velocity");
+    c.velocity = readJointSensor(v, n, false, keys::kVelocitySensor);
+  }
+  if (r.has("motor")) {
+    if (!s.flexible)
+      r.fail("motor", "a motor-angle sensor needs flexible joints (robot.flexible); this arm is rigid");
+    MapReader m = r.map("motor");
+    c.motor = readJointSensor(m, n, true, keys::kPositionSensor);
   }
   r.finish(keys::kSensors);
   s.sensors = c;

@@ -75,6 +75,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
 
   using namespace sections;
   readRobotSection(root, s, std::filesystem::path(source).parent_path().string());
+  readSensorsSection(root, s);  // before the controller, which may need a velocity sensor
   readInitialStateSection(root, s);
   readReferenceSection(root, s);
   readPlantSection(root, s);
@@ -85,7 +86,6 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readRealtimeSection(root, s);
   readSupervisionSection(root, s);
   readFaultsSection(root, s);
-  readSensorsSection(root, s);
   root.finish(keys::kTop);
   return s;
 }

@@ -143,13 +143,21 @@ struct FaultsConfig {
   std::map<std::string, double> receiver_drop;
 };
 
-/// The sensors in the plant's measurement path (sensors.*; plant/position_sensor.hpp):
-/// PLANT_POSITION carries their readings, PLANT_TRUTH the true angles.
-struct SensorsConfig {
-  uint64_t seed = 1;                      ///< the noise's draws
-  Eigen::VectorXd counts_per_revolution;  ///< per joint; 0: not quantised
-  Eigen::VectorXd noise_sigma;            ///< per joint [rad]; 0: no noise
+/// One sensor per joint of one quantity (plant/joint_sensor.hpp).
+struct JointSensorConfig {
+  Eigen::VectorXd counts_per_revolution;  ///< per joint; 0: not quantised (angles only)
+  Eigen::VectorXd noise_sigma;            ///< per joint [rad, or rad/s for rates]; 0: no noise
   int delay = 0;                          ///< whole samples
+};
+
+/// The sensors in the plant's measurement path (sensors.*): PLANT_POSITION
+/// carries the joint-angle readings, PLANT_RATE the velocity sensor's (only
+/// when declared), PLANT_MOTOR the motor angles; PLANT_TRUTH the true values.
+struct SensorsConfig {
+  uint64_t seed = 1;         ///< the noise's draws (each sensor its own stream)
+  JointSensorConfig position;  ///< joint angles
+  std::optional<JointSensorConfig> velocity;  ///< a tachometer per joint; absent: no PLANT_RATE
+  std::optional<JointSensorConfig> motor;     ///< motor angles of flexible joints; absent: exact
 };
 
 /// What the launcher does when a process dies (supervision.*).
@@ -193,6 +201,7 @@ struct Scenario {
   FaultsConfig faults;
   std::optional<SensorsConfig> sensors;  ///< absent: PLANT_POSITION carries the true angles
 
+  bool velocitySensor() const { return sensors && sensors->velocity; }
   int dof() const { return urdf_model ? urdf_model->dof() : static_cast<int>(robot.links.size()); }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }
   int substepsPerTick() const;

@@ -47,8 +47,10 @@ std::vector<DocumentedKey> documentedKeys() {
   add(out, "faults.", kFaults, {"channels", "receivers"});
   addInside(out, "faults.channels.NAME", kChannelFaults);
   out.push_back({"faults.receivers.PROCESS.drop", ""});
-  add(out, "sensors.", kSensors, {"position"});
+  add(out, "sensors.", kSensors, {"position", "velocity", "motor"});
   add(out, "sensors.position.", kPositionSensor);
+  add(out, "sensors.velocity.", kVelocitySensor);
+  add(out, "sensors.motor.", kPositionSensor);
   return out;
 }
 

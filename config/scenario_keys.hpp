@@ -33,8 +33,9 @@ inline const Keys kStage = {"kp", "kd", "a", "b", "initial_filter_state", "initi
 inline const Keys kFaults = {"seed", "channels", "receivers"};
 inline const Keys kChannelFaults = {"drop", "duplicate", "reorder", "corrupt", "delay", "delay_jitter"};
 inline const Keys kReceiverFaults = {"drop"};
-inline const Keys kSensors = {"seed", "position"};
-inline const Keys kPositionSensor = {"counts_per_revolution", "noise_sigma", "delay"};
+inline const Keys kSensors = {"seed", "position", "velocity", "motor"};
+inline const Keys kPositionSensor = {"counts_per_revolution", "noise_sigma", "delay"};  // also sensors.motor
+inline const Keys kVelocitySensor = {"noise_sigma", "delay"};
 
 /// A key as docs/configuration.md's table names it: `row` is the dotted key
 /// of its row (list items as [i], map entries by a capital placeholder such

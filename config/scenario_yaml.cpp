@@ -173,11 +173,16 @@ std::string toYaml(const Scenario& s) {
   if (s.sensors) {
     out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "seed" << YAML::Value << s.sensors->seed;
-    out << YAML::Key << "position" << YAML::Value << YAML::BeginMap;
-    emitVector(out, "counts_per_revolution", s.sensors->counts_per_revolution);
-    emitVector(out, "noise_sigma", s.sensors->noise_sigma);
-    out << YAML::Key << "delay" << YAML::Value << s.sensors->delay;
-    out << YAML::EndMap << YAML::EndMap;
+    const auto sensor = [&](const char* name, const JointSensorConfig& c, bool angles) {
+      out << YAML::Key << name << YAML::Value << YAML::BeginMap;
+      if (angles) emitVector(out, "counts_per_revolution", c.counts_per_revolution);
+      emitVector(out, "noise_sigma", c.noise_sigma);
+      out << YAML::Key << "delay" << YAML::Value << c.delay << YAML::EndMap;
+    };
+    sensor("position", s.sensors->position, true);
+    if (s.sensors->velocity) sensor("velocity", *s.sensors->velocity, false);
+    if (s.sensors->motor) sensor("motor", *s.sensors->motor, true);
+    out << YAML::EndMap;
   }
 
   out << YAML::EndMap;

@@ -15,6 +15,7 @@
 #include "controller/pd_plus_differenced.hpp"
 #include "controller/registry.hpp"
 #include "controller/set_point.hpp"
+#include "controller/velocity_feedback.hpp"
 
 namespace lagrange::controller {
 namespace {
@@ -39,6 +40,27 @@ class PositionOnly final : public Controller {
   Core core_;
 };
 
+// A core stepping on (t, q, q') -- the baselines that measure the velocity --
+// as a Controller: it declares joint rates, so it gets PLANT_RATE.
+template <class Core>
+class WithVelocity final : public Controller {
+ public:
+  WithVelocity(const config::Scenario& s, const Eigen::VectorXd& gain1, const Eigen::VectorXd& gain2)
+      : model_(s.robotModel()), reference_(s.reference), core_(*model_, reference_, gain1, gain2) {}
+  Needs needs() const override {
+    Needs n;
+    n.joint_rates = true;
+    return n;
+  }
+  ControllerCommand step(const ControllerInputs& in) override { return core_.step(in.t, in.q, in.qdot); }
+  void reset() override { core_.reset(); }
+
+ private:
+  const model::RobotModelPtr model_;
+  const model::Reference reference_;
+  Core core_;
+};
+
 // The gain report of a baseline whose paper's claim the tool states but does
 // not evaluate (GainReport::unchecked carries the sentence).
 std::function<GainReport(const config::Scenario&, bool)> claimOnly(std::string claim) {
@@ -48,6 +70,38 @@ std::function<GainReport(const config::Scenario&, bool)> claimOnly(std::string c
     return r;
   };
 }
+
+// PD+ and Slotine-Li need no condition beyond positive gains (with the
+// velocity measured and the model exact); the report states the claim.
+ControllerKind velocityKind(std::string type, std::vector<config::ControllerParam> keys,
+                            std::function<std::unique_ptr<Controller>(const config::Scenario&)> make,
+                            std::string claim) {
+  ControllerKind kind{std::move(type), std::move(keys), std::move(make), claimOnly(std::move(claim))};
+  kind.measures_velocity = true;
+  return kind;
+}
+
+const bool kPdPlusRegistered = registerControllerKind(velocityKind(
+    "pd_plus",
+    {{"kp", true, "stiffness Kp [N m / rad]"}, {"kd", true, "damping Kd on q' - q_d' [N m s / rad]"}},
+    [](const config::Scenario& s) {
+      return std::make_unique<WithVelocity<PdPlus>>(s, s.controller.params.at("kp"), s.controller.params.at("kd"));
+    },
+    "pd_plus: Paden and Panja (Int. J. Control 1988) prove global (asymptotic) tracking for every positive "
+    "Kp, Kd, with the velocity measured and the model exact, so there is no further condition to check; the "
+    "sensors and the sampled implementation are not assessed"));
+
+const bool kSlotineLiRegistered = registerControllerKind(velocityKind(
+    "slotine_li",
+    {{"lambda", true, "Lambda in q_r' = q_d' - Lambda q~ [1/s]"},
+     {"kd", true, "damping KD on s = q' - q_r' [N m s / rad]"}},
+    [](const config::Scenario& s) {
+      return std::make_unique<WithVelocity<SlotineLi>>(s, s.controller.params.at("lambda"),
+                                                       s.controller.params.at("kd"));
+    },
+    "slotine_li: Slotine and Li (Int. J. Robotics Research 1987) prove global (asymptotic) tracking for "
+    "every positive Lambda, KD, with the velocity measured and the model exact, so there is no further "
+    "condition to check; the sensors and the sampled implementation are not assessed"));
 
 // PD+ with a differenced velocity claims nothing (docs/baselines.md): no gain
 // condition, and the report says its gains are not checked.

@@ -29,6 +29,9 @@ struct Needs {
   int actuator_order = 0;
   bool motor_angles = false;  ///< q2 of a flexible-joint arm (PLANT_MOTOR)
   bool motor_rates = false;   ///< q2' too (PLANT_MOTOR with rates)
+  /// q' from a velocity sensor (PLANT_RATE): a scenario without one
+  /// (sensors.velocity) is refused before anything starts.
+  bool joint_rates = false;
 };
 
 /// What a controller sees at one sample. Fields it did not declare in
@@ -36,6 +39,7 @@ struct Needs {
 struct ControllerInputs {
   double t = 0.0;                             ///< the sample's time [s]
   Eigen::VectorXd q;                          ///< link angles [rad]
+  Eigen::VectorXd qdot;                       ///< measured joint rates [rad/s] (Needs::joint_rates)
   Eigen::MatrixXd xi;                         ///< actuator chain state, m x n (Needs::actuator_order = m)
   Eigen::VectorXd motor_q;                    ///< q2 [rad] (Needs::motor_angles)
   std::optional<Eigen::VectorXd> motor_qdot;  ///< q2' [rad/s] (Needs::motor_rates)

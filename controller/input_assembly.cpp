@@ -36,25 +36,32 @@ void InputAssembly::motorSample(int64_t tick, const Eigen::MatrixXd& sample) {
   if (tick > newest_motor_tick_) newest_motor_ = sample, newest_motor_tick_ = tick;
 }
 
+void InputAssembly::rateSample(int64_t tick, const Eigen::VectorXd& qdot) { rate_by_tick_.put(tick, qdot); }
+
 std::optional<AssembledInputs> InputAssembly::forTick(int64_t tick, double t, const Eigen::VectorXd& q) {
-  std::optional<Eigen::MatrixXd> motor, xi;
+  std::optional<Eigen::MatrixXd> motor, xi, rate;
   if (needs_.motor_angles && !(motor = motor_by_tick_.take(tick))) return std::nullopt;
   if (needs_.actuator_order > 0 && !(xi = chain_by_tick_.take(tick))) return std::nullopt;
-  return assemble(t, q, xi ? &*xi : nullptr, motor ? &*motor : nullptr,
+  if (needs_.joint_rates && !(rate = rate_by_tick_.take(tick))) return std::nullopt;
+  return assemble(t, q, xi ? &*xi : nullptr, motor ? &*motor : nullptr, rate ? &*rate : nullptr,
                   {needs_.actuator_order > 0 ? tick - 1 : -1, needs_.motor_angles ? tick : -1});
 }
 
-AssembledInputs InputAssembly::newest(double t, const Eigen::VectorXd& q) const {
-  return assemble(t, q, &newest_chain_, &newest_motor_,
+std::optional<AssembledInputs> InputAssembly::newest(int64_t tick, double t, const Eigen::VectorXd& q) {
+  std::optional<Eigen::MatrixXd> rate;
+  if (needs_.joint_rates && !(rate = rate_by_tick_.take(tick))) return std::nullopt;
+  return assemble(t, q, &newest_chain_, &newest_motor_, rate ? &*rate : nullptr,
                   {needs_.actuator_order > 0 ? newest_chain_position_ - 1 : -1,
                    needs_.motor_angles ? newest_motor_tick_ : -1});
 }
 
 AssembledInputs InputAssembly::assemble(double t, const Eigen::VectorXd& q, const Eigen::MatrixXd* xi,
-                                        const Eigen::MatrixXd* motor, InputTicks ticks) const {
+                                        const Eigen::MatrixXd* motor, const Eigen::MatrixXd* rate,
+                                        InputTicks ticks) const {
   AssembledInputs out;
   out.inputs.t = t;
   out.inputs.q = q;
+  if (needs_.joint_rates) out.inputs.qdot = rate->col(0);
   if (needs_.actuator_order > 0) out.inputs.xi = *xi;
   if (needs_.motor_angles) out.inputs.motor_q = motor->row(0).transpose();
   if (needs_.motor_angles && needs_.motor_rates) out.inputs.motor_qdot = motor->row(1).transpose();

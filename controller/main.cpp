@@ -2,11 +2,12 @@
 /// The controller process: stands in for the real-time controller of a robot
 /// that measures joint positions only.
 ///
-///   PLANT_POSITION [+ ACTUATOR_STATE, PLANT_MOTOR as the controller declares]
+///   PLANT_POSITION [+ ACTUATOR_STATE, PLANT_MOTOR, PLANT_RATE as the controller declares]
 ///     -> validate -> controller::InputAssembly -> Controller::step -> CONTROL_COMMAND
 ///
 /// Besides PLANT_POSITION and STATUS it subscribes only to what the
-/// controller's needs() declare: nothing it reads carries a joint velocity.
+/// controller's needs() declare: only a controller that declares joint rates
+/// (and a scenario with a velocity sensor) gets a joint velocity.
 /// Lockstep: one command per position tick; a repeated tick (the plant
 /// re-sending after a timeout) is answered with the cached command, so the
 /// filter never steps twice on one sample.
@@ -78,15 +79,25 @@ int DoMain(int argc, char** argv) {
                 assembly.motorSample(m.header.tick, controller::motorSample(m));
               });
         }
-        auto command = [&](const lagrange::plant_position_t& m, const controller::AssembledInputs& in) {
-          return controller::commandMessage(ctl->step(in.inputs), m.header.tick, m.header.sim_time, in.ticks);
+        if (needs.joint_rates) {
+          node.subscribe<lagrange::plant_rate_t>(
+              transport::kPlantRate, [&](const auto& m) { return transport::validate(m, s.dof()); },
+              [&](const lagrange::plant_rate_t& m) {
+                assembly.rateSample(m.header.tick, transport::toEigen(m.qdot));
+              });
+        }
+        auto command = [&](const lagrange::plant_position_t& m,
+                           const std::optional<controller::AssembledInputs>& in)
+            -> std::optional<lagrange::control_command_t> {
+          if (!in) return std::nullopt;
+          return controller::commandMessage(ctl->step(in->inputs), m.header.tick, m.header.sim_time, in->ticks);
         };
         if (s.mode == config::Mode::kRealtime) {
           // A quarter period after the plant: its position has arrived.
           return runtime::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
               node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
               {s.tickPeriod(), 0.25, s.realtime.max_input_age}, [&](const lagrange::plant_position_t& m) {
-                return command(m, assembly.newest(m.header.sim_time, transport::toEigen(m.q)));
+                return command(m, assembly.newest(m.header.tick, m.header.sim_time, transport::toEigen(m.q)));
               });
         }
         // Lockstep: position k is answered only with the measurements of tick k;
@@ -96,9 +107,7 @@ int DoMain(int argc, char** argv) {
             node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
             s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
             [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
-              const auto in = assembly.forTick(m.header.tick, m.header.sim_time, transport::toEigen(m.q));
-              if (!in) return std::nullopt;
-              return command(m, *in);
+              return command(m, assembly.forTick(m.header.tick, m.header.sim_time, transport::toEigen(m.q)));
             });
         return runtime::serveUntilPlantFinished(node, progress);
       });

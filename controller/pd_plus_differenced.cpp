@@ -1,5 +1,7 @@
 #include "controller/pd_plus_differenced.hpp"
 
+#include "controller/velocity_feedback.hpp"
+
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -18,16 +20,8 @@ PdPlusDifferenced::PdPlusDifferenced(const model::RobotModel& model, const model
 Theorem1Output PdPlusDifferenced::step(double t, const Eigen::VectorXd& q) {
   const model::ReferenceSample r = reference_.evaluate(t, 2);
   const Eigen::VectorXd v = previous_ ? Eigen::VectorXd((q - previous_->q) / (t - previous_->t)) : r.qd();
-  Theorem1Output out;
-  out.q_desired = r.q();
-  out.q_error = q - r.q();
-  out.theta = v;
-  // D q_d'' + C(q, v) q_d' + g: the Coriolis term has the measured (here:
-  // differenced) velocity in its first slot, as in PD+.
-  out.u = model_.inertia(q) * r.qdd() + model_.coriolisTimes(q, v, r.qd()) + model_.gravity(q) -
-          kp_.cwiseProduct(out.q_error) - kd_.cwiseProduct(v - r.qd());
   previous_ = Sample{t, q};
-  return out;
+  return pdPlusLaw(model_, r, q, v, kp_, kd_);  // PD+ with the difference standing for the velocity
 }
 
 }  // namespace lagrange::controller

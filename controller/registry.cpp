@@ -30,7 +30,7 @@ const ControllerKind& kindOf(const std::string& type) {
 bool registerControllerKind(ControllerKind kind) {
   if (kinds().count(kind.type) != 0)
     throw std::logic_error("controller type '" + kind.type + "' is registered twice");
-  config::registerControllerParams(kind.type, kind.keys, kind.set_point);
+  config::registerControllerParams(kind.type, kind.keys, {kind.set_point, kind.measures_velocity});
   const std::string type = kind.type;
   kinds().emplace(type, std::move(kind));
   return true;

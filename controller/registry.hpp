@@ -38,6 +38,9 @@ struct ControllerKind {
   std::function<GainReport(const config::Scenario&, bool sampled_data)> report;
   /// It regulates to a constant q_d: the config refuses any other reference.
   bool set_point = false;
+  /// It reads measured joint rates (Needs::joint_rates): the config refuses
+  /// a scenario without a velocity sensor.
+  bool measures_velocity = false;
 };
 
 /// Registers a controller. Returns true, so that a file can register from

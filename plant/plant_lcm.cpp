@@ -39,6 +39,14 @@ lagrange::plant_motor_t motorMessage(int64_t tick, double sim_time, const Eigen:
   return m;
 }
 
+lagrange::plant_rate_t rateMessage(int64_t tick, double sim_time, const Eigen::VectorXd& qdot_measured) {
+  lagrange::plant_rate_t m;
+  m.header = makeHeader(tick, sim_time);
+  m.num_joints = static_cast<int32_t>(qdot_measured.size());
+  m.qdot = toStd(qdot_measured);
+  return m;
+}
+
 std::optional<Eigen::VectorXd> motorRates(const lagrange::plant_motor_t& m) {
   if (m.num_rates == 0) return std::nullopt;
   return toEigen(m.qdot);

@@ -22,37 +22,12 @@ using State = transport::ProcessState;
 namespace {
 using Clock = std::chrono::steady_clock;
 
-// Called once per tick, in tick order: the sensor keeps its delay line and noise draws.
-plant::PlantSample sample(const PlantSim& sim, PositionSensor& sensor, int64_t tick, double sim_time,
-                          const Eigen::VectorXd& tau_applied, plant::TorqueInput input) {
-  const PlantState st = sim.state();
-  const PlantEnergy e = sim.energy();
-  return plant::plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input,
-                            sensor.measure(st.q));
-}
-
-// What the plant publishes at a tick: the measurements (PLANT_MOTOR for
-// flexible joints only) and the ground truth.
-struct TickMessages {
-  lagrange::plant_position_t position;
-  std::optional<lagrange::plant_motor_t> motor;
-  lagrange::plant_truth_t truth;
-};
-
-TickMessages tickMessages(const config::Scenario& s, const PlantSim& sim, const plant::PlantSample& out) {
-  TickMessages m{out.position, std::nullopt, out.truth};
-  if (s.flexible) {
-    const PlantState st = sim.state();
-    m.motor = plant::motorMessage(out.position.header.tick, out.position.header.sim_time, st.motor_q,
-                                  st.motor_qdot, s.flexible->rate_sensor);
-  }
-  return m;
-}
-
-// PLANT_POSITION with, for flexible joints, PLANT_MOTOR of the same tick
-// first, so a controller woken by the position finds the motor sample there.
-void publishMeasurements(transport::LcmNode& node, const TickMessages& m) {
+// PLANT_POSITION with, for flexible joints, PLANT_MOTOR and, with a velocity
+// sensor, PLANT_RATE of the same tick first, so a controller woken by the
+// position finds them there.
+void publishMeasurements(transport::LcmNode& node, const PlantSample& m) {
   if (m.motor) node.publish(transport::kPlantMotor, *m.motor);
+  if (m.rate) node.publish(transport::kPlantRate, *m.rate);
   node.publish(transport::kPlantPosition, m.position);
 }
 }  // namespace
@@ -61,8 +36,8 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
                 runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
-  PositionSensor sensor = positionSensorFor(s);
-  LockstepProtocol<TickMessages> protocol(
+  ScenarioSensors sensors = sensorsFor(s);
+  LockstepProtocol<PlantSample> protocol(
       {last_tick, s.lockstep.logger_window,
        std::chrono::duration_cast<Clock::duration>(
            std::chrono::duration<double>(s.lockstep.retransmit_timeout))});
@@ -84,7 +59,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   // answer a re-sent tick with what they sent for it, which the logger may
   // be the one to lack.
   auto resendForLogger = [&] {
-    for (const TickMessages* sent : protocol.logResendsDue(Clock::now())) {
+    for (const PlantSample* sent : protocol.logResendsDue(Clock::now())) {
       publishMeasurements(node, *sent);
       node.publish(transport::kPlantTruth, sent->truth);
     }
@@ -109,7 +84,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
     const plant::TorqueInput input =
         k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED};
-    const TickMessages out = tickMessages(s, sim, sample(sim, sensor, k, t, tau.row(0).transpose(), input));
+    const PlantSample out = measureTick(s, sensors, sim, k, t, tau.row(0).transpose(), input);
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
     protocol.published(k, out, Clock::now());
@@ -169,7 +144,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
                 runtime::StatusReporter& status, double startup_timeout) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
-  PositionSensor sensor = positionSensorFor(s);
+  ScenarioSensors sensors = sensorsFor(s);
   const int64_t max_age = s.realtime.max_torque_age;
   const int64_t hold_limit =
       s.realtime.stale_torque == config::StaleTorque::kHold ? max_age + s.realtime.hold_periods : max_age;
@@ -224,7 +199,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   for (int64_t k = 0; k <= last_tick && !runtime::stopRequested(); ++k) {
     loop.waitNext();
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const TickMessages out = tickMessages(s, sim, sample(sim, sensor, k, t, tau.row(0).transpose(), applied));
+    const PlantSample out = measureTick(s, sensors, sim, k, t, tau.row(0).transpose(), applied);
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
     published_utime[k % kRing] = out.position.header.publish_utime;

@@ -4,7 +4,9 @@
 /// fixed rate, take the newest input (latest-value semantics), act on it once
 /// if it is fresh, skip it (counted as stale) if it is older than
 /// max_input_age, and report loop statistics in STATUS until the plant
-/// finishes or a stop signal arrives.
+/// finishes or a stop signal arrives. `compute` may decline an input it
+/// cannot answer yet (a controller whose PLANT_RATE of that tick is missing):
+/// counted as missing.
 
 #include <functional>
 #include <optional>
@@ -27,7 +29,8 @@ struct RealtimeSettings {
 /// `Node` is transport::LcmNode in the processes (a fake node in tests).
 template <class In, class Out, class Node>
 int serveRealtime(Node& node, const std::string& in_channel, const std::string& out_channel, int joints,
-                  const RealtimeSettings& settings, const std::function<Out(const In&)>& compute) {
+                  const RealtimeSettings& settings,
+                  const std::function<std::optional<Out>(const In&)>& compute) {
   std::optional<In> latest;
   node.template subscribe<In>(
       in_channel, [joints](const In& m) { return transport::validate(m, joints); },
@@ -61,8 +64,12 @@ int serveRealtime(Node& node, const std::string& in_channel, const std::string& 
       if (age > settings.max_input_age) {
         ++stale;  // never act on an old sample
       } else {
-        ages.push_back(age);
-        node.publish(out_channel, compute(*latest));
+        if (const std::optional<Out> out = compute(*latest)) {
+          ages.push_back(age);
+          node.publish(out_channel, *out);
+        } else {
+          ++missing;
+        }
       }
       progress = {latest->header.tick, latest->header.sim_time};
     }

@@ -14,6 +14,7 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "tools/log_reader.hpp"
 #include "transport/channels.hpp"
@@ -63,6 +64,7 @@ void columns(Row& row, const lagrange::plant_truth_t& m) {
   row.add("torque_source", m.torque_source);
 }
 void columns(Row& row, const lagrange::plant_position_t& m) { row.add("q", m.q); }
+void columns(Row& row, const lagrange::plant_rate_t& m) { row.add("qdot", m.qdot); }
 void columns(Row& row, const lagrange::plant_motor_t& m) { row.add("q", m.q), row.add("qdot", m.qdot); }
 void columns(Row& row, const lagrange::control_command_t& m) {
   row.add("u", m.u), row.add("q_desired", m.q_desired), row.add("q_error", m.q_error);

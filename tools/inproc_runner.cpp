@@ -32,7 +32,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   log.writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
-  plant::PositionSensor sensor = plant::positionSensorFor(s);
+  plant::ScenarioSensors sensors = plant::sensorsFor(s);
   const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
   const controller::Needs needs = ctl->needs();
   // The controller's inputs by the controller process's own rule (lockstep).
@@ -48,21 +48,21 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   int exit_code = kExitOk;
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const plant::PlantState st = sim.state();
-    const plant::PlantEnergy e = sim.energy();
-    const plant::PlantSample sample = plant::plantSample(
-        k, t, st.q, st.qdot, tau.row(0).transpose(), e.kinetic, e.potential,
-        k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED},
-        sensor.measure(st.q));
+    const plant::PlantSample sample = plant::measureTick(
+        s, sensors, sim, k, t, tau.row(0).transpose(),
+        k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
     log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
     log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
 
     const double sample_time = sample.position.header.sim_time;
-    if (s.flexible) {
-      const auto motor = plant::motorMessage(k, t, st.motor_q, st.motor_qdot, s.flexible->rate_sensor);
-      log.writeMessage(transport::kPlantMotor, motor, motor.header.publish_utime);
-      if (needs.motor_angles) assembly.motorSample(k, controller::motorSample(motor));
+    if (sample.motor) {
+      log.writeMessage(transport::kPlantMotor, *sample.motor, sample.motor->header.publish_utime);
+      if (needs.motor_angles) assembly.motorSample(k, controller::motorSample(*sample.motor));
+    }
+    if (sample.rate) {
+      log.writeMessage(transport::kPlantRate, *sample.rate, sample.rate->header.publish_utime);
+      if (needs.joint_rates) assembly.rateSample(k, transport::toEigen(sample.rate->qdot));
     }
     // Every measurement of tick k is in: the assembly always answers here.
     const controller::AssembledInputs in =

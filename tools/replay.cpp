@@ -61,6 +61,9 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
           controller::ControllerInputs in;
           in.t = position.header.sim_time;
           in.q = transport::toEigen(position.q);
+          if (needs.joint_rates)  // the rate of the position's own tick (controller/input_assembly.hpp)
+            in.qdot = transport::toEigen(
+                input(rec.rates, k, transport::kPlantRate, transport::kControlCommand, k).qdot);
           if (needs.motor_angles) {  // the configured initial state until the first PLANT_MOTOR
             in.motor_q = s.initial_state.motor_q;
             if (needs.motor_rates) in.motor_qdot = s.initial_state.motor_qdot;

@@ -16,7 +16,7 @@ struct FirstCopies {
   std::set<int64_t> commands, states, truths;
 };
 
-// Where each message type goes: every position and motor sample by tick; the
+// Where each message type goes: every position, rate and motor sample by tick; the
 // first copy of each truth, actuator state and command in order too.
 void keep(const lagrange::plant_position_t& m, Recorded& r, FirstCopies&) {
   r.positions.emplace(m.header.tick, m);
@@ -31,6 +31,7 @@ void keep(const lagrange::actuator_state_t& m, Recorded& r, FirstCopies& seen) {
   }
 }
 void keep(const lagrange::plant_motor_t& m, Recorded& r, FirstCopies&) { r.motor.emplace(m.header.tick, m); }
+void keep(const lagrange::plant_rate_t& m, Recorded& r, FirstCopies&) { r.rates.emplace(m.header.tick, m); }
 void keep(const lagrange::control_command_t& m, Recorded& r, FirstCopies& seen) {
   if (seen.commands.insert(m.input_position_tick).second) {
     r.commands.push_back(m);

@@ -15,6 +15,7 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "tools/replay.hpp"
 
@@ -27,6 +28,7 @@ struct Recorded {
   std::map<int64_t, lagrange::plant_position_t> positions;
   std::map<int64_t, lagrange::actuator_state_t> actuator;
   std::map<int64_t, lagrange::plant_motor_t> motor;
+  std::map<int64_t, lagrange::plant_rate_t> rates;
   std::vector<lagrange::control_command_t> commands;  // first copy of each tick, in tick order
   std::vector<lagrange::actuator_state_t> states;     // likewise
   std::vector<lagrange::plant_truth_t> truths;        // likewise

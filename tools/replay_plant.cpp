@@ -47,7 +47,7 @@ std::string chooseTorque(const Recorded& rec, const lagrange::plant_truth_t& tru
 
 // First difference between what the plant recorded at a tick and the replayed sample.
 std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& truth,
-                            const plant::PlantSample& replayed, const plant::PlantState& state) {
+                            const plant::PlantSample& replayed) {
   const lagrange::plant_truth_t& r = replayed.truth;
   std::string d = compare("PLANT_TRUTH.sim_time", truth.header.sim_time, r.header.sim_time);
   if (d.empty()) d = compare("PLANT_TRUTH.q", truth.q, transport::toEigen(r.q));
@@ -59,10 +59,14 @@ std::string firstDifference(const Recorded& rec, const lagrange::plant_truth_t& 
   const int64_t k = truth.header.tick;
   if (const auto it = rec.positions.find(k); d.empty() && it != rec.positions.end())
     d = compare("PLANT_POSITION.q", it->second.q, transport::toEigen(replayed.position.q));
-  if (const auto it = rec.motor.find(k); d.empty() && it != rec.motor.end()) {
-    d = compare("PLANT_MOTOR.q", it->second.q, state.motor_q);
+  if (const auto it = rec.motor.find(k); d.empty() && it != rec.motor.end() && replayed.motor) {
+    d = compare("PLANT_MOTOR.q", it->second.q, transport::toEigen(replayed.motor->q));
     if (d.empty() && it->second.num_rates > 0)
-      d = compare("PLANT_MOTOR.qdot", it->second.qdot, state.motor_qdot);
+      d = compare("PLANT_MOTOR.qdot", it->second.qdot, transport::toEigen(replayed.motor->qdot));
+  }
+  if (const auto it = rec.rates.find(k); d.empty() && it != rec.rates.end()) {
+    if (!replayed.rate) return "PLANT_RATE: recorded, but the scenario declares no velocity sensor";
+    d = compare("PLANT_RATE.qdot", it->second.qdot, transport::toEigen(replayed.rate->qdot));
   }
   return d;
 }
@@ -82,7 +86,7 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
     const Recorded& rec = o.rec;
     const config::Scenario& s = o.scenario;
     plant::PlantSim sim = plant::plantFor(s);
-    plant::PositionSensor sensor = plant::positionSensorFor(s);  // its draws again, tick by tick
+    plant::ScenarioSensors sensors = plant::sensorsFor(s);  // their draws again, tick by tick
     Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());
     int64_t expected_tick = 0;
     for (const auto& truth : inTickOrder(rec.truths)) {
@@ -104,12 +108,10 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
         }
       }
       if (d.empty()) {
-        const plant::PlantState st = sim.state();
-        const plant::PlantEnergy e = sim.energy();
-        const auto replayed = plant::plantSample(
-            k, static_cast<double>(k) * s.tickPeriod(), st.q, st.qdot, tau.row(0).transpose(), e.kinetic,
-            e.potential, {truth.input_actuator_tick, truth.torque_source}, sensor.measure(st.q));
-        d = firstDifference(rec, truth, replayed, st);
+        const auto replayed =
+            plant::measureTick(s, sensors, sim, k, static_cast<double>(k) * s.tickPeriod(), tau.row(0).transpose(),
+                               {truth.input_actuator_tick, truth.torque_source});
+        d = firstDifference(rec, truth, replayed);
       }
       ++result.commands;
       if (!d.empty()) {

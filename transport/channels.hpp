@@ -9,12 +9,14 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 
 namespace lagrange::transport {
 inline constexpr const char* kPlantPosition = "PLANT_POSITION";
 inline constexpr const char* kPlantTruth = "PLANT_TRUTH";
 inline constexpr const char* kPlantMotor = "PLANT_MOTOR";  // flexible joints only
+inline constexpr const char* kPlantRate = "PLANT_RATE";    // with a velocity sensor only
 inline constexpr const char* kControlCommand = "CONTROL_COMMAND";
 inline constexpr const char* kActuatorState = "ACTUATOR_STATE";
 inline constexpr const char* kStatus = "STATUS";
@@ -27,16 +29,28 @@ struct ChannelInfo {
   const char* name;
   const char* publisher;  ///< the only process publishing it; "" for STATUS (every process)
   bool per_tick;          ///< one message per tick: recorded, covered, exported, replayed
-  bool flexible_only;     ///< exists only for flexible joints (PLANT_MOTOR)
+  /// Exists only in some runs: PLANT_MOTOR for flexible joints, PLANT_RATE
+  /// with a velocity sensor (sensors.velocity).
+  enum class Only { kAlways, kFlexible, kVelocitySensor } only;
+};
+
+/// Which of the optional per-tick channels a run has.
+struct RunChannels {
+  bool flexible = false;         ///< PLANT_MOTOR
+  bool velocity_sensor = false;  ///< PLANT_RATE
 };
 
 /// The channel registry: every channel of DESIGN section 4, per-tick ones in
 /// publishing order.
 inline constexpr ChannelInfo kChannelTable[] = {
-    {kPlantPosition, "plant", true, false},    {kPlantTruth, "plant", true, false},
-    {kPlantMotor, "plant", true, true},        {kControlCommand, "controller", true, false},
-    {kActuatorState, "actuator", true, false}, {kStatus, "", false, false},
-    {kScenario, "logger", false, false},
+    {kPlantPosition, "plant", true, ChannelInfo::Only::kAlways},
+    {kPlantTruth, "plant", true, ChannelInfo::Only::kAlways},
+    {kPlantMotor, "plant", true, ChannelInfo::Only::kFlexible},
+    {kPlantRate, "plant", true, ChannelInfo::Only::kVelocitySensor},
+    {kControlCommand, "controller", true, ChannelInfo::Only::kAlways},
+    {kActuatorState, "actuator", true, ChannelInfo::Only::kAlways},
+    {kStatus, "", false, ChannelInfo::Only::kAlways},
+    {kScenario, "logger", false, ChannelInfo::Only::kAlways},
 };
 
 /// The only process that publishes on `channel`, or "" for STATUS (every
@@ -47,11 +61,16 @@ inline const char* publisherOf(const std::string& channel) {
   return "";
 }
 
-/// The per-tick channels of a run, PLANT_MOTOR only with flexible joints.
-inline std::vector<std::string> perTickChannels(bool flexible) {
+/// The per-tick channels of a run: PLANT_MOTOR only with flexible joints,
+/// PLANT_RATE only with a velocity sensor.
+inline std::vector<std::string> perTickChannels(RunChannels run) {
   std::vector<std::string> channels;
-  for (const ChannelInfo& info : kChannelTable)
-    if (info.per_tick && (flexible || !info.flexible_only)) channels.emplace_back(info.name);
+  for (const ChannelInfo& info : kChannelTable) {
+    const bool exists = info.only == ChannelInfo::Only::kAlways ||
+                        (info.only == ChannelInfo::Only::kFlexible && run.flexible) ||
+                        (info.only == ChannelInfo::Only::kVelocitySensor && run.velocity_sensor);
+    if (info.per_tick && exists) channels.emplace_back(info.name);
+  }
   return channels;
 }
 
@@ -65,6 +84,7 @@ R withChannelMessage(const std::string& channel, R otherwise, F&& f) {
   if (channel == kPlantPosition) return f(lagrange::plant_position_t{});
   if (channel == kPlantTruth) return f(lagrange::plant_truth_t{});
   if (channel == kPlantMotor) return f(lagrange::plant_motor_t{});
+  if (channel == kPlantRate) return f(lagrange::plant_rate_t{});
   if (channel == kControlCommand) return f(lagrange::control_command_t{});
   if (channel == kActuatorState) return f(lagrange::actuator_state_t{});
   return otherwise;

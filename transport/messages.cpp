@@ -60,6 +60,11 @@ std::string validate(const lagrange::plant_position_t& m, int joints) {
   return why.empty() ? checkArrays(m.num_joints, joints, {&m.q}) : why;
 }
 
+std::string validate(const lagrange::plant_rate_t& m, int joints) {
+  std::string why = checkHeader(m.header);
+  return why.empty() ? checkArrays(m.num_joints, joints, {&m.qdot}) : why;
+}
+
 std::string validate(const lagrange::plant_truth_t& m, int joints) {
   std::string why = checkHeader(m.header);
   if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.q, &m.qdot, &m.tau_applied});

@@ -12,6 +12,7 @@
 #include "lagrange/header_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "lagrange/status_t.hpp"
 
@@ -32,6 +33,7 @@ std::vector<double> toStd(const Eigen::VectorXd& v);
 /// numbers, negative tick.
 std::string validate(const lagrange::plant_position_t& m, int joints);
 std::string validate(const lagrange::plant_truth_t& m, int joints);
+std::string validate(const lagrange::plant_rate_t& m, int joints);
 /// with_rates: the scenario's motors have rate sensors (num_rates must be joints, else 0).
 std::string validate(const lagrange::plant_motor_t& m, int joints, bool with_rates);
 std::string validate(const lagrange::control_command_t& m, int joints);

@@ -34,18 +34,18 @@ TEST(InputAssembly, LockstepWaitsForTheChainStateOfItsTick) {
 
 TEST(InputAssembly, RealtimeUsesTheNewestAndIgnoresALateOlderOne) {
   InputAssembly assembly({2, false, false}, chain(0.0), Eigen::MatrixXd());
-  EXPECT_EQ(assembly.newest(0.0, q).inputs.xi, chain(0.0));
-  EXPECT_EQ(assembly.newest(0.0, q).ticks.actuator, -1);
+  EXPECT_EQ(assembly.newest(0, 0.0, q)->inputs.xi, chain(0.0));
+  EXPECT_EQ(assembly.newest(0, 0.0, q)->ticks.actuator, -1);
   assembly.chainState(5, chain(5.0));
   assembly.chainState(3, chain(3.0));  // arrives late: older than what we have
-  const AssembledInputs in = assembly.newest(0.006, q);
+  const AssembledInputs in = assembly.newest(6, 0.006, q).value();
   EXPECT_EQ(in.inputs.xi, chain(5.0));
   EXPECT_EQ(in.ticks.actuator, 5);
 }
 
 TEST(InputAssembly, FlexibleJointsTakeTheMotorSampleOfTheTick) {
   InputAssembly assembly({0, true, true}, Eigen::MatrixXd(), motor(-1.0, 2));
-  const AssembledInputs before = assembly.newest(0.0, q);  // realtime, before any PLANT_MOTOR
+  const AssembledInputs before = assembly.newest(0, 0.0, q).value();  // realtime, before any PLANT_MOTOR
   EXPECT_EQ(before.inputs.motor_q, motor(-1.0, 1).row(0).transpose());
   EXPECT_EQ(before.ticks.motor, -1);
   EXPECT_FALSE(assembly.forTick(0, 0.0, q).has_value());  // lockstep: PLANT_MOTOR 0 not here
@@ -72,6 +72,24 @@ TEST(InputAssembly, AMotorSampleWithoutTheRateARateSensorPromisesIsRefused) {
     EXPECT_NE(std::string(e.what()).find("has 1 rows, expected 2"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(assembly.forTick(3, 0.003, q).has_value());  // and it was not kept
+}
+
+TEST(InputAssembly, MeasuredRatesPairWithThePositionOfTheirOwnTickInBothWirings) {
+  Needs needs;
+  needs.joint_rates = true;
+  InputAssembly assembly(needs, Eigen::MatrixXd(), Eigen::MatrixXd());
+  EXPECT_FALSE(assembly.forTick(0, 0.0, q).has_value());    // lockstep: PLANT_RATE 0 not here
+  EXPECT_FALSE(assembly.newest(0, 0.0, q).has_value());     // realtime: not answered either
+  assembly.rateSample(1, Eigen::Vector3d(7, 8, 9));         // the next tick's rate
+  EXPECT_FALSE(assembly.newest(0, 0.0, q).has_value());     // ... is not tick 0's
+  assembly.rateSample(0, Eigen::Vector3d(1, 2, 3));
+  const auto lockstep = assembly.forTick(0, 0.0, q);
+  ASSERT_TRUE(lockstep.has_value());
+  EXPECT_EQ(lockstep->inputs.qdot, Eigen::Vector3d(1, 2, 3));
+  const auto realtime = assembly.newest(1, 0.001, q);
+  ASSERT_TRUE(realtime.has_value());
+  EXPECT_EQ(realtime->inputs.qdot, Eigen::Vector3d(7, 8, 9));
+  EXPECT_EQ(realtime->inputs.motor_q.size(), 0);  // not declared, not given
 }
 
 TEST(InputAssembly, APositionOnlyControllerIsAnsweredAtOnceWithQAlone) {

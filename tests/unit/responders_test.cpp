@@ -159,9 +159,9 @@ TEST(RealtimeResponder, ActsOnceOnEachFreshInputAndCountsTheRest) {
     }
   });
   int calls = 0;
-  const std::function<Position(const Position&)> compute = [&](const Position& in) {
+  const std::function<std::optional<Position>(const Position&)> compute = [&](const Position& in) {
     ++calls;
-    return position(in.header.tick);
+    return std::optional(position(in.header.tick));
   };
   // max_input_age 10 s: fresh inputs stay fresh on any machine, however loaded.
   EXPECT_EQ(serveRealtime(node, kIn, kOut, kJoints, {1e-3, 0.0, 10.0}, compute), 0);

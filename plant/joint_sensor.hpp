@@ -1,18 +1,19 @@
 #pragma once
 /// @file
-/// The joint-angle sensor in the plant's measurement path: what
-/// PLANT_POSITION carries instead of the true angles (which stay in
+/// A sensor per joint in the plant's measurement path: what PLANT_POSITION
+/// (joint angles), PLANT_RATE (a tachometer's joint rates) and PLANT_MOTOR
+/// (motor angles) carry instead of the true values (which stay in
 /// PLANT_TRUTH). Per joint, in this order:
-///   delay:        the reading of tick k is of the angle at tick k - d (whole
-///                 samples; before tick d, the angle at tick 0);
-///   noise:        plus a Gaussian draw of standard deviation sigma [rad];
+///   delay:        the reading of tick k is of the value at tick k - d (whole
+///                 samples; before tick d, the value at tick 0);
+///   noise:        plus a Gaussian draw of standard deviation sigma [rad, rad/s];
 ///   quantisation: an encoder of N counts per revolution reports
 ///                 floor(angle / delta) delta, delta = 2 pi / N -- the count
 ///                 below the angle, as an incremental encoder counts edges
 ///                 (a bias of half a count on average; 0 counts: none).
 /// Seeded: the same seed gives the same draws in every wiring (lockstep,
 /// realtime, in-process) and in replay. Call measure() once per tick, in tick
-/// order. An ideal sensor returns the true angles untouched (the same doubles).
+/// order. An ideal sensor returns the true values untouched (the same doubles).
 /// Pure: no I/O.
 
 #include <Eigen/Dense>
@@ -22,27 +23,27 @@
 
 namespace lagrange::plant {
 
-struct PositionSensorParams {
+struct JointSensorParams {
   Eigen::VectorXd counts_per_revolution;  ///< per joint; 0: not quantised
   Eigen::VectorXd noise_sigma;            ///< per joint [rad]; 0: no noise
   int delay = 0;                          ///< whole samples
   uint64_t seed = 1;
 };
 
-class PositionSensor {
+class JointSensor {
  public:
   /// An ideal sensor of `joints` joints.
-  explicit PositionSensor(int joints);
+  explicit JointSensor(int joints);
   /// @throws std::invalid_argument unless both vectors have `joints` entries
   ///         >= 0 (finite) and delay >= 0.
-  PositionSensor(int joints, PositionSensorParams params);
+  JointSensor(int joints, JointSensorParams params);
 
   /// The reading of the next tick from its true angles.
   Eigen::VectorXd measure(const Eigen::VectorXd& q_true);
   bool ideal() const { return ideal_; }
 
  private:
-  PositionSensorParams params_;
+  JointSensorParams params_;
   bool ideal_ = true;
   std::deque<Eigen::VectorXd> history_;  ///< the last delay + 1 true readings, oldest first
   std::mt19937_64 rng_;

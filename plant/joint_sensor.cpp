@@ -1,4 +1,4 @@
-#include "plant/position_sensor.hpp"
+#include "plant/joint_sensor.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -7,21 +7,21 @@
 
 namespace lagrange::plant {
 
-PositionSensor::PositionSensor(int joints)
-    : PositionSensor(joints, {Eigen::VectorXd::Zero(joints), Eigen::VectorXd::Zero(joints), 0, 1}) {}
+JointSensor::JointSensor(int joints)
+    : JointSensor(joints, {Eigen::VectorXd::Zero(joints), Eigen::VectorXd::Zero(joints), 0, 1}) {}
 
-PositionSensor::PositionSensor(int joints, PositionSensorParams params)
+JointSensor::JointSensor(int joints, JointSensorParams params)
     : params_(std::move(params)), rng_(params_.seed) {
   for (const Eigen::VectorXd* v : {&params_.counts_per_revolution, &params_.noise_sigma})
     if (v->size() != joints || !v->allFinite() || (v->array() < 0.0).any())
-      throw std::invalid_argument("PositionSensor: counts per revolution and noise sigma must have " +
+      throw std::invalid_argument("JointSensor: counts per revolution and noise sigma must have " +
                                   std::to_string(joints) + " finite entries >= 0");
-  if (params_.delay < 0) throw std::invalid_argument("PositionSensor: the delay must be >= 0 samples");
+  if (params_.delay < 0) throw std::invalid_argument("JointSensor: the delay must be >= 0 samples");
   ideal_ = params_.delay == 0 && (params_.counts_per_revolution.array() == 0.0).all() &&
            (params_.noise_sigma.array() == 0.0).all();
 }
 
-Eigen::VectorXd PositionSensor::measure(const Eigen::VectorXd& q_true) {
+Eigen::VectorXd JointSensor::measure(const Eigen::VectorXd& q_true) {
   if (ideal_) return q_true;
   if (history_.empty())
     history_.assign(static_cast<size_t>(params_.delay) + 1, q_true);  // held before tick d

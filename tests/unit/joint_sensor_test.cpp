@@ -1,8 +1,8 @@
-// The joint-angle sensor (plant/position_sensor.hpp): ideal is the identity
+// The joint-angle sensor (plant/joint_sensor.hpp): ideal is the identity
 // to the bit; the encoder reports the count below the angle; the delay line
 // returns the angle of d ticks before; the noise has its sigma and the same
 // seed gives the same draws.
-#include "plant/position_sensor.hpp"
+#include "plant/joint_sensor.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,15 +11,15 @@
 namespace lagrange::plant {
 namespace {
 
-TEST(PositionSensor, AnIdealSensorReturnsTheTrueAnglesBitForBit) {
-  PositionSensor sensor(2);
+TEST(JointSensor, AnIdealSensorReturnsTheTrueAnglesBitForBit) {
+  JointSensor sensor(2);
   EXPECT_TRUE(sensor.ideal());
   const Eigen::Vector2d q(0.1234567890123, -7.000000000001);
   EXPECT_EQ(sensor.measure(q), q);
 }
 
-TEST(PositionSensor, AnEncoderReportsTheCountBelowTheAngle) {
-  PositionSensor sensor(2, {Eigen::Vector2d(4096, 0), Eigen::Vector2d::Zero(), 0, 1});
+TEST(JointSensor, AnEncoderReportsTheCountBelowTheAngle) {
+  JointSensor sensor(2, {Eigen::Vector2d(4096, 0), Eigen::Vector2d::Zero(), 0, 1});
   const double step = 2 * M_PI / 4096;
   for (const double angle : {0.3, -0.3, 7.1, -12.9, 3 * step}) {
     const Eigen::VectorXd m = sensor.measure(Eigen::Vector2d(angle, angle));
@@ -30,17 +30,17 @@ TEST(PositionSensor, AnEncoderReportsTheCountBelowTheAngle) {
   }
 }
 
-TEST(PositionSensor, TheDelayLineReturnsTheAngleOfDTicksBefore) {
-  PositionSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), 2, 1});
+TEST(JointSensor, TheDelayLineReturnsTheAngleOfDTicksBefore) {
+  JointSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), 2, 1});
   std::vector<double> read;
   for (int k = 0; k < 6; ++k) read.push_back(sensor.measure(Eigen::VectorXd::Constant(1, k))(0));
   EXPECT_EQ(read, (std::vector<double>{0, 0, 0, 1, 2, 3}));  // tick 0's angle held until tick d
 }
 
-TEST(PositionSensor, NoiseHasItsSigmaAndTheSeedFixesTheDraws) {
+TEST(JointSensor, NoiseHasItsSigmaAndTheSeedFixesTheDraws) {
   const double sigma = 1e-3;
   auto draws = [&](uint64_t seed) {
-    PositionSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, sigma), 0, seed});
+    JointSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, sigma), 0, seed});
     std::vector<double> out;
     for (int k = 0; k < 20000; ++k) out.push_back(sensor.measure(Eigen::VectorXd::Constant(1, 0.5))(0) - 0.5);
     return out;
@@ -54,14 +54,14 @@ TEST(PositionSensor, NoiseHasItsSigmaAndTheSeedFixesTheDraws) {
   EXPECT_NEAR(std::sqrt(square), sigma, 0.03 * sigma);
 }
 
-TEST(PositionSensor, BadParametersAreRefused) {
-  EXPECT_THROW(PositionSensor(2, {Eigen::Vector2d(-1, 0), Eigen::Vector2d::Zero(), 0, 1}),
+TEST(JointSensor, BadParametersAreRefused) {
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d(-1, 0), Eigen::Vector2d::Zero(), 0, 1}),
                std::invalid_argument);
-  EXPECT_THROW(PositionSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d(0, -1), 0, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d(0, -1), 0, 1}),
                std::invalid_argument);
-  EXPECT_THROW(PositionSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), -1, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), -1, 1}),
                std::invalid_argument);
-  EXPECT_THROW(PositionSensor(2, {Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), 0, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), 0, 1}),
                std::invalid_argument);
 }
 
