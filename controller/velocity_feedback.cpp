@@ -40,8 +40,8 @@ Theorem1Output PdPlus::step(double t, const Eigen::VectorXd& q, const Eigen::Vec
   return pdPlusLaw(model_, reference_.evaluate(t, 2), q, qdot, kp_, kd_);
 }
 
-SlotineLi::SlotineLi(const model::RobotModel& model, const model::Reference& reference, Eigen::VectorXd lambda,
-                     Eigen::VectorXd kd)
+SlotineLi::SlotineLi(const model::RobotModel& model, const model::Reference& reference,
+                     Eigen::VectorXd lambda, Eigen::VectorXd kd)
     : model_(model), reference_(reference), lambda_(std::move(lambda)), kd_(std::move(kd)) {
   requirePositive("SlotineLi", model_.dof(), {&lambda_, &kd_});
 }

@@ -22,6 +22,6 @@ cmake --build build-asan -j2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-timing='Progress\.|Spy\.|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay'
+timing='Progress\.|Spy\.|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay|AVelocityControllerRunsInRealtime'
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*panda'
 exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -E "$timing|$sweeps" "$@"

@@ -20,10 +20,11 @@ constexpr const char* kConstant =
 
 struct Baseline {
   const char* type;
-  const char* initial_q;  // [rad]
-  const char* reference;  // the reference section, flow style
-  const char* gains;      // the controller's keys, flow style
-  const char* report;     // what the run prints about its gains
+  const char* initial_q;     // [rad]
+  const char* reference;     // the reference section, flow style
+  const char* gains;         // the controller's keys, flow style
+  const char* report;        // what the run prints about its gains
+  const char* sensors = "";  // a sensors section, flow style, for those that measure the velocity
 };
 
 // The Pelican for 3 s at 1 kHz, judged on ||q~|| below 1e-3 rad within 2 s.
@@ -32,7 +33,8 @@ std::string scenario(const Baseline& b) {
          "_pelican\nduration: 3.0\nmode: lockstep\nrobot: {preset: pelican}\n" +
          "initial_state: {q: " + b.initial_q + ", qdot: [0.0, 0.0]}\nreference: " + b.reference +
          "\nplant: {physics_step: 1.0e-4, publish_rate: 1000}\ncontroller: {type: " + b.type + ", " +
-         b.gains + "}\nmetrics: {tolerance: 1.0e-3, convergence_deadline: 2.0}\n";
+         b.gains + "}\nmetrics: {tolerance: 1.0e-3, convergence_deadline: 2.0}\n" +
+         (*b.sensors ? std::string("sensors: ") + b.sensors + "\n" : "");
 }
 
 // Test names and messages show the type, not the struct's bytes.
@@ -64,13 +66,20 @@ TEST_P(Baselines, RunTheSameInLockstepAndInProcessMeetTheirMetricAndReplay) {
   EXPECT_NE(replay.output.find("reproduced all 3001 recorded outputs"), std::string::npos) << replay.output;
 }
 
-// PD+ on differenced positions with configs/rigid_2dof.yaml's stage gains;
+// PD+ and Slotine-Li on an exact velocity sensor, from 0.6 rad off; PD+ on
+// differenced positions with configs/rigid_2dof.yaml's stage gains;
 // Kelly's set-point controller from 1.5 rad away; the two observer designs
 // from 0.1 rad (Nicosia-Tomei: local) and 0.3 rad (Berghuis-Nijmeijer:
 // semiglobal) off, observer poles at 50 1/s.
 INSTANTIATE_TEST_SUITE_P(
     Registered, Baselines,
     ::testing::Values(
+        Baseline{"pd_plus", "[0.7, -0.4]", kSine, "kp: [150.0, 10.0], kd: [15.0, 1.0]",
+                 "Paden and Panja (Int. J. Control 1988) prove global (asymptotic) tracking",
+                 "{velocity: {}}"},
+        Baseline{"slotine_li", "[0.7, -0.4]", kSine, "lambda: [10.0, 10.0], kd: [20.0, 2.0]",
+                 "Slotine and Li (Int. J. Robotics Research 1987) prove global (asymptotic) tracking",
+                 "{velocity: {}}"},
         Baseline{"pd_plus_differenced", "[0.5, -0.5]", kSine, "kp: [150.0, 10.0], kd: [15.0, 1.0]",
                  "no stability condition is known for controller type 'pd_plus_differenced'"},
         Baseline{"set_point", "[-0.5, 1.0]", kConstant,

@@ -18,6 +18,7 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
 #include "transport/checksum.hpp"
 #include "transport/messages.hpp"
@@ -115,30 +116,32 @@ inline std::vector<std::string> readChannels(const std::string& log_path) {
   return out;
 }
 
-/// CONTROL_COMMAND u by tick.
-inline std::map<long long, std::vector<double>> readCommands(const std::string& log_path) {
+/// The first copy of each tick's vector `field` on a per-tick channel:
+/// PLANT_POSITION q (what the sensor read), PLANT_RATE qdot, CONTROL_COMMAND u.
+template <class Msg>
+std::map<long long, std::vector<double>> readReadings(const std::string& log_path, const std::string& channel,
+                                                      std::vector<double> Msg::*field) {
   lcm::LogFile log(log_path, "r");
   std::map<long long, std::vector<double>> by_tick;
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
-    if (ev->channel != "CONTROL_COMMAND") continue;
-    lagrange::control_command_t m;
-    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad CONTROL_COMMAND");
-    by_tick.emplace(m.header.tick, m.u);
+    if (ev->channel != channel) continue;
+    Msg m;
+    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad " + channel);
+    by_tick.emplace(m.header.tick, m.*field);
   }
   return by_tick;
 }
 
-/// PLANT_POSITION q (what the sensor read) by tick, first copy of each.
 inline std::map<long long, std::vector<double>> readPositions(const std::string& log_path) {
-  lcm::LogFile log(log_path, "r");
-  std::map<long long, std::vector<double>> by_tick;
-  while (const lcm::LogEvent* ev = log.readNextEvent()) {
-    if (ev->channel != "PLANT_POSITION") continue;
-    lagrange::plant_position_t m;
-    if (m.decode(ev->data, 0, ev->datalen) < 0) throw std::runtime_error("bad PLANT_POSITION");
-    by_tick.emplace(m.header.tick, m.q);
-  }
-  return by_tick;
+  return readReadings(log_path, "PLANT_POSITION", &lagrange::plant_position_t::q);
+}
+
+inline std::map<long long, std::vector<double>> readRates(const std::string& log_path) {
+  return readReadings(log_path, "PLANT_RATE", &lagrange::plant_rate_t::qdot);
+}
+
+inline std::map<long long, std::vector<double>> readCommands(const std::string& log_path) {
+  return readReadings(log_path, "CONTROL_COMMAND", &lagrange::control_command_t::u);
 }
 
 inline nlohmann::json readSummary(const std::string& dir) {

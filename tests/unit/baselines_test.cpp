@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <tuple>
 
 #include "controller/berghuis_nijmeijer.hpp"
 #include "controller/nicosia_tomei.hpp"
 #include "controller/pd_plus_differenced.hpp"
 #include "controller/set_point.hpp"
+#include "controller/velocity_feedback.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
 #include "support/rk4.hpp"
@@ -55,9 +58,17 @@ TEST(PdPlusDifferenced, LawIsPdPlusWithTheBackwardDifference) {
   EXPECT_THROW(PdPlusDifferenced(arm, ref, Eigen::Vector2d(1, 0), kKd), std::invalid_argument);
 }
 
-// Max |q gap| over 3 s between the sampled loop at period T and RK4 of the
-// continuous PD+ loop (step 1e-4 s), from the same state 0.6 rad off.
-double gapToContinuous(double period) {
+using Law = std::function<Eigen::VectorXd(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v)>;
+
+// The sampled loop at period T against RK4 of the continuous loop (step
+// 1e-4 s), from the same state 0.6 rad off on each joint, over 3 s: the max |q gap| and
+// the sampled loop's final |q~|. `sampled` is the core at t_k = k T, given
+// the exact q and q' at t_k; the torque is held, the arm stepped by RK4 at h.
+struct LoopGap {
+  double gap = 0.0;
+  double final_error = 0.0;
+};
+LoopGap gapToContinuous(double period, const Law& continuous, const Law& sampled) {
   const model::PlanarChain arm(model::pelicanParams());
   const model::Reference ref = sine();
   const Eigen::Vector2d q0(0.7, -0.4), v0(0.0, 0.0);
@@ -68,34 +79,86 @@ double gapToContinuous(double period) {
   auto f = [&](double t, const Eigen::VectorXd& s) {
     Eigen::VectorXd d(4);
     d.head(2) = s.tail(2);
-    d.tail(2) = arm.acceleration(s.head(2), s.tail(2), pdPlus(arm, ref, t, s.head(2), s.tail(2)));
+    d.tail(2) = arm.acceleration(s.head(2), s.tail(2), continuous(t, s.head(2), s.tail(2)));
     return d;
   };
-  // Sampled: the core at t_k = k T, the torque held, the arm by RK4 at h.
-  PdPlusDifferenced ctl(arm, ref, kKp, kKd);
   Eigen::VectorXd y(4);
   y << q0, v0;
   const int substeps = static_cast<int>(std::lround(period / h));
-  double gap = 0.0, t = 0.0;
+  LoopGap out;
+  double t = 0.0;
   for (int k = 0; k < static_cast<int>(std::lround(3.0 / period)); ++k) {
-    const Eigen::VectorXd u = ctl.step(t, y.head(2)).u;
+    const Eigen::VectorXd u = sampled(t, y.head(2), y.tail(2));
     for (int i = 0; i < substeps; ++i, t += h) {
       x = testing::rk4Step(f, t, x, h);
       y = testing::armStep(arm, y, u, h);
     }
-    gap = std::max(gap, (x.head(2) - y.head(2)).cwiseAbs().maxCoeff());
+    out.gap = std::max(out.gap, (x.head(2) - y.head(2)).cwiseAbs().maxCoeff());
   }
-  return gap;
+  out.final_error = (y.head(2) - ref.evaluate(t, 0).q()).norm();
+  return out;
+}
+
+double differencedGap(double period) {
+  const model::PlanarChain arm(model::pelicanParams());
+  const model::Reference ref = sine();
+  PdPlusDifferenced ctl(arm, ref, kKp, kKd);
+  return gapToContinuous(
+             period, [&](double t, const auto& q, const auto& v) { return pdPlus(arm, ref, t, q, v); },
+             [&](double t, const auto& q, const auto&) { return ctl.step(t, q).u; })
+      .gap;
 }
 
 // The sampled loop follows the continuous one, closer with a shorter period
 // (first order: the difference lags by half a period); both track.
 TEST(PdPlusDifferenced, FollowsContinuousPdPlusCloserWithAShorterPeriod) {
-  const double at1ms = gapToContinuous(1e-3), at_quarter = gapToContinuous(2.5e-4);
+  const double at1ms = differencedGap(1e-3), at_quarter = differencedGap(2.5e-4);
   std::printf("PD+ differenced vs continuous PD+, 3 s: max |q gap| %.3g rad at 1 ms, %.3g rad at 0.25 ms\n",
               at1ms, at_quarter);
   EXPECT_LT(at1ms, 2e-2);
   EXPECT_LT(at_quarter, 0.4 * at1ms);
+}
+
+// Slotine and Li's law, written out here from the baselines table.
+const Eigen::Vector2d kLambda(10.0, 10.0), kSlidingKd(20.0, 2.0);
+Eigen::VectorXd slotineLi(const model::RobotModel& arm, const model::Reference& ref, double t,
+                          const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+  const model::ReferenceSample r = ref.evaluate(t, 2);
+  const Eigen::VectorXd e = q - r.q(), qr_dot = r.qd() - kLambda.cwiseProduct(e);
+  const Eigen::VectorXd qr_ddot = r.qdd() - kLambda.cwiseProduct(v - r.qd());
+  return arm.inertia(q) * qr_ddot + arm.coriolis(q, v) * qr_dot + arm.gravity(q) -
+         kSlidingKd.cwiseProduct(v - qr_dot);
+}
+
+// With the velocity measured, the cores are the laws at the sample (to
+// round-off), and the sampled loops follow the continuous ones to first order
+// in T while tracking, as their papers claim (global tracking).
+TEST(VelocityBaselines, PdPlusAndSlotineLiAreTheirLawsAndFollowTheirContinuousLoops) {
+  const model::PlanarChain arm(model::pelicanParams());
+  const model::Reference ref = sine();
+  const PdPlus pd(arm, ref, kKp, kKd);
+  const SlotineLi sl(arm, ref, kLambda, kSlidingKd);
+  const Eigen::Vector2d q(0.4, -0.3), v(1.5, -2.0);
+  EXPECT_LT((pd.step(0.2, q, v).u - pdPlus(arm, ref, 0.2, q, v)).norm(), 1e-9);
+  EXPECT_LT((sl.step(0.2, q, v).u - slotineLi(arm, ref, 0.2, q, v)).norm(), 1e-9);
+  EXPECT_EQ(pd.step(0.2, q, v).theta, v);
+  EXPECT_THROW(SlotineLi(arm, ref, Eigen::Vector2d(0, 1), kSlidingKd), std::invalid_argument);
+  for (const auto& [name, continuous, sampled] :
+       {std::tuple{"pd_plus",
+                   Law([&](double t, const auto&x, const auto&y) { return pdPlus(arm, ref, t, x, y); }),
+                   Law([&](double t, const auto&x, const auto&y) { return pd.step(t, x, y).u; })},
+        std::tuple{"slotine_li",
+                   Law([&](double t, const auto&x, const auto&y) { return slotineLi(arm, ref, t, x, y); }),
+                   Law([&](double t, const auto&x, const auto&y) { return sl.step(t, x, y).u; })}}) {
+    const LoopGap at1ms = gapToContinuous(1e-3, continuous, sampled);
+    const LoopGap at_quarter = gapToContinuous(2.5e-4, continuous, sampled);
+    std::printf(
+        "%s vs its continuous loop, 3 s: max |q gap| %.3g rad at 1 ms, %.3g at 0.25 ms; final |q~| %.3g\n",
+        name, at1ms.gap, at_quarter.gap, at1ms.final_error);
+    EXPECT_LT(at1ms.gap, 2e-2) << name;
+    EXPECT_LT(at_quarter.gap, 0.4 * at1ms.gap) << name;  // first order in T
+    EXPECT_LT(at1ms.final_error, 1e-2) << name;          // from 0.85 rad off: it tracks
+  }
 }
 
 model::Reference constant(const Eigen::Vector2d& q_d) {
