@@ -52,7 +52,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const lagrange::scenario_t scenario = config::scenarioMessage(s);
   log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
 
-  TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
+  TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance, s.tickPeriod());
   runtime::StatusReporter status(node);
   RunFacts facts;
   facts.log_path = log_path;

@@ -20,7 +20,7 @@ inline void observe(TrackingMetrics& metrics, const lagrange::control_command_t&
   metrics.addChainErrors(m.header.tick, m.header.sim_time, m.xi_error);
 }
 inline void observe(TrackingMetrics& metrics, const lagrange::actuator_state_t& m) {
-  metrics.addTorque(transport::toEigen(m.tau_applied));
+  metrics.addTorque(m.header.tick, transport::toEigen(m.tau_applied));
 }
 template <class Msg>
 void observe(TrackingMetrics&, const Msg&) {}

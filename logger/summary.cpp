@@ -109,7 +109,9 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     }
     j["tracking"]["chain"] = chain;
   }
-  j["torque"] = {{"max_abs", t.max_abs_torque}};
+  j["torque"] = {{"max_abs", t.max_abs_torque},
+                 {"total_variation", t.torque_total_variation},
+                 {"energy", t.control_energy}};
   j["gains"] = gainsJson(g);
   j["run_id"] = f.run_id;
   j["timing"] = {

@@ -4,8 +4,9 @@
 
 namespace lagrange::logger {
 
-TrackingMetrics::TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance)
-    : reference_(std::move(reference)), tolerance_(tolerance), xi_tolerance_(xi_tolerance) {}
+TrackingMetrics::TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance,
+                                 double tick_period)
+    : reference_(std::move(reference)), tolerance_(tolerance), tick_period_(tick_period), xi_tolerance_(xi_tolerance) {}
 
 namespace {
 // Final, max and convergence time of one error history.
@@ -50,14 +51,25 @@ std::optional<double> TrackingMetrics::addSample(long long tick, double t, const
   return e;
 }
 
-void TrackingMetrics::addTorque(const Eigen::MatrixXd& tau) {
-  if (tau.size() > 0) max_abs_torque_ = std::max(max_abs_torque_, tau.cwiseAbs().maxCoeff());
+void TrackingMetrics::addTorque(long long tick, const Eigen::MatrixXd& tau) {
+  if (tau.size() > 0) torques_.emplace(tick, tau);
 }
 
 TrackingSummary TrackingMetrics::summary() const {
   TrackingSummary s;
   s.tolerance = tolerance_;
-  s.max_abs_torque = max_abs_torque_;
+  // The torques in tick order: a re-sent or late ACTUATOR_STATE counts once.
+  const Eigen::RowVectorXd* previous = nullptr;
+  Eigen::RowVectorXd last;
+  for (const auto& [tick, tau] : torques_) {
+    s.max_abs_torque = std::max(s.max_abs_torque, tau.cwiseAbs().maxCoeff());
+    s.control_energy += tau.rowwise().squaredNorm().sum() * tick_period_ / static_cast<double>(tau.rows());
+    for (Eigen::Index r = 0; r < tau.rows(); ++r) {
+      if (previous) s.torque_total_variation += (tau.row(r) - *previous).cwiseAbs().sum();
+      last = tau.row(r);
+      previous = &last;
+    }
+  }
   std::vector<double> times, errors;  // in tick order
   for (const auto& [tick, sample] : samples_) {
     times.push_back(sample.t);

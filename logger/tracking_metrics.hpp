@@ -28,6 +28,11 @@ struct TrackingSummary {
   std::optional<double> convergence_time;
   double rms_last_second = 0.0;  ///< RMS of ||q~|| over t >= T - 1 s [rad]
   double max_abs_torque = 0.0;   ///< max |tau_i| applied [N m]
+  /// sum over joints of the total variation of the applied torque, step to
+  /// step in tick order: sum_j sum_s |tau_j(s) - tau_j(s-1)| [N m] (chattering)
+  double torque_total_variation = 0.0;
+  /// integral of ||tau||^2 dt, each step held T / steps [N^2 m^2 s] (0 without a tick period)
+  double control_energy = 0.0;
   long long samples = 0;
   double sim_time = 0.0;            ///< time of the last sample [s]
   std::vector<ErrorSummary> chain;  ///< ||xit_i|| per stage i (cascaded controller)
@@ -35,12 +40,17 @@ struct TrackingSummary {
 
 class TrackingMetrics {
  public:
-  TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance = 1e-2);
+  /// tick_period [s]: the time each ACTUATOR_STATE's torque profile spans
+  /// (for the control energy; 0: not computed).
+  TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance = 1e-2,
+                  double tick_period = 0.0);
 
   /// A plant sample, in any order (a re-sent one may come late); a tick
   /// already recorded is ignored (returns nothing). Returns ||q~||.
   std::optional<double> addSample(long long tick, double t, const Eigen::VectorXd& q);
-  void addTorque(const Eigen::MatrixXd& tau);
+  /// The torque profile applied after tick `tick` (rows: steps of the
+  /// period); a tick already recorded is ignored.
+  void addTorque(long long tick, const Eigen::MatrixXd& tau);
 
   /// The cascaded controller's chain errors xit_i at a tick (rows = stages),
   /// judged against xi_tolerance. Repeated or older ticks are ignored.
@@ -63,7 +73,8 @@ class TrackingMetrics {
   };
   std::map<long long, Sample> samples_;  ///< by tick
   long long contiguous_tick_ = -1;
-  double max_abs_torque_ = 0.0;
+  double tick_period_;
+  std::map<long long, Eigen::MatrixXd> torques_;  ///< by tick
   double xi_tolerance_;
   long long last_chain_tick_ = -1;
   std::vector<double> chain_times_;

@@ -38,7 +38,8 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   // The controller's inputs by the controller process's own rule (lockstep).
   controller::InputAssembly assembly = controller::makeInputAssembly(s, needs);
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
-  logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance);
+  logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
+                                  s.tickPeriod());
 
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
   // -> physics. Every value passes through the same message structs as over
@@ -76,7 +77,7 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
     if (needs.actuator_order > 0) assembly.chainState(k, act.state());
     log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
-    metrics.addTorque(tau);
+    metrics.addTorque(k, tau);
 
     if (k % 100 == 0) {
       progress.update(t, error.value_or(std::nan("")));

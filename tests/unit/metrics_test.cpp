@@ -28,6 +28,25 @@ TEST(TrackingMetrics, ConvergenceTimeIsTheSampleAfterTheLastViolation) {
   EXPECT_NEAR(s.rms_last_second, std::sqrt((0.09 * 0.09 + 0.01 * 0.01 + 0.02 * 0.02) / 3), 1e-15);
 }
 
+// Two joints, two torque steps per 0.01 s period, the ticks out of order and
+// one repeated: each counts once, in tick order.
+TEST(TrackingMetrics, TorqueMaxTotalVariationAndEnergyCountEachTickOnceInOrder) {
+  logger::TrackingMetrics m(zeroReference(), 0.1, 1e-2, 0.01);
+  m.addSample(0, 0.0, Eigen::VectorXd::Zero(1));
+  Eigen::MatrixXd tick0(2, 2), tick1(2, 2);
+  tick0 << 1.0, -2.0, 3.0, -2.0;
+  tick1 << 3.0, 0.0, -1.0, 0.0;
+  m.addTorque(1, tick1);
+  m.addTorque(0, tick0);
+  m.addTorque(1, Eigen::MatrixXd::Constant(2, 2, 100.0));  // a repeated tick: ignored
+  const auto s = m.summary();
+  EXPECT_DOUBLE_EQ(s.max_abs_torque, 3.0);
+  // Steps in order: (1,-2) (3,-2) (3,0) (-1,0): |2|+|0| + |0|+|2| + |4|+|0| = 8.
+  EXPECT_DOUBLE_EQ(s.torque_total_variation, 8.0);
+  // Each step held 0.005 s: (5 + 13 + 9 + 1) * 0.005.
+  EXPECT_DOUBLE_EQ(s.control_energy, 28.0 * 0.005);
+}
+
 TEST(TrackingMetrics, NeverConvergedIsEmpty) {
   logger::TrackingMetrics m(zeroReference(), 0.1);
   m.addSample(0, 0.0, Eigen::VectorXd::Constant(1, 0.01));
