@@ -86,6 +86,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readRealtimeSection(root, s);
   readSupervisionSection(root, s);
   readFaultsSection(root, s);
+  readCompareSection(root, s);
   root.finish(keys::kTop);
   return s;
 }

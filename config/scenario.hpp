@@ -160,6 +160,15 @@ struct SensorsConfig {
   std::optional<JointSensorConfig> motor;     ///< motor angles of flexible joints; absent: exact
 };
 
+/// What `lagrange compare` runs (compare.*; docs/comparison.md).
+struct CompareConfig {
+  /// The controllers, in file order: type, and its keys as a YAML flow map
+  /// (checked when `lagrange compare` builds its scenario).
+  std::vector<std::pair<std::string, std::string>> controllers;
+  std::string sweep_key;                  ///< compare.sweep.key; empty: no sweep
+  std::vector<std::string> sweep_values;  ///< each as YAML text
+};
+
 /// What the launcher does when a process dies (supervision.*).
 struct SupervisionConfig {
   /// Processes restarted when they die: "controller", "actuator". The plant
@@ -200,6 +209,7 @@ struct Scenario {
   SupervisionConfig supervision;
   FaultsConfig faults;
   std::optional<SensorsConfig> sensors;  ///< absent: PLANT_POSITION carries the true angles
+  std::optional<CompareConfig> compare;  ///< lagrange compare's section; lagrange run ignores it
 
   bool velocitySensor() const { return sensors && sensors->velocity; }
   int dof() const { return urdf_model ? urdf_model->dof() : static_cast<int>(robot.links.size()); }

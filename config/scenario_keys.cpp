@@ -26,7 +26,7 @@ std::vector<DocumentedKey> documentedKeys() {
   // Sections are not rows: their keys are.
   add(out, "", kTop,
       {"robot", "initial_state", "reference", "plant", "actuator", "controller", "metrics", "lockstep",
-       "realtime", "supervision", "faults", "sensors"});
+       "realtime", "supervision", "faults", "sensors", "compare"});
   add(out, "robot.", kRobot, {"flexible", "urdf"});
   addInside(out, "robot.links", kLink);
   add(out, "robot.urdf.", kUrdf);
@@ -51,6 +51,9 @@ std::vector<DocumentedKey> documentedKeys() {
   add(out, "sensors.position.", kPositionSensor);
   add(out, "sensors.velocity.", kVelocitySensor);
   add(out, "sensors.motor.", kPositionSensor);
+  add(out, "compare.", kCompare, {"controllers", "sweep"});
+  out.push_back({"compare.controllers.TYPE", ""});
+  add(out, "compare.sweep.", kCompareSweep);
   return out;
 }
 

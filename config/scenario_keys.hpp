@@ -16,7 +16,7 @@ using Keys = std::set<std::string>;
 
 inline const Keys kTop = {"name",      "description", "duration", "mode",       "robot",   "initial_state",
                           "reference", "plant",       "actuator", "controller", "metrics", "lockstep",
-                          "realtime",  "supervision", "faults",   "sensors"};
+                          "realtime",  "supervision", "faults",   "sensors",    "compare"};
 inline const Keys kRobot = {"preset", "links", "urdf", "gravity", "flexible"};
 inline const Keys kUrdf = {"file", "xml", "base_link", "tip_link"};
 inline const Keys kLink = {"length", "com", "mass", "inertia"};
@@ -36,6 +36,8 @@ inline const Keys kReceiverFaults = {"drop"};
 inline const Keys kSensors = {"seed", "position", "velocity", "motor"};
 inline const Keys kPositionSensor = {"counts_per_revolution", "noise_sigma", "delay"};  // also sensors.motor
 inline const Keys kVelocitySensor = {"noise_sigma", "delay"};
+inline const Keys kCompare = {"controllers", "sweep"};
+inline const Keys kCompareSweep = {"key", "values"};
 
 /// A key as docs/configuration.md's table names it: `row` is the dotted key
 /// of its row (list items as [i], map entries by a capital placeholder such

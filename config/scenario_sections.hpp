@@ -35,4 +35,7 @@ void readSupervisionSection(MapReader& root, Scenario& s);
 void readFaultsSection(MapReader& root, Scenario& s);
 void readSensorsSection(MapReader& root, Scenario& s);
 
+// What `lagrange compare` runs (compare_section.cpp).
+void readCompareSection(MapReader& root, Scenario& s);
+
 }  // namespace lagrange::config::sections

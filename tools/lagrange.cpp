@@ -2,6 +2,8 @@
 /// `lagrange`: the front end users type. Subcommands:
 ///   run           launch a scenario (plant, actuator, controller, logger over LCM)
 ///   check-gains   print the gain conditions of a scenario without running it
+///   compare       run a scenario for several controllers and tabulate them
+///   replay, report, spy
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
 #include "model/error.hpp"
+#include "tools/compare.hpp"
 #include "tools/replay.hpp"
 #include "tools/report.hpp"
 #include "tools/run_command.hpp"
@@ -184,6 +187,31 @@ int DoMain(int argc, char** argv) {
       "-o,--out", report_out,
       "Directory for the CSV files, plots and plots.gp (default: report/ next to the log)");
 
+  tools::CompareOptions compare;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare",
+      "Run one scenario for several controllers (in-process, several at a time), each tuned by its section "
+      "compare.controllers.TYPE; write a table (Markdown and CSV: convergence time, final and RMS error, max "
+      "torque, torque total variation, control energy), overlay plots of the error and the torques, and with "
+      "--sweep the steady-state error against one key (docs/comparison.md)");
+  compare_cmd->add_option("config", compare.config_path, "Scenario YAML file, e.g. configs/compare_pelican.yaml")
+      ->required()
+      ->check(CLI::ExistingFile);
+  compare_cmd->add_option("-o,--out", compare.out_dir, "Output directory (created if missing)")->required();
+  compare_cmd
+      ->add_option("--controllers", compare.controllers,
+                   "Controller types to compare, comma-separated (default: every one in compare.controllers)")
+      ->delimiter(',');
+  compare_cmd->add_option("--set", compare.overrides,
+                          "Override a config key in every run (after the controller's section): key=value; "
+                          "repeatable");
+  compare_cmd->add_option("--sweep", compare.sweep,
+                          "Also run each controller for every value of one key, KEY=[V1, V2, ...] (a YAML list), "
+                          "e.g. 'sensors.position.counts_per_revolution=[4096, 65536]' (default: compare.sweep)");
+  compare_cmd->add_option("-j,--jobs", compare.jobs, "Runs at a time (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
+  compare_cmd->add_flag("-q,--quiet", compare.quiet, "Print errors only");
+
   tools::SpyOptions spy;
   CLI::App* spy_cmd = app.add_subcommand(
       "spy",
@@ -206,6 +234,10 @@ int DoMain(int argc, char** argv) {
     run.self_argv.assign(argv, argv + argc);
     run.self_argv[0] = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runScenario(run);
+  }
+  if (*compare_cmd) {
+    compare.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
+    return tools::runComparison(compare);
   }
   if (*replay_cmd) return replay(replay_log, component, replay_overrides);
   if (*report_cmd) return report(report_target, report_out);

@@ -279,7 +279,7 @@ class ScriptBuilder {
   std::ostringstream out_;
 };
 
-const char* kPreamble = "set datafile separator \",\"\nset grid\nset key top right box opaque\n";
+const char* kPreamble = kGnuplotPreamble;
 
 // Runs gnuplot in `dir` with `script` on its standard input; its messages are
 // appended to `log`. Returns gnuplot's exit status (127: not installed).
@@ -346,20 +346,25 @@ PlotScript plotScript(const PlotSpec& spec) {
 }
 
 Plots drawPlots(const PlotSpec& spec) {
-  Plots plots;
-  plots.log = (fs::path(spec.dir) / "gnuplot.log").string();
   const PlotScript script = plotScript(spec);
   {
     std::ofstream out(fs::path(spec.dir) / "plots.gp");
     out << script.text;
     if (!out) throw PlotError("cannot write " + spec.dir + "/plots.gp");
   }
+  return drawPictures(spec.dir, script.pngs, script.sections);
+}
+
+Plots drawPictures(const std::string& dir, const std::vector<std::string>& pngs,
+                   const std::vector<std::string>& sections) {
+  Plots plots;
+  plots.log = (fs::path(dir) / "gnuplot.log").string();
   fs::remove(plots.log);
   // One gnuplot per picture, so a plot gnuplot rejects costs only itself.
-  for (size_t i = 0; i < script.pngs.size(); ++i) {
-    const fs::path png = fs::path(spec.dir) / script.pngs[i];
+  for (size_t i = 0; i < pngs.size(); ++i) {
+    const fs::path png = fs::path(dir) / pngs[i];
     fs::remove(png);
-    const int status = runGnuplot(spec.dir, script.sections[i], plots.log);
+    const int status = runGnuplot(dir, sections[i], plots.log);
     if (status == 127)
       throw PlotError(
           "gnuplot not found; install Debian's gnuplot-nox (bash scripts/setup.sh does) to get the "
@@ -367,7 +372,7 @@ Plots drawPlots(const PlotSpec& spec) {
     if (status == 0 && fs::exists(png) && fs::file_size(png) > 0)
       plots.written.push_back(png.string());
     else
-      plots.failed.push_back(script.pngs[i]);
+      plots.failed.push_back(pngs[i]);
   }
   return plots;
 }

@@ -55,4 +55,14 @@ struct Plots {
 /// @throws PlotError when gnuplot is not installed or plots.gp cannot be written.
 Plots drawPlots(const PlotSpec& spec);
 
+/// The start of every picture's script: CSV input, a grid, a boxed key.
+inline constexpr const char* kGnuplotPreamble =
+    "set datafile separator \",\"\nset grid\nset key top right box opaque\n";
+
+/// Runs gnuplot in `dir` once per picture: sections[i], a whole script, draws
+/// pngs[i]; gnuplot's messages go to DIR/gnuplot.log.
+/// @throws PlotError when gnuplot is not installed.
+Plots drawPictures(const std::string& dir, const std::vector<std::string>& pngs,
+                   const std::vector<std::string>& sections);
+
 }  // namespace lagrange::tools

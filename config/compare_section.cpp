@@ -1,0 +1,60 @@
+/// @file
+/// The compare section: what `lagrange compare` runs (docs/comparison.md).
+/// Each controller's keys are kept as YAML text here and checked when
+/// `lagrange compare` builds that controller's scenario, before any run
+/// starts; `lagrange run` carries the section along and ignores it.
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+
+#include "config/controller_params.hpp"
+#include "config/scenario_keys.hpp"
+#include "config/scenario_sections.hpp"
+
+namespace lagrange::config::sections {
+
+namespace {
+std::string flowYaml(const YAML::Node& node) {
+  YAML::Emitter out;
+  out.SetMapFormat(YAML::Flow);
+  out.SetSeqFormat(YAML::Flow);
+  out << node;
+  return out.c_str();
+}
+}  // namespace
+
+void readCompareSection(MapReader& root, Scenario& s) {
+  if (!root.has("compare")) return;
+  MapReader r = root.map("compare");
+  CompareConfig c;
+  MapReader controllers = r.map("controllers");
+  const std::vector<std::string> types = controllerTypes();
+  for (const std::string& type : controllers.keys()) {
+    if (std::find(types.begin(), types.end(), type) == types.end()) {
+      std::string list;
+      for (size_t i = 0; i < types.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == types.size() ? " or " : ", ") + types[i];
+      controllers.fail(type, "unknown controller type '" + type + "'; expected: " + list);
+    }
+    const YAML::Node keys = controllers.child(type);
+    if (!keys.IsNull() && !keys.IsMap())
+      controllers.fail(type, "expected a map of the controller's keys (e.g. {kp: [150, 10], kd: [15, 1]})");
+    if (keys.IsMap() && keys["type"])
+      controllers.fail(type + ".type", "the controller's type is its key here; expected its other keys only");
+    c.controllers.push_back({type, keys.IsNull() ? std::string("{}") : flowYaml(keys)});
+  }
+  if (c.controllers.empty()) r.fail("controllers", "expected at least one controller");
+  if (r.has("sweep")) {
+    MapReader sweep = r.map("sweep");
+    c.sweep_key = sweep.text("key");
+    const YAML::Node values = sweep.child("values");
+    if (!values.IsSequence() || values.size() == 0)
+      sweep.fail("values", "expected a list of at least one value for " + c.sweep_key);
+    for (const YAML::Node& v : values) c.sweep_values.push_back(flowYaml(v));
+    sweep.finish(keys::kCompareSweep);
+  }
+  r.finish(keys::kCompare);
+  s.compare = c;
+}
+
+}  // namespace lagrange::config::sections
