@@ -113,8 +113,8 @@ JointSensorConfig readJointSensor(MapReader& p, int n, bool angles, const keys::
     for (Eigen::Index i = 0; i < n; ++i)
       if (c.counts_per_revolution(i) < 0.0 ||
           c.counts_per_revolution(i) != std::floor(c.counts_per_revolution(i)))
-        p.fail("counts_per_revolution",
-               "expected whole numbers >= 0 (0: not quantised), got " + shortNumber(c.counts_per_revolution(i)));
+        p.fail("counts_per_revolution", "expected whole numbers >= 0 (0: not quantised), got " +
+                                            shortNumber(c.counts_per_revolution(i)));
   }
   if (p.has("noise_sigma")) {
     c.noise_sigma = p.vector("noise_sigma", n, true, false);

@@ -154,8 +154,8 @@ struct JointSensorConfig {
 /// carries the joint-angle readings, PLANT_RATE the velocity sensor's (only
 /// when declared), PLANT_MOTOR the motor angles; PLANT_TRUTH the true values.
 struct SensorsConfig {
-  uint64_t seed = 1;         ///< the noise's draws (each sensor its own stream)
-  JointSensorConfig position;  ///< joint angles
+  uint64_t seed = 1;                          ///< the noise's draws (each sensor its own stream)
+  JointSensorConfig position;                 ///< joint angles
   std::optional<JointSensorConfig> velocity;  ///< a tachometer per joint; absent: no PLANT_RATE
   std::optional<JointSensorConfig> motor;     ///< motor angles of flexible joints; absent: exact
 };

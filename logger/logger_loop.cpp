@@ -52,12 +52,14 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const lagrange::scenario_t scenario = config::scenarioMessage(s);
   log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
 
-  TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance, s.tickPeriod());
+  TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
+                          s.tickPeriod());
   runtime::StatusReporter status(node);
   RunFacts facts;
   facts.log_path = log_path;
   facts.run_id = node.runId();
-  const std::vector<std::string> per_tick = transport::perTickChannels({s.flexible.has_value(), s.velocitySensor()});
+  const std::vector<std::string> per_tick =
+      transport::perTickChannels({s.flexible.has_value(), s.velocitySensor()});
   TickConfirmation confirmation(per_tick, s.lastTick(), s.mode == config::Mode::kLockstep,
                                 s.lockstep.logger_window);
   RunEnd end(

@@ -6,7 +6,10 @@ namespace lagrange::logger {
 
 TrackingMetrics::TrackingMetrics(model::Reference reference, double tolerance, double xi_tolerance,
                                  double tick_period)
-    : reference_(std::move(reference)), tolerance_(tolerance), tick_period_(tick_period), xi_tolerance_(xi_tolerance) {}
+    : reference_(std::move(reference)),
+      tolerance_(tolerance),
+      tick_period_(tick_period),
+      xi_tolerance_(xi_tolerance) {}
 
 namespace {
 // Final, max and convergence time of one error history.

@@ -88,7 +88,8 @@ std::optional<Sweep> sweepOf(const CompareOptions& o, const config::Scenario& s)
     throw ConfigError("--sweep " + sweep.key + ": malformed YAML: " + e.msg);
   }
   if (!list.IsSequence() || list.size() == 0)
-    throw ConfigError("--sweep " + sweep.key + ": expected a YAML list of at least one value, e.g. [4096, 65536]");
+    throw ConfigError("--sweep " + sweep.key +
+                      ": expected a YAML list of at least one value, e.g. [4096, 65536]");
   for (const YAML::Node& v : list) sweep.values.push_back(flowYaml(v));
   return sweep;
 }
@@ -103,7 +104,8 @@ std::string valueDir(size_t index, const std::string& value) {
 
 // Starts `self run CONFIG --mode inproc -q --out DIR --set ...`, output in DIR/compare.log.
 pid_t startRun(const CompareOptions& o, const CompareRun& run) {
-  std::vector<std::string> args = {o.self_exe, "run", o.config_path, "--mode", "inproc", "-q", "--out", run.dir};
+  std::vector<std::string> args = {o.self_exe, "run", o.config_path, "--mode",
+                                   "inproc",   "-q",  "--out",       run.dir};
   for (const std::string& ov : run.overrides) args.insert(args.end(), {"--set", ov});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -228,7 +230,8 @@ std::vector<CompareRun> planComparison(const CompareOptions& o) {
   std::vector<CompareRun> runs;
   for (const std::string& type : types) {
     std::vector<std::string> overrides = {"mode=inproc"};
-    if (const auto controller = controllerOverride(base, type, o.config_path)) overrides.push_back(*controller);
+    if (const auto controller = controllerOverride(base, type, o.config_path))
+      overrides.push_back(*controller);
     overrides.insert(overrides.end(), o.overrides.begin(), o.overrides.end());
     const fs::path dir = fs::path(o.out_dir) / "runs" / type;
     try {  // its section, checked before anything runs
@@ -245,8 +248,8 @@ std::vector<CompareRun> planComparison(const CompareOptions& o) {
       try {
         config::loadScenario(o.config_path, swept);
       } catch (const ConfigError& e) {
-        throw ConfigError(std::string(e.what()) + " (the sweep of " + sweep->key + ", value " + sweep->values[i] +
-                          ", with controller " + type + ")");
+        throw ConfigError(std::string(e.what()) + " (the sweep of " + sweep->key + ", value " +
+                          sweep->values[i] + ", with controller " + type + ")");
       }
       runs.push_back({type, sweep->values[i], swept, (dir / valueDir(i, sweep->values[i])).string()});
     }

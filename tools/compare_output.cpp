@@ -29,8 +29,8 @@ std::string full(double x) {
 }
 
 std::string markdownRow(const RunNumbers& n, bool with_value) {
-  std::string row = "| " + n.type + (with_value ? " | " + n.value.value_or("") : "") + " | " + n.status + " | " +
-                    (n.convergence_time ? number(*n.convergence_time) : "not within the run") + " | ";
+  std::string row = "| " + n.type + (with_value ? " | " + n.value.value_or("") : "") + " | " + n.status +
+                    " | " + (n.convergence_time ? number(*n.convergence_time) : "not within the run") + " | ";
   for (double x : {n.final_error, n.rms_last_second, n.max_torque, n.total_variation, n.energy})
     row += number(x) + " | ";
   return row.substr(0, row.size() - 1) + "\n";
@@ -74,28 +74,32 @@ std::string writeComparison(const ComparisonTables& t, const std::string& out_di
   std::ofstream out_md(fs::path(out_dir) / "comparison.md");
   out_md << md;
   std::ofstream csv(fs::path(out_dir) / "comparison.csv");
-  csv << "controller,sweep_key,sweep_value,status,convergence_time,final_error,rms_last_second,max_abs_torque,"
+  csv << "controller,sweep_key,sweep_value,status,convergence_time,final_error,rms_last_second,max_abs_"
+         "torque,"
          "torque_total_variation,control_energy\n";
   for (const RunNumbers& n : t.runs) {
-    csv << n.type << "," << (n.value ? t.sweep_key : "") << ",\"" << n.value.value_or("") << "\"," << n.status << ","
-        << (n.convergence_time ? full(*n.convergence_time) : "");
+    csv << n.type << "," << (n.value ? t.sweep_key : "") << ",\"" << n.value.value_or("") << "\"," << n.status
+        << "," << (n.convergence_time ? full(*n.convergence_time) : "");
     for (double x : {n.final_error, n.rms_last_second, n.max_torque, n.total_variation, n.energy})
       csv << "," << full(x);
     csv << "\n";
   }
-  if (!out_md.flush() || !csv.flush()) throw std::runtime_error("cannot write the comparison into " + out_dir);
+  if (!out_md.flush() || !csv.flush())
+    throw std::runtime_error("cannot write the comparison into " + out_dir);
   return md;
 }
 
 Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir) {
   std::vector<std::string> pngs, sections;
   const std::string title = "set title '" + t.scenario + "' noenhanced\n";
-  std::string error = std::string(kGnuplotPreamble) + "set terminal pngcairo size 1000,600\nset output 'error.png'\n" +
-                      title + "set logscale y\nset format y '%.0e'\nset xlabel 't [s]'\n"
+  std::string error = std::string(kGnuplotPreamble) +
+                      "set terminal pngcairo size 1000,600\nset output 'error.png'\n" + title +
+                      "set logscale y\nset format y '%.0e'\nset xlabel 't [s]'\n"
                       "set ylabel '||q - q_d|| [rad] (true angles)' noenhanced\nplot ";
   std::string torque = std::string(kGnuplotPreamble) + "set terminal pngcairo size 1000," +
-                       std::to_string(250 * std::max(2, t.dof)) + "\nset output 'torque.png'\nset multiplot layout " +
-                       std::to_string(t.dof) + ",1 title '" + t.scenario + ": applied torques' noenhanced\n";
+                       std::to_string(250 * std::max(2, t.dof)) +
+                       "\nset output 'torque.png'\nset multiplot layout " + std::to_string(t.dof) +
+                       ",1 title '" + t.scenario + ": applied torques' noenhanced\n";
   std::vector<const RunNumbers*> nominal;
   for (const RunNumbers& n : t.runs)
     if (!n.value) nominal.push_back(&n);
@@ -109,8 +113,8 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
     torque += "set xlabel 't [s]'\nset ylabel 'tau_" + std::to_string(j + 1) + " [N m]' noenhanced\nplot ";
     for (size_t i = 0; i < nominal.size(); ++i)
       torque += std::string(i ? ", \\\n     " : "") + "'" + relativeDir(nominal[i]->dir, out_dir) +
-                "/series.csv' skip 1 using 1:" + std::to_string(3 + j) + " with lines title '" + nominal[i]->type +
-                "' noenhanced";
+                "/series.csv' skip 1 using 1:" + std::to_string(3 + j) + " with lines title '" +
+                nominal[i]->type + "' noenhanced";
     torque += "\n";
   }
   torque += "unset multiplot\n";
@@ -139,7 +143,8 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
                           (powers_of_two ? "set logscale x 2\nset format x '2^{%L}'\n"
                            : positive    ? "set logscale x\nset format x '%.0e'\n"
                                          : "") +
-                          "set xlabel '" + t.sweep_key + "' noenhanced\n"
+                          "set xlabel '" + t.sweep_key +
+                          "' noenhanced\n"
                           "set ylabel 'RMS ||q - q_d|| over the last second [rad]' noenhanced\nplot ";
       for (size_t i = 0; i < types.size(); ++i) {
         const std::string file = "sweep_" + types[i] + ".csv";
@@ -147,10 +152,10 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
         data << "value,rms_last_second,final_error\n";
         for (const RunNumbers& n : t.runs)
           if (n.value && n.type == types[i])
-            data << full(*plotPosition(*n.value)) << "," << full(n.rms_last_second) << "," << full(n.final_error)
-                 << "\n";
-        sweep += std::string(i ? ", \\\n     " : "") + "'" + file + "' skip 1 using 1:2 with linespoints lw 2 title '" +
-                 types[i] + "' noenhanced";
+            data << full(*plotPosition(*n.value)) << "," << full(n.rms_last_second) << ","
+                 << full(n.final_error) << "\n";
+        sweep += std::string(i ? ", \\\n     " : "") + "'" + file +
+                 "' skip 1 using 1:2 with linespoints lw 2 title '" + types[i] + "' noenhanced";
       }
       pngs.push_back("sweep.png");
       sections.push_back(sweep + "\n");

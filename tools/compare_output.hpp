@@ -19,17 +19,17 @@ struct RunNumbers {
   std::string type;
   std::optional<std::string> value;  ///< the sweep value; none: the nominal run
   std::string dir;
-  std::string status;                       ///< completed, diverged, or "failed (...)"
-  std::optional<double> convergence_time;   ///< tracking.convergence_time [s]
-  double final_error = std::nan("");        ///< tracking.final_error [rad]
-  double rms_last_second = std::nan("");    ///< tracking.rms_last_second [rad]
-  double max_torque = std::nan("");         ///< torque.max_abs [N m]
-  double total_variation = std::nan("");    ///< torque.total_variation [N m]
-  double energy = std::nan("");             ///< torque.energy [N^2 m^2 s]
+  std::string status;                      ///< completed, diverged, or "failed (...)"
+  std::optional<double> convergence_time;  ///< tracking.convergence_time [s]
+  double final_error = std::nan("");       ///< tracking.final_error [rad]
+  double rms_last_second = std::nan("");   ///< tracking.rms_last_second [rad]
+  double max_torque = std::nan("");        ///< torque.max_abs [N m]
+  double total_variation = std::nan("");   ///< torque.total_variation [N m]
+  double energy = std::nan("");            ///< torque.energy [N^2 m^2 s]
 };
 
 struct ComparisonTables {
-  std::string scenario;   ///< its name
+  std::string scenario;  ///< its name
   int dof = 0;
   std::string sweep_key;  ///< empty: no sweep
   std::vector<RunNumbers> runs;

@@ -194,7 +194,8 @@ int DoMain(int argc, char** argv) {
       "compare.controllers.TYPE; write a table (Markdown and CSV: convergence time, final and RMS error, max "
       "torque, torque total variation, control energy), overlay plots of the error and the torques, and with "
       "--sweep the steady-state error against one key (docs/comparison.md)");
-  compare_cmd->add_option("config", compare.config_path, "Scenario YAML file, e.g. configs/compare_pelican.yaml")
+  compare_cmd
+      ->add_option("config", compare.config_path, "Scenario YAML file, e.g. configs/compare_pelican.yaml")
       ->required()
       ->check(CLI::ExistingFile);
   compare_cmd->add_option("-o,--out", compare.out_dir, "Output directory (created if missing)")->required();
@@ -205,9 +206,10 @@ int DoMain(int argc, char** argv) {
   compare_cmd->add_option("--set", compare.overrides,
                           "Override a config key in every run (after the controller's section): key=value; "
                           "repeatable");
-  compare_cmd->add_option("--sweep", compare.sweep,
-                          "Also run each controller for every value of one key, KEY=[V1, V2, ...] (a YAML list), "
-                          "e.g. 'sensors.position.counts_per_revolution=[4096, 65536]' (default: compare.sweep)");
+  compare_cmd->add_option(
+      "--sweep", compare.sweep,
+      "Also run each controller for every value of one key, KEY=[V1, V2, ...] (a YAML list), "
+      "e.g. 'sensors.position.counts_per_revolution=[4096, 65536]' (default: compare.sweep)");
   compare_cmd->add_option("-j,--jobs", compare.jobs, "Runs at a time (default: one per core)")
       ->check(CLI::NonNegativeNumber);
   compare_cmd->add_flag("-q,--quiet", compare.quiet, "Print errors only");

@@ -28,9 +28,12 @@ std::vector<std::vector<std::string>> csvRows(const std::string& path) {
     std::string cell;
     bool quoted = false;
     for (char c : line) {
-      if (c == '"') quoted = !quoted;
-      else if (c == ',' && !quoted) cells.push_back(cell), cell.clear();
-      else cell += c;
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        cells.push_back(cell), cell.clear();
+      else
+        cell += c;
     }
     cells.push_back(cell);
     rows.push_back(cells);
@@ -67,8 +70,8 @@ TEST(Compare, RunsEachControllerAsItsSectionTunesItAndTabulatesEachRunsOwnNumber
     std::string dir = out + "/runs/" + row[0];
     if (!row[2].empty()) {
       for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.is_directory() && entry.path().filename().string().find(row[2] == "4096" ? "_4096" : "_1048576") !=
-                                        std::string::npos)
+        if (entry.is_directory() && entry.path().filename().string().find(
+                                        row[2] == "4096" ? "_4096" : "_1048576") != std::string::npos)
           dir = entry.path().string();
       const std::string resolved = [&] {
         std::ifstream in(dir + "/config.resolved.yaml");
