@@ -223,7 +223,8 @@ std::vector<CompareRun> planComparison(const CompareOptions& o) {
       std::string list;
       for (size_t i = 0; i < known.size(); ++i)
         list += (i == 0 ? "" : i + 1 == known.size() ? " or " : ", ") + known[i];
-      throw ConfigError("--controllers: unknown controller type '" + type + "'; expected: " + list);
+      throw ConfigError((o.controllers.empty() ? "config: " + o.config_path + ": compare.controllers" : "--controllers") +
+                        ": unknown controller type '" + type + "'; expected: " + list);
     }
   }
   const std::optional<Sweep> sweep = sweepOf(o, base);

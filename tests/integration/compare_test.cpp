@@ -118,6 +118,7 @@ TEST(Compare, BadInputIsNamedBeforeAnyRunStarts) {
       {"--sweep 'sensors.position.counts_per_revolution=[4096, -1]'",
        "sensors.position.counts_per_revolution: expected whole numbers >= 0"},
       {"--set 'compare.controllers.slotine_li={kp: 1}'", "compare.controllers.slotine_li"},
+      {"--set 'compare.controllers.pid={kp: 1}'", "compare.controllers: unknown controller type 'pid'"},
   };
   for (const auto& c : cases) {
     const std::string out = freshDir("compare-bad");
