@@ -10,16 +10,6 @@
 
 namespace lagrange::config::sections {
 
-namespace {
-std::string flowYaml(const YAML::Node& node) {
-  YAML::Emitter out;
-  out.SetMapFormat(YAML::Flow);
-  out.SetSeqFormat(YAML::Flow);
-  out << node;
-  return out.c_str();
-}
-}  // namespace
-
 void readCompareSection(MapReader& root, Scenario& s) {
   if (!root.has("compare")) return;
   MapReader r = root.map("compare");

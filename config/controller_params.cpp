@@ -39,6 +39,14 @@ const std::vector<ControllerParam>* registeredControllerParams(const std::string
   return it == registered().end() ? nullptr : &it->second;
 }
 
+std::string controllerTypeList() {
+  const std::vector<std::string> types = controllerTypes();
+  std::string list;
+  for (size_t i = 0; i < types.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == types.size() ? " or " : ", ") + types[i];
+  return list;
+}
+
 std::vector<std::string> controllerTypes() {
   std::vector<std::string> types = kPaperTypes;
   for (const auto& [type, params] : registered()) types.push_back(type);

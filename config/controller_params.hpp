@@ -43,5 +43,7 @@ const std::vector<ControllerParam>* registeredControllerParams(const std::string
 
 /// Every valid controller.type: the paper's three, then the registered ones.
 std::vector<std::string> controllerTypes();
+/// The same for a message: "theorem1, cascaded, ... or set_point".
+std::string controllerTypeList();
 
 }  // namespace lagrange::config

@@ -51,13 +51,6 @@ void readActuatorSection(MapReader& root, Scenario& s) {
 }
 
 namespace {
-std::string typeList() {
-  std::string list;
-  const std::vector<std::string> types = controllerTypes();
-  for (size_t i = 0; i < types.size(); ++i)
-    list += (i == 0 ? "" : i + 1 == types.size() ? " or " : ", ") + types[i];
-  return list;
-}
 
 // The section of a controller registered outside config (controller/registry.hpp):
 // its declared per-joint parameters, nothing else.
@@ -96,7 +89,8 @@ void readControllerSection(MapReader& root, Scenario& s) {
   const std::vector<ControllerParam>* registered = registeredControllerParams(s.controller.type);
   if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible" &&
       registered == nullptr)
-    ctl.fail("type", "unknown controller type '" + s.controller.type + "'; expected: " + typeList());
+    ctl.fail("type",
+             "unknown controller type '" + s.controller.type + "'; expected: " + controllerTypeList());
   if (s.flexible && s.controller.type != "flexible")
     ctl.fail("type",
              "robot.flexible has elastic joints, which only the flexible controller (eq. 830) "

@@ -73,4 +73,7 @@ class MapReader {
 /// " (line N)" for a node with a position, "" otherwise.
 std::string lineOf(const YAML::Node& node);
 
+/// The node as one line of YAML flow style ("{kp: [1, 2]}"), as --set takes it.
+std::string flowYaml(const YAML::Node& node);
+
 }  // namespace lagrange::config

@@ -21,6 +21,7 @@
 
 #include "config/controller_params.hpp"
 #include "config/scenario.hpp"
+#include "config/yaml_reader.hpp"
 #include "model/error.hpp"
 #include "model/reference.hpp"
 #include "tools/compare_output.hpp"
@@ -36,14 +37,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using config::ConfigError;
-
-std::string flowYaml(const YAML::Node& node) {
-  YAML::Emitter out;
-  out.SetMapFormat(YAML::Flow);
-  out.SetSeqFormat(YAML::Flow);
-  out << node;
-  return out.c_str();
-}
+using config::flowYaml;
 
 // The override that gives a run `type` with its compare section, or none when
 // `type` is the scenario's own controller and its compare section is empty
@@ -220,11 +214,10 @@ std::vector<CompareRun> planComparison(const CompareOptions& o) {
   for (const std::string& type : types) {
     if (!unique.insert(type).second) throw ConfigError("--controllers: '" + type + "' is named twice");
     if (std::find(known.begin(), known.end(), type) == known.end()) {
-      std::string list;
-      for (size_t i = 0; i < known.size(); ++i)
-        list += (i == 0 ? "" : i + 1 == known.size() ? " or " : ", ") + known[i];
-      throw ConfigError((o.controllers.empty() ? "config: " + o.config_path + ": compare.controllers" : "--controllers") +
-                        ": unknown controller type '" + type + "'; expected: " + list);
+      const std::string list = config::controllerTypeList();
+      throw ConfigError(
+          (o.controllers.empty() ? "config: " + o.config_path + ": compare.controllers" : "--controllers") +
+          ": unknown controller type '" + type + "'; expected: " + list);
     }
   }
   const std::optional<Sweep> sweep = sweepOf(o, base);
