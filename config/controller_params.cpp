@@ -6,7 +6,8 @@
 namespace lagrange::config {
 
 namespace {
-const std::vector<std::string> kPaperTypes = {"theorem1", "cascaded", "flexible"};
+// The paper's three, and a controller from outside the project (external).
+const std::vector<std::string> kBuiltinTypes = {"theorem1", "cascaded", "flexible", "external"};
 
 // A function-local static: registrations run during static initialisation,
 // in any order across translation units.
@@ -48,7 +49,7 @@ std::string controllerTypeList() {
 }
 
 std::vector<std::string> controllerTypes() {
-  std::vector<std::string> types = kPaperTypes;
+  std::vector<std::string> types = kBuiltinTypes;
   for (const auto& [type, params] : registered()) types.push_back(type);
   return types;
 }

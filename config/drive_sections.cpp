@@ -2,7 +2,12 @@
 /// What drives the arm: actuator (integrator chain, rate, saturation) and
 /// controller (Theorem 1, cascaded, flexible) (config/scenario_sections.hpp).
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
 
 #include "config/controller_params.hpp"
 #include "config/scenario_keys.hpp"
@@ -81,11 +86,69 @@ void readRegisteredController(MapReader& ctl, Scenario& s, const std::vector<Con
 }
 }  // namespace
 
+namespace {
+// A program on PATH, or "" when there is none.
+std::string onPath(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    if (access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return candidate;
+  }
+  return "";
+}
+
+// type external: a program from outside the project takes the controller's
+// place (docs/external_controllers.md). Its command is checked here, before
+// anything starts; a relative path is taken from the scenario file's folder.
+void readExternalController(MapReader& ctl, Scenario& s, const std::string& base_dir) {
+  if (s.actuator.order != 0)
+    ctl.fail("type", "an external controller commands the joint torque; expected actuator.order 0, got " +
+                         std::to_string(s.actuator.order));
+  if (s.flexible)
+    ctl.fail("type", "an external controller drives rigid joints only; this arm has robot.flexible");
+  if (s.mode == Mode::kInproc)
+    ctl.fail(
+        "type",
+        "an external controller runs as its own process over LCM; expected mode lockstep or realtime, got "
+        "inproc");
+  const YAML::Node command = ctl.child("command");
+  if (!command.IsSequence() || command.size() == 0)
+    ctl.fail("command",
+             "expected the controller's command line as a list, e.g. [python3, my_pd.py, --kp, 100]");
+  for (const YAML::Node& arg : command) {
+    if (!arg.IsScalar()) ctl.fail("command", "expected every entry to be a string");
+    s.controller.command.push_back(arg.as<std::string>());
+  }
+  const std::filesystem::path base = std::filesystem::absolute(base_dir.empty() ? "." : base_dir);
+  s.controller.working_directory =
+      ctl.has("working_directory") ? std::filesystem::absolute(base / ctl.text("working_directory")).string()
+                                   : base.string();
+  if (!std::filesystem::is_directory(s.controller.working_directory))
+    ctl.fail("working_directory", "'" + s.controller.working_directory +
+                                      "' is not a directory; expected the folder the command starts in");
+  std::string& program = s.controller.command[0];
+  if (program.find('/') != std::string::npos) {
+    const std::filesystem::path resolved = std::filesystem::absolute(base / program);
+    if (access(resolved.c_str(), X_OK) != 0 || std::filesystem::is_directory(resolved))
+      ctl.fail("command", "'" + program + "' (" + resolved.string() +
+                              ") does not exist or is not executable; expected the controller's program");
+    program = resolved.string();
+  } else if (onPath(program).empty()) {
+    ctl.fail("command", "'" + program +
+                            "' is not a program on PATH; expected the controller's program (a "
+                            "name on PATH, or a path relative to the scenario file)");
+  }
+  ctl.finish(keys::kExternalController);
+}
+}  // namespace
+
 // controller: its type, gains, filter start, stages and motor rate source.
-void readControllerSection(MapReader& root, Scenario& s) {
+void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir) {
   const int n = s.dof();
   MapReader ctl = root.map("controller");
   s.controller.type = ctl.text("type");
+  if (s.controller.type == "external") return readExternalController(ctl, s, base_dir);
   const std::vector<ControllerParam>* registered = registeredControllerParams(s.controller.type);
   if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible" &&
       registered == nullptr)

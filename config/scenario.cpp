@@ -80,7 +80,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readReferenceSection(root, s);
   readPlantSection(root, s);
   readActuatorSection(root, s);
-  readControllerSection(root, s);
+  readControllerSection(root, s, std::filesystem::path(source).parent_path().string());
   readMetricsSection(root, s);
   readLockstepSection(root, s);
   readRealtimeSection(root, s);

@@ -104,6 +104,10 @@ struct ControllerConfig {
   /// Per stage i = 1..m, how its filter starts (stages[i].initial_filter_state,
   /// stages[i].initial_zeta); default: qc_i(0) = zeta_i(0) = 0.
   std::vector<controller::StageStart> stage_starts;
+  /// "external": the controller's command line (argv; argv[0] absolute when
+  /// given as a path) and the directory it starts in (docs/external_controllers.md).
+  std::vector<std::string> command;
+  std::string working_directory;
 };
 
 struct MetricsConfig {

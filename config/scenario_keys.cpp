@@ -37,6 +37,7 @@ std::vector<DocumentedKey> documentedKeys() {
   add(out, "plant.", kPlant);
   add(out, "actuator.", kActuator);
   add(out, "controller.", kPaperController);
+  add(out, "controller.", kExternalController, {"type"});
   addInside(out, "controller.stages", kStage, {"initial_filter_state", "initial_zeta"});
   out.push_back({"controller.stages[i].initial_filter_state", ""});
   out.push_back({"controller.stages[i].initial_zeta", ""});

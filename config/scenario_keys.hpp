@@ -36,6 +36,7 @@ inline const Keys kReceiverFaults = {"drop"};
 inline const Keys kSensors = {"seed", "position", "velocity", "motor"};
 inline const Keys kPositionSensor = {"counts_per_revolution", "noise_sigma", "delay"};  // also sensors.motor
 inline const Keys kVelocitySensor = {"noise_sigma", "delay"};
+inline const Keys kExternalController = {"type", "command", "working_directory"};
 inline const Keys kCompare = {"controllers", "sweep"};
 inline const Keys kCompareSweep = {"key", "values"};
 

@@ -20,7 +20,8 @@ void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 
 // What drives it (drive_sections.cpp).
 void readActuatorSection(MapReader& root, Scenario& s);    ///< after plant
-void readControllerSection(MapReader& root, Scenario& s);  ///< after actuator
+/// `base_dir`: where a relative controller.command (type external) is looked for.
+void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir);  ///< after actuator
 
 // How the run is judged and run (run_sections.cpp): the sections described
 // field by field (config/fields.hpp), read and written from one description.

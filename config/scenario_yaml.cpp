@@ -136,7 +136,12 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << s.controller.type;
   for (const auto& [key, value] : s.controller.params) emitVector(out, key.c_str(), value);
-  if (registeredControllerParams(s.controller.type) == nullptr) emitPaperController(out, s.controller);
+  if (s.controller.type == "external") {
+    out << YAML::Key << "command" << YAML::Value << YAML::Flow << s.controller.command;
+    out << YAML::Key << "working_directory" << YAML::Value << s.controller.working_directory;
+  } else if (registeredControllerParams(s.controller.type) == nullptr) {
+    emitPaperController(out, s.controller);
+  }
   out << YAML::EndMap;
 
   auto section = [&out](const char* key, const auto& value, const auto& fields) {

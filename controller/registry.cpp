@@ -8,12 +8,32 @@
 namespace lagrange::controller {
 
 namespace {
+// A controller from outside the project (controller.type external): the
+// launcher starts its command in the controller's place, and nothing here
+// runs it. Its gains mean nothing to lagrange.
+ControllerKind externalKind() {
+  ControllerKind kind;
+  kind.type = "external";
+  kind.make = [](const config::Scenario&) -> std::unique_ptr<Controller> {
+    throw std::logic_error(
+        "an external controller runs as its own process (controller.command); there is no core to build");
+  };
+  kind.report = [](const config::Scenario& s, bool) {
+    GainReport r;
+    r.unchecked = "external controller (" + s.controller.command.front() +
+                  "): a program from outside the project, whose law lagrange does not know";
+    return r;
+  };
+  return kind;
+}
+
 // A function-local static, seeded with the paper's controllers at first use,
 // so registrations from other files' static initialisers find it ready.
 std::map<std::string, ControllerKind>& kinds() {
   static std::map<std::string, ControllerKind> all = [] {
     std::map<std::string, ControllerKind> paper;
     for (ControllerKind& k : paperControllerKinds()) paper.emplace(k.type, std::move(k));
+    paper.emplace("external", externalKind());
     return paper;
   }();
   return all;

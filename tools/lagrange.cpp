@@ -15,7 +15,9 @@
 #include "controller/gain_suggestion.hpp"
 #include "model/error.hpp"
 #include "tools/compare.hpp"
+#include "tools/netns.hpp"
 #include "tools/replay.hpp"
+#include "tools/replay_external.hpp"
 #include "tools/report.hpp"
 #include "tools/run_command.hpp"
 #include "tools/spy.hpp"
@@ -57,7 +59,14 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
 }
 
 int replay(const std::string& log_path, const std::string& component,
-           const std::vector<std::string>& overrides) {
+           const std::vector<std::string>& overrides, const std::vector<std::string>& self_argv) {
+  // An external controller is replayed by running it again, on a bus of its
+  // own: in a private network namespace, as `lagrange run` does.
+  if (component == "controller" && !tools::insidePrivateNetns() && tools::isExternalControllerLog(log_path)) {
+    const std::string why = tools::reexecInPrivateNetns(self_argv);  // returns only on failure
+    std::cerr << "lagrange replay: " << why << "; install util-linux to replay an external controller\n";
+    return kExitFailed;
+  }
   try {
     const tools::ReplayResult r = component == "actuator" ? tools::replayActuator(log_path, overrides)
                                   : component == "plant"  ? tools::replayPlant(log_path, overrides)
@@ -241,7 +250,11 @@ int DoMain(int argc, char** argv) {
     compare.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runComparison(compare);
   }
-  if (*replay_cmd) return replay(replay_log, component, replay_overrides);
+  if (*replay_cmd) {
+    std::vector<std::string> self(argv, argv + argc);
+    self[0] = std::filesystem::read_symlink("/proc/self/exe").string();
+    return replay(replay_log, component, replay_overrides, self);
+  }
   if (*report_cmd) return report(report_target, report_out);
   if (*spy_cmd) return tools::runSpy(spy);
   return checkGains(gains_config, gains_overrides, suggest);

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 
 namespace lagrange::tools {
@@ -101,6 +102,12 @@ void configureLoopbackMulticast() {
   runIp(ip, {"link", "set", "lo", "up"});
   runIp(ip, {"link", "set", "lo", "multicast", "on"});
   runIp(ip, {"route", "add", "224.0.0.0/4", "dev", "lo"});
+}
+
+std::string freshLcmUrl() {
+  std::random_device rd;
+  const unsigned port = 20000 + rd() % 40000;
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
 }
 
 }  // namespace lagrange::tools

@@ -23,6 +23,9 @@ std::string reexecInPrivateNetns(const std::vector<std::string>& argv);
 /// that failed and why.
 void joinNetnsOf(long pid);
 
+/// A multicast LCM URL on a random port, TTL 0: a run's own bus.
+std::string freshLcmUrl();
+
 /// Brings up lo with multicast and routes 224.0.0.0/4 to it.
 /// @throws std::runtime_error naming the failed `ip` command.
 void configureLoopbackMulticast();

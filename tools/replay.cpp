@@ -9,17 +9,17 @@
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "plant/plant_lcm.hpp"
+#include "tools/replay_external.hpp"
 #include "tools/replay_log.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 
 namespace lagrange::tools {
 
-namespace {
-
 using namespace replay_log;
 
-std::string firstDifference(const lagrange::control_command_t& rec, const controller::Theorem1Output& out) {
+std::string replay_log::commandDifference(const lagrange::control_command_t& rec,
+                                          const controller::Theorem1Output& out) {
   const Eigen::Index n = out.u.size();
   // The diagnostics as the controller process publishes them (an empty one as zeros).
   const Eigen::VectorXd q_desired = controller::asPublished(out.q_desired, n),
@@ -45,13 +45,12 @@ std::string firstDifference(const lagrange::control_command_t& rec, const contro
   return "";
 }
 
-}  // namespace
-
 ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides) {
   return replayWith(
       log_path, overrides, transport::kControlCommand, [&](const Opened& o, ReplayResult& result) {
         const Recorded& rec = o.rec;
         const config::Scenario& s = o.scenario;
+        if (s.controller.type == "external") return replayExternalController(o, result);
         const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
         const controller::Needs needs = ctl->needs();
         for (const auto& cmd : rec.commands) {
@@ -83,7 +82,7 @@ ReplayResult replayController(const std::string& log_path, const std::vector<std
           }
           const controller::ControllerCommand out = ctl->step(in);
           ++result.commands;
-          const std::string d = firstDifference(cmd, out);
+          const std::string d = commandDifference(cmd, out);
           if (!d.empty()) {
             result.divergence = at(k, position.header.sim_time) + transport::kControlCommand + "." + d;
             break;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
@@ -64,6 +65,11 @@ ReplayResult replayWith(const std::string& log_path, const std::vector<std::stri
   }
   return result;
 }
+
+/// The first field of a recorded CONTROL_COMMAND that differs from a
+/// replayed command (an empty diagnostic compared as the zeros the
+/// controller process sends), "" when every one matches bit for bit.
+std::string commandDifference(const lagrange::control_command_t& rec, const controller::Theorem1Output& out);
 
 /// "" when equal bit for bit, else "FIELD[i]: recorded X, replayed Y".
 std::string compare(const std::string& field, const std::vector<double>& recorded,

@@ -40,12 +40,6 @@ void onSignal(int sig) { launcher_signal = sig; }
 
 std::string executableDir() { return fs::read_symlink("/proc/self/exe").parent_path().string(); }
 
-std::string freshLcmUrl() {
-  std::random_device rd;
-  const unsigned port = 20000 + rd() % 40000;
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-}
-
 // Creates the directory and proves it writable, before anything starts.
 std::string prepareOutDir(const std::string& dir) {
   std::error_code ec;
@@ -322,10 +316,18 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // for the logger's STATUS before it starts the clock anyway.
   ChildSpec logger = spec("logger", {"--out", out_dir, "--progress-fd", "3"});
   logger.pass_fd = progress_pipe[1];
-  std::vector<ChildSpec> specs = {
-      logger,
-      spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{}),
-      spec("actuator", {}), spec("plant", {})};
+  ChildSpec controller =
+      spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{});
+  if (scenario.controller.type == "external") {
+    // A program from outside the project in the controller's place; what it
+    // needs to join the run comes in its environment (docs/external_controllers.md).
+    controller.argv = scenario.controller.command;
+    controller.working_directory = scenario.controller.working_directory;
+    controller.env = {"LAGRANGE_LCM_URL=" + url, "LAGRANGE_RUN_ID=" + std::to_string(run_id),
+                      "LAGRANGE_CONFIG=" + resolved, "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
+                      "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
+  }
+  std::vector<ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};
   for (const auto& s : specs)
     if (runsHere(opt, s.name)) supervisor.start(s);
   close(progress_pipe[1]);

@@ -43,10 +43,15 @@ void Supervisor::start(const ChildSpec& spec) {
     const int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, STDIN_FILENO);
     std::signal(SIGINT, SIG_IGN);  // Ctrl-C reaches the launcher, which stops us with SIGTERM
+    for (const auto& e : spec.env) putenv(const_cast<char*>(e.c_str()));  // the child's own copy of spec
+    if (!spec.working_directory.empty() && chdir(spec.working_directory.c_str()) != 0) {
+      std::fprintf(stderr, "cannot enter %s: %s\n", spec.working_directory.c_str(), std::strerror(errno));
+      _exit(127);
+    }
     std::vector<char*> argv;
     for (const auto& a : spec.argv) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    execv(argv[0], argv.data());
+    execvp(argv[0], argv.data());
     std::fprintf(stderr, "cannot execute %s: %s\n", argv[0], std::strerror(errno));
     _exit(127);
   }

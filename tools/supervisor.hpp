@@ -12,7 +12,9 @@ namespace lagrange::tools {
 
 struct ChildSpec {
   std::string name;               ///< "plant", ...
-  std::vector<std::string> argv;  ///< argv[0] is the executable path
+  std::vector<std::string> argv;  ///< argv[0]: the executable, a path or a name on PATH
+  std::vector<std::string> env;   ///< NAME=VALUE added to the environment
+  std::string working_directory;  ///< where it starts; empty: the launcher's
   std::string log_path;           ///< stdout and stderr go here
   int pass_fd = -1;               ///< if >= 0, handed to the child as its file descriptor 3
   bool append_log = false;        ///< append to log_path (a restart) instead of truncating it

@@ -11,7 +11,11 @@
 
 namespace lagrange::transport {
 
-/// FNV-1a, 64 bit.
+/// FNV-1a, 64 bit, with the offset basis 1469598103934665603 -- not the
+/// standard 14695981039346656037: a digit was lost when this was first
+/// written. Every recorded log carries checksums made this way, so it stays;
+/// a program that publishes to a run must use the same basis
+/// (docs/external_controllers.md).
 inline uint64_t fnv1a(const uint8_t* data, size_t size) {
   uint64_t h = 1469598103934665603ULL;
   for (size_t i = 0; i < size; ++i) h = (h ^ data[i]) * 1099511628211ULL;
