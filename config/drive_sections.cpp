@@ -129,10 +129,10 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
                                       "' is not a directory; expected the folder the command starts in");
   std::string& program = s.controller.command[0];
   if (program.find('/') != std::string::npos) {
-    const std::filesystem::path resolved = std::filesystem::absolute(base / program);
+    const std::filesystem::path resolved = std::filesystem::absolute(base / program).lexically_normal();
     if (access(resolved.c_str(), X_OK) != 0 || std::filesystem::is_directory(resolved))
-      ctl.fail("command", "'" + program + "' (" + resolved.string() +
-                              ") does not exist or is not executable; expected the controller's program");
+      ctl.fail("command", "'" + program + "' does not exist or is not executable (looked for " + resolved.string() +
+                              "); expected the controller's program");
     program = resolved.string();
   } else if (onPath(program).empty()) {
     ctl.fail("command", "'" + program +
