@@ -1,8 +1,10 @@
-// The joint-angle sensor in the plant's measurement path (sensors.*): the
-// controller sees the readings -- quantised, noisy, a sample late -- while
-// PLANT_TRUTH keeps the true angles; lockstep and in-process compute the
-// same run bit for bit with the noise on, and the log replays exactly through
-// every component (the plant draws the same noise again).
+// The sensors in the plant's measurement path (sensors.*): the controller
+// sees the readings -- joint angles quantised, noisy, a sample late; a
+// tachometer's rates only when declared, and only by a controller that
+// declares it needs them; motor angles of elastic joints -- while PLANT_TRUTH
+// keeps the true values; lockstep and in-process compute the same run bit for
+// bit with the noise on, and the log replays exactly through every component
+// (the plant draws the same noise again).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -119,26 +121,30 @@ TEST(Sensors, AVelocityControllerRunsInRealtimeAndReplays) {
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
 }
 
-// The paper's controller never receives a velocity: declaring a noisy
-// tachometer changes none of its commands (the position sensor's draws are
-// its own, so its readings are the same too).
-TEST(Sensors, APositionOnlyControllerIgnoresADeclaredVelocitySensor) {
+// The paper's controller and the observer-based baselines never receive a
+// velocity: declaring a noisy tachometer changes none of their commands (the
+// position sensor's draws are its own, so its readings are the same too).
+TEST(Sensors, PositionOnlyControllersIgnoreADeclaredVelocitySensor) {
   const std::string config = kConfigs + "/rigid_2dof.yaml";
-  const std::string without = freshDir("rates-without"), with = freshDir("rates-with");
   const std::string position = "position: {counts_per_revolution: 4096, noise_sigma: 1.0e-4}";
-  ASSERT_EQ(
-      runScenario(config, without, "-q --mode inproc --set duration=1 --set 'sensors={" + position + "}'")
-          .exit_code,
-      0);
-  ASSERT_EQ(runScenario(config, with,
-                        "-q --mode inproc --set duration=1 --set 'sensors={" + position +
-                            ", velocity: {noise_sigma: 0.5}}'")
-                .exit_code,
-            0);
-  EXPECT_EQ(readRates(without + "/run.lcm").size(), 0u);
-  EXPECT_EQ(readRates(with + "/run.lcm").size(), 1001u);  // the sensor is there
-  EXPECT_EQ(readPositions(without + "/run.lcm"), readPositions(with + "/run.lcm"));
-  EXPECT_EQ(readCommands(without + "/run.lcm"), readCommands(with + "/run.lcm"));
+  for (const std::string& controller :
+       {std::string(),
+        std::string("--set 'controller={type: nicosia_tomei, kp: [150.0, 10.0], kd: [15.0, 1.0], "
+                    "lp: [2500.0, 2500.0], ld: [100.0, 100.0]}'"),
+        std::string("--set 'controller={type: berghuis_nijmeijer, kp: [150.0, 10.0], kd: [15.0, 1.0], "
+                    "lambda: [10.0, 10.0], lp: [2500.0, 2500.0], ld: [100.0, 100.0]}'")}) {
+    const std::string without = freshDir("rates-without"), with = freshDir("rates-with");
+    const std::string common = "-q --mode inproc --set duration=1 " + controller;
+    ASSERT_EQ(runScenario(config, without, common + " --set 'sensors={" + position + "}'").exit_code, 0);
+    ASSERT_EQ(runScenario(config, with,
+                          common + " --set 'sensors={" + position + ", velocity: {noise_sigma: 0.5}}'")
+                  .exit_code,
+              0);
+    EXPECT_EQ(readRates(without + "/run.lcm").size(), 0u) << controller;
+    EXPECT_EQ(readRates(with + "/run.lcm").size(), 1001u) << controller;  // the sensor is there
+    EXPECT_EQ(readPositions(without + "/run.lcm"), readPositions(with + "/run.lcm")) << controller;
+    EXPECT_EQ(readCommands(without + "/run.lcm"), readCommands(with + "/run.lcm")) << controller;
+  }
 }
 
 // A motor-angle sensor on flexible joints: PLANT_MOTOR carries the encoder's
