@@ -170,8 +170,9 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
   return n;
 }
 
-// DIR/series.csv of a run: t, ||q~|| from the true angles, and the applied
-// torque per joint -- what the overlay plots draw.
+// DIR/series.csv of a nominal run: t, ||q~|| from the true angles (against
+// the base scenario's reference, which is the run's), and the applied torque
+// per joint -- what the overlay plots draw.
 void writeSeries(const CompareRun& run, const config::Scenario& s) {
   const model::Reference reference(s.reference);
   std::ofstream out(fs::path(run.dir) / "series.csv");
@@ -200,8 +201,10 @@ void writeSeries(const CompareRun& run, const config::Scenario& s) {
 
 }  // namespace
 
-std::vector<CompareRun> planComparison(const CompareOptions& o) {
-  const config::Scenario base = config::loadScenario(o.config_path, o.overrides);
+ComparisonPlan planComparison(const CompareOptions& o) {
+  ComparisonPlan plan;
+  plan.base = config::loadScenario(o.config_path, o.overrides);
+  const config::Scenario& base = plan.base;
   std::vector<std::string> types = o.controllers;
   if (types.empty() && base.compare)
     for (const auto& [type, keys] : base.compare->controllers) types.push_back(type);
@@ -221,7 +224,8 @@ std::vector<CompareRun> planComparison(const CompareOptions& o) {
     }
   }
   const std::optional<Sweep> sweep = sweepOf(o, base);
-  std::vector<CompareRun> runs;
+  if (sweep) plan.sweep_key = sweep->key;
+  std::vector<CompareRun>& runs = plan.runs;
   for (const std::string& type : types) {
     std::vector<std::string> overrides = {"mode=inproc"};
     if (const auto controller = controllerOverride(base, type, o.config_path))
@@ -248,30 +252,27 @@ std::vector<CompareRun> planComparison(const CompareOptions& o) {
       runs.push_back({type, sweep->values[i], swept, (dir / valueDir(i, sweep->values[i])).string()});
     }
   }
-  return runs;
+  return plan;
 }
 
 int runComparison(const CompareOptions& o) {
-  std::vector<CompareRun> runs;
-  config::Scenario base;
-  std::optional<Sweep> sweep;
+  ComparisonPlan plan;
   try {
-    base = config::loadScenario(o.config_path, o.overrides);
-    runs = planComparison(o);
-    sweep = sweepOf(o, base);
+    plan = planComparison(o);
   } catch (const ConfigError& e) {
     std::cerr << "lagrange compare: " << e.what() << "\n";
     return kExitBadInput;
   }
   try {
     fs::create_directories(o.out_dir);
+    const std::vector<CompareRun>& runs = plan.runs;
     const std::vector<int> status = runAll(o, runs);
     std::vector<RunNumbers> numbers;
     for (size_t i = 0; i < runs.size(); ++i) {
       numbers.push_back(numbersOf(runs[i], status[i]));
-      if (!runs[i].value) writeSeries(runs[i], config::loadScenario(o.config_path, runs[i].overrides));
+      if (!runs[i].value) writeSeries(runs[i], plan.base);
     }
-    ComparisonTables tables{base.name, base.dof(), sweep ? sweep->key : std::string(), numbers};
+    ComparisonTables tables{plan.base.name, plan.base.dof(), plan.sweep_key, numbers};
     const std::string table = writeComparison(tables, o.out_dir);
     if (!o.quiet) std::cout << table;
     const Plots plots = drawComparisonPlots(tables, o.out_dir);

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "config/scenario.hpp"
+
 namespace lagrange::tools {
 
 struct CompareOptions {
@@ -35,10 +37,19 @@ struct CompareRun {
   std::string dir;  ///< its output directory
 };
 
+/// What a comparison runs.
+struct ComparisonPlan {
+  /// The scenario with --set applied: its name, joints and reference are
+  /// every nominal run's (a run differs from it in its controller section).
+  config::Scenario base;
+  std::string sweep_key;  ///< empty: no sweep
+  std::vector<CompareRun> runs;
+};
+
 /// The runs the options ask for, each scenario read and checked (a bad
 /// controller section, sweep key or value is named before anything runs).
 /// @throws config::ConfigError naming what was wrong.
-std::vector<CompareRun> planComparison(const CompareOptions& options);
+ComparisonPlan planComparison(const CompareOptions& options);
 
 /// Runs the comparison and writes OUT/comparison.md, .csv and the plots.
 /// Returns an exit code: 0 when every run completed (a controller that

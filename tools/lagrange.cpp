@@ -177,7 +177,7 @@ int DoMain(int argc, char** argv) {
   replay_cmd
       ->add_option("--component", component,
                    "Component to replay: controller (default; CONTROL_COMMAND), actuator (ACTUATOR_STATE) or "
-                   "plant (PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR)")
+                   "plant (PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR, PLANT_RATE)")
       ->check(CLI::IsMember({"controller", "actuator", "plant"}));
   replay_cmd->add_option("--set", replay_overrides,
                          "Override a key of the logged scenario before replaying (e.g. to check that a "
