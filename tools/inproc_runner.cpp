@@ -23,13 +23,15 @@
 
 namespace lagrange::tools {
 
-int runInProcess(const config::Scenario& s, const controller::GainReport& gains, const std::string& out_dir,
-                 ProgressDisplay& progress, bool (*stop_requested)()) {
-  namespace fs = std::filesystem;
+InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* log,
+                                   ProgressDisplay* progress, bool (*stop_requested)()) {
   const auto wall_start = std::chrono::steady_clock::now();
-  const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
-  logger::EventLog log(log_path);
-  log.writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
+  // Every message is built either way (the controller reads its inputs from
+  // them); only the writing is skipped without a log.
+  const auto record = [log](const std::string& channel, const auto& msg, int64_t utime) {
+    if (log) log->writeMessage(channel, msg, utime);
+  };
+  record(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
   plant::ScenarioSensors sensors = plant::sensorsFor(s);
@@ -46,44 +48,46 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   // LCM, so both wirings compute with identical doubles.
   Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());  // row j: step j of a period
   const int64_t last_tick = s.lastTick();
-  int exit_code = kExitOk;
+  InProcessOutcome outcome;
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
     const plant::PlantSample sample = plant::measureTick(
         s, sensors, sim, k, t, tau.row(0).transpose(),
         k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
-    log.writeMessage(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
-    log.writeMessage(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
+    record(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
+    record(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
     const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
 
     const double sample_time = sample.position.header.sim_time;
     if (sample.motor) {
-      log.writeMessage(transport::kPlantMotor, *sample.motor, sample.motor->header.publish_utime);
+      record(transport::kPlantMotor, *sample.motor, sample.motor->header.publish_utime);
       if (needs.motor_angles) assembly.motorSample(k, controller::motorSample(*sample.motor));
     }
     if (sample.rate) {
-      log.writeMessage(transport::kPlantRate, *sample.rate, sample.rate->header.publish_utime);
+      record(transport::kPlantRate, *sample.rate, sample.rate->header.publish_utime);
       if (needs.joint_rates) assembly.rateSample(k, transport::toEigen(sample.rate->qdot));
     }
     // Every measurement of tick k is in: the assembly always answers here.
     const controller::AssembledInputs in =
         assembly.forTick(k, sample_time, transport::toEigen(sample.position.q)).value();
     const auto command = controller::commandMessage(ctl->step(in.inputs), k, sample_time, in.ticks);
-    log.writeMessage(transport::kControlCommand, command, command.header.publish_utime);
+    record(transport::kControlCommand, command, command.header.publish_utime);
     metrics.addChainErrors(k, command.header.sim_time, command.xi_error);
     const actuator::ActuatorOutput applied =
         act.step(transport::toEigen(command.u), s.tickPeriod(), s.torqueStepsPerTick());
     const auto state = actuator::actuatorMessage(applied, act.state(), command);
     if (needs.actuator_order > 0) assembly.chainState(k, act.state());
-    log.writeMessage(transport::kActuatorState, state, state.header.publish_utime);
+    record(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
     metrics.addTorque(k, tau);
 
     if (k % 100 == 0) {
-      progress.update(t, error.value_or(std::nan("")));
-      progress.tick();
-      if (stop_requested()) {
-        exit_code = kExitInterrupted;
+      if (progress) {
+        progress->update(t, error.value_or(std::nan("")));
+        progress->tick();
+      }
+      if (stop_requested && stop_requested()) {
+        outcome.exit_code = kExitInterrupted;
         break;
       }
     }
@@ -91,24 +95,39 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
       try {
         sim.stepProfile(tau, s.substepsPerTick());
       } catch (const plant::PlantStopped& stopped) {  // keep what was recorded
-        std::cerr << "lagrange run: " << stopped.what() << "\n";
-        exit_code = kExitFailed;
+        outcome.exit_code = kExitFailed;
+        outcome.stop_message = stopped.what();
         break;
       }
     }
   }
-  log.flush();
+  if (log) log->flush();
+  outcome.status = outcome.exit_code == kExitOk       ? "completed"
+                   : outcome.exit_code == kExitFailed ? "diverged"
+                                                      : "interrupted";
+  outcome.tracking = metrics.summary();
+  outcome.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return outcome;
+}
+
+int runInProcess(const config::Scenario& s, const controller::GainReport& gains, const std::string& out_dir,
+                 ProgressDisplay& progress, bool (*stop_requested)()) {
+  namespace fs = std::filesystem;
+  const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
+  logger::EventLog log(log_path);
+  const InProcessOutcome outcome = simulateInProcess(s, &log, &progress, stop_requested);
+  if (!outcome.stop_message.empty()) std::cerr << "lagrange run: " << outcome.stop_message << "\n";
 
   logger::RunFacts facts;
-  facts.status = exit_code == 0 ? "completed" : exit_code == 1 ? "diverged" : "interrupted";
+  facts.status = outcome.status;
   facts.log_path = log_path;
   facts.log_events = log.events();
-  facts.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  const auto summary = logger::makeSummary(s, metrics.summary(), gains, facts);
+  facts.wall_time = outcome.wall_time;
+  const auto summary = logger::makeSummary(s, outcome.tracking, gains, facts);
   std::ofstream out(fs::path(out_dir) / "summary.json");
   out << summary.dump(2) << "\n";
   if (!out) throw std::runtime_error("cannot write summary.json in " + out_dir);
-  return exit_code;
+  return outcome.exit_code;
 }
 
 }  // namespace lagrange::tools

@@ -10,10 +10,30 @@
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
+#include "logger/tracking_metrics.hpp"
+
+namespace lagrange::logger {
+class EventLog;
+}
 
 namespace lagrange::tools {
 
 class ProgressDisplay;
+
+/// How an in-process simulation ended.
+struct InProcessOutcome {
+  int exit_code = 0;         ///< 0 completed, 1 the plant stopped the run, 130 interrupted
+  std::string status;        ///< summary.json's: completed, diverged or interrupted
+  std::string stop_message;  ///< why the plant stopped the run (empty otherwise)
+  logger::TrackingSummary tracking;
+  double wall_time = 0.0;  ///< [s]
+};
+
+/// The in-process loop itself: every message goes to `log` when one is given
+/// (none: nothing is written, as for a sweep's runs, which keep numbers only).
+/// `progress` and `stop_requested` may be null.
+InProcessOutcome simulateInProcess(const config::Scenario& scenario, logger::EventLog* log,
+                                   ProgressDisplay* progress, bool (*stop_requested)());
 
 /// Runs the scenario; writes run.lcm and summary.json into out_dir.
 /// Returns 0, or 130 when stop_requested() became true midway.

@@ -3,6 +3,7 @@
 ///   run           launch a scenario (plant, actuator, controller, logger over LCM)
 ///   check-gains   print the gain conditions of a scenario without running it
 ///   compare       run a scenario for several controllers and tabulate them
+///   sweep         many in-process runs over axes of scenario keys (locally or on Slurm)
 ///   replay, report, spy
 
 #include <CLI/CLI.hpp>
@@ -21,6 +22,7 @@
 #include "tools/report.hpp"
 #include "tools/run_command.hpp"
 #include "tools/spy.hpp"
+#include "tools/sweep.hpp"
 
 namespace lagrange {
 namespace {
@@ -223,6 +225,54 @@ int DoMain(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   compare_cmd->add_flag("-q,--quiet", compare.quiet, "Print errors only");
 
+  tools::SweepOptions sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep",
+      "Run a scenario many times in-process over axes of its keys (lists, linear and log ranges, initial "
+      "errors by norm and random direction; grids, seeded random or Halton samples), on every core or as a "
+      "Slurm job array; write one row per run (parameters, convergence time, final and max error, diverged, "
+      "the gain verdicts, wall time) to OUT/sweep.csv and OUT/sweep.jsonl, and maps as PNGs. Resumable: run "
+      "the same command again after a stop (docs/sweeps.md)");
+  sweep_cmd->add_option("sweep_file", sweep.sweep_file, "Sweep YAML file, e.g. sweeps/rigid_rates.yaml")
+      ->check(CLI::ExistingFile);
+  sweep_cmd->add_option("-o,--out", sweep.out_dir,
+                        "Output directory (created if missing; resumed if it holds this sweep)");
+  sweep_cmd->add_option("-j,--jobs", sweep.jobs, "Local runs at a time (default: one per core)")
+      ->check(CLI::NonNegativeNumber);
+  sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print errors only");
+  sweep_cmd->add_flag(
+      "--slurm", sweep.slurm,
+      "Submit the runs as a Slurm job array (sbatch) instead of running them here; OUT must be on "
+      "a directory every node shares, and this binary on every node at the same path");
+  sweep_cmd->add_flag("--no-wait", sweep.no_wait,
+                      "--slurm: return once the job is submitted; then `lagrange sweep collect OUT`");
+  sweep_cmd->add_option("--shards", sweep.shards, "--slurm: array tasks (default: min(runs to do, 64))")
+      ->check(CLI::PositiveNumber);
+  sweep_cmd->add_option("--partition", sweep.partition, "--slurm: sbatch --partition");
+  sweep_cmd->add_option("--time", sweep.time_limit, "--slurm: sbatch --time, each array task's limit");
+  sweep_cmd->add_option("--account", sweep.account, "--slurm: sbatch --account");
+  sweep_cmd->add_option("--sbatch-arg", sweep.sbatch_args,
+                        "--slurm: one more sbatch option as it is, e.g. --sbatch-arg=--qos=long; repeatable");
+  std::string collect_dir;
+  bool collect_quiet = false;
+  CLI::App* collect_cmd = sweep_cmd->add_subcommand(
+      "collect",
+      "Merge the rows a sweep's shards wrote (a Slurm sweep run with --no-wait, or a stopped one) into "
+      "OUT/sweep.csv, OUT/sweep.jsonl and the maps; exit 1 if rows are missing");
+  collect_cmd->add_option("out", collect_dir, "The sweep's output directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  collect_cmd->add_flag("-q,--quiet", collect_quiet, "Print errors only");
+
+  std::string shard_dir;
+  int shard = -1, shard_of = 0;
+  CLI::App* shard_cmd =
+      app.add_subcommand("sweep-shard", "One shard of a sweep (what lagrange sweep starts)");
+  shard_cmd->group("");  // internal: not listed in --help
+  shard_cmd->add_option("out", shard_dir, "The sweep's output directory")->required();
+  shard_cmd->add_option("--shard", shard, "This shard, K in 0..N-1")->required();
+  shard_cmd->add_option("--of", shard_of, "Shards, N")->required();
+
   tools::SpyOptions spy;
   CLI::App* spy_cmd = app.add_subcommand(
       "spy",
@@ -250,6 +300,16 @@ int DoMain(int argc, char** argv) {
     compare.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runComparison(compare);
   }
+  if (*sweep_cmd) {
+    if (*collect_cmd) return tools::collectSweep(collect_dir, collect_quiet);
+    if (sweep.sweep_file.empty() || sweep.out_dir.empty()) {
+      std::cerr << "lagrange sweep: expected a sweep file and --out DIR (or: lagrange sweep collect DIR)\n";
+      return kExitBadInput;
+    }
+    sweep.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
+    return tools::runSweep(sweep);
+  }
+  if (*shard_cmd) return tools::runSweepShard(shard_dir, shard, shard_of);
   if (*replay_cmd) {
     std::vector<std::string> self(argv, argv + argc);
     self[0] = std::filesystem::read_symlink("/proc/self/exe").string();

@@ -1,0 +1,346 @@
+#include "tools/sweep.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "model/error.hpp"
+#include "tools/sweep_maps.hpp"
+#include "tools/sweep_plan.hpp"
+#include "tools/sweep_progress.hpp"
+#include "tools/sweep_runner.hpp"
+#include "tools/sweep_store.hpp"
+
+extern char** environ;
+
+namespace lagrange::tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+using config::ConfigError;
+
+std::atomic<int> sweep_signal{0};
+void onSignal(int sig) { sweep_signal = sig; }
+bool stopRequested() { return sweep_signal != 0; }
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// OUT/plan.json: written on the first start; on a restart it must be the
+// plan the sweep file makes now, or OUT is another sweep's.
+void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
+  fs::create_directories(fs::path(out_dir) / "rows");
+  const fs::path plan_path = fs::path(out_dir) / "plan.json";
+  const std::string text = planJson(plan);
+  if (fs::exists(plan_path)) {
+    if (readFile(plan_path) != text)
+      throw ConfigError("--out " + out_dir + " holds another sweep (its plan.json differs from the plan of " +
+                        plan.spec.file +
+                        " as it is now); expected the same sweep file and scenario to resume it, or a new "
+                        "--out directory");
+    return;
+  }
+  std::ofstream(plan_path.string() + ".tmp", std::ios::binary) << text;
+  fs::rename(plan_path.string() + ".tmp", plan_path);
+  fs::copy_file(plan.spec.file, fs::path(out_dir) / "sweep.yaml", fs::copy_options::overwrite_existing);
+}
+
+SweepPlan loadPlan(const std::string& out_dir) {
+  const fs::path plan_path = fs::path(out_dir) / "plan.json";
+  if (!fs::exists(plan_path))
+    throw ConfigError(out_dir +
+                      " is not a sweep's output directory: it has no plan.json; expected the --out "
+                      "directory of lagrange sweep");
+  return planFromJson(readFile(plan_path), plan_path.string());
+}
+
+pid_t spawn(const std::vector<std::string>& args, const std::string& log_path) {
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv;
+  for (std::string& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND,
+                                   0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = -1;
+  const int err = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(err));
+  return pid;
+}
+
+std::string exitText(int wstatus) {
+  if (WIFEXITED(wstatus)) return "exited with code " + std::to_string(WEXITSTATUS(wstatus));
+  return std::string("was killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
+         strsignal(WTERMSIG(wstatus)) + ")";
+}
+
+// Table and maps from what is in OUT/rows; returns the rows missing.
+long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who) {
+  const auto rows = readFinishedRows(out_dir);
+  writeSweepTable(out_dir, plan, rows);
+  long diverged = 0, converged = 0;
+  for (const auto& [i, r] : rows) {
+    diverged += r.value("diverged", false);
+    converged += r.value("converged", false);
+  }
+  const long missing = static_cast<long>(plan.rows.size()) - static_cast<long>(rows.size());
+  if (!quiet) {
+    std::cout << who << rows.size() << " of " << plan.rows.size() << " runs in "
+              << (fs::path(out_dir) / "sweep.csv").string() << " (and sweep.jsonl): " << converged
+              << " converged, " << diverged << " diverged, "
+              << static_cast<long>(rows.size()) - converged - diverged << " neither\n";
+  }
+  try {
+    const Plots maps = drawSweepMaps(out_dir, plan, rows);
+    if (!quiet)
+      for (const std::string& png : maps.written) std::cout << who << "wrote " << png << "\n";
+    for (const std::string& png : maps.failed)
+      std::cerr << who << "gnuplot could not draw " << png << " (see " << maps.log << ")\n";
+  } catch (const PlotError& e) {
+    std::cerr << who << "no maps: " << e.what() << "\n";
+  }
+  if (missing > 0) {
+    std::string list;
+    int shown = 0;
+    for (const SweepRow& r : plan.rows)
+      if (!rows.count(r.index) && shown++ < 10) list += (list.empty() ? "" : ", ") + std::to_string(r.index);
+    std::cerr << who << missing << " runs are not done yet (" << list << (missing > 10 ? ", ..." : "")
+              << "); run the same lagrange sweep command again to run them\n";
+  }
+  return missing;
+}
+
+// Local: shards as processes, one per core; progress from the rows files.
+int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int n = static_cast<int>(std::min<long>(o.jobs > 0 ? o.jobs : cores, remaining));
+  fs::create_directories(fs::path(o.out_dir) / "logs");
+  std::map<pid_t, int> running;
+  for (int k = 0; k < n; ++k) {
+    const std::string log =
+        (fs::path(o.out_dir) / "logs" / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".log"))
+            .string();
+    running[spawn(
+        {o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of", std::to_string(n)},
+        log)] = k;
+  }
+  RowCounter counter(o.out_dir);
+  SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet);
+  bool forwarded = false, failed = false;
+  while (!running.empty()) {
+    int wstatus = 0;
+    const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
+    if (pid > 0 && running.count(pid)) {
+      const int k = running[pid];
+      running.erase(pid);
+      const bool stopped = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == kExitInterrupted;
+      if (!(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0) && !(stopped && sweep_signal)) {
+        failed = true;
+        progress.interrupt();
+        std::cerr << "lagrange sweep: shard " << k << " of " << n << " " << exitText(wstatus) << "; see "
+                  << (fs::path(o.out_dir) / "logs").string() << "\n";
+      }
+      continue;
+    }
+    if (sweep_signal && !forwarded) {  // stop the shards; each keeps the rows it finished
+      for (const auto& [p, k] : running) kill(p, SIGTERM);
+      forwarded = true;
+    }
+    const RowCount c = counter.count();
+    progress.update(c.rows, c.diverged);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  progress.finish();
+  const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
+  if (sweep_signal) return kExitInterrupted;
+  return failed || missing > 0 ? kExitFailed : kExitOk;
+}
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// --slurm: a job array of shards, then (unless --no-wait) wait for it.
+int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
+  const int n = static_cast<int>(std::min<long>(o.shards > 0 ? o.shards : 64, remaining));
+  const fs::path dir = fs::absolute(o.out_dir);
+  const fs::path slurm = dir / "slurm";
+  fs::create_directories(slurm);
+  const fs::path script = slurm / "shard.sh";
+  {
+    std::ofstream sh(script);
+    sh << "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " << n
+       << " == K.\nexec " << shellQuote(o.self_exe) << " sweep-shard " << shellQuote(dir.string())
+       << " --shard \"$SLURM_ARRAY_TASK_ID\" --of " << n << "\n";
+  }
+  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                              fs::perms::others_read | fs::perms::others_exec);
+  std::vector<std::string> args = {"sbatch",
+                                   "--parsable",
+                                   "--job-name=lagrange-sweep",
+                                   "--array=0-" + std::to_string(n - 1),
+                                   "--output=" + (slurm / "shard-%a.out").string(),
+                                   "--chdir=" + dir.string()};
+  if (!o.partition.empty()) args.push_back("--partition=" + o.partition);
+  if (!o.time_limit.empty()) args.push_back("--time=" + o.time_limit);
+  if (!o.account.empty()) args.push_back("--account=" + o.account);
+  args.insert(args.end(), o.sbatch_args.begin(), o.sbatch_args.end());
+  if (!o.no_wait) args.push_back("--wait");
+  args.push_back(script.string());
+  const fs::path sbatch_out = slurm / "sbatch.out";
+  fs::remove(sbatch_out);
+  const pid_t pid = spawn(args, sbatch_out.string());
+  RowCounter counter(o.out_dir);
+  std::string job;
+  SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);
+  int wstatus = 0;
+  for (;;) {
+    const pid_t done = waitpid(pid, &wstatus, WNOHANG);
+    if (job.empty()) {  // --parsable: the job id is sbatch's first line, printed at submission
+      const std::string out = readFile(sbatch_out);
+      if (out.find('\n') != std::string::npos && std::isdigit(static_cast<unsigned char>(out[0]))) {
+        job = out.substr(0, out.find_first_of(";\n"));
+        if (!o.quiet) {
+          progress.interrupt();
+          std::cout << "lagrange sweep: submitted Slurm job " << job << ", " << n << " array tasks ("
+                    << remaining << " runs)\n"
+                    << std::flush;
+        }
+      }
+    }
+    if (done == pid) break;
+    if (sweep_signal) {
+      progress.finish();
+      std::cerr << "lagrange sweep: stopped waiting; job " << (job.empty() ? "?" : job)
+                << " keeps running (scancel it to stop it); then: lagrange sweep collect " << o.out_dir
+                << "\n";
+      return kExitInterrupted;
+    }
+    const RowCount c = counter.count();
+    progress.update(c.rows, c.diverged);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  progress.finish();
+  const std::string out = readFile(sbatch_out);
+  if (job.empty() || !(WIFEXITED(wstatus) && (WEXITSTATUS(wstatus) == 0 || !o.no_wait))) {
+    std::cerr << "lagrange sweep: sbatch " << exitText(wstatus) << ":\n" << out;
+    if (job.empty()) return kExitFailed;
+  }
+  if (o.no_wait) {
+    std::cout << "lagrange sweep: job " << job << " submitted; when it has ended: lagrange sweep collect "
+              << o.out_dir << "\n";
+    return kExitOk;
+  }
+  if (WEXITSTATUS(wstatus) != 0)
+    std::cerr << "lagrange sweep: a task of job " << job << " failed (sbatch --wait " << exitText(wstatus)
+              << "); see " << (slurm / "shard-*.out").string() << "\n";
+  const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
+  return missing > 0 ? kExitFailed : kExitOk;
+}
+
+}  // namespace
+
+int runSweep(const SweepOptions& o) {
+  SweepPlan plan;
+  try {
+    plan = planSweep(readSweepSpec(o.sweep_file));
+    prepareOutDir(o.out_dir, plan);
+  } catch (const ConfigError& e) {
+    std::cerr << "lagrange sweep: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  try {
+    const long remaining =
+        static_cast<long>(plan.rows.size()) - static_cast<long>(readFinishedRows(o.out_dir).size());
+    if (!o.quiet)
+      std::cout << "lagrange sweep: " << plan.rows.size() << " runs of " << plan.spec.scenario_path << ", "
+                << remaining << " to run" << (o.slurm ? " on Slurm" : "") << "\n"
+                << std::flush;
+    if (remaining == 0)
+      return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ") > 0 ? kExitFailed : kExitOk;
+    return o.slurm ? runSlurm(o, plan, remaining) : runLocal(o, plan, remaining);
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange sweep: " << e.what() << "\n";
+    return kExitFailed;
+  }
+}
+
+int collectSweep(const std::string& out_dir, bool quiet) {
+  try {
+    const SweepPlan plan = loadPlan(out_dir);
+    return finish(out_dir, plan, quiet, "lagrange sweep collect: ") > 0 ? kExitFailed : kExitOk;
+  } catch (const ConfigError& e) {
+    std::cerr << "lagrange sweep collect: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange sweep collect: " << e.what() << "\n";
+    return kExitFailed;
+  }
+}
+
+int runSweepShard(const std::string& out_dir, int shard, int of) {
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  try {
+    if (of < 1 || shard < 0 || shard >= of)
+      throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +
+                        ": expected 0 <= K < N");
+    const SweepPlan plan = loadPlan(out_dir);
+    const auto finished = readFinishedRows(out_dir);
+    RowWriter writer((fs::path(out_dir) / "rows" /
+                      ("shard-" + std::to_string(shard) + "-of-" + std::to_string(of) + ".jsonl"))
+                         .string());
+    SweepRunner runner(plan);
+    long ran = 0;
+    for (const SweepRow& row : plan.rows) {
+      if (row.index % of != shard || finished.count(row.index)) continue;
+      if (stopRequested()) break;
+      std::optional<nlohmann::ordered_json> result;
+      try {
+        result = runner.run(row, stopRequested);
+      } catch (const std::exception& e) {  // a result too: the row says why, and a restart does not retry it
+        result = runner.failedRow(row, e.what());
+      }
+      if (!result) break;  // stopped midway: the row is run again on a restart
+      writer.append(*result);
+      ++ran;
+    }
+    std::cout << "shard " << shard << " of " << of << ": ran " << ran << " runs"
+              << (stopRequested() ? " (stopped by a signal)" : "") << "\n";
+    return stopRequested() ? kExitInterrupted : kExitOk;
+  } catch (const ConfigError& e) {
+    std::cerr << "lagrange sweep-shard: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange sweep-shard: " << e.what() << "\n";
+    return kExitFailed;
+  }
+}
+
+}  // namespace lagrange::tools
