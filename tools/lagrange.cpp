@@ -265,13 +265,14 @@ int DoMain(int argc, char** argv) {
   collect_cmd->add_flag("-q,--quiet", collect_quiet, "Print errors only");
 
   std::string shard_dir;
-  int shard = -1, shard_of = 0;
+  int shard = -1, shard_of = 0, shard_parent = 0;
   CLI::App* shard_cmd =
       app.add_subcommand("sweep-shard", "One shard of a sweep (what lagrange sweep starts)");
   shard_cmd->group("");  // internal: not listed in --help
   shard_cmd->add_option("out", shard_dir, "The sweep's output directory")->required();
   shard_cmd->add_option("--shard", shard, "This shard, K in 0..N-1")->required();
   shard_cmd->add_option("--of", shard_of, "Shards, N")->required();
+  shard_cmd->add_option("--parent", shard_parent, "The local sweep's pid: stop when it ends");
 
   tools::SpyOptions spy;
   CLI::App* spy_cmd = app.add_subcommand(
@@ -309,7 +310,7 @@ int DoMain(int argc, char** argv) {
     sweep.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runSweep(sweep);
   }
-  if (*shard_cmd) return tools::runSweepShard(shard_dir, shard, shard_of);
+  if (*shard_cmd) return tools::runSweepShard(shard_dir, shard, shard_of, shard_parent);
   if (*replay_cmd) {
     std::vector<std::string> self(argv, argv + argc);
     self[0] = std::filesystem::read_symlink("/proc/self/exe").string();

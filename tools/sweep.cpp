@@ -2,6 +2,8 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -62,6 +64,16 @@ void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
   std::ofstream(plan_path.string() + ".tmp", std::ios::binary) << text;
   fs::rename(plan_path.string() + ".tmp", plan_path);
   fs::copy_file(plan.spec.file, fs::path(out_dir) / "sweep.yaml", fs::copy_options::overwrite_existing);
+}
+
+// One sweep at a time in OUT: two would run the same rows. The lock goes
+// with the process (flock), also when it is killed.
+void lockOutDir(const std::string& out_dir) {
+  const std::string path = (fs::path(out_dir) / "lock").string();
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0 || ::flock(fd, LOCK_EX | LOCK_NB) != 0)
+    throw ConfigError("--out " + out_dir + ": another lagrange sweep is running in it (it holds " + path +
+                      "); expected it to end first, or another --out directory");
 }
 
 SweepPlan loadPlan(const std::string& out_dir) {
@@ -269,6 +281,7 @@ int runSweep(const SweepOptions& o) {
   try {
     plan = planSweep(readSweepSpec(o.sweep_file));
     prepareOutDir(o.out_dir, plan);
+    lockOutDir(o.out_dir);
   } catch (const ConfigError& e) {
     std::cerr << "lagrange sweep: " << e.what() << "\n";
     return kExitBadInput;
@@ -304,9 +317,15 @@ int collectSweep(const std::string& out_dir, bool quiet) {
   }
 }
 
-int runSweepShard(const std::string& out_dir, int shard, int of) {
+int runSweepShard(const std::string& out_dir, int shard, int of, int parent) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
+  // A local shard ends with its sweep: killed, the sweep leaves no shard
+  // behind to write rows while a restart runs them again.
+  if (parent > 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) return kExitInterrupted;
+  }
   try {
     if (of < 1 || shard < 0 || shard >= of)
       throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +

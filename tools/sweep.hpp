@@ -38,6 +38,7 @@ int collectSweep(const std::string& out_dir, bool quiet);
 /// sweep and each Slurm array task run): the rows with index % N == K that
 /// no file in OUT/rows has, in order, each appended to
 /// OUT/rows/shard-K-of-N.jsonl as it ends. 0, or 130 when stopped by a signal.
-int runSweepShard(const std::string& out_dir, int shard, int of);
+/// `parent` > 0 (a local shard): the sweep's pid; the shard stops when it dies.
+int runSweepShard(const std::string& out_dir, int shard, int of, int parent = 0);
 
 }  // namespace lagrange::tools

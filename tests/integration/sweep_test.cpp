@@ -1,0 +1,230 @@
+// `lagrange sweep` (docs/sweeps.md): the same sweep gives the same table on
+// one core or two; a sweep killed midway and started again runs only the rows
+// it had not finished and ends with the same table; a bad sweep file is named
+// before anything runs.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <thread>
+
+#include "support/child.hpp"
+#include "support/configs.hpp"
+#include "support/launch.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A sweep of the default scenario, shortened: two gains by three initial
+// errors (10 mrad to 10 rad) in two directions.
+std::string writeSweep(const std::string& dir, const std::string& extra = "", double duration = 1.0) {
+  fs::create_directories(dir);
+  const std::string path = dir + "/sweep.yaml";
+  std::ofstream(path)
+      << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
+      << "set: {duration: " << duration << "}\nseed: 4\n"
+      << "axes:\n"
+      << "  - {key: controller.kd, values: [5, 20]}\n"
+      << "  - {key: initial_state.q, norm: {from: 0.01, to: 10, count: 3, scale: log}, directions: 2}\n"
+      << extra;
+  return path;
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The table without its wall_time column, the one column that differs from
+// run to run (docs/sweeps.md).
+std::string tableWithoutWallTime(const std::string& out) {
+  std::ifstream in(out + "/sweep.csv");
+  std::string header, line, table;
+  std::getline(in, header);
+  std::vector<std::string> names;
+  for (size_t start = 0, end; start <= header.size(); start = end + 1) {
+    end = header.find(',', start);
+    if (end == std::string::npos) end = header.size();
+    names.push_back(header.substr(start, end - start));
+  }
+  const auto wall = std::find(names.begin(), names.end(), "wall_time") - names.begin();
+  EXPECT_LT(static_cast<size_t>(wall), names.size());
+  table = header + "\n";
+  while (std::getline(in, line)) {
+    size_t start = 0;
+    for (long i = 0; i < wall; ++i) start = line.find(',', start) + 1;
+    const size_t end = line.find(',', start);
+    table += line.substr(0, start) + line.substr(end + 1) + "\n";
+  }
+  return table;
+}
+
+size_t tableRows(const std::string& out) {
+  std::ifstream in(out + "/sweep.csv");
+  size_t n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n - 1;
+}
+
+// Every row line in OUT/rows, by index: how many times each was written.
+std::map<long, int> rowLines(const std::string& out) {
+  std::map<long, int> lines;
+  const std::regex index(R"(^\{"index":(\d+),)");
+  for (const auto& f : fs::directory_iterator(out + "/rows"))
+    for (std::string line : [&] {
+           std::vector<std::string> v;
+           std::ifstream in(f.path());
+           for (std::string l; std::getline(in, l);) v.push_back(l);
+           return v;
+         }()) {
+      std::smatch m;
+      if (std::regex_search(line, m, index)) ++lines[std::stol(m[1])];
+    }
+  return lines;
+}
+
+TEST(Sweep, TheSameSweepGivesTheSameTableOnOneCoreOrTwo) {
+  const std::string dir = freshDir("sweep-determinism");
+  const std::string sweep = writeSweep(dir);
+  const RunResult one = lagrange("sweep " + quote(sweep) + " -o " + quote(dir + "/one") + " -j 1");
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const RunResult two = lagrange("sweep " + quote(sweep) + " -o " + quote(dir + "/two") + " -j 2 -q");
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_TRUE(two.output.empty()) << two.output;
+  EXPECT_NE(one.output.find("12 of 12 runs in"), std::string::npos) << one.output;
+
+  ASSERT_EQ(tableRows(dir + "/one"), 12u);
+  EXPECT_EQ(tableWithoutWallTime(dir + "/one"), tableWithoutWallTime(dir + "/two"));
+  EXPECT_EQ(readText(dir + "/one/sweep.jsonl").size() > 0, true);
+  // One shard wrote every row of the first; two shards split the second.
+  EXPECT_EQ(rowLines(dir + "/one").size(), 12u);
+  EXPECT_TRUE(fs::exists(dir + "/two/rows/shard-1-of-2.jsonl"));
+  for (const std::string png : {"convergence_time.png", "heat_map.png", "margin.png"})
+    EXPECT_GT(fs::file_size(dir + "/one/maps/" + png), 5000u) << png;
+
+  // A row is the run: `lagrange run --mode inproc` with the row's overrides
+  // (plan.json) ends with the same error, to the last bit.
+  std::ifstream plan(dir + "/one/plan.json");
+  std::string line;
+  std::getline(plan, line);                                // the header
+  for (int i = 0; i <= 10; ++i) std::getline(plan, line);  // row 10: kd 20, 10 rad
+  const auto planned = nlohmann::json::parse(line);
+  ASSERT_EQ(planned.at("index"), 10);
+  std::string sets;
+  for (const auto& ov : planned.at("overrides")) sets += " --set " + quote(ov.get<std::string>());
+  const std::string direct = dir + "/direct";
+  ASSERT_EQ(runScenario(kConfigs + "/rigid_2dof.yaml", direct, "-q --mode inproc" + sets).exit_code, 0);
+  const auto summary = nlohmann::json::parse(readText(direct + "/summary.json"));
+  nlohmann::json row;
+  std::ifstream rows(dir + "/one/sweep.jsonl");
+  for (int i = 0; i <= 10; ++i) std::getline(rows, line);
+  row = nlohmann::json::parse(line);
+  ASSERT_EQ(row.at("index"), 10);
+  EXPECT_EQ(row.at("final_error").get<double>(), summary["tracking"]["final_error"].get<double>());
+  EXPECT_EQ(row.at("max_error").get<double>(), summary["tracking"]["max_error"].get<double>());
+  EXPECT_EQ(row.at("converged").get<bool>(), !summary["tracking"]["convergence_time"].is_null());
+  EXPECT_EQ(row.at("gain_margin").get<double>(), summary["gains"]["margin"].get<double>());
+  EXPECT_EQ(row.at("sampled_verdict"), summary["gains"]["sampled_data"]["verdict"]);
+  EXPECT_DOUBLE_EQ(row.at("initial_error").get<double>(), 10.0);
+
+  // Another seed draws other directions: other initial states, another table.
+  const std::string reseeded = dir + "/reseeded.yaml";
+  std::string text = readText(sweep);
+  text.replace(text.find("seed: 4"), 7, "seed: 5");
+  std::ofstream(reseeded) << text;
+  ASSERT_EQ(lagrange("sweep " + quote(reseeded) + " -o " + quote(dir + "/reseeded") + " -q").exit_code, 0);
+  EXPECT_NE(tableWithoutWallTime(dir + "/one"), tableWithoutWallTime(dir + "/reseeded"));
+}
+
+TEST(Sweep, AKilledSweepResumesRunningOnlyTheRowsItHadNotFinished) {
+  const std::string dir = freshDir("sweep-resume");
+  const std::string sweep = writeSweep(dir, "", 3.0);  // 12 runs of about 0.2 s
+  const std::string whole = dir + "/whole", out = dir + "/out";
+  ASSERT_EQ(lagrange("sweep " + quote(sweep) + " -o " + quote(whole) + " -q").exit_code, 0);
+
+  // Kill the sweep and its shards at once (SIGKILL: nothing is flushed or
+  // tidied) once a few rows are in.
+  {
+    Child sweeping({kBin + "/lagrange", "sweep", sweep, "-o", out, "-j", "2"}, dir + "/first.log");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while ((!fs::exists(out + "/rows") || rowLines(out).size() < 3) &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    shell("pkill -KILL -f " + quote("sweep-shard " + out));
+    sweeping.signal(SIGKILL);
+    sweeping.wait(10);
+  }
+  const std::map<long, int> before = rowLines(out);
+  ASSERT_GE(before.size(), 3u);
+  ASSERT_LT(before.size(), 12u) << "the sweep ended before it was killed; nothing to resume";
+  EXPECT_FALSE(fs::exists(out + "/sweep.csv")) << "a killed sweep writes no table";
+  // A row cut off mid-write, as a crash during the write would leave it: dropped.
+  long missing = 0;
+  while (before.count(missing)) ++missing;
+  std::ofstream(out + "/rows/shard-0-of-2.jsonl", std::ios::app)
+      << "{\"index\":" << missing << ",\"status\":\"compl";
+  const std::string kept = readText(out + "/rows/shard-1-of-2.jsonl");
+
+  const RunResult again = lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -j 2");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("12 runs of"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find(std::to_string(12 - before.size()) + " to run"), std::string::npos)
+      << again.output;
+  // Every row once, the finished ones untouched, the table the whole sweep's.
+  const std::map<long, int> after = rowLines(out);
+  ASSERT_EQ(after.size(), 12u);
+  for (const auto& [index, times] : after)
+    EXPECT_EQ(times, 1) << "row " << index << " was run " << times << " times";
+  EXPECT_EQ(readText(out + "/rows/shard-1-of-2.jsonl").substr(0, kept.size()), kept);
+  EXPECT_EQ(tableWithoutWallTime(out), tableWithoutWallTime(whole));
+
+  // Once more: nothing left to run, the same table.
+  const RunResult third = lagrange("sweep " + quote(sweep) + " -o " + quote(out));
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_NE(third.output.find("0 to run"), std::string::npos) << third.output;
+  EXPECT_EQ(rowLines(out), after);
+}
+
+TEST(Sweep, BadSweepFilesAreNamedBeforeAnyRunStarts) {
+  const std::string dir = freshDir("sweep-bad");
+  struct Case {
+    std::string axes, expected;
+  };
+  const std::vector<Case> cases = {
+      {"  - {key: controller.gain, values: [1, 2]}\n", "controller.gain"},
+      {"  - {key: controller.kd, values: []}\n",
+       "axis 'controller.kd' is empty; expected a list of at least one value"},
+      {"  - {key: controller.kd, values: [5, -2]}\n", "run 1 (controller.kd=-2)"},
+      {"  - {key: plant.publish_rate, range: {from: 0, to: 1000, count: 3, scale: log}}\n",
+       "a log scale needs from > 0"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string path = dir + "/bad" + std::to_string(i) + ".yaml";
+    fs::create_directories(dir);
+    std::ofstream(path) << "scenario: " << kConfigs << "/rigid_2dof.yaml\naxes:\n" << cases[i].axes;
+    const std::string out = dir + "/out" + std::to_string(i);
+    const RunResult r = lagrange("sweep " + quote(path) + " -o " + quote(out));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(cases[i].expected), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(path), std::string::npos) << "names the file: " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "nothing was made, let alone run";
+  }
+  // A directory that holds another sweep is not resumed with this one.
+  const std::string sweep = writeSweep(dir + "/a", "", 0.2);
+  ASSERT_EQ(lagrange("sweep " + quote(sweep) + " -o " + quote(dir + "/out") + " -q").exit_code, 0);
+  const std::string other = writeSweep(dir + "/b", "", 0.3);
+  const RunResult r = lagrange("sweep " + quote(other) + " -o " + quote(dir + "/out"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("holds another sweep"), std::string::npos) << r.output;
+  EXPECT_EQ(lagrange("sweep collect " + quote(dir + "/a")).exit_code, 2) << "not a sweep's directory";
+}
+
+}  // namespace
+}  // namespace lagrange::testing
