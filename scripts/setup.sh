@@ -14,6 +14,10 @@ packages=(
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it
   default-jre fonts-dejavu-core xvfb imagemagick tesseract-ocr tesseract-ocr-eng
+  # lagrange sweep --slurm's test: a one-node cluster started inside the
+  # test's network namespace (no daemon is started by installing them here:
+  # without systemd, invoke-rc.d declines; with it, they find no slurm.conf)
+  munge slurmctld slurmd slurm-client
   # scripts/fuzz.sh: libFuzzer with clang
   clang libclang-rt-14-dev
 )

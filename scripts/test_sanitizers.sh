@@ -15,7 +15,10 @@
 #    a cost that would push the whole test command past 30 minutes;
 #  - the external controller's tests: its Java PD needs the jar of message
 #    types, which this build leaves out (-DLAGRANGE_BUILD_JAVA=OFF), and runs
-#    on the JVM, which the sanitizers do not see.
+#    on the JVM, which the sanitizers do not see;
+#  - the sweep's Slurm test: most of its time is the scheduler's polling, and
+#    what its array tasks run is the sweep's own shard code, which the local
+#    sweep's tests (Sweep.*) run under the sanitizers.
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
@@ -30,4 +33,5 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 timing='Progress\.|Spy\.|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay|AVelocityControllerRunsInRealtime'
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*(panda|flexible)|FilteredMotorRateConverges'
 java='ExternalController\.'
-exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -E "$timing|$sweeps|$java" "$@"
+slurm='SlurmSweep\.'
+exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -E "$timing|$sweeps|$java|$slurm" "$@"
