@@ -107,6 +107,64 @@ struct Row {
   std::string name, value, target, verdict;
 };
 
+double secondsOf(const std::string& cmd) {
+  const auto start = std::chrono::steady_clock::now();
+  int code = 0;
+  const std::string out = capture(cmd + " 2>&1", &code);
+  if (code != 0) throw std::runtime_error(cmd + " failed: " + out);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// lagrange sweep's throughput: the same 24 runs (the default scenario, 2 s
+// each, initial errors 0.01..10 rad) as a sweep on 1 core, on 2 cores, and as
+// 24 `lagrange run --mode inproc` one after another -- what a user's shell
+// loop would do -- alternating, median of `repeats`. Whole commands, from
+// start to the table written.
+void sweepBenchmark(json& results, std::vector<Row>& rows, int repeats) {
+  std::fprintf(stderr, "7/7 sweep runs/s on 1 and 2 cores, and single in-process runs ...\n");
+  constexpr int kRuns = 24;
+  const std::string sweep = g_work + "/bench_sweep.yaml";
+  std::ofstream(sweep)
+      << "scenario: " << fs::absolute(g_configs).string() << "/rigid_2dof.yaml\n"
+      << "set: {duration: 2}\naxes:\n"
+      << "  - {key: initial_state.q, norm: {from: 0.01, to: 10, count: 12, scale: log}, directions: 2}\n";
+  std::vector<double> one, two, single;
+  for (int r = 0; r < repeats; ++r) {
+    for (int cores : {1, 2}) {
+      const std::string out = g_work + "/sweep_out";
+      fs::remove_all(out);
+      const double s =
+          secondsOf(g_bin + "/lagrange sweep " + sweep + " -o " + out + " -q -j " + std::to_string(cores));
+      (cores == 1 ? one : two).push_back(kRuns / s);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < kRuns; ++i) {
+      const std::string dir = g_work + "/single";
+      fs::remove_all(dir);
+      secondsOf(g_bin + "/lagrange run " + g_configs +
+                "/rigid_2dof.yaml --mode inproc -q --set duration=2 --out " + dir);
+    }
+    single.push_back(kRuns / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  const auto fmt = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.2f", v);
+    return std::string(b);
+  };
+  results["sweep_runs_per_s_1_core"] = median(one);
+  results["sweep_runs_per_s_2_cores"] = median(two);
+  results["single_inproc_runs_per_s"] = median(single);
+  results["sweep_2_cores_vs_1"] = median(two) / median(one);
+  results["sweep_1_core_vs_single_runs"] = median(one) / median(single);
+  rows.push_back({"sweep runs/s: 1 core, 2 cores (2 s runs of rigid_2dof)",
+                  fmt(median(one)) + ", " + fmt(median(two)), "(reported)", ""});
+  rows.push_back({"sweep: 2 cores / 1 core", fmt(median(two) / median(one)), ">= 1.8",
+                  median(two) / median(one) >= 1.8 ? "met" : "MISSED"});
+  rows.push_back({"sweep on 1 core / lagrange run --mode inproc one by one",
+                  fmt(median(one) / median(single)), ">= 1",
+                  median(one) / median(single) >= 1 ? "met" : "MISSED"});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -122,7 +180,15 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--realtime-seconds", realtime_seconds, "Length of the realtime run [s]")
       ->capture_default_str();
+  std::vector<std::string> only;
+  app.add_option(
+         "--only", only,
+         "Run only these figures (comma-separated: ring, inproc, realtime, scaling, urdf, micro, sweep)")
+      ->delimiter(',');
   CLI11_PARSE(app, argc, argv);
+  const auto want = [&only](const std::string& section) {
+    return only.empty() || std::find(only.begin(), only.end(), section) != only.end();
+  };
   g_work = (fs::temp_directory_path() / ("lagrange-bench-" + std::to_string(getpid()))).string();
   fs::create_directories(g_work);
 
@@ -136,111 +202,120 @@ int main(int argc, char** argv) {
   const std::string rigid = g_configs + "/rigid_2dof.yaml";
   const std::string at_default_step = "--set plant.physics_step=1.0e-4 --set duration=10";
 
-  std::fprintf(stderr, "1/6 lockstep vs bare LCM ring ...\n");
   std::vector<double> ring, lockstep, inproc, ode;
-  for (int r = 0; r < repeats; ++r) {
-    ring.push_back(std::stod(capture(g_bin + "/lagrange-bench-ring --rounds 20000")));
-    lockstep.push_back(ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step), 1000));
+  if (want("ring")) {
+    std::fprintf(stderr, "1/7 lockstep vs bare LCM ring ...\n");
+    for (int r = 0; r < repeats; ++r) {
+      ring.push_back(std::stod(capture(g_bin + "/lagrange-bench-ring --rounds 20000")));
+      lockstep.push_back(ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step), 1000));
+    }
+    results["lockstep_ticks_per_s"] = median(lockstep);
+    results["lcm_ring_rounds_per_s"] = median(ring);
+    results["lockstep_vs_ring"] = median(lockstep) / median(ring);
+    rows.push_back({"lockstep ticks/s / bare LCM ring rounds/s",
+                    fmt(median(lockstep), "%.0f") + " / " + fmt(median(ring), "%.0f") + " = " +
+                        fmt(results["lockstep_vs_ring"].get<double>(), "%.2f"),
+                    ">= 0.8", results["lockstep_vs_ring"].get<double>() >= 0.8 ? "met" : "MISSED"});
   }
-  results["lockstep_ticks_per_s"] = median(lockstep);
-  results["lcm_ring_rounds_per_s"] = median(ring);
-  results["lockstep_vs_ring"] = median(lockstep) / median(ring);
-  rows.push_back({"lockstep ticks/s / bare LCM ring rounds/s",
-                  fmt(median(lockstep), "%.0f") + " / " + fmt(median(ring), "%.0f") + " = " +
-                      fmt(results["lockstep_vs_ring"].get<double>(), "%.2f"),
-                  ">= 0.8", results["lockstep_vs_ring"].get<double>() >= 0.8 ? "met" : "MISSED"});
-
-  std::fprintf(stderr, "2/6 in-process vs bare ODE ...\n");
-  for (int r = 0; r < repeats; ++r) {
-    inproc.push_back(ticksPerSecond(run(rigid, "--mode inproc " + at_default_step), 1000));
-    ode.push_back(odeTicksPerSecond(rigid, 10000));
+  if (want("inproc")) {
+    std::fprintf(stderr, "2/7 in-process vs bare ODE ...\n");
+    for (int r = 0; r < repeats; ++r) {
+      inproc.push_back(ticksPerSecond(run(rigid, "--mode inproc " + at_default_step), 1000));
+      ode.push_back(odeTicksPerSecond(rigid, 10000));
+    }
+    results["inproc_ticks_per_s"] = median(inproc);
+    results["ode_ticks_per_s"] = median(ode);
+    results["inproc_vs_ode"] = median(inproc) / median(ode);
+    rows.push_back({"in-process ticks/s / bare ODE ticks/s",
+                    fmt(median(inproc), "%.0f") + " / " + fmt(median(ode), "%.0f") + " = " +
+                        fmt(results["inproc_vs_ode"].get<double>(), "%.2f"),
+                    ">= 0.5", results["inproc_vs_ode"].get<double>() >= 0.5 ? "met" : "MISSED"});
   }
-  results["inproc_ticks_per_s"] = median(inproc);
-  results["ode_ticks_per_s"] = median(ode);
-  results["inproc_vs_ode"] = median(inproc) / median(ode);
-  rows.push_back({"in-process ticks/s / bare ODE ticks/s",
-                  fmt(median(inproc), "%.0f") + " / " + fmt(median(ode), "%.0f") + " = " +
-                      fmt(results["inproc_vs_ode"].get<double>(), "%.2f"),
-                  ">= 0.5", results["inproc_vs_ode"].get<double>() >= 0.5 ? "met" : "MISSED"});
-
-  std::fprintf(stderr, "3/6 realtime at 1 kHz for %.0f s ...\n", realtime_seconds);
-  const json rt = run(rigid, "--mode realtime --set plant.physics_step=1.0e-4 --set duration=" +
-                                 fmt(realtime_seconds, "%.0f"));
-  results["realtime"] = {{"loops", rt["timing"]["loops"]}, {"latency", rt["timing"]["latency"]}};
-  double worst_on_time = 1.0;
-  long long worst_run = 0;
-  for (const char* p : {"plant", "controller", "actuator"}) {
-    const auto& l = rt["timing"]["loops"][p];
-    worst_on_time = std::min(worst_on_time, l["on_time_fraction"].get<double>());
-    worst_run = std::max(worst_run, l["longest_miss_run"].get<long long>());
-    rows.push_back({std::string("realtime ") + p + ": on time, longest miss run, jitter p50/p99/max [us]",
-                    fmt(100 * l["on_time_fraction"].get<double>(), "%.3f") + " %, " +
-                        std::to_string(l["longest_miss_run"].get<long long>()) + ", " +
-                        fmt(1e6 * l["jitter"]["p50"].get<double>(), "%.0f") + "/" +
-                        fmt(1e6 * l["jitter"]["p99"].get<double>(), "%.0f") + "/" +
-                        fmt(1e6 * l["jitter"]["max"].get<double>(), "%.0f"),
-                    ">= 99.9 %, < 20", holdsRealtime(rt) ? "met" : "MISSED"});
-  }
-  rows.push_back({"realtime latency position -> torque at plant p50/p99/max [us]",
-                  fmt(1e6 * rt["timing"]["latency"]["p50"].get<double>(), "%.0f") + "/" +
-                      fmt(1e6 * rt["timing"]["latency"]["p99"].get<double>(), "%.0f") + "/" +
-                      fmt(1e6 * rt["timing"]["latency"]["max"].get<double>(), "%.0f"),
-                  "(reported)", ""});
-  results["realtime_on_time_fraction"] = worst_on_time;
-  results["realtime_longest_miss_run"] = worst_run;
-
-  std::fprintf(stderr, "4/6 scaling with joint count ...\n");
-  int largest_realtime_n = 0;
-  for (int n : {2, 5, 7, 10, 20}) {
-    const std::string config = chainConfig(n);
-    const double ls = ticksPerSecond(run(config, "--mode lockstep"), 1000);
-    const double ip = ticksPerSecond(run(config, "--mode inproc"), 1000);
-    const json r = run(config, "--mode realtime --set duration=10");
-    const bool holds = holdsRealtime(r);
-    if (holds) largest_realtime_n = n;
-    results["scaling"][std::to_string(n)] = {
-        {"lockstep_ticks_per_s", ls}, {"inproc_ticks_per_s", ip}, {"realtime_holds_1kHz", holds}};
-    rows.push_back({"n = " + std::to_string(n) + ": lockstep / in-process ticks/s, realtime 1 kHz",
-                    fmt(ls, "%.0f") + " / " + fmt(ip, "%.0f") + ", " + (holds ? "holds" : "fails"),
+  if (want("realtime")) {
+    std::fprintf(stderr, "3/7 realtime at 1 kHz for %.0f s ...\n", realtime_seconds);
+    const json rt = run(rigid, "--mode realtime --set plant.physics_step=1.0e-4 --set duration=" +
+                                   fmt(realtime_seconds, "%.0f"));
+    results["realtime"] = {{"loops", rt["timing"]["loops"]}, {"latency", rt["timing"]["latency"]}};
+    double worst_on_time = 1.0;
+    long long worst_run = 0;
+    for (const char* p : {"plant", "controller", "actuator"}) {
+      const auto& l = rt["timing"]["loops"][p];
+      worst_on_time = std::min(worst_on_time, l["on_time_fraction"].get<double>());
+      worst_run = std::max(worst_run, l["longest_miss_run"].get<long long>());
+      rows.push_back({std::string("realtime ") + p + ": on time, longest miss run, jitter p50/p99/max [us]",
+                      fmt(100 * l["on_time_fraction"].get<double>(), "%.3f") + " %, " +
+                          std::to_string(l["longest_miss_run"].get<long long>()) + ", " +
+                          fmt(1e6 * l["jitter"]["p50"].get<double>(), "%.0f") + "/" +
+                          fmt(1e6 * l["jitter"]["p99"].get<double>(), "%.0f") + "/" +
+                          fmt(1e6 * l["jitter"]["max"].get<double>(), "%.0f"),
+                      ">= 99.9 %, < 20", holdsRealtime(rt) ? "met" : "MISSED"});
+    }
+    rows.push_back({"realtime latency position -> torque at plant p50/p99/max [us]",
+                    fmt(1e6 * rt["timing"]["latency"]["p50"].get<double>(), "%.0f") + "/" +
+                        fmt(1e6 * rt["timing"]["latency"]["p99"].get<double>(), "%.0f") + "/" +
+                        fmt(1e6 * rt["timing"]["latency"]["max"].get<double>(), "%.0f"),
                     "(reported)", ""});
+    results["realtime_on_time_fraction"] = worst_on_time;
+    results["realtime_longest_miss_run"] = worst_run;
   }
-  results["largest_n_holding_realtime"] = largest_realtime_n;
-
-  // The URDF arms as shipped (physics step 0.1 ms, 1 kHz), in-process next to
-  // the planar chains above; the Panda also at 1 kHz realtime.
-  std::fprintf(stderr, "5/6 URDF arms ...\n");
-  for (const char* arm : {"panda_theorem1", "ur5_theorem1"}) {
-    const std::string config = g_configs + "/" + arm + ".yaml";
-    std::vector<double> ticks;
-    for (int r = 0; r < repeats; ++r) ticks.push_back(ticksPerSecond(run(config, "--mode inproc"), 1000));
-    results["urdf"][arm]["inproc_ticks_per_s"] = median(ticks);
-    rows.push_back({std::string(arm) + ": in-process ticks/s", fmt(median(ticks), "%.0f"), "(reported)", ""});
+  if (want("scaling")) {
+    std::fprintf(stderr, "4/7 scaling with joint count ...\n");
+    int largest_realtime_n = 0;
+    for (int n : {2, 5, 7, 10, 20}) {
+      const std::string config = chainConfig(n);
+      const double ls = ticksPerSecond(run(config, "--mode lockstep"), 1000);
+      const double ip = ticksPerSecond(run(config, "--mode inproc"), 1000);
+      const json r = run(config, "--mode realtime --set duration=10");
+      const bool holds = holdsRealtime(r);
+      if (holds) largest_realtime_n = n;
+      results["scaling"][std::to_string(n)] = {
+          {"lockstep_ticks_per_s", ls}, {"inproc_ticks_per_s", ip}, {"realtime_holds_1kHz", holds}};
+      rows.push_back({"n = " + std::to_string(n) + ": lockstep / in-process ticks/s, realtime 1 kHz",
+                      fmt(ls, "%.0f") + " / " + fmt(ip, "%.0f") + ", " + (holds ? "holds" : "fails"),
+                      "(reported)", ""});
+    }
+    results["largest_n_holding_realtime"] = largest_realtime_n;
   }
-  const json panda_rt = run(g_configs + "/panda_theorem1.yaml", "--mode realtime --set duration=10");
-  const bool panda_holds = holdsRealtime(panda_rt);
-  results["urdf"]["panda_theorem1"]["realtime_holds_1kHz"] = panda_holds;
-  results["urdf"]["panda_theorem1"]["realtime"] = {{"loops", panda_rt["timing"]["loops"]},
-                                                   {"latency", panda_rt["timing"]["latency"]},
-                                                   {"tracking", panda_rt["tracking"]}};
-  for (const char* p : {"plant", "controller", "actuator"}) {
-    const auto& l = panda_rt["timing"]["loops"][p];
-    rows.push_back({std::string("panda realtime 1 kHz ") + p + ": on time, longest miss run",
-                    fmt(100 * l["on_time_fraction"].get<double>(), "%.3f") + " %, " +
-                        std::to_string(l["longest_miss_run"].get<long long>()),
-                    ">= 99.9 %, < 20", panda_holds ? "met" : "MISSED"});
+  if (want("urdf")) {
+    // The URDF arms as shipped (physics step 0.1 ms, 1 kHz), in-process next to
+    // the planar chains above; the Panda also at 1 kHz realtime.
+    std::fprintf(stderr, "5/7 URDF arms ...\n");
+    for (const char* arm : {"panda_theorem1", "ur5_theorem1"}) {
+      const std::string config = g_configs + "/" + arm + ".yaml";
+      std::vector<double> ticks;
+      for (int r = 0; r < repeats; ++r) ticks.push_back(ticksPerSecond(run(config, "--mode inproc"), 1000));
+      results["urdf"][arm]["inproc_ticks_per_s"] = median(ticks);
+      rows.push_back(
+          {std::string(arm) + ": in-process ticks/s", fmt(median(ticks), "%.0f"), "(reported)", ""});
+    }
+    const json panda_rt = run(g_configs + "/panda_theorem1.yaml", "--mode realtime --set duration=10");
+    const bool panda_holds = holdsRealtime(panda_rt);
+    results["urdf"]["panda_theorem1"]["realtime_holds_1kHz"] = panda_holds;
+    results["urdf"]["panda_theorem1"]["realtime"] = {{"loops", panda_rt["timing"]["loops"]},
+                                                     {"latency", panda_rt["timing"]["latency"]},
+                                                     {"tracking", panda_rt["tracking"]}};
+    for (const char* p : {"plant", "controller", "actuator"}) {
+      const auto& l = panda_rt["timing"]["loops"][p];
+      rows.push_back({std::string("panda realtime 1 kHz ") + p + ": on time, longest miss run",
+                      fmt(100 * l["on_time_fraction"].get<double>(), "%.3f") + " %, " +
+                          std::to_string(l["longest_miss_run"].get<long long>()),
+                      ">= 99.9 %, < 20", panda_holds ? "met" : "MISSED"});
+    }
   }
-
-  std::fprintf(stderr, "6/6 micro-benchmarks ...\n");
-  const json micro =
-      json::parse(capture(g_bin + "/lagrange-bench-micro --benchmark_format=json "
-                                  "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "
-                                  "2>/dev/null"));
-  for (const auto& b : micro["benchmarks"]) {
-    if (b["aggregate_name"] != "median") continue;
-    const std::string name = b["run_name"];
-    results["micro_ns"][name] = b["cpu_time"];
-    rows.push_back({"micro " + name + " [ns]", fmt(b["cpu_time"].get<double>(), "%.0f"), "(reported)", ""});
+  if (want("micro")) {
+    std::fprintf(stderr, "6/7 micro-benchmarks ...\n");
+    const json micro =
+        json::parse(capture(g_bin + "/lagrange-bench-micro --benchmark_format=json "
+                                    "--benchmark_repetitions=3 --benchmark_report_aggregates_only=true "
+                                    "2>/dev/null"));
+    for (const auto& b : micro["benchmarks"]) {
+      if (b["aggregate_name"] != "median") continue;
+      const std::string name = b["run_name"];
+      results["micro_ns"][name] = b["cpu_time"];
+      rows.push_back({"micro " + name + " [ns]", fmt(b["cpu_time"].get<double>(), "%.0f"), "(reported)", ""});
+    }
   }
+  if (want("sweep")) sweepBenchmark(results, rows, repeats);
 
   json baseline;
   if (!baseline_path.empty() && fs::exists(baseline_path))
@@ -251,8 +326,9 @@ int main(int argc, char** argv) {
                 r.verdict.c_str());
   if (!baseline.is_null()) {
     std::printf("\nagainst the baseline (%s):\n", baseline_path.c_str());
-    for (const char* key : {"lockstep_vs_ring", "inproc_vs_ode", "realtime_on_time_fraction"})
-      if (baseline.contains(key))
+    for (const char* key : {"lockstep_vs_ring", "inproc_vs_ode", "realtime_on_time_fraction",
+                            "sweep_2_cores_vs_1", "sweep_1_core_vs_single_runs"})
+      if (baseline.contains(key) && results.contains(key))
         std::printf("  %-28s now %.3f, baseline %.3f (ratio %.2f)\n", key, results[key].get<double>(),
                     baseline[key].get<double>(), results[key].get<double>() / baseline[key].get<double>());
   }

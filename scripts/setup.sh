@@ -15,8 +15,9 @@ packages=(
   # screenshot, OCR of it
   default-jre fonts-dejavu-core xvfb imagemagick tesseract-ocr tesseract-ocr-eng
   # lagrange sweep --slurm's test: a one-node cluster started inside the
-  # test's network namespace (no daemon is started by installing them here:
-  # without systemd, invoke-rc.d declines; with it, they find no slurm.conf)
+  # test's network namespace. Installing them starts no Slurm daemon (without
+  # systemd invoke-rc.d declines; with it they find no /etc/slurm/slurm.conf);
+  # under systemd munge's own service may start, on a local socket only.
   munge slurmctld slurmd slurm-client
   # scripts/fuzz.sh: libFuzzer with clang
   clang libclang-rt-14-dev
