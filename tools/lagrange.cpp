@@ -240,6 +240,8 @@ int DoMain(int argc, char** argv) {
   sweep_cmd->add_option("-j,--jobs", sweep.jobs, "Local runs at a time (default: one per core)")
       ->check(CLI::NonNegativeNumber);
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print errors only");
+  sweep_cmd->add_flag("--dry-run", sweep.dry_run,
+                      "Plan the sweep and check every run's scenario, print how many runs it has; run nothing");
   sweep_cmd->add_flag(
       "--slurm", sweep.slurm,
       "Submit the runs as a Slurm job array (sbatch) instead of running them here; OUT must be on "
@@ -303,7 +305,7 @@ int DoMain(int argc, char** argv) {
   }
   if (*sweep_cmd) {
     if (*collect_cmd) return tools::collectSweep(collect_dir, collect_quiet);
-    if (sweep.sweep_file.empty() || sweep.out_dir.empty()) {
+    if (sweep.sweep_file.empty() || (sweep.out_dir.empty() && !sweep.dry_run)) {
       std::cerr << "lagrange sweep: expected a sweep file and --out DIR (or: lagrange sweep collect DIR)\n";
       return kExitBadInput;
     }

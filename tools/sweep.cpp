@@ -280,6 +280,13 @@ int runSweep(const SweepOptions& o) {
   SweepPlan plan;
   try {
     plan = planSweep(readSweepSpec(o.sweep_file));
+    if (o.dry_run) {
+      std::cout << "lagrange sweep: " << plan.rows.size() << " runs of " << plan.spec.scenario_path
+                << ", every one checked; columns: ";
+      for (const std::string& c : plan.param_columns) std::cout << c << " ";
+      std::cout << "\n";
+      return kExitOk;
+    }
     prepareOutDir(o.out_dir, plan);
     lockOutDir(o.out_dir);
   } catch (const ConfigError& e) {

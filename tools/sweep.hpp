@@ -16,6 +16,7 @@ struct SweepOptions {
   std::string out_dir;
   int jobs = 0;  ///< local shards at a time; 0: one per core
   bool quiet = false;
+  bool dry_run = false;  ///< plan and check every row, print the count, run nothing, write nothing
   bool slurm = false;    ///< submit the shards as a Slurm job array
   bool no_wait = false;  ///< --slurm: return after submitting
   int shards = 0;        ///< --slurm: array tasks; 0: min(runs left, 64)

@@ -29,16 +29,24 @@ std::string num(double x) {
   return buf;
 }
 
+// A parameter's value in a legend: 20, not 20.0.
+std::string label(const Row& v) {
+  if (!v.is_number()) return v.is_string() ? v.get<std::string>() : v.dump();
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());
+  return buf;
+}
+
 std::string header(const std::string& png, const std::string& title) {
   return std::string(kGnuplotPreamble) + "set terminal pngcairo size 1000,650\nset output '" + png +
          "'\nset title '" + title + "' noenhanced\n";
 }
 
-// Values spread over more than two decades, all positive: a log axis.
+// Values spread over a decade or more, all positive: a log axis.
 bool wantsLog(const std::vector<double>& v) {
   if (v.empty()) return false;
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  return *lo > 0 && *hi / *lo > 100;
+  return *lo > 0 && *hi / *lo >= 10;
 }
 
 struct Picture {
@@ -48,14 +56,17 @@ struct Picture {
 std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& title,
                                       const std::map<long, Row>& rows, const std::string& group) {
   // One curve per value of `group` (the first axis, when it has few values).
-  std::map<std::string, std::vector<std::pair<double, double>>> converged;
+  // By the group's value, numbers in numeric order.
+  std::map<std::pair<double, std::string>, std::vector<std::pair<double, double>>> converged;
   std::vector<std::pair<double, std::string>> others;
   double top = 0;
   for (const auto& [i, r] : rows) {
     const auto x = numberOf(r, "x0_norm");
     const auto t = numberOf(r, "convergence_time");
     if (!x || *x <= 0) continue;
-    const std::string g = group.empty() || !r.contains(group) ? "" : r.at(group).dump();
+    const bool grouped = !group.empty() && r.contains(group);
+    const std::pair<double, std::string> g = {grouped ? numberOf(r, group).value_or(0.0) : 0.0,
+                                              grouped ? label(r.at(group)) : ""};
     if (t && *t > 0) {
       converged[g].push_back({*x, *t});
       top = std::max(top, *t);
@@ -74,7 +85,7 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
     for (const auto& [x, t] : points) out << num(x) << "," << num(t) << "\n";
     plot += std::string(k ? ", \\\n     " : "") + "'" + file +
             "' skip 1 using 1:2 with points pt 7 ps 0.6 title '" +
-            (g.empty() ? "converged" : group + " = " + g) + "' noenhanced";
+            (g.second.empty() ? "converged" : group + " = " + g.second) + "' noenhanced";
     ++k;
   }
   for (const std::string kind : {"not converged", "diverged"}) {
@@ -119,7 +130,7 @@ std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, co
   std::string script = header("heat_map.png", title + ": fraction of runs that converged") + "set xlabel '" +
                        xcol + "' noenhanced\nset ylabel '" + ycol +
                        "' noenhanced\nset cbrange [0:1]\nset cblabel 'converged fraction'\n"
-                       "set palette defined (0 '#b2182b', 0.5 '#f7f7f7', 1 '#2166ac')\nset key off\n";
+                       "set palette defined (0 '#b2182b', 0.5 '#fdae61', 1 '#2166ac')\nset key off\n";
   if (wantsLog(xs)) script += "set logscale x\n";
   if (wantsLog(ys)) script += "set logscale y\n";
   script +=
@@ -142,12 +153,13 @@ std::optional<Picture> marginMap(const fs::path& dir, const std::string& title,
   out << "gain_margin,converged_fraction,runs\n";
   for (const auto& [m, c] : by_margin)
     out << num(m) << "," << num(double(c.first) / c.second) << "," << c.second << "\n";
-  return Picture{"margin.png",
-                 header("margin.png", title + ": the continuous-time condition against what was observed") +
-                     "set xlabel 'margin of the evaluated conditions (eq. (11); > 0: they hold)'\n"
-                     "set ylabel 'fraction of runs that converged'\nset yrange [-0.05:1.05]\n"
-                     "set arrow from 0, graph 0 to 0, graph 1 nohead dt 2\nset key off\n"
-                     "plot 'margin.csv' skip 1 using 1:2 with points pt 7 ps 1.2\n"};
+  return Picture{
+      "margin.png",
+      header("margin.png", title + ": the continuous-time condition against what was observed") +
+          "set xlabel 'smallest margin of the evaluated continuous-time conditions (> 0: all hold)'\n"
+          "set ylabel 'fraction of runs that converged'\nset yrange [-0.05:1.05]\n"
+          "set arrow from 0, graph 0 to 0, graph 1 nohead dt 2\nset key off\n"
+          "plot 'margin.csv' skip 1 using 1:2 with points pt 7 ps 1.2\n"};
 }
 
 std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
@@ -161,6 +173,14 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
   if (by_rate.size() < 2) return std::nullopt;
   std::ofstream out(dir / "region_vs_rate.csv");
   out << "rate,all_converged_below,largest_converged,runs\n";
+  // A rate where no run converged has no region: drawn as a cross below the
+  // smallest initial state swept, so that it is not silently missing.
+  double smallest = 0;
+  for (const auto& [f, runs] : by_rate)
+    for (const auto& [x, ok] : runs) smallest = smallest > 0 ? std::min(smallest, x) : x;
+  std::ofstream none(dir / "region_none.csv");
+  none << "rate,y\n";
+  bool any_none = false;
   for (auto& [f, runs] : by_rate) {
     std::sort(runs.begin(), runs.end());
     double all_below = 0, largest = 0;
@@ -170,16 +190,25 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
       if (intact) all_below = x;
       if (ok) largest = x;
     }
+    if (largest == 0) {
+      none << num(f) << "," << num(smallest / 2) << "\n";
+      any_none = true;
+      continue;
+    }
     out << num(f) << "," << num(all_below) << "," << num(largest) << "," << runs.size() << "\n";
   }
+  const std::string crosses = any_none ? ", \\\n     'region_none.csv' skip 1 using 1:2 with points pt 2 ps "
+                                         "2 lw 2 title 'no run converged'"
+                                       : "";
   return Picture{
       "region_vs_rate.png",
       header("region_vs_rate.png", title + ": region of convergence against the controller rate") +
-          "set logscale xy\nset xlabel 'controller rate, plant.publish_rate [Hz]'\n"
+          "set logscale xy\nset xlabel 'controller rate, plant.publish_rate [Hz]' noenhanced\n"
           "set ylabel '||x(0)||'\nset key top left box opaque\n"
           "plot 'region_vs_rate.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title "
           "'every run from below converged', \\\n"
-          "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that converged'\n"};
+          "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that converged'" +
+          crosses + "\n"};
 }
 
 }  // namespace

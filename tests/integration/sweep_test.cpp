@@ -216,6 +216,13 @@ TEST(Sweep, BadSweepFilesAreNamedBeforeAnyRunStarts) {
     EXPECT_NE(r.output.find(path), std::string::npos) << "names the file: " << r.output;
     EXPECT_FALSE(fs::exists(out)) << "nothing was made, let alone run";
   }
+  // --dry-run plans and checks, and makes nothing.
+  const RunResult dry = lagrange("sweep " + quote(writeSweep(dir + "/dry")) + " --dry-run");
+  EXPECT_EQ(dry.exit_code, 0) << dry.output;
+  EXPECT_NE(dry.output.find("12 runs of"), std::string::npos) << dry.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir + "/dry"), fs::directory_iterator()), 1)
+      << "only sweep.yaml";
+
   // A directory that holds another sweep is not resumed with this one.
   const std::string sweep = writeSweep(dir + "/a", "", 0.2);
   ASSERT_EQ(lagrange("sweep " + quote(sweep) + " -o " + quote(dir + "/out") + " -q").exit_code, 0);
