@@ -184,7 +184,8 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     progress.update(c.rows, c.diverged);
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
-  progress.finish();
+  const RowCount end = counter.count();
+  progress.finish(end.rows, end.diverged);
   const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
   if (sweep_signal) return kExitInterrupted;
   return failed || missing > 0 ? kExitFailed : kExitOk;
@@ -246,7 +247,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     }
     if (done == pid) break;
     if (sweep_signal) {
-      progress.finish();
+      progress.interrupt();
       std::cerr << "lagrange sweep: stopped waiting; job " << (job.empty() ? "?" : job)
                 << " keeps running (scancel it to stop it); then: lagrange sweep collect " << o.out_dir
                 << "\n";
@@ -256,7 +257,8 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     progress.update(c.rows, c.diverged);
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
-  progress.finish();
+  const RowCount end = counter.count();
+  progress.finish(end.rows, end.diverged);
   const std::string out = readFile(sbatch_out);
   if (job.empty() || !(WIFEXITED(wstatus) && (WEXITSTATUS(wstatus) == 0 || !o.no_wait))) {
     std::cerr << "lagrange sweep: sbatch " << exitText(wstatus) << ":\n" << out;

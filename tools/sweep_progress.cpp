@@ -88,6 +88,9 @@ void SweepProgress::interrupt() {
   std::fflush(stdout);
 }
 
-void SweepProgress::finish() { interrupt(); }
+void SweepProgress::finish(long done, long diverged) {
+  if (!quiet_ && done != last_done_) draw(done, diverged);
+  interrupt();
+}
 
 }  // namespace lagrange::tools

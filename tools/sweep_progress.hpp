@@ -33,7 +33,8 @@ class SweepProgress {
   SweepProgress(long total, long done_at_start, bool quiet);
   void update(long done, long diverged);
   void interrupt();  ///< end a bar's line before other output
-  void finish();
+  /// Draws the final count (the bar at its end) and ends the line.
+  void finish(long done, long diverged);
 
  private:
   void draw(long done, long diverged);

@@ -143,6 +143,24 @@ TEST(Sweep, TheSameSweepGivesTheSameTableOnOneCoreOrTwo) {
   EXPECT_NE(tableWithoutWallTime(dir + "/one"), tableWithoutWallTime(dir + "/reseeded"));
 }
 
+TEST(Sweep, ShowsABarWithTheRateAndTheTimeLeftOnATerminal) {
+  const std::string dir = freshDir("sweep-tty");
+  const std::string sweep = writeSweep(dir, "", 2.0);
+  const RunResult r = shell(
+      "script -qec " + quote(kBin + "/lagrange sweep " + sweep + " -o " + dir + "/out -j 2") + " /dev/null");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::regex_search(
+      r.output, std::regex(R"(\r\[#{30}\] 12/12 runs \(100%\), [0-9.]+ runs/s, ETA 0s, 0 diverged)")))
+      << r.output;
+  EXPECT_TRUE(std::regex_search(
+      r.output, std::regex(R"(\r\[#* *\] [0-9]+/12 runs \( *[0-9]+%\), [0-9.]+ runs/s, ETA [0-9]+s)")))
+      << r.output;
+  size_t redraws = 0;
+  for (size_t at = r.output.find("\r["); at != std::string::npos; at = r.output.find("\r[", at + 1)) ++redraws;
+  EXPECT_GE(redraws, 3u) << "redrawn as rows land";
+  EXPECT_EQ(r.output.find("progress:"), std::string::npos) << r.output;
+}
+
 TEST(Sweep, AKilledSweepResumesRunningOnlyTheRowsItHadNotFinished) {
   const std::string dir = freshDir("sweep-resume");
   const std::string sweep = writeSweep(dir, "", 3.0);  // 12 runs of about 0.2 s
