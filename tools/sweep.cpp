@@ -85,7 +85,9 @@ SweepPlan loadPlan(const std::string& out_dir) {
   return planFromJson(readFile(plan_path), plan_path.string());
 }
 
-pid_t spawn(const std::vector<std::string>& args, const std::string& log_path) {
+// `own_group`: the child in a process group of its own, out of reach of the
+// terminal's Ctrl-C (sbatch --wait: stopping the wait must not touch the job).
+pid_t spawn(const std::vector<std::string>& args, const std::string& log_path, bool own_group = false) {
   std::vector<std::string> copy = args;
   std::vector<char*> argv;
   for (std::string& a : copy) argv.push_back(a.data());
@@ -95,10 +97,20 @@ pid_t spawn(const std::vector<std::string>& args, const std::string& log_path) {
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND,
                                    0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  if (own_group) {
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
+  }
   pid_t pid = -1;
-  const int err = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int err = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&actions);
-  if (err != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(err));
+  if (err != 0)
+    throw std::runtime_error(
+        "cannot start " + args[0] + ": " + std::strerror(err) + "; expected " + args[0] +
+        (args[0] == "sbatch" ? " on PATH (Slurm's client; Debian: slurm-client)" : " to exist"));
   return pid;
 }
 
@@ -191,6 +203,17 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   return failed || missing > 0 ? kExitFailed : kExitOk;
 }
 
+// The job id sbatch --parsable prints ("ID" or "ID;CLUSTER") on a line of its
+// own, when it has submitted; warnings may come before it. Empty until then.
+std::string jobIdOf(const std::string& sbatch_output) {
+  std::istringstream lines(sbatch_output);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty() && !lines.eof() && std::isdigit(static_cast<unsigned char>(line[0])) &&
+        line.find_first_not_of("0123456789") == line.find(';'))
+      return line.substr(0, line.find(';'));
+  return "";
+}
+
 std::string shellQuote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -226,17 +249,16 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   args.push_back(script.string());
   const fs::path sbatch_out = slurm / "sbatch.out";
   fs::remove(sbatch_out);
-  const pid_t pid = spawn(args, sbatch_out.string());
+  const pid_t pid = spawn(args, sbatch_out.string(), /*own_group=*/true);
   RowCounter counter(o.out_dir);
   std::string job;
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);
   int wstatus = 0;
   for (;;) {
     const pid_t done = waitpid(pid, &wstatus, WNOHANG);
-    if (job.empty()) {  // --parsable: the job id is sbatch's first line, printed at submission
-      const std::string out = readFile(sbatch_out);
-      if (out.find('\n') != std::string::npos && std::isdigit(static_cast<unsigned char>(out[0]))) {
-        job = out.substr(0, out.find_first_of(";\n"));
+    if (job.empty()) {
+      job = jobIdOf(readFile(sbatch_out));
+      if (!job.empty()) {
         if (!o.quiet) {
           progress.interrupt();
           std::cout << "lagrange sweep: submitted Slurm job " << job << ", " << n << " array tasks ("
@@ -259,17 +281,18 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   }
   const RowCount end = counter.count();
   progress.finish(end.rows, end.diverged);
-  const std::string out = readFile(sbatch_out);
-  if (job.empty() || !(WIFEXITED(wstatus) && (WEXITSTATUS(wstatus) == 0 || !o.no_wait))) {
-    std::cerr << "lagrange sweep: sbatch " << exitText(wstatus) << ":\n" << out;
-    if (job.empty()) return kExitFailed;
+  const bool sbatch_ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
+  if (job.empty()) {  // not submitted
+    std::cerr << "lagrange sweep: sbatch " << exitText(wstatus) << " without submitting a job:\n"
+              << readFile(sbatch_out);
+    return kExitFailed;
   }
   if (o.no_wait) {
-    std::cout << "lagrange sweep: job " << job << " submitted; when it has ended: lagrange sweep collect "
-              << o.out_dir << "\n";
+    std::cout << "lagrange sweep: when job " << job << " has ended: lagrange sweep collect " << o.out_dir
+              << "\n";
     return kExitOk;
   }
-  if (WEXITSTATUS(wstatus) != 0)
+  if (!sbatch_ok)  // sbatch --wait exits non-zero when a task did
     std::cerr << "lagrange sweep: a task of job " << job << " failed (sbatch --wait " << exitText(wstatus)
               << "); see " << (slurm / "shard-*.out").string() << "\n";
   const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");

@@ -14,6 +14,7 @@
 
 #include "support/configs.hpp"
 #include "support/launch.hpp"
+#include "support/sweep_files.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -21,22 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kCluster = std::string(LAGRANGE_SOURCE_DIR) + "/tests/integration/slurm_cluster.sh";
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// The table without wall_time (the last column but one: stop_reason follows it).
-std::string tableWithoutWallTime(const std::string& out) {
-  std::ifstream in(out + "/sweep.csv");
-  std::string table;
-  for (std::string line; std::getline(in, line);) {
-    const size_t last = line.rfind(','), wall = line.rfind(',', last - 1);
-    table += line.substr(0, wall) + line.substr(last) + "\n";
-  }
-  return table;
-}
 
 class SlurmSweep : public ::testing::Test {
  protected:

@@ -16,6 +16,7 @@
 #include "support/child.hpp"
 #include "support/configs.hpp"
 #include "support/launch.hpp"
+#include "support/sweep_files.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -37,57 +38,11 @@ std::string writeSweep(const std::string& dir, const std::string& extra = "", do
   return path;
 }
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-// The table without its wall_time column, the one column that differs from
-// run to run (docs/sweeps.md).
-std::string tableWithoutWallTime(const std::string& out) {
-  std::ifstream in(out + "/sweep.csv");
-  std::string header, line, table;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  for (size_t start = 0, end; start <= header.size(); start = end + 1) {
-    end = header.find(',', start);
-    if (end == std::string::npos) end = header.size();
-    names.push_back(header.substr(start, end - start));
-  }
-  const auto wall = std::find(names.begin(), names.end(), "wall_time") - names.begin();
-  EXPECT_LT(static_cast<size_t>(wall), names.size());
-  table = header + "\n";
-  while (std::getline(in, line)) {
-    size_t start = 0;
-    for (long i = 0; i < wall; ++i) start = line.find(',', start) + 1;
-    const size_t end = line.find(',', start);
-    table += line.substr(0, start) + line.substr(end + 1) + "\n";
-  }
-  return table;
-}
-
 size_t tableRows(const std::string& out) {
   std::ifstream in(out + "/sweep.csv");
   size_t n = 0;
   for (std::string line; std::getline(in, line);) ++n;
   return n - 1;
-}
-
-// Every row line in OUT/rows, by index: how many times each was written.
-std::map<long, int> rowLines(const std::string& out) {
-  std::map<long, int> lines;
-  const std::regex index(R"(^\{"index":(\d+),)");
-  for (const auto& f : fs::directory_iterator(out + "/rows"))
-    for (std::string line : [&] {
-           std::vector<std::string> v;
-           std::ifstream in(f.path());
-           for (std::string l; std::getline(in, l);) v.push_back(l);
-           return v;
-         }()) {
-      std::smatch m;
-      if (std::regex_search(line, m, index)) ++lines[std::stol(m[1])];
-    }
-  return lines;
 }
 
 TEST(Sweep, TheSameSweepGivesTheSameTableOnOneCoreOrTwo) {
@@ -156,7 +111,8 @@ TEST(Sweep, ShowsABarWithTheRateAndTheTimeLeftOnATerminal) {
       r.output, std::regex(R"(\r\[#* *\] [0-9]+/12 runs \( *[0-9]+%\), [0-9.]+ runs/s, ETA [0-9]+s)")))
       << r.output;
   size_t redraws = 0;
-  for (size_t at = r.output.find("\r["); at != std::string::npos; at = r.output.find("\r[", at + 1)) ++redraws;
+  for (size_t at = r.output.find("\r["); at != std::string::npos; at = r.output.find("\r[", at + 1))
+    ++redraws;
   EXPECT_GE(redraws, 3u) << "redrawn as rows land";
   EXPECT_EQ(r.output.find("progress:"), std::string::npos) << r.output;
 }
