@@ -3,7 +3,7 @@
 # for the sweep's Slurm test, inside the caller's private network namespace:
 #   slurm_cluster.sh start DIR   configure and start it in DIR, wait until the node is idle;
 #                                prints SLURM_CONF=DIR/slurm.conf for the clients
-#   slurm_cluster.sh stop DIR    stop every daemon it started
+#   slurm_cluster.sh stop DIR    stop every daemon it started, remove its link
 # Run as root inside a network namespace of its own (tests/in_netns.sh); it
 # refuses to start on the machine's network. The namespace gets a veth pair
 # with an address, 10.213.0.1: with nothing but `lo`, glibc's getaddrinfo
@@ -24,6 +24,8 @@ stop() {
     kill -9 "$pid" 2>/dev/null || true
     rm -f "$pidfile"
   done
+  # The namespace's link goes too (deleting one end removes the pair).
+  "$ip" link del lgslurm0 2>/dev/null || true
 }
 
 if [[ $cmd == stop ]]; then
