@@ -121,7 +121,8 @@ std::string exitText(int wstatus) {
 }
 
 // Table and maps from what is in OUT/rows; returns the rows missing.
-long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who) {
+long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who,
+            bool collecting = false) {
   const auto rows = readFinishedRows(out_dir);
   writeSweepTable(out_dir, plan, rows);
   long diverged = 0, converged = 0;
@@ -151,7 +152,11 @@ long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const
     for (const SweepRow& r : plan.rows)
       if (!rows.count(r.index) && shown++ < 10) list += (list.empty() ? "" : ", ") + std::to_string(r.index);
     std::cerr << who << missing << " runs are not done yet (" << list << (missing > 10 ? ", ..." : "")
-              << "); run the same lagrange sweep command again to run them\n";
+              << "); "
+              << (collecting
+                      ? "a Slurm job may still be running them (squeue); once no task of the sweep runs, "
+                        "the same lagrange sweep command runs what is missing\n"
+                      : "run the same lagrange sweep command again to run them\n");
   }
   return missing;
 }
@@ -166,9 +171,9 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     const std::string log =
         (fs::path(o.out_dir) / "logs" / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".log"))
             .string();
-    running[spawn(
-        {o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of", std::to_string(n)},
-        log)] = k;
+    running[spawn({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
+                   std::to_string(n), "--parent", std::to_string(getpid())},
+                  log)] = k;
   }
   RowCounter counter(o.out_dir);
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet);
@@ -339,7 +344,8 @@ int runSweep(const SweepOptions& o) {
 int collectSweep(const std::string& out_dir, bool quiet) {
   try {
     const SweepPlan plan = loadPlan(out_dir);
-    return finish(out_dir, plan, quiet, "lagrange sweep collect: ") > 0 ? kExitFailed : kExitOk;
+    return finish(out_dir, plan, quiet, "lagrange sweep collect: ", /*collecting=*/true) > 0 ? kExitFailed
+                                                                                             : kExitOk;
   } catch (const ConfigError& e) {
     std::cerr << "lagrange sweep collect: " << e.what() << "\n";
     return kExitBadInput;
@@ -363,6 +369,10 @@ int runSweepShard(const std::string& out_dir, int shard, int of, int parent) {
       throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +
                         ": expected 0 <= K < N");
     const SweepPlan plan = loadPlan(out_dir);
+    if (scenarioDigest(plan.spec.scenario_path) != plan.spec.scenario_digest)
+      throw ConfigError(plan.spec.scenario_path +
+                        " has changed since the sweep was planned; expected it as it was (its rows would "
+                        "mix two scenarios), or a new sweep in a new --out directory");
     const auto finished = readFinishedRows(out_dir);
     RowWriter writer((fs::path(out_dir) / "rows" /
                       ("shard-" + std::to_string(shard) + "-of-" + std::to_string(of) + ".jsonl"))

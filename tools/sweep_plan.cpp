@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -69,6 +70,19 @@ double at(const AxisRange& r, double f) {
   // In decades: a range of powers of ten gives them exactly (10^0 = 1, not 1.0000000000000009).
   return std::pow(10.0, std::log10(r.from) + f * (std::log10(r.to) - std::log10(r.from)));
 }
+
+}  // namespace
+
+std::string scenarioDigest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bits
+  for (char c; in.get(c);) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+namespace {
 
 double gridPoint(const AxisRange& r, int i) {
   return r.count == 1 ? r.from : at(r, double(i) / (r.count - 1));
@@ -160,6 +174,7 @@ SweepSpec readSweepSpec(const std::string& path) {
     if (!fs::is_regular_file(spec.scenario_path))
       m.fail("scenario", "no such file '" + spec.scenario_path +
                              "'; expected a scenario YAML file (relative to the sweep file)");
+    spec.scenario_digest = scenarioDigest(spec.scenario_path);
     if (m.has("set")) {
       const YAML::Node set = m.child("set");
       if (!set.IsMap()) m.fail("set", "expected a map of scenario keys to values, e.g. {duration: 5}");
@@ -224,6 +239,9 @@ SweepPlan planSweep(const SweepSpec& spec) {
     }
   } else {
     rows = spec.samples;
+    if (rows > kMaxRows)
+      throw ConfigError("sweep " + spec.file + ": samples: more than " + std::to_string(kMaxRows) +
+                        " runs; expected fewer, or several sweeps");
   }
 
   // Scenarios read so far, by the overrides that are not norm vectors: the
@@ -299,6 +317,7 @@ std::string planJson(const SweepPlan& plan) {
   nlohmann::ordered_json head;
   head["sweep_file"] = plan.spec.file;
   head["scenario"] = plan.spec.scenario_path;
+  head["scenario_digest"] = plan.spec.scenario_digest;
   head["columns"] = plan.param_columns;
   head["heat_map"] = plan.spec.heat_map;
   head["rows"] = plan.rows.size();
@@ -321,6 +340,7 @@ SweepPlan planFromJson(const std::string& text, const std::string& source) {
     const auto head = nlohmann::json::parse(text.substr(0, pos));
     plan.spec.file = head.at("sweep_file").get<std::string>();
     plan.spec.scenario_path = head.at("scenario").get<std::string>();
+    plan.spec.scenario_digest = head.at("scenario_digest").get<std::string>();
     plan.param_columns = head.at("columns").get<std::vector<std::string>>();
     plan.spec.heat_map = head.at("heat_map").get<std::vector<std::string>>();
     const auto rows = head.at("rows").get<size_t>();

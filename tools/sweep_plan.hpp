@@ -40,8 +40,12 @@ struct SweepAxis {
 };
 
 struct SweepSpec {
-  std::string file;              ///< the sweep file, absolute
-  std::string scenario_path;     ///< the base scenario, absolute
+  std::string file;           ///< the sweep file, absolute
+  std::string scenario_path;  ///< the base scenario, absolute
+  /// FNV-1a (64 bits, hex) of the base scenario's bytes: a restart into the
+  /// same directory, or a shard, with an edited scenario is refused (files it
+  /// names, such as a URDF, are not covered).
+  std::string scenario_digest;
   std::vector<std::string> set;  ///< `set:` overrides of every run, KEY=VALUE
   SweepDesign design = SweepDesign::kGrid;
   long samples = 0;  ///< random and halton: rows
@@ -62,6 +66,9 @@ struct SweepPlan {
   std::vector<std::string> param_columns;  ///< per axis its key; a norm axis KEY.norm and KEY.direction
   std::vector<SweepRow> rows;
 };
+
+/// FNV-1a (64 bits) of a file's bytes, as 16 hex digits.
+std::string scenarioDigest(const std::string& path);
 
 /// Reads a sweep file. @throws config::ConfigError naming the key and what
 /// was expected (unknown keys, an empty axis, a bad range).

@@ -123,23 +123,31 @@ TEST(Sweep, AKilledSweepResumesRunningOnlyTheRowsItHadNotFinished) {
   const std::string whole = dir + "/whole", out = dir + "/out";
   ASSERT_EQ(lagrange("sweep " + quote(sweep) + " -o " + quote(whole) + " -q").exit_code, 0);
 
-  // Kill the sweep and its shards at once (SIGKILL: nothing is flushed or
-  // tidied) once a few rows are in.
+  // SIGKILL the sweep once a few rows are in: nothing is flushed or tidied,
+  // and its shards, which would go on writing rows while a restart runs them
+  // again, stop with it (PR_SET_PDEATHSIG).
+  // "[s]": the pattern does not match the shell that runs pgrep.
+  const std::string shards = "pgrep -f " + quote("[s]weep-shard " + out);
   {
     Child sweeping({kBin + "/lagrange", "sweep", sweep, "-o", out, "-j", "2"}, dir + "/first.log");
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while ((!fs::exists(out + "/rows") || rowLines(out).size() < 3) &&
            std::chrono::steady_clock::now() < deadline)
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    shell("pkill -KILL -f " + quote("sweep-shard " + out));
+    ASSERT_EQ(shell(shards).exit_code, 0) << "the shards run";
     sweeping.signal(SIGKILL);
     sweeping.wait(10);
   }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (shell(shards).exit_code == 0 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_NE(shell(shards).exit_code, 0) << "a shard outlived its killed sweep: " << shell(shards).output;
   const std::map<long, int> before = rowLines(out);
   ASSERT_GE(before.size(), 3u);
   ASSERT_LT(before.size(), 12u) << "the sweep ended before it was killed; nothing to resume";
   EXPECT_FALSE(fs::exists(out + "/sweep.csv")) << "a killed sweep writes no table";
-  // A row cut off mid-write, as a crash during the write would leave it: dropped.
+  // A row cut off mid-write, as a crash during the write (a shard SIGKILLed
+  // too, a node lost) would leave it: dropped.
   long missing = 0;
   while (before.count(missing)) ++missing;
   std::ofstream(out + "/rows/shard-0-of-2.jsonl", std::ios::app)
@@ -205,6 +213,19 @@ TEST(Sweep, BadSweepFilesAreNamedBeforeAnyRunStarts) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("holds another sweep"), std::string::npos) << r.output;
   EXPECT_EQ(lagrange("sweep collect " + quote(dir + "/a")).exit_code, 2) << "not a sweep's directory";
+
+  // Nor is it resumed after its scenario was edited: the rows would mix two scenarios.
+  const std::string own = dir + "/c/scenario.yaml";
+  fs::create_directories(dir + "/c");
+  fs::copy_file(kConfigs + "/rigid_2dof.yaml", own);
+  const std::string edited = dir + "/c/sweep.yaml";
+  std::ofstream(edited)
+      << "scenario: scenario.yaml\nset: {duration: 0.2}\naxes:\n  - {key: controller.kd, values: [5, 20]}\n";
+  ASSERT_EQ(lagrange("sweep " + quote(edited) + " -o " + quote(dir + "/c/out") + " -q").exit_code, 0);
+  std::ofstream(own, std::ios::app) << "# edited\n";
+  const RunResult changed = lagrange("sweep " + quote(edited) + " -o " + quote(dir + "/c/out"));
+  EXPECT_EQ(changed.exit_code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("holds another sweep"), std::string::npos) << changed.output;
 }
 
 }  // namespace
