@@ -131,8 +131,8 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
   if (program.find('/') != std::string::npos) {
     const std::filesystem::path resolved = std::filesystem::absolute(base / program).lexically_normal();
     if (access(resolved.c_str(), X_OK) != 0 || std::filesystem::is_directory(resolved))
-      ctl.fail("command", "'" + program + "' does not exist or is not executable (looked for " + resolved.string() +
-                              "); expected the controller's program");
+      ctl.fail("command", "'" + program + "' does not exist or is not executable (looked for " +
+                              resolved.string() + "); expected the controller's program");
     program = resolved.string();
   } else if (onPath(program).empty()) {
     ctl.fail("command", "'" + program +
@@ -150,8 +150,7 @@ void readControllerSection(MapReader& root, Scenario& s, const std::string& base
   s.controller.type = ctl.text("type");
   if (s.controller.type == "external") return readExternalController(ctl, s, base_dir);
   const std::vector<ControllerParam>* registered = registeredControllerParams(s.controller.type);
-  if (s.controller.type != "theorem1" && s.controller.type != "cascaded" && s.controller.type != "flexible" &&
-      registered == nullptr)
+  if (!s.controller.isPaperType() && registered == nullptr)
     ctl.fail("type",
              "unknown controller type '" + s.controller.type + "'; expected: " + controllerTypeList());
   if (s.flexible && s.controller.type != "flexible")

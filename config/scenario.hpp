@@ -108,6 +108,10 @@ struct ControllerConfig {
   /// given as a path) and the directory it starts in (docs/external_controllers.md).
   std::vector<std::string> command;
   std::string working_directory;
+
+  /// One of the paper's controllers (theorem1, cascaded, flexible): the ones
+  /// whose gains, stages and filter start are the fields above.
+  bool isPaperType() const { return type == "theorem1" || type == "cascaded" || type == "flexible"; }
 };
 
 struct MetricsConfig {

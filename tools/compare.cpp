@@ -1,7 +1,5 @@
 #include "tools/compare.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
@@ -26,10 +24,9 @@
 #include "model/reference.hpp"
 #include "tools/compare_output.hpp"
 #include "tools/log_reader.hpp"
+#include "tools/spawn_logged.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
-
-extern char** environ;
 
 namespace lagrange::tools {
 
@@ -101,19 +98,7 @@ pid_t startRun(const CompareOptions& o, const CompareRun& run) {
   std::vector<std::string> args = {o.self_exe, "run", o.config_path, "--mode",
                                    "inproc",   "-q",  "--out",       run.dir};
   for (const std::string& ov : run.overrides) args.insert(args.end(), {"--set", ov});
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  const std::string log = (fs::path(run.dir) / "compare.log").string();
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = -1;
-  const int err = posix_spawn(&pid, o.self_exe.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (err != 0) throw std::runtime_error("cannot start " + o.self_exe + ": " + std::strerror(err));
-  return pid;
+  return spawnLogged(args, {(fs::path(run.dir) / "compare.log").string()});
 }
 
 // Runs every run, at most `jobs` at a time; returns each one's exit status.

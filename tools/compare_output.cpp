@@ -8,6 +8,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "util/number_text.hpp"
+
 namespace lagrange::tools {
 
 namespace {
@@ -21,12 +23,7 @@ std::string number(double x) {
   return buf;
 }
 
-std::string full(double x) {
-  if (!std::isfinite(x)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string full(double x) { return std::isfinite(x) ? util::exactText(x) : ""; }
 
 std::string markdownRow(const RunNumbers& n, bool with_value) {
   std::string row = "| " + n.type + (with_value ? " | " + n.value.value_or("") : "") + " | " + n.status +

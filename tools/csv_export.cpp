@@ -1,6 +1,5 @@
 #include "tools/csv_export.hpp"
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -18,6 +17,7 @@
 #include "lagrange/plant_truth_t.hpp"
 #include "tools/log_reader.hpp"
 #include "transport/channels.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::tools {
 
@@ -28,9 +28,7 @@ class Row {
  public:
   void add(const std::string& name, double value) {
     names_.push_back(name);
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", value);
-    values_.push_back(buf);
+    values_.push_back(util::exactText(value));
   }
   void add(const std::string& name, const std::vector<double>& values) {
     for (size_t i = 0; i < values.size(); ++i) add(name + "[" + std::to_string(i) + "]", values[i]);

@@ -31,7 +31,7 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
   const auto record = [log](const std::string& channel, const auto& msg, int64_t utime) {
     if (log) log->writeMessage(channel, msg, utime);
   };
-  record(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
+  if (log) log->writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
 
   plant::PlantSim sim = plant::plantFor(s);
   plant::ScenarioSensors sensors = plant::sensorsFor(s);

@@ -240,8 +240,9 @@ int DoMain(int argc, char** argv) {
   sweep_cmd->add_option("-j,--jobs", sweep.jobs, "Local runs at a time (default: one per core)")
       ->check(CLI::NonNegativeNumber);
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print errors only");
-  sweep_cmd->add_flag("--dry-run", sweep.dry_run,
-                      "Plan the sweep and check every run's scenario, print how many runs it has; run nothing");
+  sweep_cmd->add_flag(
+      "--dry-run", sweep.dry_run,
+      "Plan the sweep and check every run's scenario, print how many runs it has; run nothing");
   sweep_cmd->add_flag(
       "--slurm", sweep.slurm,
       "Submit the runs as a Slurm job array (sbatch) instead of running them here; OUT must be on "

@@ -6,6 +6,7 @@
 
 #include "tools/log_reader.hpp"
 #include "transport/channels.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::tools::replay_log {
 
@@ -53,11 +54,7 @@ bool record(const lcm::LogEvent& ev, Recorded& r, FirstCopies& seen) {
   });
 }
 
-std::string show(double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string show(double x) { return util::exactText(x); }
 
 size_t outputCount(const Recorded& r, const std::string& outputs) {
   if (outputs == transport::kActuatorState) return r.states.size();

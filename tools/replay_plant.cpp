@@ -109,8 +109,8 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
       }
       if (d.empty()) {
         const auto replayed =
-            plant::measureTick(s, sensors, sim, k, static_cast<double>(k) * s.tickPeriod(), tau.row(0).transpose(),
-                               {truth.input_actuator_tick, truth.torque_source});
+            plant::measureTick(s, sensors, sim, k, static_cast<double>(k) * s.tickPeriod(),
+                               tau.row(0).transpose(), {truth.input_actuator_tick, truth.torque_source});
         d = firstDifference(rec, truth, replayed);
       }
       ++result.commands;

@@ -1,7 +1,6 @@
 #include "tools/sweep.hpp"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -21,13 +20,12 @@
 #include <thread>
 
 #include "model/error.hpp"
+#include "tools/spawn_logged.hpp"
 #include "tools/sweep_maps.hpp"
 #include "tools/sweep_plan.hpp"
 #include "tools/sweep_progress.hpp"
 #include "tools/sweep_runner.hpp"
 #include "tools/sweep_store.hpp"
-
-extern char** environ;
 
 namespace lagrange::tools {
 
@@ -83,35 +81,6 @@ SweepPlan loadPlan(const std::string& out_dir) {
                       " is not a sweep's output directory: it has no plan.json; expected the --out "
                       "directory of lagrange sweep");
   return planFromJson(readFile(plan_path), plan_path.string());
-}
-
-// `own_group`: the child in a process group of its own, out of reach of the
-// terminal's Ctrl-C (sbatch --wait: stopping the wait must not touch the job).
-pid_t spawn(const std::vector<std::string>& args, const std::string& log_path, bool own_group = false) {
-  std::vector<std::string> copy = args;
-  std::vector<char*> argv;
-  for (std::string& a : copy) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND,
-                                   0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  if (own_group) {
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attr, 0);
-  }
-  pid_t pid = -1;
-  const int err = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
-  posix_spawnattr_destroy(&attr);
-  posix_spawn_file_actions_destroy(&actions);
-  if (err != 0)
-    throw std::runtime_error(
-        "cannot start " + args[0] + ": " + std::strerror(err) + "; expected " + args[0] +
-        (args[0] == "sbatch" ? " on PATH (Slurm's client; Debian: slurm-client)" : " to exist"));
-  return pid;
 }
 
 std::string exitText(int wstatus) {
@@ -171,9 +140,9 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     const std::string log =
         (fs::path(o.out_dir) / "logs" / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".log"))
             .string();
-    running[spawn({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
-                   std::to_string(n), "--parent", std::to_string(getpid())},
-                  log)] = k;
+    running[spawnLogged({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
+                         std::to_string(n), "--parent", std::to_string(getpid())},
+                        {log, /*append=*/true})] = k;
   }
   RowCounter counter(o.out_dir);
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet);
@@ -253,8 +222,13 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   if (!o.no_wait) args.push_back("--wait");
   args.push_back(script.string());
   const fs::path sbatch_out = slurm / "sbatch.out";
-  fs::remove(sbatch_out);
-  const pid_t pid = spawn(args, sbatch_out.string(), /*own_group=*/true);
+  pid_t pid = -1;
+  try {  // in a process group of its own: Ctrl-C stops the waiting, not the job
+    pid = spawnLogged(args, {sbatch_out.string()}, /*own_group=*/true);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string(e.what()) +
+                             "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
+  }
   RowCounter counter(o.out_dir);
   std::string job;
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);

@@ -14,6 +14,7 @@
 #include "config/yaml_reader.hpp"
 #include "model/reference.hpp"
 #include "tools/sweep_random.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::tools {
 
@@ -36,15 +37,9 @@ inline constexpr util::EnumName<AxisScale> kScaleNames[] = {{AxisScale::kLinear,
   throw ConfigError("sweep " + file + ": " + what);
 }
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 std::string vectorText(const Eigen::VectorXd& v) {
   std::string s = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + util::exactText(v[i]);
   return s + "]";
 }
 
@@ -128,7 +123,7 @@ struct AxisPick {
 
 AxisPick gridPick(const SweepAxis& a, long i) {
   if (!a.values.empty()) return {a.values[static_cast<size_t>(i)]};
-  if (a.range) return {number(gridPoint(*a.range, static_cast<int>(i)))};
+  if (a.range) return {util::exactText(gridPoint(*a.range, static_cast<int>(i)))};
   return {"", gridPoint(*a.norm, static_cast<int>(i / a.directions)), i % a.directions};
 }
 
@@ -138,7 +133,7 @@ AxisPick drawnPick(const SweepAxis& a, double f, long row) {
     const auto n = a.values.size();
     return {a.values[std::min(n - 1, static_cast<size_t>(f * static_cast<double>(n)))]};
   }
-  if (a.range) return {number(at(*a.range, f))};
+  if (a.range) return {util::exactText(at(*a.range, f))};
   return {"", at(*a.norm, f), row};
 }
 
@@ -296,7 +291,7 @@ SweepPlan planSweep(const SweepSpec& spec) {
       has_norm = true;
       const Eigen::VectorXd u = unitDirection(spec.seed, kStreamDirection + i, picks[i].direction, s.dof());
       row.overrides.push_back(a.key + "=" + vectorText(centreOf(a.key, s) + picks[i].radius * u));
-      row.params.push_back(number(picks[i].radius));
+      row.params.push_back(util::exactText(picks[i].radius));
       row.params.push_back(std::to_string(picks[i].direction));
     }
     // The vectors are the scenario's size by construction; the first row of

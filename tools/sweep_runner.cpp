@@ -12,18 +12,16 @@ namespace lagrange::tools {
 namespace {
 
 // ||(q~(0), q~'(0), qc(0))||: the closed loop's initial state, the plant's
-// error and (the paper's controllers) the stage-0 filter state.
-double initialStateNorm(const config::Scenario& s, double initial_error, double initial_rate_error) {
-  double sq = initial_error * initial_error + initial_rate_error * initial_rate_error;
-  const std::string& type = s.controller.type;
-  if (type == "theorem1" || type == "cascaded" || type == "flexible") {
-    const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);
-    const Eigen::VectorXd qc0 =
-        s.controller.initial_filter_state
-            ? *s.controller.initial_filter_state
-            : Eigen::VectorXd(-s.controller.gains.b.cwiseProduct(s.initial_state.q - r0.q()));
-    sq += qc0.squaredNorm();
-  }
+// error and (the paper's controllers) the stage-0 filter state. r0: the
+// reference at t = 0.
+double initialStateNorm(const config::Scenario& s, const model::ReferenceSample& r0) {
+  const Eigen::VectorXd error = s.initial_state.q - r0.q();
+  const double e = error.norm(), e_rate = (s.initial_state.qdot - r0.qd()).norm();
+  double sq = e * e + e_rate * e_rate;
+  if (s.controller.isPaperType())
+    sq += (s.controller.initial_filter_state ? *s.controller.initial_filter_state
+                                             : Eigen::VectorXd(-s.controller.gains.b.cwiseProduct(error)))
+              .squaredNorm();
   return std::sqrt(sq);
 }
 
@@ -82,8 +80,6 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   if (o.status == "interrupted") return std::nullopt;
 
   const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);
-  const double initial_error = (s.initial_state.q - r0.q()).norm();
-  const double initial_rate_error = (s.initial_state.qdot - r0.qd()).norm();
   nlohmann::ordered_json j;
   j["index"] = row.index;
   for (size_t i = 0; i < plan_.param_columns.size(); ++i)
@@ -96,8 +92,8 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
       o.tracking.convergence_time ? nlohmann::json(*o.tracking.convergence_time) : nlohmann::json();
   j["final_error"] = finiteOrNull(o.tracking.final_error);
   j["max_error"] = finiteOrNull(o.tracking.max_error);
-  j["initial_error"] = initial_error;
-  j["x0_norm"] = initialStateNorm(s, initial_error, initial_rate_error);
+  j["initial_error"] = (s.initial_state.q - r0.q()).norm();
+  j["x0_norm"] = initialStateNorm(s, r0);
   j["gains_checked"] = !gains.unchecked;
   j["condition_holds"] = gains.unchecked ? nlohmann::json() : nlohmann::json(gains.holds());
   j["gain_margin"] = gains.unchecked ? nlohmann::json() : finiteOrNull(gains.margin());

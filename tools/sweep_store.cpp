@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include <stdexcept>
 
 #include "tools/sweep_runner.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::tools {
 
@@ -23,11 +23,7 @@ std::string csvField(const nlohmann::ordered_json& v) {
   std::string text;
   if (v.is_null()) return "";
   if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
-  if (v.is_number_float()) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v.get<double>());
-    return buf;
-  }
+  if (v.is_number_float()) return util::exactText(v.get<double>());
   text = v.is_string() ? v.get<std::string>() : v.dump();
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
