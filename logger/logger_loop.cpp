@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "config/robot_description_lcm.hpp"
 #include "config/scenario_lcm.hpp"
 #include "controller/gain_report.hpp"
 #include "logger/event_log.hpp"
@@ -51,6 +52,8 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   EventLog log(log_path);
   const lagrange::scenario_t scenario = config::scenarioMessage(s);
   log.writeMessage(transport::kScenario, scenario, transport::nowUtime());
+  const lagrange::robot_description_t robot = config::robotDescriptionMessage(s);
+  log.writeMessage(transport::kRobotDescription, robot, transport::nowUtime());
 
   TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
                           s.tickPeriod());
@@ -109,8 +112,9 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
                    metrics.lastError());
   };
   report(runtime::State::kReady);
-  // The scenario on LCM, now and every second: a stock lcm-logger
-  // started before or during the run records it, so its log replays.
+  // The scenario and the robot on LCM, now and every second: a stock
+  // lcm-logger started before or during the run records them, so its log
+  // replays and draws; a viewer joining a running scenario learns the arm.
   auto next_scenario = Clock::now();
   auto next_flush = Clock::now() + std::chrono::milliseconds(100);
   auto next_status = Clock::now() + std::chrono::milliseconds(100);
@@ -120,6 +124,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
     const auto now = Clock::now();
     if (now >= next_scenario) {
       node.publish(transport::kScenario, scenario);
+      node.publish(transport::kRobotDescription, robot);
       next_scenario = now + std::chrono::seconds(1);
     }
     if (now >= next_flush) {

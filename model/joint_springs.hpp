@@ -38,6 +38,8 @@ class JointSprings : public RobotModel {
     return links_->coriolisTimes(q, v, w);
   }
   std::optional<std::vector<CoriolisTerm>> coriolisTerms() const override { return links_->coriolisTerms(); }
+  RobotGeometry geometry() const override { return links_->geometry(); }
+  Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const override { return links_->tipPosition(q); }
 
   /// g(q) + K q.
   Eigen::VectorXd gravity(const Eigen::VectorXd& q) const override;

@@ -178,6 +178,33 @@ Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {
   return out;
 }
 
+RobotGeometry PlanarChain::geometry() const {
+  RobotGeometry g;
+  for (int i = 0; i < dof(); ++i) {
+    GeometryFrame f;
+    f.parent = i - 1;
+    f.joint = i;
+    if (i > 0) f.origin_xyz = {0.0, -params_.links[i - 1].length, 0.0};
+    f.axis = Eigen::Vector3d::UnitZ();
+    g.frames.push_back(f);
+  }
+  g.tip_frame = dof() - 1;
+  g.tip_xyz = {0.0, -params_.links.back().length, 0.0};
+  g.up = Eigen::Vector3d::UnitY();
+  g.plane_normal = Eigen::Vector3d::UnitZ();
+  addSkeletonShapes(g);
+  return g;
+}
+
+Eigen::Vector3d PlanarChain::tipPosition(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  const Eigen::VectorXd phi = absoluteAngles(q);
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+  for (int i = 0; i < dof(); ++i)
+    tip += params_.links[i].length * Eigen::Vector3d(std::sin(phi(i)), -std::cos(phi(i)), 0.0);
+  return tip;
+}
+
 double PlanarChain::potentialEnergy(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
   const Eigen::VectorXd phi = absoluteAngles(q);

@@ -79,6 +79,11 @@ class PlanarChain : public RobotModel {
 
   /// Zero when every centre of mass is level with the base joint.
   double potentialEnergy(const Eigen::VectorXd& q) const override;
+  /// In the x-y plane, y up: joint i turns about z at the end of link i - 1,
+  /// and at q = 0 every link hangs down (-y), as the ODE world builds it.
+  RobotGeometry geometry() const override;
+  /// sum_i l_i (sin phi_i, -cos phi_i, 0), phi the absolute angles.
+  Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const override;
 
  private:
   Eigen::VectorXd absoluteAngles(const Eigen::VectorXd& q) const;

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "model/robot_geometry.hpp"
+
 namespace lagrange::model {
 
 /// One term of a closed form of C: C_k(q) = sum over terms of
@@ -74,6 +76,13 @@ class RobotModel {
                                        const Eigen::VectorXd& u) const;
   /// Kinetic energy v^T D(q) v / 2 [J].
   double kineticEnergy(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
+
+  /// The arm's frames and shapes for a viewer (model/robot_geometry.hpp).
+  virtual RobotGeometry geometry() const = 0;
+  /// Forward kinematics of the tip point [m], in the base frame: computed by
+  /// the kind itself (closed form, or its dynamics library), not from
+  /// geometry(), so the one checks the other.
+  virtual Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const = 0;
 
   /// A closed form of C for a proven k_c (model::coriolisBound); none by
   /// default, and then k_c is only estimated.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <kdl/chain.hpp>
 #include <kdl/chaindynparam.hpp>
+#include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <sstream>
 
@@ -277,6 +278,39 @@ std::vector<std::string> UrdfArm::jointNames() const { return impl_->joint_names
 const std::vector<std::string>& UrdfArm::notes() const { return impl_->notes; }
 const std::vector<UrdfBody>& UrdfArm::bodies() const { return impl_->bodies; }
 const UrdfChainSpec& UrdfArm::spec() const { return impl_->spec; }
+
+RobotGeometry UrdfArm::geometry() const {
+  RobotGeometry g;
+  int joint = 0;
+  for (const KDL::Segment& segment : impl_->chain.segments) {
+    GeometryFrame f;
+    f.parent = static_cast<int>(g.frames.size()) - 1;
+    // The segment's pose at q = 0 is the URDF joint's origin; KDL keeps the
+    // axis in the parent frame, the frame's own axis is rotated back.
+    const KDL::Frame origin = segment.getFrameToTip();
+    f.origin_xyz = toEigen(origin.p);
+    double x, y, z, w;
+    origin.M.GetQuaternion(x, y, z, w);
+    f.origin_quat = Eigen::Quaterniond(w, x, y, z);
+    if (segment.getJoint().getType() != KDL::Joint::None) {
+      f.joint = joint++;
+      f.axis = toEigen(origin.M.Inverse(segment.getJoint().JointAxis())).normalized();
+    }
+    g.frames.push_back(f);
+  }
+  g.tip_frame = static_cast<int>(g.frames.size()) - 1;
+  g.up = Eigen::Vector3d::UnitZ();
+  addSkeletonShapes(g);
+  return g;
+}
+
+Eigen::Vector3d UrdfArm::tipPosition(const Eigen::VectorXd& q) const {
+  checkSize(q, "q");
+  KDL::ChainFkSolverPos_recursive fk(impl_->chain);
+  KDL::Frame tip;
+  fk.JntToCart(toKdl(q), tip);
+  return toEigen(tip.p);
+}
 
 // KDL's solvers keep scratch space: one per call keeps the model constant and
 // safe to share between threads (model/robot_model.hpp's contract).

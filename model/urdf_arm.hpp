@@ -79,6 +79,13 @@ class UrdfArm : public RobotModel {
 
   /// What the URDF holds that the model does not apply, and what was lumped
   /// (one sentence each, for the processes to log at start).
+  /// The chain's frames as the URDF gives them (fixed joints included), the
+  /// tip at the origin of tip_link; shapes from model/robot_geometry.hpp
+  /// (the URDF's own visuals are not read). Up is +z.
+  RobotGeometry geometry() const override;
+  /// The origin of tip_link, by KDL's forward kinematics.
+  Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const override;
+
   const std::vector<std::string>& notes() const;
   /// The moving bodies, base to tip, at q = 0 (for the plant's builder).
   const std::vector<UrdfBody>& bodies() const;

@@ -7,6 +7,7 @@
 
 #include "actuator/actuator_lcm.hpp"
 #include "actuator/integrator_chain.hpp"
+#include "config/robot_description_lcm.hpp"
 #include "config/scenario_lcm.hpp"
 #include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
@@ -31,7 +32,11 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
   const auto record = [log](const std::string& channel, const auto& msg, int64_t utime) {
     if (log) log->writeMessage(channel, msg, utime);
   };
-  if (log) log->writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
+  if (log) {
+    log->writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
+    log->writeMessage(transport::kRobotDescription, config::robotDescriptionMessage(s),
+                      transport::nowUtime());
+  }
 
   plant::PlantSim sim = plant::plantFor(s);
   plant::ScenarioSensors sensors = plant::sensorsFor(s);

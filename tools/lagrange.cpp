@@ -4,7 +4,7 @@
 ///   check-gains   print the gain conditions of a scenario without running it
 ///   compare       run a scenario for several controllers and tabulate them
 ///   sweep         many in-process runs over axes of scenario keys (locally or on Slurm)
-///   replay, report, spy
+///   replay, report, spy, view
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
@@ -23,6 +23,7 @@
 #include "tools/run_command.hpp"
 #include "tools/spy.hpp"
 #include "tools/sweep.hpp"
+#include "tools/view.hpp"
 
 namespace lagrange {
 namespace {
@@ -288,6 +289,23 @@ int DoMain(int argc, char** argv) {
                       "LCM URL to watch (default: the run's; without a run, LCM's default URL)");
   spy_cmd->add_flag("--print-command", spy.print_only, "Print the java command line instead of running it");
 
+  tools::ViewOptions view;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view",
+      "Draw the arm in a web browser: from a log (play, pause, speed, seek) or live from a running scenario "
+      "(joining its private network namespace); prints the page's URL");
+  view_cmd->add_option("source", view.source,
+                       "A run's output directory (live while the run goes, else its run.lcm) or a log file");
+  view_cmd->add_option("--host", view.host,
+                       "Address to listen on (default 127.0.0.1; others need --allow-remote)");
+  view_cmd->add_option("--port", view.port, "Port to listen on (default 8642; 0: any free port)");
+  view_cmd->add_flag(
+      "--allow-remote", view.allow_remote,
+      "Allow a --host that is not loopback: anyone who reaches it sees the run (no authentication)");
+  view_cmd->add_option(
+      "--lcm-url", view.lcm_url,
+      "View live traffic on this LCM URL (default: the running scenario's, from its lcm.json)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -321,6 +339,7 @@ int DoMain(int argc, char** argv) {
   }
   if (*report_cmd) return report(report_target, report_out);
   if (*spy_cmd) return tools::runSpy(spy);
+  if (*view_cmd) return tools::runView(view);
   return checkGains(gains_config, gains_overrides, suggest);
 }
 

@@ -281,7 +281,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // Where `lagrange spy OUT` finds this run: its URL and, in a private
   // network namespace, a process (this one) to take the namespace from.
   try {
-    writeEndpoint(out_dir, {url, run_id, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt});
+    writeEndpoint(out_dir,
+                  {url, run_id, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt, getpid()});
   } catch (const std::exception& e) {
     std::cerr << "lagrange run: " << e.what() << "\n";
     return kExitFailed;

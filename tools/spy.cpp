@@ -32,6 +32,7 @@ bool processAlive(long pid) { return fs::exists("/proc/" + std::to_string(pid) +
 void writeEndpoint(const std::string& out_dir, const RunEndpoint& endpoint) {
   nlohmann::json j = {{"lcm_url", endpoint.lcm_url}, {"run_id", endpoint.run_id}, {"netns_pid", nullptr}};
   if (endpoint.netns_pid) j["netns_pid"] = *endpoint.netns_pid;
+  if (endpoint.launcher_pid) j["launcher_pid"] = *endpoint.launcher_pid;
   std::ofstream out(fs::path(out_dir) / kEndpointFile);
   out << j.dump(2) << "\n";
   if (!out) throw std::runtime_error("cannot write " + out_dir + "/" + kEndpointFile);
@@ -51,6 +52,7 @@ RunEndpoint readEndpoint(const std::string& out_dir) {
     e.lcm_url = j.at("lcm_url").get<std::string>();
     e.run_id = j.value("run_id", int64_t{0});
     if (!j.at("netns_pid").is_null()) e.netns_pid = j.at("netns_pid").get<long>();
+    if (j.contains("launcher_pid")) e.launcher_pid = j.at("launcher_pid").get<long>();
     return e;
   } catch (const nlohmann::json::exception& ex) {
     throw std::runtime_error(path.string() +

@@ -19,6 +19,9 @@ struct RunEndpoint {
   std::string lcm_url;
   int64_t run_id = 0;
   std::optional<long> netns_pid;  ///< a process in the run's private network namespace
+  /// The launcher (`lagrange run`): the run is going while it lives
+  /// (absent in files written before it was added).
+  std::optional<long> launcher_pid;
 };
 
 /// Writes OUT/lcm.json. @throws std::runtime_error if it cannot be written.

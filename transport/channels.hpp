@@ -21,6 +21,7 @@ inline constexpr const char* kControlCommand = "CONTROL_COMMAND";
 inline constexpr const char* kActuatorState = "ACTUATOR_STATE";
 inline constexpr const char* kStatus = "STATUS";
 inline constexpr const char* kScenario = "SCENARIO";
+inline constexpr const char* kRobotDescription = "ROBOT_DESCRIPTION";
 
 /// What the project knows of each of its channels besides the message type
 /// (withChannelMessage below): who publishes it, and whether it carries one
@@ -51,6 +52,7 @@ inline constexpr ChannelInfo kChannelTable[] = {
     {kActuatorState, "actuator", true, ChannelInfo::Only::kAlways},
     {kStatus, "", false, ChannelInfo::Only::kAlways},
     {kScenario, "logger", false, ChannelInfo::Only::kAlways},
+    {kRobotDescription, "logger", false, ChannelInfo::Only::kAlways},
 };
 
 /// The only process that publishes on `channel`, or "" for STATUS (every

@@ -10,6 +10,7 @@
 #include "model/bounds.hpp"
 #include "model/joint_springs.hpp"
 #include "model/planar_chain.hpp"
+#include "support/geometry_pose.hpp"
 #include "support/robot_model_properties.hpp"
 
 namespace lagrange::model {
@@ -35,6 +36,8 @@ class NumericOnly final : public RobotModel {
   }
   Eigen::VectorXd gravity(const Eigen::VectorXd& q) const override { return arm_.gravity(q); }
   double potentialEnergy(const Eigen::VectorXd& q) const override { return arm_.potentialEnergy(q); }
+  RobotGeometry geometry() const override { return arm_.geometry(); }
+  Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const override { return arm_.tipPosition(q); }
 
  private:
   PlanarChain arm_;
@@ -51,6 +54,24 @@ TEST(RobotModel, EveryKindHasTheLagrangianProperties) {
     testing::expectRobotModelProperties(numeric, rng);
   }
   EXPECT_EQ(chain->jointNames(), (std::vector<std::string>{"joint1", "joint2", "joint3"}));
+}
+
+// The planar chain's tip in closed form, and its geometry composed as
+// ROBOT_DESCRIPTION says, agree; at q = 0 the arm hangs down -y.
+TEST(PlanarChain, TheGeometryPutsTheTipWhereTheClosedFormDoes) {
+  const PlanarChain chain(threeLinks());
+  const RobotGeometry g = chain.geometry();
+  EXPECT_LT((chain.tipPosition(Eigen::Vector3d::Zero()) - Eigen::Vector3d(0.0, -0.8, 0.0)).norm(), 1e-15);
+  EXPECT_LT((chain.tipPosition(Eigen::Vector3d(M_PI / 2, 0.0, 0.0)) - Eigen::Vector3d(0.8, 0.0, 0.0)).norm(),
+            1e-15);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Vector3d q(angle(rng), angle(rng), angle(rng));
+    EXPECT_LT((testing::geometryTip(g, q) - chain.tipPosition(q)).norm(), 1e-14);
+  }
+  EXPECT_EQ(g.up, Eigen::Vector3d::UnitY());
+  EXPECT_EQ(g.plane_normal, Eigen::Vector3d::UnitZ());
 }
 
 TEST(JointSprings, AddKqToGravityAndTheSpringEnergyAndNothingElse) {

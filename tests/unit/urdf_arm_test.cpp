@@ -12,6 +12,7 @@
 
 #include "model/error.hpp"
 #include "model/planar_chain.hpp"
+#include "support/geometry_pose.hpp"
 #include "support/robot_model_properties.hpp"
 #include "support/urdf_rnea.hpp"
 
@@ -133,6 +134,28 @@ TEST(UrdfArm, EveryShippedArmHasTheRobotModelProperties) {
     EXPECT_EQ(model->kind(), "urdf");
     for (int trial = 0; trial < 5; ++trial) testing::expectRobotModelProperties(*model, rng);
   }
+}
+
+// What ROBOT_DESCRIPTION carries for the viewer: its frames, composed as the
+// message says, put the tip where KDL's forward kinematics does.
+TEST(UrdfArm, TheGeometryPutsTheTipWhereKdlDoes) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  for (const ShippedArm& arm : {kPanda, kUr5, kPendulum}) {
+    const auto model = build(arm);
+    const RobotGeometry g = model->geometry();
+    int moving = 0;
+    for (const GeometryFrame& f : g.frames) moving += f.joint >= 0;
+    EXPECT_EQ(moving, arm.dof) << arm.file;
+    EXPECT_FALSE(g.shapes.empty()) << arm.file;
+    for (int trial = 0; trial < 10; ++trial) {
+      Eigen::VectorXd q(arm.dof);
+      for (int i = 0; i < arm.dof; ++i) q(i) = angle(rng);
+      EXPECT_LT((testing::geometryTip(g, q) - model->tipPosition(q)).norm(), 1e-12) << arm.file;
+    }
+  }
+  // The tip is not at the base: a geometry of zeros would pass the loop above.
+  EXPECT_GT(build(kPanda)->tipPosition(Eigen::VectorXd::Zero(7)).norm(), 0.5);
 }
 
 TEST(UrdfArm, WhatIsNotAppliedOrLumpedIsSaid) {

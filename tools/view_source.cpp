@@ -1,0 +1,133 @@
+#include "tools/view_source.hpp"
+
+#include "transport/channels.hpp"
+#include "transport/checksum.hpp"
+#include "transport/safe_decode.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+// One intact message of this run, as decodeEvent checks a log's.
+template <class Msg>
+bool decodeLive(const lcm::ReceiveBuffer& buffer, int64_t run_id, Msg& m) {
+  if (!transport::safeDecode(buffer.data, buffer.data_size, m)) return false;
+  if constexpr (transport::HasHeader<Msg>::value)
+    return (m.header.checksum == 0 || transport::intact(m)) && (run_id == 0 || m.header.run_id == run_id);
+  return true;
+}
+}  // namespace
+
+ViewLog readViewLog(const std::string& path) {
+  ViewLog out;
+  bool described = false;
+  bool any_truth = false;
+  FrameAssembler assembler;
+  out.scan = readLog(path, [&](const lcm::LogEvent& ev) {
+    if (ev.channel == transport::kRobotDescription) {
+      if (!described) described = decodeEvent(ev, out.description);
+    } else if (ev.channel == transport::kPlantTruth) {
+      lagrange::plant_truth_t m;
+      if (decodeEvent(ev, m)) {
+        assembler.add(m);
+        any_truth = true;
+      }
+    } else if (ev.channel == transport::kControlCommand) {
+      lagrange::control_command_t m;
+      if (decodeEvent(ev, m)) assembler.add(m);
+    } else if (ev.channel == transport::kPlantMotor) {
+      lagrange::plant_motor_t m;
+      if (decodeEvent(ev, m)) assembler.add(m);
+    }
+  });
+  if (!described)
+    throw LogError(path +
+                   " holds no ROBOT_DESCRIPTION message: it was recorded before runs described their "
+                   "arm; expected a log of `lagrange run`, or of lcm-logger during one, made since");
+  if (!any_truth)
+    throw LogError(path +
+                   " holds no PLANT_TRUTH message: nothing to draw; expected a log of a run that started");
+  out.frames = assembler.take(true);
+  return out;
+}
+
+LiveFeed::LiveFeed(const std::string& lcm_url, int64_t run_id, size_t capacity)
+    : lcm_(lcm_url), run_id_(run_id), capacity_(capacity) {
+  if (!lcm_.good())
+    throw std::runtime_error("LCM cannot open " + (lcm_url.empty() ? "its default URL" : lcm_url));
+  for (const char* channel : {transport::kRobotDescription, transport::kPlantTruth,
+                              transport::kControlCommand, transport::kPlantMotor})
+    lcm_.subscribeFunction(
+        channel,
+        +[](const lcm::ReceiveBuffer* buffer, const std::string& name, LiveFeed* self) {
+          self->onMessage(buffer, name);
+        },
+        this);
+  thread_ = std::thread([this] { loop(); });
+}
+
+LiveFeed::~LiveFeed() {
+  stop_ = true;
+  thread_.join();
+}
+
+void LiveFeed::loop() {
+  while (!stop_) {
+    if (lcm_.handleTimeout(50) < 0) break;
+    std::vector<ViewFrame> ready = assembler_.take(false);
+    if (ready.empty()) continue;
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (ViewFrame& f : ready) frames_.push_back(std::move(f));
+    while (frames_.size() > capacity_) {
+      frames_.pop_front();
+      ++first_index_;
+    }
+    changed_.notify_all();
+  }
+}
+
+void LiveFeed::onMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  bool ok = false;
+  if (channel == transport::kRobotDescription) {
+    lagrange::robot_description_t m;
+    ok = decodeLive(*buffer, run_id_, m);
+    if (ok) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!description_) {
+        description_ = std::move(m);
+        changed_.notify_all();
+      }
+    }
+  } else if (channel == transport::kPlantTruth) {
+    lagrange::plant_truth_t m;
+    if ((ok = decodeLive(*buffer, run_id_, m))) assembler_.add(m);
+  } else if (channel == transport::kControlCommand) {
+    lagrange::control_command_t m;
+    if ((ok = decodeLive(*buffer, run_id_, m))) assembler_.add(m);
+  } else if (channel == transport::kPlantMotor) {
+    lagrange::plant_motor_t m;
+    if ((ok = decodeLive(*buffer, run_id_, m))) assembler_.add(m);
+  }
+  ++(ok ? received_ : rejected_);
+}
+
+LiveFeed::Update LiveFeed::waitFrom(uint64_t from, size_t max_frames, std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  const uint64_t end = first_index_ + frames_.size();
+  if (from >= end) changed_.wait_for(lock, timeout, [&] { return first_index_ + frames_.size() > from; });
+  Update u;
+  u.description = description_;
+  const uint64_t begin = std::max(from, first_index_);
+  const uint64_t stop = first_index_ + frames_.size();
+  u.next = stop;
+  if (begin >= stop) return u;
+  const uint64_t count = stop - begin;
+  const uint64_t stride = max_frames == 0 ? 1 : (count + max_frames - 1) / max_frames;
+  // Spread evenly, counted back from the newest, so the newest is always sent.
+  std::vector<ViewFrame> picked;
+  for (uint64_t k = stop; k > begin; k -= std::min(stride, k - begin))
+    picked.push_back(frames_[k - 1 - first_index_]);
+  u.frames.assign(picked.rbegin(), picked.rend());
+  return u;
+}
+
+}  // namespace lagrange::tools

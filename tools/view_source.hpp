@@ -1,0 +1,78 @@
+#pragma once
+/// @file
+/// Where `lagrange view` takes its frames from: a whole log read at start
+/// (ViewLog), or a running scenario's LCM traffic (LiveFeed), both through
+/// the FrameAssembler.
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <lcm/lcm-cpp.hpp>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "lagrange/robot_description_t.hpp"
+#include "tools/log_reader.hpp"
+#include "tools/view_frames.hpp"
+
+namespace lagrange::tools {
+
+struct ViewLog {
+  lagrange::robot_description_t description;
+  std::vector<ViewFrame> frames;
+  LogScan scan;
+};
+
+/// Reads a log of `lagrange run` or of lcm-logger during one.
+/// @throws LogError if it cannot be read, holds no ROBOT_DESCRIPTION (a log
+///         recorded before the message existed) or no PLANT_TRUTH.
+ViewLog readViewLog(const std::string& path);
+
+/// A running scenario's messages, assembled into frames by a thread of its
+/// own. Keeps the newest `capacity` frames.
+class LiveFeed {
+ public:
+  /// run_id 0 accepts every run on the URL. @throws std::runtime_error if
+  /// LCM cannot open `lcm_url`.
+  LiveFeed(const std::string& lcm_url, int64_t run_id, size_t capacity = 200000);
+  ~LiveFeed();
+  LiveFeed(const LiveFeed&) = delete;
+  LiveFeed& operator=(const LiveFeed&) = delete;
+
+  struct Update {
+    std::optional<lagrange::robot_description_t> description;
+    std::vector<ViewFrame>
+        frames;         ///< from index `from` on, at most max_frames spread evenly, the newest last
+    uint64_t next = 0;  ///< the index to ask for next
+  };
+  /// Waits up to `timeout` for frames with index >= from (indices count every
+  /// frame since the start), then returns what there is.
+  Update waitFrom(uint64_t from, size_t max_frames, std::chrono::milliseconds timeout);
+
+  /// Messages received and decoded, and rejected (undecodable, corrupted or of another run).
+  uint64_t received() const { return received_; }
+  uint64_t rejected() const { return rejected_; }
+
+ private:
+  void onMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void loop();
+
+  lcm::LCM lcm_;
+  int64_t run_id_;
+  size_t capacity_;
+  FrameAssembler assembler_;  // the LCM thread's only
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::optional<lagrange::robot_description_t> description_;
+  std::deque<ViewFrame> frames_;
+  uint64_t first_index_ = 0;  ///< index of frames_.front()
+  std::atomic<uint64_t> received_{0}, rejected_{0};
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace lagrange::tools
