@@ -115,6 +115,12 @@ Assets loadAssets() {
   return a;
 }
 
+std::vector<std::string> warnings(const ViewLog& log) {
+  std::vector<std::string> all = log.scan.problems();
+  all.insert(all.end(), log.notes.begin(), log.notes.end());
+  return all;
+}
+
 std::string logJson(const ViewLog& log) {
   // Every k-th frame and the last one, at most kMaxLogFrames.
   const size_t n = log.frames.size();
@@ -125,7 +131,7 @@ std::string logJson(const ViewLog& log) {
   nlohmann::json j = {{"description", descriptionJson(log.description)},
                       {"frames", framesJson(sent)},
                       {"stride", stride},
-                      {"warnings", log.scan.problems()}};
+                      {"warnings", warnings(log)}};
   return j.dump();
 }
 
@@ -216,7 +222,7 @@ int runView(const ViewOptions& opt) {
     server.Get("/api/log", [body](const httplib::Request&, httplib::Response& res) {
       res.set_content(body, "application/json");
     });
-    for (const std::string& w : log->scan.problems()) std::cerr << "lagrange view: " << w << "\n";
+    for (const std::string& w : warnings(*log)) std::cerr << "lagrange view: " << w << "\n";
   }
   if (feed) serveLive(server, *feed);
 

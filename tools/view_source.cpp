@@ -1,5 +1,6 @@
 #include "tools/view_source.hpp"
 
+#include "config/robot_description_lcm.hpp"
 #include "transport/channels.hpp"
 #include "transport/checksum.hpp"
 #include "transport/safe_decode.hpp"
@@ -21,9 +22,12 @@ ViewLog readViewLog(const std::string& path) {
   ViewLog out;
   bool described = false;
   bool any_truth = false;
+  std::optional<std::string> scenario;
   FrameAssembler assembler;
   out.scan = readLog(path, [&](const lcm::LogEvent& ev) {
-    if (ev.channel == transport::kRobotDescription) {
+    if (ev.channel == transport::kScenario) {
+      if (!scenario) scenario = scenarioYaml(ev);
+    } else if (ev.channel == transport::kRobotDescription) {
       if (!described) described = decodeEvent(ev, out.description);
     } else if (ev.channel == transport::kPlantTruth) {
       lagrange::plant_truth_t m;
@@ -39,10 +43,21 @@ ViewLog readViewLog(const std::string& path) {
       if (decodeEvent(ev, m)) assembler.add(m);
     }
   });
+  // A log recorded before ROBOT_DESCRIPTION existed: its arm from its scenario.
+  if (!described && scenario) {
+    try {
+      out.description = config::robotDescriptionMessage(config::parseScenario(*scenario, path + " (SCENARIO)"));
+      described = true;
+      out.notes.push_back("no ROBOT_DESCRIPTION in the log (recorded before it existed): the arm is drawn from "
+                          "its SCENARIO");
+    } catch (const std::exception& e) {
+      throw LogError(path + " holds no ROBOT_DESCRIPTION message and its SCENARIO cannot be read (" + e.what() +
+                     "); expected a log of `lagrange run`, or of lcm-logger during one");
+    }
+  }
   if (!described)
-    throw LogError(path +
-                   " holds no ROBOT_DESCRIPTION message: it was recorded before runs described their "
-                   "arm; expected a log of `lagrange run`, or of lcm-logger during one, made since");
+    throw LogError(path + " holds neither ROBOT_DESCRIPTION nor SCENARIO: nothing says what arm to draw; "
+                          "expected a log of `lagrange run`, or of lcm-logger during one");
   if (!any_truth)
     throw LogError(path +
                    " holds no PLANT_TRUTH message: nothing to draw; expected a log of a run that started");

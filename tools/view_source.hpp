@@ -25,11 +25,14 @@ struct ViewLog {
   lagrange::robot_description_t description;
   std::vector<ViewFrame> frames;
   LogScan scan;
+  std::vector<std::string> notes;  ///< how it was read, for a person (shown with the scan's problems)
 };
 
 /// Reads a log of `lagrange run` or of lcm-logger during one.
-/// @throws LogError if it cannot be read, holds no ROBOT_DESCRIPTION (a log
-///         recorded before the message existed) or no PLANT_TRUTH.
+/// A log recorded before ROBOT_DESCRIPTION existed is drawn from its
+/// SCENARIO (its arm built again from the configuration; a URDF must be where
+/// the scenario names it). @throws LogError if it cannot be read, says
+/// nothing of its arm, or holds no PLANT_TRUTH.
 ViewLog readViewLog(const std::string& path);
 
 /// A running scenario's messages, assembled into frames by a thread of its

@@ -178,8 +178,11 @@ function appendFrames(f) {
   torquePlot.setData(all.t, torques, view.description ? view.description.joint_names : []);
 }
 
-// The last frame at or before t (the first when t precedes them all).
-function frameIndex(t) {
+// The last frame at or before t (the first when t precedes them all). A
+// nanosecond of slack: the seek bar gives back 0.35 for a tick logged at
+// 0.35000000000000003 (a multiple of the period, rounded).
+function frameIndex(time) {
+  const t = time + 1e-9;
   const ts = view.frames.t;
   let lo = 0, hi = ts.length - 1;
   if (hi < 0) return -1;
@@ -287,7 +290,10 @@ window.lagrangeViewer = {
     return {mode: view.mode, t: view.t, index: view.index, frames: view.frames.t.length, playing: view.playing,
             speed: view.speed, follow: view.follow, described: view.description !== null,
             tEnd: view.frames.t.length ? view.frames.t[view.frames.t.length - 1] : null,
-            q: view.index >= 0 ? view.frames.q[view.index] : null};
+            wall: view.lastWall, frameT: view.index >= 0 ? view.frames.t[view.index] : null,
+            q: view.index >= 0 ? view.frames.q[view.index] : null,
+            q_desired: view.index >= 0 ? view.frames.q_desired[view.index] : null,
+            motor: view.index >= 0 ? view.frames.motor[view.index] : null};
   },
   // A base-frame point in the page's CSS pixels, through the camera drawn.
   project(p) {

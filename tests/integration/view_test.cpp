@@ -1,0 +1,363 @@
+// `lagrange view` in a real browser: Debian's chromium, headless, driven
+// over WebDriver (tests/support/webdriver.hpp). The page must load without a
+// console error; at a log time the tip must be drawn where the arm's own
+// forward kinematics puts it at the logged angles (found in a screenshot by
+// its colour, against the page's camera); seek, speed and pause must move the
+// page's clock as asked; a running scenario must be followed live. Planar
+// chain, URDF arm and flexible joints each draw from their logs.
+//
+// LAGRANGE_VIEW_SCREENSHOT=PATH keeps a screenshot of the planar log (the
+// README's docs/view.png is one).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "config/scenario.hpp"
+#include "support/child.hpp"
+#include "support/launch.hpp"
+#include "support/png_image.hpp"
+#include "support/webdriver.hpp"
+#include "tools/log_reader.hpp"
+#include "transport/channels.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs/";
+constexpr int kTipRgb[3] = {255, 0, 255};      // viewer.js TIP_COLOR
+constexpr int kRotorRgb[3] = {240, 140, 0};    // viewer.js ROTOR_COLOR
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+bool waitFor(const std::function<bool()>& ready, double seconds) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (!ready()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return true;
+}
+
+// `lagrange view SOURCE --port 0` in the background, and the URL it printed.
+class ViewServer {
+ public:
+  ViewServer(const std::string& source, const std::string& dir)
+      : output_(dir + "/view.out"), child_({kBin + "/lagrange", "view", source, "--port", "0"}, output_) {
+    const std::regex url(R"((http://127\.0\.0\.1:[0-9]+/))");
+    waitFor(
+        [&] {
+          std::smatch m;
+          const std::string text = slurp(output_);
+          if (!std::regex_search(text, m, url)) return !child_.running();
+          url_ = m[1];
+          return true;
+        },
+        30);
+  }
+  ~ViewServer() { child_.signal(SIGTERM); }
+  const std::string& url() const { return url_; }
+  std::string output() const { return slurp(output_); }
+  /// SIGTERM, then its exit code.
+  int stop() {
+    child_.signal(SIGTERM);
+    return child_.wait(10);
+  }
+
+ private:
+  std::string output_;
+  Child child_;
+  std::string url_;
+};
+
+struct Logged {
+  std::map<double, std::vector<double>> q, motor;  // by sim_time
+};
+
+Logged readLogged(const std::string& log) {
+  Logged out;
+  tools::readLog(log, [&](const lcm::LogEvent& ev) {
+    if (ev.channel == transport::kPlantTruth) {
+      lagrange::plant_truth_t m;
+      if (tools::decodeEvent(ev, m)) out.q.emplace(m.header.sim_time, m.q);
+    } else if (ev.channel == transport::kPlantMotor) {
+      lagrange::plant_motor_t m;
+      if (tools::decodeEvent(ev, m)) out.motor.emplace(m.header.sim_time, m.q);
+    }
+  });
+  return out;
+}
+
+Eigen::VectorXd vec(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()); }
+
+std::string inprocLog(const std::string& config, const std::string& dir, const std::string& sets) {
+  const RunResult r = runScenario(kConfigs + config, dir + "/run", "--mode inproc -q " + sets);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return dir + "/run/run.lcm";
+}
+
+// Opens the page and waits until it has loaded its source.
+void openViewer(Browser& browser, const ViewServer& server) {
+  ASSERT_FALSE(server.url().empty()) << server.output();
+  browser.open(server.url());
+  ASSERT_TRUE(browser.waitUntil("window.lagrangeViewer && window.lagrangeViewer.ready", 30))
+      << browser.run("return document.getElementById('status').textContent;").dump();
+}
+
+void expectNoConsoleError(Browser& browser) {
+  for (const json& entry : browser.consoleLog())
+    EXPECT_NE(entry.value("level", ""), "SEVERE") << entry.dump();
+  EXPECT_EQ(browser.run("return document.getElementById('status').textContent;").get<std::string>(), "");
+}
+
+json seekTo(Browser& browser, double t) {
+  return browser.run(
+      "const s = document.getElementById('seek'); s.value = arguments[0];"
+      "s.dispatchEvent(new Event('input')); return window.lagrangeViewer.state();",
+      {t});
+}
+
+struct TipCheck {
+  double expected_x, expected_y;
+  ColourBlob drawn;
+  long rotor_pixels;
+};
+
+// Seeks to logged time t, then finds the tip's colour in a screenshot and
+// where the arm's own forward kinematics at the logged q puts it.
+TipCheck drawnTip(Browser& browser, const model::RobotModel& arm, const Logged& logged, double t,
+                  const std::string& keep_png = "") {
+  const json state = seekTo(browser, t);
+  EXPECT_NEAR(state["t"].get<double>(), t, 1e-12);
+  EXPECT_EQ(state["frameT"].get<double>(), t);
+  const std::vector<double> q = logged.q.at(t);
+  EXPECT_EQ(state["q"].get<std::vector<double>>(), q) << "the page draws another frame than the log's at t = " << t;
+  if (!logged.motor.empty()) {
+    EXPECT_EQ(state["motor"].get<std::vector<double>>(), logged.motor.at(t));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a few animation frames
+  const Eigen::Vector3d tip = arm.tipPosition(vec(q));
+  const json expected = browser.run("return window.lagrangeViewer.project(arguments[0]);", {{tip.x(), tip.y(), tip.z()}});
+  const json box = browser.run(
+      "const r = document.querySelector('#scene canvas').getBoundingClientRect();"
+      "return [r.left, r.top, r.right, r.bottom];");
+  const std::string png = browser.screenshotPng();
+  if (!keep_png.empty()) std::ofstream(keep_png, std::ios::binary) << png;
+  const RgbaImage image = decodePng(png);
+  const int x0 = box[0].get<int>(), y0 = box[1].get<int>(), x1 = box[2].get<int>(), y1 = box[3].get<int>();
+  TipCheck c;
+  c.expected_x = expected[0].get<double>();
+  c.expected_y = expected[1].get<double>();
+  c.drawn = findColour(image, kTipRgb[0], kTipRgb[1], kTipRgb[2], 40, x0, y0, x1, y1);
+  c.rotor_pixels = findColour(image, kRotorRgb[0], kRotorRgb[1], kRotorRgb[2], 40, x0, y0, x1, y1).count;
+  EXPECT_GT(c.drawn.count, 20) << "no tip drawn at t = " << t;
+  EXPECT_NEAR(c.drawn.x, c.expected_x, 2.0) << "t = " << t;
+  EXPECT_NEAR(c.drawn.y, c.expected_y, 2.0) << "t = " << t;
+  return c;
+}
+
+// The logged time nearest t.
+double loggedTimeNear(const Logged& logged, double t) {
+  auto it = logged.q.lower_bound(t);
+  if (it == logged.q.end()) --it;
+  return it->first;
+}
+
+TEST(View, APlanarLogIsDrawnWhereItsAnglesPutTheTip) {
+  const std::string dir = freshDir("view-planar");
+  fs::create_directories(dir);
+  const std::string log = inprocLog("rigid_2dof.yaml", dir, "--set duration=1");
+  const Logged logged = readLogged(log);
+  const config::Scenario s = config::loadScenario(kConfigs + "rigid_2dof.yaml");
+  ViewServer server(log, dir);
+  Browser browser(dir, 1280, 720);
+  openViewer(browser, server);
+  EXPECT_EQ(browser.run("return window.lagrangeViewer.state().mode;"), "log");
+  const char* keep = std::getenv("LAGRANGE_VIEW_SCREENSHOT");
+  const double t_start = logged.q.begin()->first, t_later = loggedTimeNear(logged, 0.35);
+  const TipCheck start = drawnTip(browser, *s.robotModel(), logged, t_start);
+  const TipCheck later = drawnTip(browser, *s.robotModel(), logged, t_later, keep ? keep : "");
+  // The arm moved on the screen between the two: a page that drew one pose
+  // for both would fail one of the checks above.
+  EXPECT_GT(std::hypot(start.expected_x - later.expected_x, start.expected_y - later.expected_y), 30.0);
+  EXPECT_EQ(start.rotor_pixels, 0);  // a rigid arm has no rotors
+  expectNoConsoleError(browser);
+}
+
+TEST(View, PlaySpeedPauseAndSeekMoveThePagesClockAsAsked) {
+  const std::string dir = freshDir("view-clock");
+  fs::create_directories(dir);
+  const std::string log = inprocLog("rigid_2dof.yaml", dir, "--set duration=3");
+  ViewServer server(log, dir);
+  Browser browser(dir, 1000, 600);
+  openViewer(browser, server);
+  auto state = [&] { return browser.run("return window.lagrangeViewer.state();"); };
+  auto setSpeed = [&](const std::string& speed) {
+    browser.run("const s = document.getElementById('speed'); s.value = arguments[0];"
+                "s.dispatchEvent(new Event('change'));",
+                {speed});
+  };
+  auto click = [&] { browser.run("document.getElementById('play').click();"); };
+  // Simulated time advances by speed x the page's wall clock, to rounding.
+  auto expectRate = [&](double speed) {
+    ASSERT_TRUE(browser.waitUntil("window.lagrangeViewer.state().wall !== null", 5));
+    const json a = state();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const json b = state();
+    ASSERT_TRUE(b["playing"].get<bool>());
+    const double wall = (b["wall"].get<double>() - a["wall"].get<double>()) / 1000.0;
+    ASSERT_GT(wall, 0.05);
+    EXPECT_NEAR((b["t"].get<double>() - a["t"].get<double>()) / wall, speed, 1e-6 * speed);
+  };
+  EXPECT_FALSE(state()["playing"].get<bool>());
+  setSpeed("4");
+  click();
+  expectRate(4.0);
+  setSpeed("0.25");
+  expectRate(0.25);
+  click();  // pause
+  const double paused_at = state()["t"].get<double>();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_FALSE(state()["playing"].get<bool>());
+  EXPECT_EQ(state()["t"].get<double>(), paused_at);
+  // Seek: the frame drawn is the last at or before the time sought.
+  const json sought = seekTo(browser, 1.2345);
+  EXPECT_EQ(sought["t"].get<double>(), 1.2345);
+  EXPECT_EQ(browser.run("return window.lagrangeViewer.state().index;"), sought["index"]);
+  EXPECT_LE(sought["frameT"].get<double>(), 1.2345);
+  EXPECT_GT(sought["frameT"].get<double>(), 1.2345 - 0.0011);  // rigid_2dof: 1 kHz
+  EXPECT_TRUE(browser.waitUntil("document.getElementById('time').textContent === 't = 1.234 s' || "
+                                "document.getElementById('time').textContent === 't = 1.235 s'",
+                                5))
+      << browser.run("return document.getElementById('time').textContent;");
+  // Played to the end at 10x, the page stops there.
+  seekTo(browser, 2.9);
+  setSpeed("10");
+  click();
+  ASSERT_TRUE(browser.waitUntil("!window.lagrangeViewer.state().playing", 5));
+  const json end = state();
+  EXPECT_EQ(end["t"].get<double>(), end["tEnd"].get<double>());
+  expectNoConsoleError(browser);
+}
+
+TEST(View, AUrdfArmAndFlexibleJointsAreDrawnFromTheirLogs) {
+  const std::string dir = freshDir("view-kinds");
+  fs::create_directories(dir);
+  {
+    const std::string log = inprocLog("panda_theorem1.yaml", dir + "/panda", "--set duration=0.3");
+    const Logged logged = readLogged(log);
+    const config::Scenario s = config::loadScenario(kConfigs + "panda_theorem1.yaml");
+    ViewServer server(log, dir + "/panda");
+    Browser browser(dir + "/panda", 1280, 720);
+    openViewer(browser, server);
+    const TipCheck c = drawnTip(browser, *s.robotModel(), logged, loggedTimeNear(logged, 0.2));
+    const json base = browser.run("return window.lagrangeViewer.project([0, 0, 0]);");
+    // The tip is away from the base on the screen, so a drawing of the base would fail.
+    EXPECT_GT(std::hypot(c.expected_x - base[0].get<double>(), c.expected_y - base[1].get<double>()), 50.0);
+    expectNoConsoleError(browser);
+  }
+  {
+    const std::string log = inprocLog("flexible_2dof.yaml", dir + "/flexible", "--set duration=1");
+    const Logged logged = readLogged(log);
+    ASSERT_FALSE(logged.motor.empty());
+    const config::Scenario s = config::loadScenario(kConfigs + "flexible_2dof.yaml");
+    ViewServer server(log, dir + "/flexible");
+    Browser browser(dir + "/flexible", 1280, 720);
+    openViewer(browser, server);
+    const TipCheck c = drawnTip(browser, *s.robotModel(), logged, loggedTimeNear(logged, 0.5));
+    EXPECT_GT(c.rotor_pixels, 20) << "the rotors' pointers are not drawn";
+    expectNoConsoleError(browser);
+  }
+}
+
+TEST(View, FollowsARunningScenarioLive) {
+  const std::string dir = freshDir("view-live");
+  fs::create_directories(dir);
+  const std::string out = dir + "/run";
+  Child run({kBin + "/lagrange", "run", kConfigs + "rigid_2dof.yaml", "--out", out, "--set", "mode=realtime",
+             "--set", "duration=4", "-q"},
+            dir + "/run.out");
+  ASSERT_TRUE(waitFor([&] { return fs::exists(out + "/lcm.json"); }, 20)) << slurp(dir + "/run.out");
+  ViewServer server(out, dir);
+  EXPECT_NE(server.output().find("the running scenario in"), std::string::npos) << server.output();
+  Browser browser(dir, 1000, 600);
+  openViewer(browser, server);
+  ASSERT_TRUE(browser.waitUntil("window.lagrangeViewer.state().described && window.lagrangeViewer.state().frames > 0",
+                                20));
+  const json a = browser.run("return window.lagrangeViewer.state();");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  const json b = browser.run("return window.lagrangeViewer.state();");
+  EXPECT_EQ(b["mode"], "live");
+  EXPECT_TRUE(b["follow"].get<bool>());
+  EXPECT_GT(b["t"].get<double>(), a["t"].get<double>()) << "the page does not follow the run";
+  EXPECT_GT(b["frames"].get<int>(), a["frames"].get<int>());
+  ASSERT_EQ(run.wait(30), 0) << slurp(dir + "/run.out");
+  // After the run: the page drew its newest frame, and that frame is the
+  // log's at the same time, bit for bit.
+  ASSERT_TRUE(browser.waitUntil("window.lagrangeViewer.state().tEnd > 3.9", 10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const json last = browser.run("return window.lagrangeViewer.state();");
+  EXPECT_EQ(last["t"], last["tEnd"]);
+  const Logged logged = readLogged(out + "/run.lcm");
+  ASSERT_TRUE(logged.q.count(last["t"].get<double>()));
+  EXPECT_EQ(last["q"].get<std::vector<double>>(), logged.q.at(last["t"].get<double>()));
+  expectNoConsoleError(browser);
+  EXPECT_EQ(server.stop(), 0) << server.output();
+}
+
+TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
+  const std::string dir = freshDir("view-bind");
+  fs::create_directories(dir);
+  const std::string log = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/rigid_2dof_lockstep.lcm";
+  const RunResult refused = lagrange("view " + quote(log) + " --host 0.0.0.0 --port 0");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--allow-remote"), std::string::npos) << refused.output;
+  EXPECT_EQ(refused.output.find("http://"), std::string::npos) << refused.output;
+  {
+    // Asked: it serves on every address of the (test's private) network.
+    const std::string output = dir + "/remote.out";
+    Child remote({kBin + "/lagrange", "view", log, "--host", "0.0.0.0", "--port", "0", "--allow-remote"}, output);
+    std::smatch m;
+    const std::regex url(R"(http://0\.0\.0\.0:([0-9]+)/)");
+    ASSERT_TRUE(waitFor(
+        [&] {
+          const std::string text = slurp(output);
+          return std::regex_search(text, m, url);
+        },
+        30))
+        << slurp(output);
+    const std::string port = m[1];
+    // A golden log predates ROBOT_DESCRIPTION: its arm comes from its SCENARIO.
+    httplib::Client client("127.0.0.1", std::stoi(port));
+    const auto api = client.Get("/api/log");
+    ASSERT_TRUE(api);
+    EXPECT_EQ(json::parse(api->body)["description"]["kind"], "planar_chain") << api->body.substr(0, 300);
+    EXPECT_NE(slurp(output).find("drawn from its SCENARIO"), std::string::npos) << slurp(output);
+    remote.signal(SIGTERM);
+    EXPECT_EQ(remote.wait(10), 0);
+  }
+  const RunResult missing = lagrange("view " + quote(dir + "/nothing.lcm"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("does not exist; expected a run's output directory or a log file"),
+            std::string::npos)
+      << missing.output;
+  std::ofstream(dir + "/not-a-log.lcm") << "not a log";
+  const RunResult garbage = lagrange("view " + quote(dir + "/not-a-log.lcm"));
+  EXPECT_EQ(garbage.exit_code, 2) << garbage.output;
+}
+
+}  // namespace
+}  // namespace lagrange::testing
