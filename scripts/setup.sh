@@ -19,6 +19,9 @@ packages=(
   # systemd invoke-rc.d declines; with it they find no /etc/slurm/slurm.conf);
   # under systemd munge's own service may start, on a local socket only.
   munge slurmctld slurmd slurm-client
+  # lagrange view: its HTTP server, three.js for its page; its test drives
+  # headless chromium through chromedriver and reads the screenshots
+  libcpp-httplib-dev libjs-three chromium chromium-driver libpng-dev
   # scripts/fuzz.sh: libFuzzer with clang
   clang libclang-rt-14-dev
 )

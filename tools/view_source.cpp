@@ -46,18 +46,21 @@ ViewLog readViewLog(const std::string& path) {
   // A log recorded before ROBOT_DESCRIPTION existed: its arm from its scenario.
   if (!described && scenario) {
     try {
-      out.description = config::robotDescriptionMessage(config::parseScenario(*scenario, path + " (SCENARIO)"));
+      out.description =
+          config::robotDescriptionMessage(config::parseScenario(*scenario, path + " (SCENARIO)"));
       described = true;
-      out.notes.push_back("no ROBOT_DESCRIPTION in the log (recorded before it existed): the arm is drawn from "
-                          "its SCENARIO");
+      out.notes.push_back(
+          "no ROBOT_DESCRIPTION in the log (recorded before it existed): the arm is drawn from "
+          "its SCENARIO");
     } catch (const std::exception& e) {
-      throw LogError(path + " holds no ROBOT_DESCRIPTION message and its SCENARIO cannot be read (" + e.what() +
-                     "); expected a log of `lagrange run`, or of lcm-logger during one");
+      throw LogError(path + " holds no ROBOT_DESCRIPTION message and its SCENARIO cannot be read (" +
+                     e.what() + "); expected a log of `lagrange run`, or of lcm-logger during one");
     }
   }
   if (!described)
-    throw LogError(path + " holds neither ROBOT_DESCRIPTION nor SCENARIO: nothing says what arm to draw; "
-                          "expected a log of `lagrange run`, or of lcm-logger during one");
+    throw LogError(path +
+                   " holds neither ROBOT_DESCRIPTION nor SCENARIO: nothing says what arm to draw; "
+                   "expected a log of `lagrange run`, or of lcm-logger during one");
   if (!any_truth)
     throw LogError(path +
                    " holds no PLANT_TRUTH message: nothing to draw; expected a log of a run that started");

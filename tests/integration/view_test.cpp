@@ -33,8 +33,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs/";
-constexpr int kTipRgb[3] = {255, 0, 255};      // viewer.js TIP_COLOR
-constexpr int kRotorRgb[3] = {240, 140, 0};    // viewer.js ROTOR_COLOR
+constexpr int kTipRgb[3] = {255, 0, 255};    // viewer.js TIP_COLOR
+constexpr int kRotorRgb[3] = {240, 140, 0};  // viewer.js ROTOR_COLOR
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
@@ -101,7 +101,9 @@ Logged readLogged(const std::string& log) {
   return out;
 }
 
-Eigen::VectorXd vec(const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()); }
+Eigen::VectorXd vec(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size());
+}
 
 std::string inprocLog(const std::string& config, const std::string& dir, const std::string& sets) {
   const RunResult r = runScenario(kConfigs + config, dir + "/run", "--mode inproc -q " + sets);
@@ -144,13 +146,15 @@ TipCheck drawnTip(Browser& browser, const model::RobotModel& arm, const Logged& 
   EXPECT_NEAR(state["t"].get<double>(), t, 1e-12);
   EXPECT_EQ(state["frameT"].get<double>(), t);
   const std::vector<double> q = logged.q.at(t);
-  EXPECT_EQ(state["q"].get<std::vector<double>>(), q) << "the page draws another frame than the log's at t = " << t;
+  EXPECT_EQ(state["q"].get<std::vector<double>>(), q)
+      << "the page draws another frame than the log's at t = " << t;
   if (!logged.motor.empty()) {
     EXPECT_EQ(state["motor"].get<std::vector<double>>(), logged.motor.at(t));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // a few animation frames
   const Eigen::Vector3d tip = arm.tipPosition(vec(q));
-  const json expected = browser.run("return window.lagrangeViewer.project(arguments[0]);", {{tip.x(), tip.y(), tip.z()}});
+  const json expected =
+      browser.run("return window.lagrangeViewer.project(arguments[0]);", {{tip.x(), tip.y(), tip.z()}});
   const json box = browser.run(
       "const r = document.querySelector('#scene canvas').getBoundingClientRect();"
       "return [r.left, r.top, r.right, r.bottom];");
@@ -206,9 +210,10 @@ TEST(View, PlaySpeedPauseAndSeekMoveThePagesClockAsAsked) {
   openViewer(browser, server);
   auto state = [&] { return browser.run("return window.lagrangeViewer.state();"); };
   auto setSpeed = [&](const std::string& speed) {
-    browser.run("const s = document.getElementById('speed'); s.value = arguments[0];"
-                "s.dispatchEvent(new Event('change'));",
-                {speed});
+    browser.run(
+        "const s = document.getElementById('speed'); s.value = arguments[0];"
+        "s.dispatchEvent(new Event('change'));",
+        {speed});
   };
   auto click = [&] { browser.run("document.getElementById('play').click();"); };
   // Simulated time advances by speed x the page's wall clock, to rounding.
@@ -239,9 +244,10 @@ TEST(View, PlaySpeedPauseAndSeekMoveThePagesClockAsAsked) {
   EXPECT_EQ(browser.run("return window.lagrangeViewer.state().index;"), sought["index"]);
   EXPECT_LE(sought["frameT"].get<double>(), 1.2345);
   EXPECT_GT(sought["frameT"].get<double>(), 1.2345 - 0.0011);  // rigid_2dof: 1 kHz
-  EXPECT_TRUE(browser.waitUntil("document.getElementById('time').textContent === 't = 1.234 s' || "
-                                "document.getElementById('time').textContent === 't = 1.235 s'",
-                                5))
+  EXPECT_TRUE(
+      browser.waitUntil("document.getElementById('time').textContent === 't = 1.234 s' || "
+                        "document.getElementById('time').textContent === 't = 1.235 s'",
+                        5))
       << browser.run("return document.getElementById('time').textContent;");
   // Played to the end at 10x, the page stops there.
   seekTo(browser, 2.9);
@@ -295,8 +301,8 @@ TEST(View, FollowsARunningScenarioLive) {
   EXPECT_NE(server.output().find("the running scenario in"), std::string::npos) << server.output();
   Browser browser(dir, 1000, 600);
   openViewer(browser, server);
-  ASSERT_TRUE(browser.waitUntil("window.lagrangeViewer.state().described && window.lagrangeViewer.state().frames > 0",
-                                20));
+  ASSERT_TRUE(browser.waitUntil(
+      "window.lagrangeViewer.state().described && window.lagrangeViewer.state().frames > 0", 20));
   const json a = browser.run("return window.lagrangeViewer.state();");
   std::this_thread::sleep_for(std::chrono::milliseconds(1000));
   const json b = browser.run("return window.lagrangeViewer.state();");
@@ -329,7 +335,8 @@ TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
   {
     // Asked: it serves on every address of the (test's private) network.
     const std::string output = dir + "/remote.out";
-    Child remote({kBin + "/lagrange", "view", log, "--host", "0.0.0.0", "--port", "0", "--allow-remote"}, output);
+    Child remote({kBin + "/lagrange", "view", log, "--host", "0.0.0.0", "--port", "0", "--allow-remote"},
+                 output);
     std::smatch m;
     const std::regex url(R"(http://0\.0\.0\.0:([0-9]+)/)");
     ASSERT_TRUE(waitFor(

@@ -39,13 +39,14 @@ struct ColourBlob {
 
 /// The pixels within `tolerance` of (r, g, b) in every channel, in the
 /// rectangle [x0, x1) x [y0, y1): how many and their centroid.
-inline ColourBlob findColour(const RgbaImage& image, int r, int g, int b, int tolerance, int x0, int y0, int x1,
-                             int y1) {
+inline ColourBlob findColour(const RgbaImage& image, int r, int g, int b, int tolerance, int x0, int y0,
+                             int x1, int y1) {
   ColourBlob blob;
   for (int y = std::max(y0, 0); y < std::min(y1, image.height); ++y)
     for (int x = std::max(x0, 0); x < std::min(x1, image.width); ++x) {
       const unsigned char* p = &image.pixels[4 * (static_cast<size_t>(y) * image.width + x)];
-      if (std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance && std::abs(p[2] - b) <= tolerance) {
+      if (std::abs(p[0] - r) <= tolerance && std::abs(p[1] - g) <= tolerance &&
+          std::abs(p[2] - b) <= tolerance) {
         ++blob.count;
         blob.x += x + 0.5;
         blob.y += y + 0.5;
