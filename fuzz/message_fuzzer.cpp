@@ -18,8 +18,10 @@
 #include "lagrange/plant_motor_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
+#include "lagrange/robot_description_t.hpp"
 #include "lagrange/scenario_t.hpp"
 #include "lagrange/status_t.hpp"
+#include "tools/view_frames.hpp"
 #include "transport/messages.hpp"
 #include "transport/safe_decode.hpp"
 
@@ -45,7 +47,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // The joint count and torque steps a process would expect: 1..4 joints, 1..3 steps.
   const int joints = 1 + (selector >> 4) % 4;
   const int steps = 1 + (selector >> 6) % 3;
-  switch (selector % 8) {
+  switch (selector % 9) {
     case 0:
       decodeAndValidate<plant_position_t>(data, size,
                                           [&](const auto& m) { return transport::validate(m, joints); });
@@ -71,6 +73,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       break;
     case 6:
       decodeAndValidate<scenario_t>(data, size, [](const auto& m) { return m.yaml.empty() ? "empty" : ""; });
+      break;
+    case 7:
+      decodeAndValidate<robot_description_t>(data, size,
+                                             [](const auto& m) { return tools::descriptionProblem(m); });
       break;
     default:
       decodeAndValidate<channel_stats_t>(data, size, [](const auto&) { return std::string(); });

@@ -53,6 +53,56 @@ std::vector<ViewFrame> FrameAssembler::take(bool all) {
   return frames;
 }
 
+namespace {
+bool finite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+bool unit(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (double x : v) sum += x * x;
+  return std::abs(sum - 1.0) < 1e-6;
+}
+bool rows(const std::vector<std::vector<double>>& m, size_t count, size_t width, bool must_be_unit = false) {
+  if (m.size() != count) return false;
+  for (const auto& row : m)
+    if (row.size() != width || !finite(row) || (must_be_unit && !unit(row))) return false;
+  return true;
+}
+}  // namespace
+
+std::string descriptionProblem(const lagrange::robot_description_t& d) {
+  const size_t frames = d.frame_parent.size(), shapes = d.shape_frame.size();
+  const int32_t n = d.num_joints;
+  if (n < 1 || d.joint_names.size() != static_cast<size_t>(n)) return "num_joints does not match joint_names";
+  if (static_cast<int32_t>(frames) != d.num_frames || d.frame_joint.size() != frames || frames == 0)
+    return "num_frames does not match its arrays (or is 0)";
+  if (static_cast<int32_t>(shapes) != d.num_shapes || d.shape_type.size() != shapes)
+    return "num_shapes does not match its arrays";
+  if (!rows(d.frame_xyz, frames, 3) || !rows(d.frame_quat, frames, 4, true) ||
+      !rows(d.frame_axis, frames, 3, true))
+    return "a frame's origin, orientation or axis is not finite, or not of unit length";
+  for (size_t i = 0; i < frames; ++i) {
+    if (d.frame_parent[i] < -1 || d.frame_parent[i] >= static_cast<int32_t>(i))
+      return "frame " + std::to_string(i) + "'s parent does not come before it";
+    if (d.frame_joint[i] < -1 || d.frame_joint[i] >= n)
+      return "frame " + std::to_string(i) + "'s joint is not one of the " + std::to_string(n) + " joints";
+  }
+  if (!rows(d.shape_size, shapes, 3) || !rows(d.shape_xyz, shapes, 3) || !rows(d.shape_quat, shapes, 4, true))
+    return "a shape's size or pose is not finite, or its orientation not of unit length";
+  for (size_t s = 0; s < shapes; ++s) {
+    if (d.shape_frame[s] < -1 || d.shape_frame[s] >= static_cast<int32_t>(frames))
+      return "shape " + std::to_string(s) + "'s frame does not exist";
+    if (d.shape_type[s] < 0 || d.shape_type[s] > 2)
+      return "shape " + std::to_string(s) + "'s type is unknown";
+  }
+  if (d.tip_frame < -1 || d.tip_frame >= static_cast<int32_t>(frames)) return "tip_frame does not exist";
+  for (double x : d.tip_xyz)
+    if (!std::isfinite(x)) return "tip_xyz is not finite";
+  return "";
+}
+
 nlohmann::json descriptionJson(const lagrange::robot_description_t& d) {
   return {{"kind", d.kind},
           {"joint_names", d.joint_names},

@@ -10,6 +10,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "lagrange/control_command_t.hpp"
@@ -51,6 +52,13 @@ class FrameAssembler {
   int64_t emitted_ = -1;  ///< the last tick taken
   std::vector<double> last_desired_, last_motor_;
 };
+
+/// Why a ROBOT_DESCRIPTION cannot be drawn ("" when it can): sizes that
+/// disagree with their counts, a parent that does not come before its frame,
+/// a joint, frame or shape type out of range, a number that is not finite, an
+/// axis or quaternion that is not of unit length. The page builds its scene
+/// from it as it is, so the server checks it first (it may come off the network).
+std::string descriptionProblem(const lagrange::robot_description_t& d);
 
 /// ROBOT_DESCRIPTION as the page reads it (field names as in the message).
 nlohmann::json descriptionJson(const lagrange::robot_description_t& d);

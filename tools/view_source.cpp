@@ -28,7 +28,8 @@ ViewLog readViewLog(const std::string& path) {
     if (ev.channel == transport::kScenario) {
       if (!scenario) scenario = scenarioYaml(ev);
     } else if (ev.channel == transport::kRobotDescription) {
-      if (!described) described = decodeEvent(ev, out.description);
+      if (!described)
+        described = decodeEvent(ev, out.description) && descriptionProblem(out.description).empty();
     } else if (ev.channel == transport::kPlantTruth) {
       lagrange::plant_truth_t m;
       if (decodeEvent(ev, m)) {
@@ -107,7 +108,7 @@ void LiveFeed::onMessage(const lcm::ReceiveBuffer* buffer, const std::string& ch
   bool ok = false;
   if (channel == transport::kRobotDescription) {
     lagrange::robot_description_t m;
-    ok = decodeLive(*buffer, run_id_, m);
+    ok = decodeLive(*buffer, run_id_, m) && descriptionProblem(m).empty();
     if (ok) {
       std::lock_guard<std::mutex> lock(mutex_);
       if (!description_) {

@@ -18,27 +18,12 @@
 
 #include "support/child.hpp"
 #include "support/launch.hpp"
+#include "support/wait.hpp"
 
 namespace lagrange::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-bool waitFor(const std::function<bool()>& ready, double seconds) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (!ready()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return true;
-}
 
 // The lcm-spy table's Channel and Type columns as OCR reads them, lower-case letters only.
 std::string readTypeColumn(const std::string& display, const std::string& dir, const std::string& tag) {

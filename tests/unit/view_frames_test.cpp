@@ -6,6 +6,9 @@
 
 #include <cmath>
 
+#include "config/robot_description_lcm.hpp"
+#include "config/scenario.hpp"
+
 namespace lagrange::tools {
 namespace {
 
@@ -89,6 +92,43 @@ TEST(FrameAssembler, FramesAsColumnsWithNullForMissingValues) {
   EXPECT_TRUE(j["q_desired"][0].is_null());
   EXPECT_TRUE(j["motor"][0].is_null());
   EXPECT_TRUE(j["error_norm"][0].is_null());
+}
+
+}  // namespace
+}  // namespace lagrange::tools
+
+namespace lagrange::tools {
+namespace {
+
+TEST(RobotDescription, TheShippedArmsAreDrawableAndBrokenOnesAreNamed) {
+  for (const char* config : {"rigid_2dof.yaml", "flexible_2dof.yaml", "panda_theorem1.yaml"}) {
+    const config::Scenario s = config::loadScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/" + config);
+    const lagrange::robot_description_t d = config::robotDescriptionMessage(s);
+    EXPECT_EQ(descriptionProblem(d), "") << config;
+    EXPECT_EQ(d.flexible, s.flexible.has_value()) << config;
+    EXPECT_EQ(d.num_joints, s.dof()) << config;
+  }
+  const config::Scenario s =
+      config::loadScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml");
+  const lagrange::robot_description_t good = config::robotDescriptionMessage(s);
+  lagrange::robot_description_t d = good;
+  d.frame_parent[0] = 1;  // a parent after its child: the page would build a cycle
+  EXPECT_EQ(descriptionProblem(d), "frame 0's parent does not come before it");
+  d = good;
+  d.frame_joint[1] = 2;
+  EXPECT_EQ(descriptionProblem(d), "frame 1's joint is not one of the 2 joints");
+  d = good;
+  d.frame_quat[0] = {2.0, 0.0, 0.0, 0.0};
+  EXPECT_NE(descriptionProblem(d).find("not of unit length"), std::string::npos);
+  d = good;
+  d.shape_type[0] = 7;
+  EXPECT_EQ(descriptionProblem(d), "shape 0's type is unknown");
+  d = good;
+  d.num_frames = 3;
+  EXPECT_EQ(descriptionProblem(d), "num_frames does not match its arrays (or is 0)");
+  d = good;
+  d.tip_xyz[1] = std::nan("");
+  EXPECT_EQ(descriptionProblem(d), "tip_xyz is not finite");
 }
 
 }  // namespace
