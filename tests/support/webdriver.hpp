@@ -65,7 +65,10 @@ class Browser {
   /// Starts chromedriver and a headless chromium with a window of width x height.
   Browser(const std::string& work_dir, int width, int height)
       : port_(freeLoopbackPort()),
-        driver_({"chromedriver", "--port=" + std::to_string(port_)}, work_dir + "/chromedriver.log"),
+        // Without DISPLAY: headless chromium given an X display it cannot
+        // reach (a test before this one set it) fails to create WebGL contexts.
+        driver_({"env", "-u", "DISPLAY", "chromedriver", "--port=" + std::to_string(port_)},
+                work_dir + "/chromedriver.log"),
         http_("127.0.0.1", port_) {
     http_.set_read_timeout(60, 0);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);

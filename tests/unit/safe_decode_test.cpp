@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lagrange/control_command_t.hpp"
+#include "lagrange/robot_description_t.hpp"
 #include "lagrange/status_t.hpp"
 
 namespace lagrange::transport {
@@ -50,6 +51,29 @@ const std::vector<uint8_t> kNegativeStringLength = {
 TEST(SafeDecode, ANegativeStringLengthIsUndecodable) {
   lagrange::status_t m;
   EXPECT_FALSE(safeDecode(kNegativeStringLength.data(), kNegativeStringLength.size(), m));
+}
+
+// The same in an element of a string array (robot_description_t's
+// joint_names, the fuzzer's finding when the type was added): an honest
+// message whose first joint name claims length INT_MIN. Under UBSan the
+// unpatched `__elem_len - 1` aborts the test.
+TEST(SafeDecode, ANegativeStringLengthInAStringArrayIsUndecodable) {
+  lagrange::robot_description_t m{};
+  m.kind = "planar_chain";
+  m.num_joints = 1;
+  m.joint_names = {"joint1"};
+  std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  lagrange::robot_description_t back;
+  ASSERT_TRUE(safeDecode(bytes.data(), bytes.size(), back));
+  EXPECT_EQ(back.joint_names, m.joint_names);
+  // fingerprint (8), kind's length (4) and bytes with NUL (13), num_joints (4):
+  // then the first name's length, big-endian.
+  const size_t at = 8 + 4 + m.kind.size() + 1 + 4;
+  ASSERT_EQ(bytes[at + 3], m.joint_names[0].size() + 1);
+  bytes[at] = 0x80;
+  bytes[at + 1] = bytes[at + 2] = bytes[at + 3] = 0x00;
+  EXPECT_FALSE(safeDecode(bytes.data(), bytes.size(), back));
 }
 
 TEST(SafeDecode, HonestMessagesDecodeWithinTheirBudget) {

@@ -28,9 +28,17 @@ window.addEventListener('error', (e) => status('error: ' + e.message));
 // --- the scene ---------------------------------------------------------------
 
 const container = document.getElementById('scene');
-const renderer = new THREE.WebGLRenderer({antialias: true});
-renderer.setPixelRatio(1);
-container.appendChild(renderer.domElement);
+// Without WebGL (disabled, or a headless browser without a GPU fallback) the
+// plots and controls still work; the page says why there is no arm.
+let renderer = null;
+try {
+  renderer = new THREE.WebGLRenderer({antialias: true});
+  renderer.setPixelRatio(1);
+  container.appendChild(renderer.domElement);
+} catch (e) {
+  container.textContent = 'No 3D view: this browser cannot create a WebGL context (' + e.message +
+      '). The plots below still follow the run.';
+}
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xffffff);
 scene.add(new THREE.AmbientLight(0xffffff, 0.55));
@@ -38,9 +46,10 @@ const sun = new THREE.DirectionalLight(0xffffff, 0.6);
 sun.position.set(1, 2, 3);
 scene.add(sun);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
-const controls = new THREE.OrbitControls(camera, renderer.domElement);
+const controls = renderer ? new THREE.OrbitControls(camera, renderer.domElement) : null;
 
 function resize() {
+  if (!renderer) return;
   const w = container.clientWidth, h = container.clientHeight;
   renderer.setSize(w, h);
   camera.aspect = w / Math.max(h, 1);
@@ -152,8 +161,10 @@ function describe(d) {
     const side = Math.abs(up.z) > 0.9 ? new THREE.Vector3(1, 0.8, 0) : new THREE.Vector3(0.8, 0, 1);
     camera.position.copy(side.normalize().multiplyScalar(2.6 * r).add(up.clone().multiplyScalar(1.2 * r)));
   }
-  controls.target.set(0, 0, 0);
-  controls.update();
+  if (controls) {
+    controls.target.set(0, 0, 0);
+    controls.update();
+  }
   const names = d.joint_names.join(', ');
   document.getElementById('legend').title = d.kind + ': ' + names;
 }
@@ -215,8 +226,10 @@ function draw() {
   }
   errorPlot.draw();
   torquePlot.draw();
-  controls.update();
-  renderer.render(scene, camera);
+  if (renderer) {
+    controls.update();
+    renderer.render(scene, camera);
+  }
 }
 
 function animate(now) {
@@ -297,6 +310,7 @@ window.lagrangeViewer = {
   },
   // A base-frame point in the page's CSS pixels, through the camera drawn.
   project(p) {
+    if (!renderer) return null;
     const v = new THREE.Vector3(p[0], p[1], p[2]).project(camera);
     const box = renderer.domElement.getBoundingClientRect();
     return [box.left + (v.x + 1) / 2 * box.width, box.top + (1 - v.y) / 2 * box.height];
