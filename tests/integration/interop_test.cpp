@@ -29,6 +29,7 @@
 #include "support/child.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
+#include "tools/view_source.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -181,8 +182,8 @@ INSTANTIATE_TEST_SUITE_P(GoldenLogs, LogplayerIntoLiveController,
                          ::testing::Values("rigid_2dof_lockstep", "chain_m2_lockstep"));
 
 // A stock lcm-logger, started before the run on the run's LCM URL, records a
-// log that lagrange replay and lagrange report accept: the logger publishes
-// the scenario on SCENARIO.
+// log that lagrange replay, report and view accept: the logger publishes
+// the scenario on SCENARIO and the arm on ROBOT_DESCRIPTION.
 TEST(StockLogger, ItsRecordingOfARunReplaysAndReports) {
   const std::string dir = freshDir("stock-logger");
   std::filesystem::create_directories(dir);
@@ -220,6 +221,12 @@ TEST(StockLogger, ItsRecordingOfARunReplaysAndReports) {
   EXPECT_EQ(report.exit_code, 0) << report.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/report/tracking_error.png")) << report.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/report/CONTROL_COMMAND.csv")) << report.output;
+  // And lagrange view draws it: the logger's ROBOT_DESCRIPTION is in the
+  // recording itself (no note that the arm came from SCENARIO).
+  const tools::ViewLog view = tools::readViewLog(log);
+  EXPECT_EQ(view.description.kind, "planar_chain");
+  EXPECT_TRUE(view.notes.empty()) << view.notes.front();
+  EXPECT_EQ(view.frames.size(), 1001u);
 }
 
 }  // namespace

@@ -280,7 +280,7 @@ TEST(View, FollowsARunningScenarioLive) {
   fs::create_directories(dir);
   const std::string out = dir + "/run";
   Child run({kBin + "/lagrange", "run", kConfigs + "rigid_2dof.yaml", "--out", out, "--set", "mode=realtime",
-             "--set", "duration=4", "-q"},
+             "--set", "duration=60", "-q"},
             dir + "/run.out");
   ASSERT_TRUE(waitFor([&] { return fs::exists(out + "/lcm.json"); }, 20)) << slurp(dir + "/run.out");
   ViewServer server(out, dir);
@@ -296,16 +296,20 @@ TEST(View, FollowsARunningScenarioLive) {
   EXPECT_TRUE(b["follow"].get<bool>());
   EXPECT_GT(b["t"].get<double>(), a["t"].get<double>()) << "the page does not follow the run";
   EXPECT_GT(b["frames"].get<int>(), a["frames"].get<int>());
-  ASSERT_EQ(run.wait(30), 0) << slurp(dir + "/run.out");
-  // After the run: the page drew its newest frame, and that frame is the
-  // log's at the same time, bit for bit.
-  ASSERT_TRUE(browser.waitUntil("window.lagrangeViewer.state().tEnd > 3.9", 10));
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  const json last = browser.run("return window.lagrangeViewer.state();");
-  EXPECT_EQ(last["t"], last["tEnd"]);
+  // Following, it has drawn at least the newest frame it held a second ago
+  // (frames that came after its last animation frame wait for the next).
+  EXPECT_GE(b["t"].get<double>(), a["tEnd"].get<double>());
+  // Stopped (a minute is more than any machine needs to get here), the run
+  // keeps its log; a frame the page received is the log's, bit for bit.
+  run.signal(SIGINT);
+  ASSERT_EQ(run.wait(30), 130) << slurp(dir + "/run.out");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const double end = browser.run("return window.lagrangeViewer.state().tEnd;").get<double>();
+  const json back = seekTo(browser, end - 0.5);
+  EXPECT_FALSE(back["follow"].get<bool>());  // seeking stops following
   const Logged logged = readLogged(out + "/run.lcm");
-  ASSERT_TRUE(logged.q.count(last["t"].get<double>()));
-  EXPECT_EQ(last["q"].get<std::vector<double>>(), logged.q.at(last["t"].get<double>()));
+  ASSERT_TRUE(logged.q.count(back["frameT"].get<double>())) << back.dump();
+  EXPECT_EQ(back["q"].get<std::vector<double>>(), logged.q.at(back["frameT"].get<double>()));
   expectNoConsoleError(browser);
   EXPECT_EQ(server.stop(), 0) << server.output();
 }
@@ -323,16 +327,17 @@ TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
     const std::string output = dir + "/remote.out";
     Child remote({kBin + "/lagrange", "view", log, "--host", "0.0.0.0", "--port", "0", "--allow-remote"},
                  output);
-    std::smatch m;
+    std::string port;
     const std::regex url(R"(http://0\.0\.0\.0:([0-9]+)/)");
     ASSERT_TRUE(waitFor(
         [&] {
+          std::smatch m;
           const std::string text = slurp(output);
-          return std::regex_search(text, m, url);
+          if (std::regex_search(text, m, url)) port = m[1];
+          return !port.empty();
         },
         30))
         << slurp(output);
-    const std::string port = m[1];
     // A golden log predates ROBOT_DESCRIPTION: its arm comes from its SCENARIO.
     httplib::Client client("127.0.0.1", std::stoi(port));
     const auto api = client.Get("/api/log");

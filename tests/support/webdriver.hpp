@@ -46,11 +46,12 @@ inline std::string base64Decode(const std::string& in) {
     return -1;
   };
   std::string out;
-  int bits = 0, buffer = 0;
+  int bits = 0;
+  uint32_t buffer = 0;  // the bits not yet written: fewer than 8 before each shift
   for (char c : in) {
     const int v = value(c);
     if (v < 0) continue;  // padding, line breaks
-    buffer = (buffer << 6) | v;
+    buffer = ((buffer & 0xff) << 6) | static_cast<uint32_t>(v);
     bits += 6;
     if (bits >= 8) {
       bits -= 8;

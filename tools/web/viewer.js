@@ -8,10 +8,15 @@
 
 const ARM_COLOR = 0x4a78b8, GHOST_COLOR = 0x999999, TIP_COLOR = 0xff00ff, ROTOR_COLOR = 0xf08c00;
 
+// Live, the page keeps the newest frames only (about 15 minutes of a 1 kHz
+// run at the server's 200 frames per 100 ms).
+const MAX_LIVE_FRAMES = 200000;
+
 const view = {
   mode: null,            // 'log' or 'live'
   description: null,
   frames: {t: [], q: [], q_desired: [], motor: [], tau: [], error_norm: []},
+  torques: [],           // frames.tau by joint, for the plot
   t: 0,                  // the time drawn [s]
   index: -1,             // the frame drawn: the last with frames.t <= t
   playing: false,
@@ -178,15 +183,24 @@ const seek = document.getElementById('seek');
 function appendFrames(f) {
   const all = view.frames;
   for (const key of Object.keys(all)) for (const v of f[key]) all[key].push(v);
+  for (const row of f.tau) {
+    row.forEach((v, k) => {
+      if (view.torques.length <= k) view.torques.push([]);
+      view.torques[k].push(v);
+    });
+  }
+  const excess = all.t.length - MAX_LIVE_FRAMES;
+  if (view.mode === 'live' && excess > 0) {
+    for (const key of Object.keys(all)) all[key].splice(0, excess);
+    for (const column of view.torques) column.splice(0, excess);
+    view.index = Math.max(view.index - excess, 0);
+  }
   const n = all.t.length;
   if (n === 0) return;
   seek.min = all.t[0];
   seek.max = all.t[n - 1];
-  const joints = all.tau[0].length;
-  const torques = [];
-  for (let k = 0; k < joints; k++) torques.push(all.tau.map((row) => row[k]));
   errorPlot.setData(all.t, [all.error_norm], ['|q~|']);
-  torquePlot.setData(all.t, torques, view.description ? view.description.joint_names : []);
+  torquePlot.setData(all.t, view.torques, view.description ? view.description.joint_names : []);
 }
 
 // The last frame at or before t (the first when t precedes them all). A
