@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -43,7 +44,15 @@ struct Source {
   std::optional<long> netns_pid;
 };
 
-bool alive(long pid) { return kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM; }
+// The run's launcher still runs: the process lives and is a `lagrange` (a
+// pid of a run long finished may have been given to another program).
+bool launcherAlive(long pid) {
+  if (kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM) return false;
+  std::ifstream in("/proc/" + std::to_string(pid) + "/cmdline");
+  std::string argv0;
+  std::getline(in, argv0, '\0');
+  return fs::path(argv0).filename() == "lagrange";
+}
 
 // A directory with a going run is live; a finished one is its log.
 Source resolveSource(const ViewOptions& opt) {
@@ -61,7 +70,7 @@ Source resolveSource(const ViewOptions& opt) {
   if (fs::is_directory(opt.source)) {
     if (fs::exists(fs::path(opt.source) / "lcm.json")) {
       const RunEndpoint e = readEndpoint(opt.source);
-      if (e.launcher_pid && alive(*e.launcher_pid)) {
+      if (e.launcher_pid && launcherAlive(*e.launcher_pid)) {
         s.live = true;
         s.lcm_url = opt.lcm_url.empty() ? e.lcm_url : opt.lcm_url;
         s.run_id = e.run_id;
@@ -237,9 +246,15 @@ int runView(const ViewOptions& opt) {
   const std::string shown_host = opt.host.find(':') != std::string::npos ? "[" + opt.host + "]" : opt.host;
   std::cout << "lagrange view: " << source.what << " at http://" << shown_host << ":" << port
             << "/ (Ctrl-C stops)" << std::endl;
-  server.listen_after_bind();
+  const bool listened = server.listen_after_bind();
+  const bool stopped = view_signal != 0;
   served = true;  // also when the server ended on its own
   stopper.join();
+  if (!listened && !stopped) {
+    std::cerr << "lagrange view: the server stopped accepting connections on " << shown_host << ":" << port
+              << "\n";
+    return kExitFailed;
+  }
   return kExitOk;
 }
 

@@ -347,6 +347,20 @@ TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
     remote.signal(SIGTERM);
     EXPECT_EQ(remote.wait(10), 0);
   }
+  {
+    // A finished run whose launcher's pid now belongs to another program
+    // (this test): its log is drawn, not a dead bus followed.
+    fs::create_directories(dir + "/stale");
+    fs::copy_file(log, dir + "/stale/run.lcm");
+    std::ofstream(dir + "/stale/lcm.json") << json{
+        {"lcm_url", "udpm://239.255.76.67:7667?ttl=0"},
+        {"run_id", 1},
+        {"netns_pid", nullptr},
+        {"launcher_pid", getpid()}}.dump();
+    ViewServer stale(dir + "/stale", dir + "/stale");
+    EXPECT_NE(stale.output().find("stale/run.lcm at http://127.0.0.1:"), std::string::npos) << stale.output();
+    EXPECT_EQ(stale.stop(), 0);
+  }
   const RunResult missing = lagrange("view " + quote(dir + "/nothing.lcm"));
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.output.find("does not exist; expected a run's output directory or a log file"),

@@ -276,6 +276,12 @@ document.getElementById('speed').addEventListener('change', (e) => {
   view.speed = Number(e.target.value);
   view.lastWall = null;
 });
+// Space plays and pauses, as in a video player (not while a control has the focus).
+window.addEventListener('keydown', (e) => {
+  if (e.key !== ' ' || ['BUTTON', 'SELECT', 'INPUT'].includes(document.activeElement.tagName)) return;
+  e.preventDefault();
+  document.getElementById('play').click();
+});
 seek.addEventListener('input', () => {
   view.follow = false;
   setTime(Number(seek.value));
