@@ -10,4 +10,16 @@ ip=$(command -v ip || echo /usr/sbin/ip)
 "$ip" link set lo up
 "$ip" link set lo multicast on
 "$ip" route add 224.0.0.0/4 dev lo
-exec "$@"
+status=0
+"$@" || status=$?
+# What a crashed test left behind in this namespace -- a browser whose test
+# aborted before closing it, a daemon -- ends with the suite instead of
+# running on (a headless chromium's GPU process keeps a core busy).
+here=$(readlink /proc/$$/ns/net)
+for proc in /proc/[0-9]*; do
+  pid=${proc#/proc/}
+  if [[ $pid != "$$" && $(readlink "$proc/ns/net" 2>/dev/null || true) == "$here" ]]; then
+    kill -KILL "$pid" 2>/dev/null || true
+  fi
+done
+exit "$status"

@@ -24,6 +24,7 @@ const view = {
   follow: true,          // live: draw the newest frame
   lastWall: null,        // performance.now() of the previous animation frame, while playing
   arm: null, ghost: null,
+  dirty: true,           // something changed since the last render: only then is the scene drawn again
   errors: [],
 };
 
@@ -52,11 +53,13 @@ sun.position.set(1, 2, 3);
 scene.add(sun);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
 const controls = renderer ? new THREE.OrbitControls(camera, renderer.domElement) : null;
+if (controls) controls.addEventListener('change', () => { view.dirty = true; });
 
 function resize() {
   if (!renderer) return;
   const w = container.clientWidth, h = container.clientHeight;
   renderer.setSize(w, h);
+  view.dirty = true;
   camera.aspect = w / Math.max(h, 1);
   camera.updateProjectionMatrix();
 }
@@ -170,6 +173,7 @@ function describe(d) {
     controls.target.set(0, 0, 0);
     controls.update();
   }
+  view.dirty = true;
   const names = d.joint_names.join(', ');
   document.getElementById('legend').title = d.kind + ': ' + names;
 }
@@ -201,6 +205,7 @@ function appendFrames(f) {
   seek.max = all.t[n - 1];
   errorPlot.setData(all.t, [all.error_norm], ['|q~|']);
   torquePlot.setData(all.t, view.torques, view.description ? view.description.joint_names : []);
+  view.dirty = true;
 }
 
 // The last frame at or before t (the first when t precedes them all). A
@@ -224,6 +229,7 @@ function setTime(t) {
   if (ts.length === 0) return;
   view.t = Math.min(Math.max(t, ts[0]), ts[ts.length - 1]);
   view.index = frameIndex(view.t);
+  view.dirty = true;
 }
 
 function draw() {
@@ -257,7 +263,12 @@ function animate(now) {
     }
     view.lastWall = now;
   }
-  draw();
+  // Drawn only when something changed: an idle page costs no CPU (a
+  // software-rendered WebGL page redrawn 60 times a second keeps a core busy).
+  if (view.dirty) {
+    view.dirty = false;
+    draw();
+  }
   requestAnimationFrame(animate);
 }
 
