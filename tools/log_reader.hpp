@@ -48,11 +48,16 @@ LogScan readLog(const std::string& path, const std::function<void(const lcm::Log
 /// match was corrupted on the way (a log records what arrived; the intact
 /// copy, re-sent, follows). Unsealed messages (checksum 0: in-process runs) pass.
 template <class Msg>
-bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
-  if (ev.datalen < 0 || !transport::safeDecode(ev.data, static_cast<std::size_t>(ev.datalen), m))
-    return false;
+bool decodeIntact(const void* data, std::size_t size, Msg& m) {
+  if (!transport::safeDecode(data, size, m)) return false;
   if constexpr (transport::HasHeader<Msg>::value) return m.header.checksum == 0 || transport::intact(m);
   return true;
+}
+
+/// decodeIntact of a log event's bytes.
+template <class Msg>
+bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
+  return ev.datalen >= 0 && decodeIntact(ev.data, static_cast<std::size_t>(ev.datalen), m);
 }
 
 /// The scenario YAML of a SCENARIO event (scenario_t), or nothing if it is not one.

@@ -250,6 +250,10 @@ int runView(const ViewOptions& opt) {
   const bool stopped = view_signal != 0;
   served = true;  // also when the server ended on its own
   stopper.join();
+  // Why a live page stayed empty, if it did: nothing came, or what came was not this run's.
+  if (feed)
+    std::cerr << "lagrange view: " << feed->received() << " messages drawn from, " << feed->rejected()
+              << " rejected (undecodable, corrupted, or of another run)\n";
   if (!listened && !stopped) {
     std::cerr << "lagrange view: the server stopped accepting connections on " << shown_host << ":" << port
               << "\n";

@@ -2,19 +2,32 @@
 
 #include "config/robot_description_lcm.hpp"
 #include "transport/channels.hpp"
-#include "transport/checksum.hpp"
-#include "transport/safe_decode.hpp"
 
 namespace lagrange::tools {
 
 namespace {
-// One intact message of this run, as decodeEvent checks a log's.
+// One intact message of this run, as a log's are checked.
 template <class Msg>
 bool decodeLive(const lcm::ReceiveBuffer& buffer, int64_t run_id, Msg& m) {
-  if (!transport::safeDecode(buffer.data, buffer.data_size, m)) return false;
-  if constexpr (transport::HasHeader<Msg>::value)
-    return (m.header.checksum == 0 || transport::intact(m)) && (run_id == 0 || m.header.run_id == run_id);
+  if (!decodeIntact(buffer.data, buffer.data_size, m)) return false;
+  if constexpr (transport::HasHeader<Msg>::value) return run_id == 0 || m.header.run_id == run_id;
   return true;
+}
+
+// The channels a frame is made of, for the log and the live feed alike:
+// decodes a message of `channel` with `decode` into the assembler. True if
+// it is one of them and decoded.
+template <class Decode>
+bool addToFrames(const std::string& channel, FrameAssembler& assembler, const Decode& decode) {
+  auto add = [&](auto m) {
+    if (!decode(m)) return false;
+    assembler.add(m);
+    return true;
+  };
+  if (channel == transport::kPlantTruth) return add(lagrange::plant_truth_t{});
+  if (channel == transport::kControlCommand) return add(lagrange::control_command_t{});
+  if (channel == transport::kPlantMotor) return add(lagrange::plant_motor_t{});
+  return false;
 }
 }  // namespace
 
@@ -30,18 +43,9 @@ ViewLog readViewLog(const std::string& path) {
     } else if (ev.channel == transport::kRobotDescription) {
       if (!described)
         described = decodeEvent(ev, out.description) && descriptionProblem(out.description).empty();
-    } else if (ev.channel == transport::kPlantTruth) {
-      lagrange::plant_truth_t m;
-      if (decodeEvent(ev, m)) {
-        assembler.add(m);
-        any_truth = true;
-      }
-    } else if (ev.channel == transport::kControlCommand) {
-      lagrange::control_command_t m;
-      if (decodeEvent(ev, m)) assembler.add(m);
-    } else if (ev.channel == transport::kPlantMotor) {
-      lagrange::plant_motor_t m;
-      if (decodeEvent(ev, m)) assembler.add(m);
+    } else {
+      const bool added = addToFrames(ev.channel, assembler, [&](auto& m) { return decodeEvent(ev, m); });
+      any_truth = any_truth || (added && ev.channel == transport::kPlantTruth);
     }
   });
   // A log recorded before ROBOT_DESCRIPTION existed: its arm from its scenario.
@@ -116,15 +120,8 @@ void LiveFeed::onMessage(const lcm::ReceiveBuffer* buffer, const std::string& ch
         changed_.notify_all();
       }
     }
-  } else if (channel == transport::kPlantTruth) {
-    lagrange::plant_truth_t m;
-    if ((ok = decodeLive(*buffer, run_id_, m))) assembler_.add(m);
-  } else if (channel == transport::kControlCommand) {
-    lagrange::control_command_t m;
-    if ((ok = decodeLive(*buffer, run_id_, m))) assembler_.add(m);
-  } else if (channel == transport::kPlantMotor) {
-    lagrange::plant_motor_t m;
-    if ((ok = decodeLive(*buffer, run_id_, m))) assembler_.add(m);
+  } else {
+    ok = addToFrames(channel, assembler_, [&](auto& m) { return decodeLive(*buffer, run_id_, m); });
   }
   ++(ok ? received_ : rejected_);
 }
