@@ -27,6 +27,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string g_bin, g_configs, g_work;
+std::string g_unsigned_lagrange;  ///< bench-unsigned/lagrange: runs without a key (bench/CMakeLists.txt)
 
 std::string capture(const std::string& cmd, int* exit_code = nullptr) {
   std::string out;
@@ -43,13 +44,15 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// A `lagrange run`; returns its summary.json.
-json run(const std::string& config, const std::string& args) {
+// A `lagrange run` (by default the real front end; the bench's unsigned
+// build to measure the MAC's cost); returns its summary.json.
+json run(const std::string& config, const std::string& args, const std::string& lagrange = "") {
   const std::string dir = g_work + "/run";
   fs::remove_all(dir);
   int code = 0;
-  const std::string out =
-      capture(g_bin + "/lagrange run " + config + " --out " + dir + " -q " + args + " 2>&1", &code);
+  const std::string out = capture((lagrange.empty() ? g_bin + "/lagrange" : lagrange) + " run " + config +
+                                      " --out " + dir + " -q " + args + " 2>&1",
+                                  &code);
   if (code != 0) throw std::runtime_error("lagrange run failed: " + out);
   std::ifstream in(dir + "/summary.json");
   return json::parse(in);
@@ -186,6 +189,7 @@ int main(int argc, char** argv) {
          "Run only these figures (comma-separated: ring, inproc, realtime, scaling, urdf, micro, sweep)")
       ->delimiter(',');
   CLI11_PARSE(app, argc, argv);
+  g_unsigned_lagrange = (fs::path(g_bin) / ".." / "bench-unsigned" / "lagrange").string();
   const auto want = [&only](const std::string& section) {
     return only.empty() || std::find(only.begin(), only.end(), section) != only.end();
   };
@@ -202,13 +206,22 @@ int main(int argc, char** argv) {
   const std::string rigid = g_configs + "/rigid_2dof.yaml";
   const std::string at_default_step = "--set plant.physics_step=1.0e-4 --set duration=10";
 
-  std::vector<double> ring, lockstep, inproc, ode;
+  std::vector<double> ring, lockstep, unsigned_lockstep, inproc, ode;
   if (want("ring")) {
-    std::fprintf(stderr, "1/7 lockstep vs bare LCM ring ...\n");
+    std::fprintf(stderr, "1/7 lockstep (signed and unsigned) vs bare LCM ring ...\n");
     for (int r = 0; r < repeats; ++r) {
       ring.push_back(std::stod(capture(g_bin + "/lagrange-bench-ring --rounds 20000")));
       lockstep.push_back(ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step), 1000));
+      unsigned_lockstep.push_back(
+          ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step, g_unsigned_lagrange), 1000));
     }
+    // What the messages' MAC costs: the same run with and without it, side by side.
+    results["lockstep_unsigned_ticks_per_s"] = median(unsigned_lockstep);
+    results["lockstep_signed_vs_unsigned"] = median(lockstep) / median(unsigned_lockstep);
+    rows.push_back({"lockstep ticks/s with the MAC / without",
+                    fmt(median(lockstep), "%.0f") + " / " + fmt(median(unsigned_lockstep), "%.0f") + " = " +
+                        fmt(results["lockstep_signed_vs_unsigned"].get<double>(), "%.2f"),
+                    ">= 0.9", results["lockstep_signed_vs_unsigned"].get<double>() >= 0.9 ? "met" : "MISSED"});
     results["lockstep_ticks_per_s"] = median(lockstep);
     results["lcm_ring_rounds_per_s"] = median(ring);
     results["lockstep_vs_ring"] = median(lockstep) / median(ring);

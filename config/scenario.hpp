@@ -125,6 +125,11 @@ struct LockstepConfig {
   /// Ticks the plant may run ahead of the logger. Small, so that what is in
   /// flight (about 5 messages a tick) always fits the logger's socket buffer.
   int logger_window = 20;
+  /// Wall time [s] a wait of the run may pass without progress -- the
+  /// plant's for an answer or the logger, the handshake with every process
+  /// -- before the plant stops the run, naming whom it waited for and what
+  /// it saw instead (plant/stall_diagnosis.hpp).
+  double stall_timeout = 10.0;
 };
 
 /// Realtime mode: every process on its own fixed-rate loop.

@@ -129,7 +129,8 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                             {"wrong_publisher", c.rejected_wrong_publisher},
                             {"old_or_repeated", c.rejected_old_or_repeated},
                             {"invalid", c.rejected_invalid},
-                            {"corrupt", c.rejected_corrupt}};
+                            {"corrupt", c.rejected_corrupt},
+                            {"unauthenticated", c.rejected_unauthenticated}};
       channels[c.channel] = {{"published", c.published},
                              {"received", c.received},
                              {"rejected", c.rejected},

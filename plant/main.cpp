@@ -6,8 +6,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <chrono>
-
 #include "plant/plant_loops.hpp"
 #include "plant/scenario_plant.hpp"
 #include "runtime/process.hpp"
@@ -17,23 +15,14 @@
 namespace lagrange {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 int DoMain(int argc, char** argv) {
-  double startup_timeout = 30.0;
   return runtime::runProcess(
-      "plant", "ODE simulation of the robot arm; drives the clock of the run.", argc, argv,
-      [&](CLI::App& app) {
-        app.add_option("--startup-timeout", startup_timeout,
-                       "Seconds to wait for the logger before giving up")
-            ->capture_default_str();
-      },
-      nullptr,
+      "plant", "ODE simulation of the robot arm; drives the clock of the run.", argc, argv, nullptr, nullptr,
       [&](const config::Scenario& s, transport::LcmNode& node) {
         plant::PlantSim sim = plant::plantFor(s);
         runtime::StatusReporter status(node);
-        return s.mode == config::Mode::kRealtime ? plant::runRealtime(s, node, sim, status, startup_timeout)
-                                                 : plant::runLockstep(s, node, sim, status, startup_timeout);
+        return s.mode == config::Mode::kRealtime ? plant::runRealtime(s, node, sim, status)
+                                                 : plant::runLockstep(s, node, sim, status);
       });
 }
 

@@ -6,11 +6,11 @@
 #include <chrono>
 #include <map>
 #include <optional>
-#include <set>
 
 #include "plant/lockstep_protocol.hpp"
 #include "plant/plant_lcm.hpp"
 #include "plant/scenario_plant.hpp"
+#include "plant/stall_diagnosis.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
@@ -33,7 +33,7 @@ void publishMeasurements(transport::LcmNode& node, const PlantSample& m) {
 }  // namespace
 
 int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
-                runtime::StatusReporter& status, double startup_timeout) {
+                runtime::StatusReporter& status) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
   ScenarioSensors sensors = sensorsFor(s);
@@ -50,11 +50,20 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       [&](const lagrange::actuator_state_t& m) {
         if (protocol.actuatorState(m.header.tick)) tau = transport::toEigen(m.tau_applied);
       });
+  std::map<std::string, lagrange::status_t> peers;  // the newest STATUS of each, for a stall's diagnosis
   node.subscribe<lagrange::status_t>(
       transport::kStatus, [](const auto& m) { return transport::validate(m); },
       [&](const lagrange::status_t& m) {
         if (m.process == "logger") protocol.loggerConfirmed(m.last_tick);
+        if (m.process != "plant") peers[m.process] = m;
       });
+  // Nothing waits forever (lockstep.stall_timeout); the first answer and the
+  // logger's first word get the start-up time, while processes come up.
+  const auto stall = std::chrono::duration<double>(s.lockstep.stall_timeout);
+  const auto startup = std::chrono::duration<double>(startupTimeout(s));
+  auto stalled = [&](int64_t k, Clock::time_point since) {
+    return StallFacts{k, std::chrono::duration<double>(Clock::now() - since).count(), peers, node.channelStats()};
+  };
   // The measurements go with the truth: the controller and the actuator
   // answer a re-sent tick with what they sent for it, which the logger may
   // be the one to lack.
@@ -66,15 +75,14 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   };
 
   status.publish(State::kReady, -1, 0.0);
-  const auto startup_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
   auto next_status = Clock::now();
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
-    protocol.awaitLogger(Clock::now());
+    const auto wait_start = Clock::now();
+    protocol.awaitLogger(wait_start);
     while (!protocol.mayPublish(k) && !runtime::stopRequested()) {
-      if (!protocol.loggerHeard() && Clock::now() > startup_deadline)
-        throw std::runtime_error("no STATUS from the logger within " + std::to_string(startup_timeout) +
-                                 " s; is it running on the same LCM URL?");
+      if (Clock::now() - wait_start > (protocol.loggerHeard() ? stall : startup))
+        throw PlantStalled(describeLoggerStall(stalled(k, wait_start), protocol.loggerTick()));
       node.handle(5);
       resendForLogger();
     }
@@ -87,12 +95,15 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     const PlantSample out = measureTick(s, sensors, sim, k, t, tau.row(0).transpose(), input);
     publishMeasurements(node, out);
     node.publish(transport::kPlantTruth, out.truth);
-    protocol.published(k, out, Clock::now());
+    const auto published_at = Clock::now();
+    protocol.published(k, out, published_at);
     if (Clock::now() >= next_status) {
       status.publish(State::kRunning, k, t);
       next_status = Clock::now() + std::chrono::milliseconds(500);
     }
+    const auto answer_deadline = published_at + (k == 0 ? startup : stall);
     while (!protocol.answered() && !runtime::stopRequested()) {
+      if (Clock::now() > answer_deadline) throw PlantStalled(describeAnswerStall(stalled(k, published_at)));
       node.handle(5);
       if (protocol.positionResendDue(Clock::now())) publishMeasurements(node, out);
     }
@@ -106,7 +117,7 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   }
   // The end: every sample in the log first (bounded: a logger that has
   // gone away does not keep the plant forever).
-  const auto log_deadline = Clock::now() + std::chrono::duration<double>(startup_timeout);
+  const auto log_deadline = Clock::now() + stall;
   protocol.awaitLogger(Clock::now());
   while (!protocol.allConfirmed() && Clock::now() < log_deadline && !runtime::stopRequested()) {
     node.handle(5);
@@ -129,19 +140,21 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
 namespace {
 // Waits for STATUS "ready" (or later) from every other process, so that no
 // tick of a realtime run passes unheard.
-void awaitPeers(transport::LcmNode& node, const std::set<std::string>& heard, double timeout) {
-  const auto deadline = Clock::now() + std::chrono::duration<double>(timeout);
+void awaitPeers(transport::LcmNode& node, const std::map<std::string, lagrange::status_t>& heard,
+                double timeout) {
+  const auto start = Clock::now();
   while (heard.size() < 3 && !runtime::stopRequested()) {
-    if (Clock::now() > deadline)
-      throw std::runtime_error("logger, controller and actuator did not all report within " +
-                               std::to_string(timeout) + " s; are they running on the same LCM URL?");
+    if (Clock::now() - start > std::chrono::duration<double>(timeout))
+      throw PlantStalled(describeMissingPeers(
+          {-1, std::chrono::duration<double>(Clock::now() - start).count(), heard, node.channelStats()},
+          {"logger", "controller", "actuator"}));
     node.handle(20);
   }
 }
 }  // namespace
 
 int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& sim,
-                runtime::StatusReporter& status, double startup_timeout) {
+                runtime::StatusReporter& status) {
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
   ScenarioSensors sensors = sensorsFor(s);
@@ -166,16 +179,15 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
           latencies.push_back(
               static_cast<double>(node.lastReceiveUtime() - published_utime[m.header.tick % kRing]) * 1e-6);
       });
-  std::set<std::string> peers;
+  std::map<std::string, lagrange::status_t> peers;
   node.subscribe<lagrange::status_t>(
       transport::kStatus, [](const auto& m) { return transport::validate(m); },
       [&](const lagrange::status_t& m) {
-        if (m.process == "logger" || m.process == "controller" || m.process == "actuator")
-          peers.insert(m.process);
+        if (m.process == "logger" || m.process == "controller" || m.process == "actuator") peers[m.process] = m;
       });
 
   status.publish(State::kReady, -1, 0.0);
-  awaitPeers(node, peers, startup_timeout);
+  awaitPeers(node, peers, startupTimeout(s));
 
   transport::FixedRateLoop loop(s.tickPeriod(), 0.0);
   int64_t used_tick = -1, missing = 0, held = 0, zeroed = 0;

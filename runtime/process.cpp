@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <optional>
 
 #include "model/error.hpp"
+#include "runtime/key_file.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
@@ -42,6 +44,10 @@ int runProcess(const std::string& name, const std::string& description, int argc
   app.add_option("-c,--config", config_path, "Scenario YAML file (e.g. config.resolved.yaml)")->required();
   app.add_option("--lcm-url", url, "LCM URL shared by every process of the run")->capture_default_str();
   app.add_option("--set", overrides, "Override a config key, key=value (YAML value); repeatable");
+  std::string key_file;
+  app.add_option("--key-file", key_file,
+                 "The run's secret key (64 hex digits, mode 600): every message is signed with it and "
+                 "must carry its MAC (without: neither signed nor checked)");
   if (add_options) add_options(app);
   try {
     app.parse(argc, argv);
@@ -65,7 +71,16 @@ int runProcess(const std::string& name, const std::string& description, int argc
           "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
           "the normal scheduler",
           scenario.realtime.priority);
+    // Read before anything starts: a bad key file is bad input (exit 2).
+    const std::optional<transport::MessageKey> key =
+        key_file.empty() ? std::nullopt : std::optional(readKeyFile(key_file));
     transport::LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
+    if (key)
+      node.authenticate(*key);
+    else
+      spdlog::warn(
+          "no --key-file: messages are neither signed nor checked, so anyone on the LCM group can forge "
+          "them (lagrange run always gives one)");
     // Each process its own stream of draws, the same in every run with this seed.
     const auto seed_for = [&name](uint64_t seed) {
       for (const unsigned char c : name) seed = (seed ^ c) * 1099511628211ULL;

@@ -4,6 +4,7 @@
 ///   check-gains   print the gain conditions of a scenario without running it
 ///   compare       run a scenario for several controllers and tabulate them
 ///   sweep         many in-process runs over axes of scenario keys (locally or on Slurm)
+///   keygen        write a secret key for a run spread over hosts
 ///   replay, report, spy, view
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
 #include "model/error.hpp"
+#include "runtime/key_file.hpp"
 #include "tools/compare.hpp"
 #include "tools/netns.hpp"
 #include "tools/replay.hpp"
@@ -144,6 +146,10 @@ int DoMain(int argc, char** argv) {
                    "Start only these processes here (comma-separated: logger, controller, actuator, plant), "
                    "for a run spread over several hosts; needs --no-netns and --lcm-url")
       ->delimiter(',');
+  run_cmd->add_option("--key-file", run.key_file,
+                      "The run's secret key (from `lagrange keygen`, mode 600) instead of a fresh one in "
+                      "OUT/run.key; every host of a run spread with --processes needs the same one")
+      ->check(CLI::ExistingFile);
   run_cmd->add_flag("--check", run.check,
                     "Exit 3, naming the metric and its value, when the run completes but misses its stated "
                     "metric (summary.json tracking.met false): for guarding a controller in CI");
@@ -278,6 +284,13 @@ int DoMain(int argc, char** argv) {
   shard_cmd->add_option("--of", shard_of, "Shards, N")->required();
   shard_cmd->add_option("--parent", shard_parent, "The local sweep's pid: stop when it ends");
 
+  std::string keygen_file;
+  CLI::App* keygen_cmd = app.add_subcommand(
+      "keygen",
+      "Write a fresh secret key (64 hex digits, mode 600) for runs spread over hosts: give the same file to "
+      "each host's `lagrange run --processes ... --key-file FILE`");
+  keygen_cmd->add_option("file", keygen_file, "The key file to create (never overwritten)")->required();
+
   tools::SpyOptions spy;
   CLI::App* spy_cmd = app.add_subcommand(
       "spy",
@@ -315,8 +328,20 @@ int DoMain(int argc, char** argv) {
     run.private_netns = !no_netns;
     if (!mode.empty()) run.overrides.push_back("mode=" + mode);
     run.self_argv.assign(argv, argv + argc);
+#ifdef LAGRANGE_BENCH_UNSIGNED
+    run.sign = false;
+#endif
     run.self_argv[0] = std::filesystem::read_symlink("/proc/self/exe").string();
     return tools::runScenario(run);
+  }
+  if (*keygen_cmd) {
+    try {
+      runtime::writeKeyFile(keygen_file, transport::randomMessageKey());
+      return kExitOk;
+    } catch (const config::ConfigError& e) {
+      std::cerr << "lagrange keygen: " << e.what() << "\n";
+      return kExitBadInput;
+    }
   }
   if (*compare_cmd) {
     compare.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();

@@ -3,12 +3,16 @@
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <random>
 
 #include "lagrange/control_command_t.hpp"
+#include "runtime/key_file.hpp"
 #include "runtime/status_reporter.hpp"
 #include "tools/log_reader.hpp"
 #include "tools/netns.hpp"
@@ -72,6 +76,20 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   std::random_device rd;
   const int64_t run_id = ((static_cast<int64_t>(rd()) << 20) ^ rd()) | 1;  // never 0: 0 accepts any run
   transport::LcmNode node("plant", url, run_id);
+  // The program gets a key of this bus, as in a run: it signs its commands
+  // and checks the positions (docs/external_controllers.md).
+  std::string key_dir = (std::filesystem::temp_directory_path() / "lagrange-replay-key-XXXXXX").string();
+  if (mkdtemp(key_dir.data()) == nullptr)
+    throw ReplayError("cannot create a private directory for the replay's key in " +
+                      std::filesystem::temp_directory_path().string() + ": " + std::strerror(errno));
+  const std::string key_file = key_dir + "/run.key";
+  const transport::MessageKey key = transport::randomMessageKey();
+  runtime::writeKeyFile(key_file, key);
+  node.authenticate(key);
+  struct RemoveKey {
+    std::string dir;
+    ~RemoveKey() { std::filesystem::remove_all(dir); }
+  } remove_key{key_dir};
   std::optional<lagrange::control_command_t> answer;
   node.subscribe<lagrange::control_command_t>(
       transport::kControlCommand, [&](const auto& m) { return transport::validate(m, s.dof()); },
@@ -87,7 +105,8 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   spec.working_directory = s.controller.working_directory;
   spec.log_path = log;
   spec.env = {"LAGRANGE_LCM_URL=" + url, "LAGRANGE_RUN_ID=" + std::to_string(run_id),
-              "LAGRANGE_JOINTS=" + std::to_string(s.dof()), "LAGRANGE_MODE=lockstep"};
+              "LAGRANGE_KEY_FILE=" + key_file, "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
+              "LAGRANGE_MODE=lockstep"};
   supervisor.start(spec);
 
   // As the lockstep plant: each position until its answer comes, re-sent

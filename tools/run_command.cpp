@@ -21,10 +21,12 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "model/error.hpp"
+#include "runtime/key_file.hpp"
 #include "tools/inproc_runner.hpp"
 #include "tools/netns.hpp"
 #include "tools/progress.hpp"
 #include "tools/report.hpp"
+#include "tools/run_key.hpp"
 #include "tools/spy.hpp"
 #include "tools/supervisor.hpp"
 #include "transport/channels.hpp"
@@ -215,6 +217,9 @@ std::string checkProcesses(const RunOptions& opt) {
     return "--processes: every host must use the same LCM URL; give it with --lcm-url (TTL 1 or more to "
            "cross "
            "hosts, e.g. udpm://239.255.76.67:7667?ttl=1)";
+  if (opt.key_file.empty())
+    return "--processes: every host must sign with the same secret key; make one with `lagrange keygen "
+           "FILE`, copy it to each host (mode 600) and give it with --key-file FILE";
   return "";
 }
 
@@ -278,6 +283,17 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                        const std::string& resolved) {
   const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
   const int64_t run_id = runIdFor(opt, url, resolved);
+  // The run's secret (docs/reliability.md): the processes get the file's
+  // path, never the key itself, and a key made here ends with the run.
+  std::optional<RunKey> key;
+  try {
+    if (opt.sign) key.emplace(opt.key_file, out_dir);
+  } catch (const config::ConfigError& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  const std::vector<std::string> key_args =
+      key ? std::vector<std::string>{"--key-file", key->path()} : std::vector<std::string>{};
   // Where `lagrange spy OUT` finds this run: its URL and, in a private
   // network namespace, a process (this one) to take the namespace from.
   try {
@@ -309,6 +325,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     c.name = name;
     c.argv = {bin + "/lagrange-" + name, "--config", resolved, "--lcm-url", url, "--run-id",
               std::to_string(run_id)};
+    c.argv.insert(c.argv.end(), key_args.begin(), key_args.end());
     c.argv.insert(c.argv.end(), extra.begin(), extra.end());
     c.log_path = (fs::path(out_dir) / (name + ".log")).string();
     return c;
@@ -325,6 +342,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     controller.argv = scenario.controller.command;
     controller.working_directory = scenario.controller.working_directory;
     controller.env = {"LAGRANGE_LCM_URL=" + url, "LAGRANGE_RUN_ID=" + std::to_string(run_id),
+                      "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
                       "LAGRANGE_CONFIG=" + resolved, "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
                       "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
   }
@@ -418,6 +436,7 @@ int runScenario(const RunOptions& opt) {
   std::string out_dir;
   try {
     scenario = config::loadScenario(opt.config_path, opt.overrides);
+    if (!opt.key_file.empty()) runtime::readKeyFile(opt.key_file);  // a bad key file stops nothing half-way
     out_dir = prepareOutDir(opt.out_dir);
   } catch (const config::ConfigError& e) {
     std::cerr << "lagrange run: " << e.what() << "\n";

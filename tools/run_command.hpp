@@ -28,6 +28,13 @@ struct RunOptions {
   /// The run's identity on every message; unset: random, or for --processes
   /// derived from the LCM URL and the resolved scenario (the same on every host).
   std::optional<int64_t> run_id;
+  /// The run's secret key file (runtime/key_file.hpp); empty: a fresh key in
+  /// OUT/run.key, removed when the run ends. Required with --processes.
+  std::string key_file;
+  /// False only in the benchmark's build of the front end
+  /// (LAGRANGE_BENCH_UNSIGNED, bench/CMakeLists.txt), which measures what the
+  /// MAC costs: no key, nothing signed or checked. Never a user option.
+  bool sign = true;
   std::vector<std::string> self_argv;  ///< to re-execute inside the namespace
 };
 

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 
 #include "transport/channels.hpp"
@@ -17,11 +18,38 @@ LcmNode::LcmNode(const std::string& process_name, const std::string& url, int64_
                              "and a network interface with multicast enabled");
 }
 
+void LcmNode::authenticate(const MessageKey& key) { auth_ = std::make_unique<MessageAuthenticator>(key); }
+
+bool LcmNode::authentic(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+  if (!auth_) return true;
+  const auto* data = static_cast<const uint8_t*>(rbuf->data);
+  const size_t size = rbuf->data_size;
+  // The same datagram dispatched to another handler: the same buffer and
+  // receive time, and -- what makes the reuse safe -- the very same bytes.
+  if (rbuf == last_checked_rbuf_ && rbuf->recv_utime == last_checked_utime_ && size == last_checked_.size() &&
+      std::equal(data, data + size, last_checked_.begin()))
+    return last_checked_valid_;  // verified (or rejected and counted) once
+  last_checked_rbuf_ = rbuf;
+  last_checked_utime_ = rbuf->recv_utime;
+  last_checked_.assign(data, data + size);
+  last_checked_valid_ = auth_->verify(data, size);
+  if (!last_checked_valid_)
+    reject(channel, RejectReason::kUnauthenticated,
+           "no valid MAC with this run's key (forged, altered on the way, or from a program without the "
+           "key; " +
+               std::to_string(size) + " bytes)");
+  return last_checked_valid_;
+}
+
 void LcmNode::subscribeRaw(const std::string& channel_regex,
                            std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle) {
   handlers_.push_back(std::make_unique<RawHandler>(RawHandler{
       [this, handle = std::move(handle)](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-        if (!lostOnReceive(rbuf, channel)) handle(rbuf, channel);
+        if (lostOnReceive(rbuf, channel) || !authentic(rbuf, channel)) return;
+        if (!auth_) return handle(rbuf, channel);
+        lcm::ReceiveBuffer payload = *rbuf;  // the handler sees the message without its trailer
+        payload.data_size -= static_cast<uint32_t>(kMacBytes);
+        handle(&payload, channel);
       }}));
   // subscribeFunction, not subscribe(channel, &Class::method, object): LCM
   // calls the latter through `(handler->*method)(...)`, which GCC 12's
@@ -106,14 +134,18 @@ bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h, Ord
   }
   const std::string source = channel + "\n" + h.publisher + "\n" + std::to_string(h.publisher_pid);
   if (order == Order::kAcceptReordered) {
-    std::set<int64_t>& seen = seen_[source];
-    if (h.seq <= 0 || !seen.insert(h.seq).second) {
-      reject(
-          channel, RejectReason::kOldOrRepeated,
-          "sequence number " + std::to_string(h.seq) + " of '" + h.publisher + "' seen before (a duplicate)");
+    // A window of the newest kSequenceWindow numbers: inside it a number
+    // counts once, in any order; below it nothing counts (it is older than
+    // any reordering -- a replay).
+    SequenceWindow& w = windows_[source];
+    if (h.seq <= 0 || h.seq <= w.newest - kSequenceWindow || !w.seen.insert(h.seq).second) {
+      reject(channel, RejectReason::kOldOrRepeated,
+             "sequence number " + std::to_string(h.seq) + " of '" + h.publisher +
+                 "' seen before or older than the window (a duplicate or a replay)");
       return false;
     }
-    if (seen.size() > 100000) seen.erase(seen.begin());  // older than any reordering
+    w.newest = std::max(w.newest, h.seq);
+    while (*w.seen.begin() <= w.newest - kSequenceWindow) w.seen.erase(w.seen.begin());
     return true;
   }
   int64_t& last = last_seq_[source];
@@ -146,6 +178,7 @@ std::vector<lagrange::channel_stats_t> LcmNode::channelStats() const {
     s.rejected_old_or_repeated = c.rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)];
     s.rejected_invalid = c.rejected_by[static_cast<size_t>(RejectReason::kInvalid)];
     s.rejected_corrupt = c.rejected_by[static_cast<size_t>(RejectReason::kCorrupt)];
+    s.rejected_unauthenticated = c.rejected_by[static_cast<size_t>(RejectReason::kUnauthenticated)];
     if (faults_) {
       const InjectedCounts injected = faults_->counts(channel);
       s.injected_dropped = injected.dropped;

@@ -20,6 +20,7 @@
 #include "lagrange/header_t.hpp"
 #include "transport/checksum.hpp"
 #include "transport/fault_injector.hpp"
+#include "transport/message_auth.hpp"
 #include "transport/safe_decode.hpp"
 
 namespace lagrange::transport {
@@ -28,8 +29,16 @@ namespace lagrange::transport {
 using Rejection = std::string;
 
 /// Why a message was rejected (channel_stats_t's rejected_* counters).
-enum class RejectReason { kUndecodable, kOtherRun, kWrongPublisher, kOldOrRepeated, kInvalid, kCorrupt };
-inline constexpr int kRejectReasons = 6;
+enum class RejectReason {
+  kUndecodable,
+  kOtherRun,
+  kWrongPublisher,
+  kOldOrRepeated,
+  kInvalid,
+  kCorrupt,
+  kUnauthenticated  ///< no valid MAC with the run's key: forged, altered, or from a program without the key
+};
+inline constexpr int kRejectReasons = 7;
 
 struct ChannelCounters {
   long long published = 0;
@@ -53,6 +62,15 @@ class LcmNode {
   /// @throws std::runtime_error naming the URL if LCM cannot be initialised.
   LcmNode(const std::string& process_name, const std::string& url, int64_t run_id = 0);
   int64_t runId() const { return run_id_; }
+
+  /// From now on every message published carries the MAC trailer of `key`
+  /// (message_auth.hpp), and every datagram received must carry a valid one:
+  /// one that does not is dropped before any decoding and counted as
+  /// rejected (unauthenticated) on its channel. Handlers, raw ones
+  /// included, see the payload without the trailer. Without a key a node
+  /// neither signs nor checks (a process on its own, tests).
+  void authenticate(const MessageKey& key);
+  bool authenticated() const { return auth_ != nullptr; }
 
   /// What a subscription does with a datagram older than the newest one of its publisher.
   enum class Order {
@@ -91,12 +109,17 @@ class LcmNode {
   /// node agrees, and counted once per datagram.
   void loseOnReceive(double probability, uint64_t seed);
 
-  /// Every message on channels matching the regex, undecoded. The queue is
-  /// deep (kQueueCapacity) so a slow handler does not silently drop messages.
+  /// Every message on channels matching the regex, undecoded (but
+  /// authenticated, and without its MAC trailer, when the node has a key).
+  /// The queue is deep (kQueueCapacity) so a slow handler does not silently
+  /// drop messages.
   void subscribeRaw(const std::string& channel_regex,
                     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle);
 
   static constexpr int kQueueCapacity = 100000;
+  /// Order::kAcceptReordered: how far behind its publisher's newest a
+  /// sequence number may be and still count (once).
+  static constexpr int64_t kSequenceWindow = 100000;
 
   /// Process incoming messages for up to timeout_ms; returns false on an LCM error.
   bool handle(int timeout_ms);
@@ -116,11 +139,20 @@ class LcmNode {
  private:
   template <class Msg>
   int send(const std::string& channel, const Msg& msg) {
-    if (!faults_) return lcm_.publish(channel, &msg);
-    std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
+    if (!faults_ && !auth_) return lcm_.publish(channel, &msg);
+    // One buffer per thread, reused: no allocation per message once warm.
+    thread_local std::vector<uint8_t> bytes;
+    bytes.resize(static_cast<size_t>(msg.getEncodedSize()));
     msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    return faults_->publish(channel, std::move(bytes));
+    if (auth_) auth_->sign(bytes);  // before fault injection: a corrupted copy fails the check, as it would on a wire
+    if (faults_) return faults_->publish(channel, bytes);
+    return lcm_.publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
   }
+  /// Whether a datagram carries a valid MAC (true without a key); rejects
+  /// and counts it if not. A datagram dispatched to several handlers of
+  /// this node is hashed and counted once: only the very same bytes reuse
+  /// the last verdict (never just the same buffer address).
+  bool authentic(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void reject(const std::string& channel, RejectReason why, const std::string& detail);
   void stamp(const std::string& channel, lagrange::header_t& header) const;
   /// Whether a received header belongs here: this run, the channel's
@@ -133,6 +165,11 @@ class LcmNode {
   std::map<std::string, ChannelCounters> counters_;
   std::set<std::string> reported_;  ///< channel/reason pairs already logged
   int64_t last_receive_utime_ = 0;
+  std::unique_ptr<MessageAuthenticator> auth_;
+  const lcm::ReceiveBuffer* last_checked_rbuf_ = nullptr;  ///< the datagram authentic() checked last:
+  int64_t last_checked_utime_ = -1;                        ///< its buffer, receive time,
+  std::vector<uint8_t> last_checked_;                      ///< bytes
+  bool last_checked_valid_ = false;                        ///< and verdict
   std::unique_ptr<FaultInjector> faults_;  // after lcm_: stopped (its last sends made) before LCM closes
   int64_t run_id_ = 0;
   int32_t pid_ = 0;
@@ -142,7 +179,11 @@ class LcmNode {
   int64_t last_lost_utime_ = -1;
   bool lostOnReceive(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   std::map<std::string, int64_t> last_seq_;        ///< per channel, publisher and pid
-  std::map<std::string, std::set<int64_t>> seen_;  ///< the same, recent numbers (Order::kAcceptReordered)
+  struct SequenceWindow {
+    int64_t newest = 0;
+    std::set<int64_t> seen;  ///< the numbers accepted within kSequenceWindow of the newest
+  };
+  std::map<std::string, SequenceWindow> windows_;  ///< the same, for Order::kAcceptReordered
 
   struct RawHandler {
     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;

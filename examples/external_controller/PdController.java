@@ -15,8 +15,16 @@
 import java.io.ByteArrayOutputStream;
 import java.io.DataOutputStream;
 import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.security.GeneralSecurityException;
+import java.security.MessageDigest;
+import java.util.Arrays;
 import java.util.HashMap;
+import java.util.HexFormat;
 import java.util.Map;
+import javax.crypto.Mac;
+import javax.crypto.spec.SecretKeySpec;
 import lagrange.channel_stats_t;
 import lagrange.control_command_t;
 import lagrange.header_t;
@@ -40,8 +48,14 @@ public class PdController implements LCMSubscriber {
   private double[] previousQ;
   private double previousT;
   private volatile boolean plantFinished = false;
+  private final Mac mac;  // HMAC-SHA256 with the run's key
 
-  PdController(String url, long runId, int joints, double[] kp, double[] kd, double[] qd) throws IOException {
+  static final int MAC_BYTES = 32;
+
+  PdController(String url, long runId, byte[] key, int joints, double[] kp, double[] kd, double[] qd)
+      throws IOException, GeneralSecurityException {
+    this.mac = Mac.getInstance("HmacSHA256");
+    this.mac.init(new SecretKeySpec(key, "HmacSHA256"));
     this.lcm = new LCM(url);
     this.runId = runId;
     this.joints = joints;
@@ -80,10 +94,32 @@ public class PdController implements LCMSubscriber {
     return h;
   }
 
+  // Every datagram is the message's encoding followed by HMAC-SHA256 of that
+  // encoding under the run's key (docs/external_controllers.md, "The MAC").
+  synchronized void publishSigned(String channel, LCMEncodable msg) throws IOException {
+    ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+    msg.encode(new DataOutputStream(bytes));
+    byte[] payload = bytes.toByteArray();
+    byte[] tag = mac.doFinal(payload);
+    byte[] datagram = Arrays.copyOf(payload, payload.length + MAC_BYTES);
+    System.arraycopy(tag, 0, datagram, payload.length, MAC_BYTES);
+    lcm.publish(channel, datagram, 0, datagram.length);
+  }
+
+  // The payload of a datagram whose MAC is valid, or null: nothing else is decoded.
+  synchronized byte[] authenticated(LCMDataInputStream ins) throws IOException {
+    byte[] datagram = new byte[ins.available()];
+    ins.readFully(datagram);
+    if (datagram.length < MAC_BYTES) return null;
+    byte[] payload = Arrays.copyOf(datagram, datagram.length - MAC_BYTES);
+    byte[] tag = Arrays.copyOfRange(datagram, payload.length, datagram.length);
+    return MessageDigest.isEqual(mac.doFinal(payload), tag) ? payload : null;  // constant time
+  }
+
   synchronized void publishCommand(control_command_t c) throws IOException {
     c.header = header("CONTROL_COMMAND", c.header.tick, c.header.sim_time);
     c.header.checksum = checksum(c);
-    lcm.publish("CONTROL_COMMAND", c);
+    publishSigned("CONTROL_COMMAND", c);
   }
 
   synchronized void publishStatus(String state) throws IOException {
@@ -99,7 +135,7 @@ public class PdController implements LCMSubscriber {
     s.loop = new loop_stats_t();
     s.loop.scheduler = "";
     s.header.checksum = checksum(s);
-    lcm.publish("STATUS", s);
+    publishSigned("STATUS", s);
   }
 
   control_command_t command(plant_position_t p) {
@@ -132,6 +168,9 @@ public class PdController implements LCMSubscriber {
   @Override
   public synchronized void messageReceived(LCM lcm, String channel, LCMDataInputStream ins) {
     try {
+      byte[] payload = authenticated(ins);
+      if (payload == null) return;  // forged, altered, or not of this run: never decoded
+      ins = new LCMDataInputStream(payload);
       if (channel.equals("STATUS")) {
         status_t s = new status_t(ins);
         if (s.header.run_id == runId && s.process.equals("plant") && s.state.equals("finished"))
@@ -173,8 +212,10 @@ public class PdController implements LCMSubscriber {
     int joints = Integer.parseInt(System.getenv("LAGRANGE_JOINTS"));
     Map<String, String> options = new HashMap<>();
     for (int i = 0; i + 1 < args.length; i += 2) options.put(args[i], args[i + 1]);
+    // The run's key: 64 hex digits in a file only its owner reads.
+    byte[] key = HexFormat.of().parseHex(Files.readString(Path.of(System.getenv("LAGRANGE_KEY_FILE"))).trim());
     PdController pd = new PdController(System.getenv("LAGRANGE_LCM_URL"),
-        Long.parseLong(System.getenv("LAGRANGE_RUN_ID")), joints, vector(options.get("--kp"), joints),
+        Long.parseLong(System.getenv("LAGRANGE_RUN_ID")), key, joints, vector(options.get("--kp"), joints),
         vector(options.get("--kd"), joints), vector(options.get("--qd"), joints));
     // STATUS twice a second (a realtime plant starts once it has heard
     // "ready"), until the plant says it has finished; then "finished" and out.

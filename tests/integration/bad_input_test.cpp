@@ -29,7 +29,9 @@
 #include "support/rk4.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
+#include "runtime/key_file.hpp"
 #include "transport/checksum.hpp"
+#include "transport/message_auth.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -95,24 +97,32 @@ std::vector<uint8_t> fromPublisher(Msg m, const std::string& publisher, int64_t 
 
 // Runs a scenario on the machine's network (inside the test's namespace) at
 // `url` with run id kTestRunId while publishing, every 5 ms for the whole run,
-// the payloads `make(n)` returns for the n-th round on `channel`.
+// the payloads `make(n)` returns for the n-th round on `channel` -- signed
+// with the run's key (given with --key-file), as a program holding the key
+// would send them: the MAC lets them through to the checks under test
+// (forgeries without the key: tests/integration/forgery_test.cpp).
 // Returns the run's result and how many bad messages were sent.
 std::pair<RunResult, int> runUnderBadTraffic(
     const std::string& config, const std::string& dir, const std::string& url, const std::string& channel,
     const std::function<std::vector<std::vector<uint8_t>>(int64_t)>& make, const std::string& extra = "") {
+  const std::string key_file = freshDir("bad-traffic-key") + ".key";
+  if (lagrange("keygen " + quote(key_file)).exit_code != 0) return {{1, "lagrange keygen failed"}, 0};
+  const transport::MessageAuthenticator key(runtime::readKeyFile(key_file));
   std::atomic<bool> done{false};
   RunResult r;
   std::thread runner([&] {
-    r = runScenario(
-        config, dir,
-        "--no-netns -q --run-id " + std::to_string(kTestRunId) + " --lcm-url '" + url + "' " + extra);
+    r = runScenario(config, dir,
+                    "--no-netns -q --run-id " + std::to_string(kTestRunId) + " --lcm-url '" + url +
+                        "' --key-file " + quote(key_file) + " " + extra);
     done = true;
   });
   lcm_t* lcm = lcm_create(url.c_str());
   int sent = 0;
   for (int64_t round = 1; !done && lcm; ++round) {
-    for (const auto& p : make(round))
+    for (std::vector<uint8_t> p : make(round)) {
+      key.sign(p);
       lcm_publish(lcm, channel.c_str(), p.data(), static_cast<unsigned>(p.size()));
+    }
     sent += static_cast<int>(make(round).size());
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

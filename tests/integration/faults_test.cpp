@@ -6,7 +6,7 @@
 //   confirmed, the controller and actuator answer re-sent ticks from their
 //   caches, the actuator re-sends its state while the run stalls, and
 //   duplicates and late datagrams are rejected by sequence number, corrupted
-//   ones by the checksum (then re-sent like lost ones);
+//   ones by the MAC (then re-sent like lost ones);
 // - lockstep with 5 % lost by each receiver alone (faults.receivers) keeps a
 //   complete log: the plant re-sends what the logger has not confirmed;
 // - realtime with 1 % drops and up to 2 ms of random delay converges within
@@ -76,9 +76,11 @@ TEST_P(LockstepUnderFaults, DropsDuplicatesReorderingAndCorruptionLeaveTheTrajec
     EXPECT_GT(injected["reordered"].get<long long>(), 0) << channel << injected.dump();
     EXPECT_GT(injected["corrupted"].get<long long>(), 0) << channel << injected.dump();
   }
-  // A flipped byte is caught: by the checksum, or already by the decoder.
+  // A flipped byte is caught by the MAC, before any decoding: nothing
+  // corrupted reaches the decoder or the checksum.
   const auto& reasons = j["messages"]["PLANT_POSITION"]["rejected_by_reason"];
-  EXPECT_GT(reasons["corrupt"].get<long long>() + reasons["undecodable"].get<long long>(), 0)
+  EXPECT_GT(reasons["unauthenticated"].get<long long>(), 0) << reasons.dump();
+  EXPECT_EQ(reasons["corrupt"].get<long long>() + reasons["undecodable"].get<long long>(), 0)
       << reasons.dump();
   EXPECT_GT(j["messages"]["PLANT_POSITION"]["rejected_by_reason"]["old_or_repeated"].get<long long>(), 0);
   // ... and nothing changed: every message of every tick logged (STATUS

@@ -43,10 +43,14 @@ for side in "a $host_a 10.77.0.1" "b $host_b 10.77.0.2"; do
 done
 
 url="udpm://239.255.76.67:7711?ttl=1"
-on "$host_b" "$bin/lagrange" run "$config" -o "$out/b" --no-netns --lcm-url "$url" \
+# One secret for both hosts, as a user would copy it to each (docs/deployment.md).
+key="$out/run.key"
+rm -f "$key"
+"$bin/lagrange" keygen "$key"
+on "$host_b" "$bin/lagrange" run "$config" -o "$out/b" --no-netns --lcm-url "$url" --key-file "$key" \
   --processes controller,logger "$@" >"$out/b.out" 2>&1 &
 run_b=$!
-on "$host_a" "$bin/lagrange" run "$config" -o "$out/a" --no-netns --lcm-url "$url" \
+on "$host_a" "$bin/lagrange" run "$config" -o "$out/a" --no-netns --lcm-url "$url" --key-file "$key" \
   --processes plant,actuator "$@" >"$out/a.out" 2>&1 &
 run_a=$!
 code_a=0 code_b=0

@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// Authenticated messages (DESIGN section 6, docs/reliability.md "Threat
+/// model"). Anyone on a run's multicast group can read its run id off the
+/// wire and publish with it, so the run id proves nothing. Each run has a
+/// secret key instead; every datagram is the message's LCM encoding followed
+/// by a 32-byte trailer, HMAC-SHA256 (libsodium) of that encoding under the
+/// key. A receiver checks the trailer, in constant time, before any byte of
+/// the payload reaches a decoder, and drops what fails.
+///
+/// Why a trailer and not a field of header_t: the message types stay as they
+/// were, so lcm-spy and any LCM decoder (which read a message's fields and
+/// ignore what follows) still decode every channel, SCENARIO and
+/// ROBOT_DESCRIPTION are covered like the rest, and the logger records the
+/// verified encodings without the trailer -- a log reads as before.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lagrange::transport {
+
+/// A run's secret: 32 bytes from a cryptographic random source.
+using MessageKey = std::array<uint8_t, 32>;
+
+/// Bytes of the trailer every authenticated datagram ends with.
+inline constexpr std::size_t kMacBytes = 32;
+
+/// A fresh key from the operating system's cryptographic random source
+/// (libsodium's randombytes_buf: getrandom(2)).
+MessageKey randomMessageKey();
+
+/// The key as 64 lowercase hex digits (the key file's format).
+std::string toHex(const MessageKey& key);
+/// 64 hex digits (either case) as a key; false if `text` is anything else.
+bool fromHex(const std::string& text, MessageKey& key);
+
+/// Signs and checks datagrams with one key. The keyed HMAC state is computed
+/// once; each message costs the hash of its bytes only.
+class MessageAuthenticator {
+ public:
+  explicit MessageAuthenticator(const MessageKey& key);
+  ~MessageAuthenticator();
+  MessageAuthenticator(const MessageAuthenticator&) = delete;
+  MessageAuthenticator& operator=(const MessageAuthenticator&) = delete;
+
+  /// Appends the trailer: HMAC-SHA256 of the bytes now in `datagram`.
+  void sign(std::vector<uint8_t>& datagram) const;
+  /// The MAC of `size` bytes.
+  std::array<uint8_t, kMacBytes> mac(const uint8_t* data, std::size_t size) const;
+  /// True when `size` bytes are a payload followed by its valid trailer
+  /// (compared in constant time). Never reads past `size`.
+  bool verify(const uint8_t* data, std::size_t size) const;
+
+ private:
+  struct State;
+  State* keyed_;  ///< the HMAC state after the key, copied for each message
+};
+
+}  // namespace lagrange::transport
