@@ -1,5 +1,6 @@
 #include "tools/log_event_reader.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -98,7 +99,7 @@ LogEventReader::Found LogEventReader::inspect(long long offset, Header& header, 
   if (header.data_bytes < 0 || header.data_bytes > kMaxDataBytes) {
     problem = at + " gives a data length of " + std::to_string(header.data_bytes) + " bytes; expected 0 to " +
               std::to_string(kMaxDataBytes) + " (LCM's largest message), and at most the " +
-              std::to_string(left - kHeaderBytes - header.channel_bytes) +
+              std::to_string(std::max<long long>(0, left - kHeaderBytes - header.channel_bytes)) +
               " bytes left in the file after its header and channel";
     return Found::kMalformed;
   }

@@ -276,6 +276,9 @@ int runView(const ViewOptions& opt) {
   if (feed)
     std::cerr << "lagrange view: " << feed->received() << " messages drawn from, " << feed->rejected()
               << " rejected (undecodable, corrupted, or of another run)\n";
+  if (server.refusedConnections() > 0)
+    std::cerr << "lagrange view: " << server.refusedConnections() << " connections refused (more than "
+              << server.limits().max_connections << " open at once)\n";
   if (!listened && !stopped) {
     std::cerr << "lagrange view: the server stopped accepting connections on " << shown_host << ":" << port
               << "\n";
