@@ -207,10 +207,7 @@ int runView(const ViewOptions& opt) {
     if (!source.live) log = std::make_unique<ViewLog>(readViewLog(source.log_path));
     // Bound here, before a run's namespace is joined: the page is reached
     // from this machine's network, the run's traffic from its own.
-    if (opt.port == 0)
-      port = server.bind_to_any_port(opt.host);
-    else if (!server.bind_to_port(opt.host, opt.port))
-      port = -1;
+    port = server.bindPort(opt.host, opt.port);
     if (port < 0)
       throw Error("cannot listen on " + opt.host + ":" + std::to_string(opt.port) +
                   " (in use, or not an address of this machine); expected a free port (--port 0 picks one)");

@@ -5,9 +5,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <string>
-#include <thread>
 
 namespace lagrange::tools {
 
@@ -118,7 +119,17 @@ std::shared_ptr<void> GuardedHttpServer::tryOpenStream() {
     --streams_;
     return nullptr;
   }
-  return std::shared_ptr<void>(nullptr, [this](void*) { --streams_; });
+  // Points at the server only to be non-null: the deleter frees the place, nothing else.
+  return std::shared_ptr<void>(static_cast<void*>(this), [this](void*) { --streams_; });
+}
+
+int GuardedHttpServer::bindPort(const std::string& host, int port) {
+  const int bound = port == 0 ? bind_to_any_port(host) : (bind_to_port(host, port) ? port : -1);
+  // cpp-httplib 0.11 listens with a backlog of 5: connections beyond it wait
+  // in the kernel, unanswered, for a SYN-ACK retransmission (1 s, 3 s, ...)
+  // before this server can even refuse them. Listening again sets the backlog.
+  if (bound >= 0) ::listen(svr_sock_, SOMAXCONN);
+  return bound;
 }
 
 // Until a request starts to arrive (or the client closes), at most

@@ -21,6 +21,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <string>
 
 namespace lagrange::tools {
 
@@ -35,6 +36,10 @@ struct ServerLimits {
 class GuardedHttpServer : public httplib::Server {
  public:
   explicit GuardedHttpServer(const ServerLimits& limits = {});
+
+  /// Binds to host:port (0: any free port) with a backlog for bursts of
+  /// connections; the port, or -1.
+  int bindPort(const std::string& host, int port);
 
   /// A live stream's place, released when the token is destroyed; nullptr
   /// if max_live_streams are open.
