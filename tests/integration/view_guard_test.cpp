@@ -226,13 +226,15 @@ TEST(ViewGuard, AForeignHostHeaderIsRefusedAsDnsRebinding) {
   Viewer viewer({kGolden});
   ASSERT_GT(viewer.port(), 0) << viewer.output();
   const std::string port = std::to_string(viewer.port());
-  for (const std::string host : {"127.0.0.1:" + port, "127.0.0.1", "localhost:" + port, "LocalHost",
-                                 "[::1]:" + port, "localhost:9000" /* an ssh -L tunnel's port */}) {
+  for (const std::string& host :
+       std::vector<std::string>{"127.0.0.1:" + port, "127.0.0.1", "localhost:" + port, "LocalHost",
+                                "[::1]:" + port, "localhost:9000" /* an ssh -L tunnel's port */}) {
     const Answer a = ask(viewer.port(), "/api/session", host);
     EXPECT_EQ(a.text.rfind("HTTP/1.1 200", 0), 0u) << host << ": " << a.text;
   }
-  for (const std::string host : {"evil.example:" + port, "evil.example", "127.0.0.1.evil.example:" + port,
-                                 "localhost.evil.example", "localhost:abc", "[::1"}) {
+  for (const std::string& host :
+       std::vector<std::string>{"evil.example:" + port, "evil.example", "127.0.0.1.evil.example:" + port,
+                                "localhost.evil.example", "localhost:abc", "[::1"}) {
     const Answer a = ask(viewer.port(), "/api/log", host);
     EXPECT_EQ(a.text.rfind("HTTP/1.1 421", 0), 0u) << host << ": " << a.text;
     EXPECT_NE(a.text.find("expected one of 127.0.0.1, [::1], localhost (with or without a port)"),
