@@ -110,7 +110,7 @@ TEST_F(LogFileTest, ReadsWhatLcmsOwnWriterWrote) {
   EXPECT_EQ(r.scan.channels.at("PLANT_TRUTH"), 1);
 }
 
-TEST_F(LogFileTest, AHugeDataLengthIsRefusedWithItsOffsetBeforeAnythingIsAllocated) {
+TEST_F(LogFileTest, AHugeDataLengthIsRefusedWithItsOffsetAndTheBytesLeft) {
   const std::string good = event(0, "SCENARIO", "name: x") + event(1, "PLANT_TRUTH", "12345678");
   const std::string path = write(good + eventBytes(2, "PLANT_TRUTH", "1234", 11, 0x7fffffff));
   const std::string why = refusal(path);
