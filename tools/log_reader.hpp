@@ -1,46 +1,28 @@
 #pragma once
 /// @file
-/// Reading an LCM log event by event through lcm::LogFile, noticing what it
-/// does not say: bytes it skipped (a corrupt stretch, the reader resyncs on
-/// the next event marker) and bytes at the end it could not read (a log cut
-/// short, e.g. a run killed while writing). Replay and report both read
-/// logs through this, so both name what was read and what was not.
+/// Reading an LCM log event by event (tools/log_event_reader.hpp: every
+/// length checked before anything is allocated), noticing what LCM's own
+/// reader does not say: bytes skipped (a corrupt stretch; reading resumes at
+/// the next whole event) and bytes at the end that are not a whole event (a
+/// log cut short, e.g. a run killed while writing). Replay, report, view and
+/// compare all read logs through this, so all name what was read and what was not.
 
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
-#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
-#include "model/error.hpp"
+#include "tools/log_event_reader.hpp"
 #include "transport/checksum.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/safe_decode.hpp"
 
 namespace lagrange::tools {
 
-/// A file that is not an LCM log at all, or cannot be opened.
-class LogError : public lagrange::Error {
- public:
-  using lagrange::Error::Error;
-};
-
-/// What a pass over a log read.
-struct LogScan {
-  long long events = 0;                       ///< events read whole
-  long long skipped_bytes = 0;                ///< corrupt bytes between events, jumped over
-  long long unreadable_tail_bytes = 0;        ///< bytes after the last whole event
-  std::map<std::string, long long> channels;  ///< events per channel
-
-  /// Warnings for a person, empty when the log was read whole.
-  std::vector<std::string> problems() const;
-  /// "N events on CH1, CH2, ..." (at most a few channel names).
-  std::string describe() const;
-};
-
 /// Calls on_event for every event of the log at `path`, in file order.
-/// @throws LogError if the file cannot be opened or holds no event in a nonzero length.
+/// @throws LogError if the file cannot be opened, holds no event in a nonzero
+/// length, or holds a malformed event (named with its byte offset).
 LogScan readLog(const std::string& path, const std::function<void(const lcm::LogEvent&)>& on_event);
 
 /// Decodes an event as Msg; false (never a throw, never a huge allocation)

@@ -42,20 +42,21 @@ controller::Theorem1Output asOutput(const lagrange::control_command_t& m) {
 }  // namespace
 
 bool isExternalControllerLog(const std::string& log_path) {
-  lcm::LogFile log(log_path, "r");
-  if (!log.good()) return false;
-  for (int i = 0; i < 16; ++i) {
-    const lcm::LogEvent* ev = log.readNextEvent();
-    if (ev == nullptr) return false;
-    if (ev->channel != transport::kScenario) continue;
-    const std::optional<std::string> yaml = scenarioYaml(*ev);
-    if (!yaml) return false;
-    try {
+  try {
+    LogEventReader log(log_path);
+    for (int i = 0; i < 16; ++i) {
+      const lcm::LogEvent* ev = log.next();
+      if (ev == nullptr) return false;
+      if (ev->channel != transport::kScenario) continue;
+      const std::optional<std::string> yaml = scenarioYaml(*ev);
+      if (!yaml) return false;
       const YAML::Node controller = YAML::Load(*yaml)["controller"];
       return controller && controller["type"] && controller["type"].as<std::string>() == "external";
-    } catch (const YAML::Exception&) {
-      return false;  // openLog names what is wrong with it
     }
+  } catch (const LogError&) {
+    return false;  // openLog names what is wrong with the log
+  } catch (const YAML::Exception&) {
+    return false;  // and with its scenario
   }
   return false;
 }

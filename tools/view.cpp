@@ -18,6 +18,8 @@
 #include "model/error.hpp"
 #include "tools/netns.hpp"
 #include "tools/spy.hpp"
+#include "tools/view_host_check.hpp"
+#include "tools/view_server.hpp"
 #include "tools/view_source.hpp"
 
 namespace lagrange::tools {
@@ -144,13 +146,23 @@ std::string logJson(const ViewLog& log) {
   return j.dump();
 }
 
-void serveLive(httplib::Server& server, LiveFeed& feed) {
-  server.Get("/api/live", [&feed](const httplib::Request&, httplib::Response& res) {
+void serveLive(GuardedHttpServer& server, LiveFeed& feed) {
+  server.Get("/api/live", [&feed, &server](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-store");
+    // Each open stream holds a connection for as long as its page is open:
+    // bounded, so that pages can still be loaded beside them.
+    std::shared_ptr<void> slot = server.tryOpenStream();
+    if (!slot) {
+      res.status = 503;
+      res.set_content("the viewer has " + std::to_string(server.limits().max_live_streams) +
+                          " live streams open, its limit; close a viewer tab\n",
+                      "text/plain");
+      return;
+    }
     auto next = std::make_shared<uint64_t>(0);
     auto described = std::make_shared<bool>(false);
     res.set_chunked_content_provider(
-        "text/event-stream", [&feed, next, described](size_t, httplib::DataSink& sink) {
+        "text/event-stream", [&feed, next, described, slot](size_t, httplib::DataSink& sink) {
           if (view_signal != 0) return false;
           const LiveFeed::Update u = feed.waitFrom(*next, kMaxLiveBatch, std::chrono::milliseconds(100));
           std::string out;
@@ -180,7 +192,7 @@ int runView(const ViewOptions& opt) {
   std::unique_ptr<ViewLog> log;
   Source source;
   Assets assets;
-  httplib::Server server;
+  GuardedHttpServer server;
   int port = opt.port;
   try {
     if (!isLoopbackHost(opt.host) && !opt.allow_remote)
@@ -195,10 +207,7 @@ int runView(const ViewOptions& opt) {
     if (!source.live) log = std::make_unique<ViewLog>(readViewLog(source.log_path));
     // Bound here, before a run's namespace is joined: the page is reached
     // from this machine's network, the run's traffic from its own.
-    if (opt.port == 0)
-      port = server.bind_to_any_port(opt.host);
-    else if (!server.bind_to_port(opt.host, opt.port))
-      port = -1;
+    port = server.bindPort(opt.host, opt.port);
     if (port < 0)
       throw Error("cannot listen on " + opt.host + ":" + std::to_string(opt.port) +
                   " (in use, or not an address of this machine); expected a free port (--port 0 picks one)");
@@ -216,6 +225,16 @@ int runView(const ViewOptions& opt) {
     return kExitFailed;
   }
 
+  // DNS rebinding: a page of another site, its name resolved to this
+  // address, would otherwise read the run through the visitor's browser.
+  server.set_pre_routing_handler(
+      [policy = hostPolicy(opt.host, opt.allow_remote)](const httplib::Request& req, httplib::Response& res) {
+        const std::string why = hostRefusal(req.get_header_value("Host"), policy);
+        if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        res.status = 421;  // Misdirected Request: not a name this server answers to
+        res.set_content("lagrange view: " + why + "\n", "text/plain");
+        return httplib::Server::HandlerResponse::Handled;
+      });
   for (const auto& [path, file] : assets.files) {
     const auto& [type, body] = file;
     server.Get(path, [type = type, body = body](const httplib::Request&, httplib::Response& res) {
@@ -254,6 +273,9 @@ int runView(const ViewOptions& opt) {
   if (feed)
     std::cerr << "lagrange view: " << feed->received() << " messages drawn from, " << feed->rejected()
               << " rejected (undecodable, corrupted, or of another run)\n";
+  if (server.refusedConnections() > 0)
+    std::cerr << "lagrange view: " << server.refusedConnections() << " connections refused (more than "
+              << server.limits().max_connections << " open at once)\n";
   if (!listened && !stopped) {
     std::cerr << "lagrange view: the server stopped accepting connections on " << shown_host << ":" << port
               << "\n";
