@@ -318,6 +318,9 @@ int DoMain(int argc, char** argv) {
   view_cmd->add_option(
       "--lcm-url", view.lcm_url,
       "View live traffic on this LCM URL (default: the running scenario's, from its lcm.json)");
+  view_cmd->add_option("--key-file", view.key_file,
+                       "Live: the run's secret key, so that only what its processes sent is drawn (default: "
+                       "the running scenario's run.key)");
 
   try {
     app.parse(argc, argv);

@@ -36,10 +36,21 @@ bool decodeIntact(const void* data, std::size_t size, Msg& m) {
   return true;
 }
 
-/// decodeIntact of a log event's bytes.
+/// decodeIntact of the bytes, or of all but their last kMacBytes: a message
+/// recorded or heard off a run's wire by a program without the run's key (a
+/// stock lcm-logger) still carries its MAC trailer (transport/message_auth.hpp),
+/// which only the key could check. lagrange's own logger checks it and
+/// records the message without it.
+template <class Msg>
+bool decodeSkippingTrailer(const void* data, std::size_t size, Msg& m) {
+  return decodeIntact(data, size, m) ||
+         (size > transport::kMacBytes && decodeIntact(data, size - transport::kMacBytes, m));
+}
+
+/// decodeSkippingTrailer of a log event's bytes.
 template <class Msg>
 bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
-  return ev.datalen >= 0 && decodeIntact(ev.data, static_cast<std::size_t>(ev.datalen), m);
+  return ev.datalen >= 0 && decodeSkippingTrailer(ev.data, static_cast<std::size_t>(ev.datalen), m);
 }
 
 /// The scenario YAML of a SCENARIO event (scenario_t), or nothing if it is not one.

@@ -15,7 +15,9 @@
 #include <sstream>
 #include <thread>
 
+#include "config/scenario.hpp"
 #include "model/error.hpp"
+#include "runtime/key_file.hpp"
 #include "tools/netns.hpp"
 #include "tools/spy.hpp"
 #include "tools/view_host_check.hpp"
@@ -44,6 +46,7 @@ struct Source {
   std::string lcm_url;
   int64_t run_id = 0;
   std::optional<long> netns_pid;
+  std::string key_file;  ///< live: the run's key, to read only what its processes sent
 };
 
 // The run's launcher still runs: the process lives and is a `lagrange` (a
@@ -64,6 +67,7 @@ Source resolveSource(const ViewOptions& opt) {
       throw Error("nothing to view: expected a run's output directory, a log file, or --lcm-url URL");
     s.live = true;
     s.lcm_url = opt.lcm_url;
+    s.key_file = opt.key_file;
     s.what = "live traffic on " + opt.lcm_url;
     return s;
   }
@@ -77,6 +81,7 @@ Source resolveSource(const ViewOptions& opt) {
         s.lcm_url = opt.lcm_url.empty() ? e.lcm_url : opt.lcm_url;
         s.run_id = e.run_id;
         s.netns_pid = e.netns_pid;
+        s.key_file = opt.key_file.empty() ? (fs::path(opt.source) / "run.key").string() : opt.key_file;
         s.what = "the running scenario in " + opt.source;
         return s;
       }
@@ -219,7 +224,21 @@ int runView(const ViewOptions& opt) {
 
   std::unique_ptr<LiveFeed> feed;
   try {
-    if (source.live) feed = std::make_unique<LiveFeed>(source.lcm_url, source.run_id);
+    if (source.live) {
+      std::optional<transport::MessageKey> key;
+      if (!source.key_file.empty()) {
+        try {
+          key = runtime::readKeyFile(source.key_file);
+        } catch (const config::ConfigError& e) {
+          std::cerr << "lagrange view: " << e.what() << "\n";
+          return kExitBadInput;
+        }
+      } else {
+        std::cerr << "lagrange view: warning: no --key-file: the page draws whatever reaches " << source.lcm_url
+                  << " unauthenticated (anyone on the group can draw into it)\n";
+      }
+      feed = std::make_unique<LiveFeed>(source.lcm_url, source.run_id, key);
+    }
   } catch (const std::exception& e) {
     std::cerr << "lagrange view: " << e.what() << "\n";
     return kExitFailed;

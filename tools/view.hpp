@@ -24,6 +24,7 @@ struct ViewOptions {
   int port = 8642;  ///< 0: any free port
   bool allow_remote = false;
   std::string lcm_url;  ///< live on this URL (overrides a run directory's)
+  std::string key_file;  ///< live: the run's key (default: a running run directory's run.key)
 };
 
 /// True for 127.0.0.0/8, ::1 and "localhost".

@@ -9,7 +9,7 @@ namespace {
 // One intact message of this run, as a log's are checked.
 template <class Msg>
 bool decodeLive(const lcm::ReceiveBuffer& buffer, int64_t run_id, Msg& m) {
-  if (!decodeIntact(buffer.data, buffer.data_size, m)) return false;
+  if (!decodeSkippingTrailer(buffer.data, buffer.data_size, m)) return false;
   if constexpr (transport::HasHeader<Msg>::value) return run_id == 0 || m.header.run_id == run_id;
   return true;
 }
@@ -73,8 +73,12 @@ ViewLog readViewLog(const std::string& path) {
   return out;
 }
 
-LiveFeed::LiveFeed(const std::string& lcm_url, int64_t run_id, size_t capacity)
-    : lcm_(lcm_url), run_id_(run_id), capacity_(capacity) {
+LiveFeed::LiveFeed(const std::string& lcm_url, int64_t run_id, const std::optional<transport::MessageKey>& key,
+                   size_t capacity)
+    : lcm_(lcm_url),
+      run_id_(run_id),
+      auth_(key ? std::make_unique<transport::MessageAuthenticator>(*key) : nullptr),
+      capacity_(capacity) {
   if (!lcm_.good())
     throw std::runtime_error("LCM cannot open " + (lcm_url.empty() ? "its default URL" : lcm_url));
   for (const char* channel : {transport::kRobotDescription, transport::kPlantTruth,
@@ -108,7 +112,18 @@ void LiveFeed::loop() {
   }
 }
 
-void LiveFeed::onMessage(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+void LiveFeed::onMessage(const lcm::ReceiveBuffer* received, const std::string& channel) {
+  // With the run's key: the datagram's MAC checked before anything is
+  // decoded, and the payload without it. Without: decodeLive skips a trailer.
+  lcm::ReceiveBuffer payload = *received;
+  const lcm::ReceiveBuffer* buffer = &payload;
+  if (auth_) {
+    if (!auth_->verify(static_cast<const uint8_t*>(received->data), received->data_size)) {
+      ++rejected_;
+      return;
+    }
+    payload.data_size -= static_cast<uint32_t>(transport::kMacBytes);
+  }
   bool ok = false;
   if (channel == transport::kRobotDescription) {
     lagrange::robot_description_t m;

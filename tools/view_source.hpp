@@ -11,6 +11,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <mutex>
 #include <optional>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,6 +19,8 @@
 #include "lagrange/robot_description_t.hpp"
 #include "tools/log_reader.hpp"
 #include "tools/view_frames.hpp"
+
+#include "transport/message_auth.hpp"
 
 namespace lagrange::tools {
 
@@ -39,9 +42,13 @@ ViewLog readViewLog(const std::string& path);
 /// own. Keeps the newest `capacity` frames.
 class LiveFeed {
  public:
-  /// run_id 0 accepts every run on the URL. @throws std::runtime_error if
-  /// LCM cannot open `lcm_url`.
-  LiveFeed(const std::string& lcm_url, int64_t run_id, size_t capacity = 200000);
+  /// run_id 0 accepts every run on the URL. With `key`, only datagrams
+  /// carrying its MAC are read (the run's own check, before decoding);
+  /// without, a run's MAC trailer is skipped unchecked and anyone on the
+  /// group can draw into the page (runView says so). @throws
+  /// std::runtime_error if LCM cannot open `lcm_url`.
+  LiveFeed(const std::string& lcm_url, int64_t run_id, const std::optional<transport::MessageKey>& key,
+           size_t capacity = 200000);
   ~LiveFeed();
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
@@ -66,6 +73,7 @@ class LiveFeed {
 
   lcm::LCM lcm_;
   int64_t run_id_;
+  std::unique_ptr<transport::MessageAuthenticator> auth_;
   size_t capacity_;
   FrameAssembler assembler_;  // the LCM thread's only
   std::mutex mutex_;
