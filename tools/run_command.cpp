@@ -405,6 +405,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       break;
     }
   }
+  key.reset();  // every process has ended: the run's secret goes with it
   // The logger's last line (the final sample) may have come after the loop's last read.
   if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
   progress.finish();

@@ -15,7 +15,6 @@
 #include <sstream>
 #include <thread>
 
-#include "config/scenario.hpp"
 #include "model/error.hpp"
 #include "runtime/key_file.hpp"
 #include "tools/netns.hpp"
@@ -229,7 +228,8 @@ int runView(const ViewOptions& opt) {
       if (!source.key_file.empty()) {
         try {
           key = runtime::readKeyFile(source.key_file);
-        } catch (const config::ConfigError& e) {
+        } catch (const lagrange::Error& e) {  // a ConfigError (config/ is not included here: its Eigen
+                                              // breaks after httplib, whose resolv.h defines _res)
           std::cerr << "lagrange view: " << e.what() << "\n";
           return kExitBadInput;
         }
