@@ -7,8 +7,11 @@
 /// planted in the output directory) and handed to LCM's writer as a stream
 /// of our own, because lcm::LogFile opens its path with fopen, which follows
 /// links. Every write, flush and the close is checked: a full disk or an I/O
-/// error throws naming the file and the error, so the run stops and says why
-/// instead of ending with a log cut short in silence.
+/// error is kept (the first one; nothing more is written after it) and
+/// check(), flush() and close() throw it, naming the file and the error, so
+/// the run stops and says why instead of ending with a log cut short in
+/// silence. write() itself does not throw: it runs in LCM callbacks, and an
+/// exception would have to unwind through LCM's C frames.
 
 #include <lcm/eventlog.h>
 
@@ -47,9 +50,17 @@ class EventLog {
     ev.channel = const_cast<char*>(channel.c_str());
     ev.datalen = size;
     ev.data = const_cast<void*>(data);
+    if (!error_.empty()) return;
     errno = 0;
-    if (lcm_eventlog_write_event(&log_, &ev) != 0) fail("writing");
+    if (lcm_eventlog_write_event(&log_, &ev) != 0) {
+      error_ = util::ioErrorText("writing", path_, errno != 0 ? errno : EIO);
+      return;
+    }
     ++events_;
+  }
+  /// Throws the first write error, if there was one.
+  void check() const {
+    if (!error_.empty()) throw std::runtime_error(error_);
   }
   /// Encode an LCM message and append it.
   template <class Msg>
@@ -59,11 +70,13 @@ class EventLog {
     write(channel, buffer.data(), static_cast<int>(buffer.size()), utime);
   }
   void flush() {
+    check();
     errno = 0;
     if (std::fflush(log_.f) != 0) fail("writing");
   }
   /// Flushes and closes the file; throws if the last bytes could not be written.
   void close() {
+    check();
     FILE* f = log_.f;
     log_.f = nullptr;
     errno = 0;
@@ -78,6 +91,7 @@ class EventLog {
   }
 
   std::string path_;
+  std::string error_;  ///< the first write error ("" none)
   lcm_eventlog_t log_{};
   long long events_ = 0;
 };
