@@ -8,7 +8,8 @@
 /// a message missing from it -- lost on the way, or arriving while the
 /// logger was not reading (stopped, overloaded) and its socket buffer
 /// overflowed. Gaps are counted up to the newest number recorded; after it,
-/// the publisher's last STATUS tells how many it published. A restarted
+/// the publisher's last STATUS tells how many it published (not for STATUS
+/// itself: only its gaps count). A restarted
 /// process is a new publisher (its pid): the messages of its earlier life
 /// after its last recorded one are not counted (no STATUS of it remains).
 
@@ -53,9 +54,12 @@ class RecordGaps {
     for (const auto& [key, numbers] : sources_) {
       const auto& [channel, publisher, pid] = key;
       long long lacking = numbers.newest - numbers.distinct;  // gaps up to the newest recorded
+      // Published after the newest recorded. Not for STATUS: a process's
+      // STATUS counts itself, and its final ones go out after the logger
+      // has stopped listening -- the end of the run, not a loss.
       if (const int64_t published = publishedBy(last_status, channel, publisher, pid);
-          published > numbers.newest)
-        lacking += published - numbers.newest;  // published after the newest recorded
+          channel != transport::kStatus && published > numbers.newest)
+        lacking += published - numbers.newest;
       out[channel] += lacking;
     }
     // A channel of which the log holds nothing at all from its publisher.
