@@ -9,7 +9,7 @@
 /// logger was not reading (stopped, overloaded) and its socket buffer
 /// overflowed. Gaps are counted up to the newest number recorded; after it,
 /// the publisher's last STATUS tells how many it published (not for STATUS
-/// itself: only its gaps count). A restarted
+/// itself: only its gaps after the first recorded count). A restarted
 /// process is a new publisher (its pid): the messages of its earlier life
 /// after its last recorded one are not counted (no STATUS of it remains).
 
@@ -53,12 +53,16 @@ class RecordGaps {
     std::map<std::string, long long> out;
     for (const auto& [key, numbers] : sources_) {
       const auto& [channel, publisher, pid] = key;
-      long long lacking = numbers.newest - numbers.distinct;  // gaps up to the newest recorded
+      // Gaps up to the newest recorded. STATUS from the oldest recorded
+      // only: a process says "ready" as it starts, maybe before the logger
+      // listens (the per-tick channels start only once the logger is ready).
+      const bool status = channel == transport::kStatus;
+      long long lacking = numbers.newest - (status ? numbers.oldest - 1 : 0) - numbers.distinct;
       // Published after the newest recorded. Not for STATUS: a process's
       // STATUS counts itself, and its final ones go out after the logger
       // has stopped listening -- the end of the run, not a loss.
       if (const int64_t published = publishedBy(last_status, channel, publisher, pid);
-          channel != transport::kStatus && published > numbers.newest)
+          !status && published > numbers.newest)
         lacking += published - numbers.newest;
       out[channel] += lacking;
     }
@@ -84,6 +88,7 @@ class RecordGaps {
     std::vector<bool> seen;  ///< by sequence number
     long long distinct = 0;  ///< numbers recorded (a duplicate counts once)
     int64_t newest = 0;      ///< the largest recorded
+    int64_t oldest = 0;      ///< the smallest recorded
   };
   using Source = std::tuple<std::string, std::string, int32_t>;  ///< channel, publisher, pid
 
@@ -102,6 +107,7 @@ class RecordGaps {
     n.seen[i] = true;
     ++n.distinct;
     n.newest = std::max(n.newest, h.seq);
+    n.oldest = n.distinct == 1 ? h.seq : std::min(n.oldest, h.seq);
   }
 
   static int64_t publishedBy(const std::map<std::string, lagrange::status_t>& last_status,

@@ -19,6 +19,7 @@
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
+#include "transport/channels.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -266,17 +267,18 @@ TEST(Trust, OrdinaryRunSaysItsLogIsComplete) {
   }
 }
 
-// A realtime run whose logger is stopped (SIGSTOP) for a second: the others
-// go on publishing, the logger's socket buffer overflows. The summary says
+// A realtime run whose logger is stopped (SIGSTOP) for 3 s: the others go
+// on publishing, the logger's socket buffer overflows (4 MB holds about a
+// second of this run's traffic). The summary says
 // the log is incomplete and counts, per channel, exactly what run.lcm lacks.
 TEST(Trust, StoppedLoggerIsCountedAsMissingRecords) {
   const std::string dir = freshDir("sigstop");
-  BackgroundRun run(dir, "--mode realtime --set duration=4 -q");
+  BackgroundRun run(dir, "--mode realtime --set duration=6 -q");
   ASSERT_TRUE(waitForLog(dir, run, 30000));
   const pid_t logger = findProcess("lagrange-logger", dir);
   ASSERT_GT(logger, 0);
   ASSERT_EQ(kill(logger, SIGSTOP), 0);
-  std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+  std::this_thread::sleep_for(std::chrono::milliseconds(3000));
   ASSERT_EQ(kill(logger, SIGCONT), 0);
   const RunResult r = run.join();
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -285,7 +287,7 @@ TEST(Trust, StoppedLoggerIsCountedAsMissingRecords) {
   EXPECT_FALSE(j["log"]["complete"].get<bool>()) << j["log"].dump();
   ASSERT_TRUE(j["log"]["incomplete_because"].is_string());
   EXPECT_NE(j["log"]["incomplete_because"].get<std::string>().find("not in the log"), std::string::npos);
-  // The stop happened: a second of samples at 1 kHz did not all fit in the buffer.
+  // The stop happened: 3 s of samples at 1 kHz did not all fit in the buffer.
   EXPECT_GT(j["log"]["missing_records"]["PLANT_TRUTH"].get<long long>(), 0) << j["log"].dump();
   EXPECT_GT(j["log"]["missing_records"]["PLANT_POSITION"].get<long long>(), 0) << j["log"].dump();
   expectMissingMatchesTheLog(dir);
