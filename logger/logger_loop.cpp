@@ -12,6 +12,7 @@
 #include "controller/gain_report.hpp"
 #include "logger/event_log.hpp"
 #include "logger/metrics_lcm.hpp"
+#include "logger/record_gaps.hpp"
 #include "logger/run_end.hpp"
 #include "logger/summary.hpp"
 #include "logger/tick_confirmation.hpp"
@@ -19,6 +20,7 @@
 #include "runtime/process.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/output_file.hpp"
 
 namespace lagrange::logger {
 namespace {
@@ -67,6 +69,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
                                 s.lockstep.logger_window);
   RunEnd end(
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.finish_grace)));
+  RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
 
   // Record first, then interpret: the log keeps every message, even ones
   // the validators below reject. Every channel but LCM's own self-test:
@@ -79,6 +82,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$).*",
                     [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
                       log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
+                      gaps.recorded(channel, rbuf->data, rbuf->data_size, node.runId());
                     });
   // Every per-tick channel the same way: the metrics take what they need
   // (metrics_lcm.hpp), then the tick counts as recorded. Every copy counts,
@@ -121,6 +125,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   auto next_progress_line = Clock::now();
   while (!runtime::stopRequested()) {
     node.handle(20);
+    log.check();  // a write error (full disk) stops the run, naming run.lcm and the error
     const auto now = Clock::now();
     if (now >= next_scenario) {
       node.publish(transport::kScenario, scenario);
@@ -161,7 +166,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
     spdlog::warn("not every process reported 'finished' within {} s of the plant", options.finish_grace);
   report(runtime::stopRequested() ? runtime::State::kInterrupted : runtime::State::kFinished);
   writeProgress(options.progress_fd, metrics);  // the final sample, for the launcher's last progress line
-  log.flush();
+  log.close();  // throws naming run.lcm if its last bytes could not be written
   facts.log_events = log.events();
   facts.missing_ticks = confirmation.missingUpTo(metrics.newestTick());
   lagrange::status_t own{};  // zeroed: its loop statistics are not measured
@@ -173,13 +178,12 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   own.num_channels = static_cast<int32_t>(own.channels.size());
   facts.final_status["logger"] = own;
   facts.wall_time = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  facts.missing_records = gaps.missing(facts.final_status);
 
   gains.sampled = controller::checkSampledData(s);
   const auto summary = makeSummary(s, metrics.summary(), gains, facts);
   const std::string summary_path = (std::filesystem::path(options.out_dir) / "summary.json").string();
-  std::ofstream out(summary_path);
-  out << summary.dump(2) << "\n";
-  if (!out) throw std::runtime_error("cannot write '" + summary_path + "'");
+  util::writeOutputFile(summary_path, summary.dump(2) + "\n");  // throws naming the file and the error
   spdlog::info("wrote {} events to {} and {}", facts.log_events, log_path, summary_path);
   return 0;
 }

@@ -10,6 +10,7 @@
 /// The first event of the log is the resolved scenario on channel SCENARIO,
 /// so a log describes itself.
 
+#include "logger/error_line.hpp"
 #include "logger/logger_loop.hpp"
 #include "runtime/process.hpp"
 
@@ -37,7 +38,12 @@ int DoMain(int argc, char** argv) {
       // normal scheduler (runtime/process.hpp).
       [&](const config::Scenario& s) { gains = controller::checkGains(s, false); },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        return logger::runLogger(s, node, options, gains);
+        try {
+          return logger::runLogger(s, node, options, gains);
+        } catch (const std::exception& e) {
+          logger::sendErrorLine(options.progress_fd, e.what());  // for the launcher to print
+          throw;
+        }
       },
       // Every message of the run lands here: ask for a deep socket buffer.
       kLoggerReceiveBuffer);

@@ -195,6 +195,19 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"missing_samples",
        t.samples == 0 ? 0LL : std::max(0LL, std::llround(t.sim_time / s.tickPeriod()) + 1 - t.samples)},
       {"missing_ticks", f.missing_ticks}};
+  // Whether the log holds every message the run's processes published (as
+  // far as their sequence numbers and last STATUS tell): a reader can trust
+  // an analysis of it only then. An in-process run writes every message.
+  long long missing = 0;
+  for (const auto& [channel, n] : f.missing_records) missing += n;
+  j["log"]["missing_records"] = f.missing_records;
+  j["log"]["complete"] = missing == 0;
+  j["log"]["incomplete_because"] =
+      missing == 0 ? json(nullptr)
+                   : json(std::to_string(missing) +
+                          " messages the run's processes published are not in the log (per channel in "
+                          "log.missing_records): the logger did not receive them -- lost on the way, or "
+                          "sent while the logger was not reading (stopped, overloaded) and dropped");
   return j;
 }
 

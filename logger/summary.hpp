@@ -22,6 +22,8 @@ struct RunFacts {
   int64_t run_id = 0;                                      ///< the run's identity (header.run_id)
   /// Per per-tick channel: ticks up to the newest sample with no intact message in the log.
   std::map<std::string, long long> missing_ticks;
+  /// Per channel: messages of the run's processes the log lacks (logger::RecordGaps).
+  std::map<std::string, long long> missing_records;
 };
 
 nlohmann::json makeSummary(const config::Scenario& scenario, const TrackingSummary& tracking,

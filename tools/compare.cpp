@@ -14,6 +14,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -24,6 +25,7 @@
 #include "model/reference.hpp"
 #include "tools/compare_output.hpp"
 #include "tools/log_reader.hpp"
+#include "tools/out_dir_lock.hpp"
 #include "tools/spawn_logged.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -248,8 +250,20 @@ int runComparison(const CompareOptions& o) {
     std::cerr << "lagrange compare: " << e.what() << "\n";
     return kExitBadInput;
   }
+  // One comparison per directory, like one run (tools/out_dir_lock.hpp):
+  // two would run into the same runs/TYPE and write one comparison.md.
+  std::optional<OutDirLock> lock;
   try {
     fs::create_directories(o.out_dir);
+    lock.emplace(o.out_dir, "lagrange compare");
+  } catch (const ConfigError& e) {
+    std::cerr << "lagrange compare: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange compare: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  try {
     const std::vector<CompareRun>& runs = plan.runs;
     const std::vector<int> status = runAll(o, runs);
     std::vector<RunNumbers> numbers;

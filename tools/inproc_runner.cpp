@@ -21,6 +21,7 @@
 #include "tools/progress.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/output_file.hpp"
 
 namespace lagrange::tools {
 
@@ -30,7 +31,10 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
   // Every message is built either way (the controller reads its inputs from
   // them); only the writing is skipped without a log.
   const auto record = [log](const std::string& channel, const auto& msg, int64_t utime) {
-    if (log) log->writeMessage(channel, msg, utime);
+    if (log) {
+      log->writeMessage(channel, msg, utime);
+      log->check();  // a full disk stops the run here, naming run.lcm
+    }
   };
   if (log) {
     log->writeMessage(transport::kScenario, config::scenarioMessage(s), transport::nowUtime());
@@ -128,10 +132,9 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   facts.log_path = log_path;
   facts.log_events = log.events();
   facts.wall_time = outcome.wall_time;
+  log.close();  // throws naming run.lcm if its last bytes could not be written
   const auto summary = logger::makeSummary(s, outcome.tracking, gains, facts);
-  std::ofstream out(fs::path(out_dir) / "summary.json");
-  out << summary.dump(2) << "\n";
-  if (!out) throw std::runtime_error("cannot write summary.json in " + out_dir);
+  util::writeOutputFile((fs::path(out_dir) / "summary.json").string(), summary.dump(2) + "\n");
   return outcome.exit_code;
 }
 

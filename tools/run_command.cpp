@@ -20,10 +20,12 @@
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
+#include "logger/error_line.hpp"
 #include "model/error.hpp"
 #include "runtime/key_file.hpp"
 #include "tools/inproc_runner.hpp"
 #include "tools/netns.hpp"
+#include "tools/out_dir_lock.hpp"
 #include "tools/progress.hpp"
 #include "tools/report.hpp"
 #include "tools/run_key.hpp"
@@ -31,6 +33,7 @@
 #include "tools/supervisor.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/output_file.hpp"
 
 namespace lagrange::tools {
 
@@ -46,14 +49,33 @@ std::string executableDir() { return fs::read_symlink("/proc/self/exe").parent_p
 std::string prepareOutDir(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  const fs::path probe = fs::path(dir) / ".lagrange-write-test";
-  std::ofstream test(probe);
-  if (ec || !test)
-    throw config::ConfigError("output directory '" + dir +
-                              "' cannot be created or written; expected a writable directory (--out)");
-  test.close();
+  const std::string probe = (fs::path(dir) / ".lagrange-write-test").string();
+  try {
+    if (ec) throw std::runtime_error(ec.message());
+    close(util::createOutputFile(probe));  // not through a link planted there
+  } catch (const util::UnsafeOutputPath& e) {
+    throw config::ConfigError(std::string("output directory: ") + e.what());
+  } catch (const std::exception& e) {
+    throw config::ConfigError("output directory '" + dir + "' cannot be created or written (" + e.what() +
+                              "); expected a writable directory (--out)");
+  }
   fs::remove(probe, ec);
   return fs::absolute(dir).string();
+}
+
+// Every file a run writes into the output directory, so that a link planted
+// in the place of one is refused (exit 2) before anything starts, rather
+// than at the moment its writer comes to it. Each writer creates its file
+// with util::createOutputFile all the same (a link planted during the run).
+void checkOutputPaths(const std::string& out_dir, bool report) {
+  for (const char* name : {"run.lcm", "summary.json", "config.resolved.yaml", "lcm.json", "run.key",
+                           "logger.log", "controller.log", "actuator.log", "plant.log"})
+    util::checkOutputPath((fs::path(out_dir) / name).string());
+  const std::string report_dir = (fs::path(out_dir) / "report").string();
+  if (!report || !fs::exists(fs::symlink_status(report_dir))) return;
+  util::makeOutputDirectory(report_dir);  // refuses a link or a file named report
+  // The report's writers (CSV, plots) replace the files of an earlier report.
+  for (const auto& entry : fs::directory_iterator(report_dir)) util::checkOutputPath(entry.path().string());
 }
 
 // Prints what the robot's model leaves out of its description (URDF limits,
@@ -74,9 +96,8 @@ bool gainsAllowRun(const config::Scenario& scenario, const controller::GainRepor
 std::string writeResolved(const config::Scenario& scenario, const std::string& source,
                           const std::string& out_dir) {
   const std::string path = (fs::path(out_dir) / "config.resolved.yaml").string();
-  std::ofstream out(path);
-  out << "# Resolved scenario of this run: defaults, the file " << source << " and --set overrides.\n"
-      << config::toYaml(scenario);
+  util::writeOutputFile(path, "# Resolved scenario of this run: defaults, the file " + source +
+                                  " and --set overrides.\n" + config::toYaml(scenario));
   return path;
 }
 
@@ -94,7 +115,7 @@ void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
   }
   j["timing"]["cpu_seconds"] = cpu;
   j["supervision"] = supervision;
-  std::ofstream(path) << j.dump(2) << "\n";
+  util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
 }
 
 // Reads "sim_time tracking_error" lines from the logger's progress pipe.
@@ -109,20 +130,28 @@ class ProgressReader {
     const ssize_t got = read(fd_, buf, sizeof buf);
     if (got <= 0) return std::nullopt;
     pending_.append(buf, static_cast<size_t>(got));
-    const auto end = pending_.rfind('\n');
-    if (end == std::string::npos) return std::nullopt;
-    const auto previous = end == 0 ? std::string::npos : pending_.rfind('\n', end - 1);
-    const size_t begin = previous == std::string::npos ? 0 : previous + 1;
-    std::istringstream line(pending_.substr(begin, end - begin));
-    pending_.erase(0, end + 1);
-    double t = 0.0, error = 0.0;
-    if (!(line >> t >> error)) return std::nullopt;
-    return std::make_pair(t, error);
+    std::optional<std::pair<double, double>> newest;
+    for (size_t end; (end = pending_.find('\n')) != std::string::npos; pending_.erase(0, end + 1)) {
+      const std::string line = pending_.substr(0, end);
+      // The logger's last word when it stops on an error (logger/main.cpp):
+      // its own log may be on the disk that just filled up.
+      if (line.rfind(logger::kLoggerErrorPrefix, 0) == 0) {
+        logger_error_ = line.substr(std::strlen(logger::kLoggerErrorPrefix));
+        continue;
+      }
+      std::istringstream in(line);
+      double t = 0.0, error = 0.0;
+      if (in >> t >> error) newest = std::make_pair(t, error);
+    }
+    return newest;
   }
+  /// Why the logger stopped, if it said so ("" otherwise).
+  const std::string& loggerError() const { return logger_error_; }
 
  private:
   int fd_;
   std::string pending_;
+  std::string logger_error_;
 };
 
 void printTail(const std::string& path, int lines) {
@@ -229,6 +258,7 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
   if (!opt.report || !runsHere(opt, "logger")) return;
   const std::string report_dir = (fs::path(out_dir) / "report").string();
   try {
+    util::makeOutputDirectory(report_dir);  // never into a link planted during the run
     const Report report = writeReport((fs::path(out_dir) / "run.lcm").string(), report_dir);
     if (opt.quiet) {
       for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
@@ -395,9 +425,16 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
         continue;
       }
       progress.finish();
-      std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
-                << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
-      printTail((fs::path(out_dir) / (e.name + ".log")).string(), 15);
+      if (e.name == "logger") progress_reader.wait(0);  // its last word, if it said one
+      if (e.name == "logger" && !progress_reader.loggerError().empty()) {
+        // A write error: the log tail would be on the same full disk.
+        std::cerr << "lagrange run: the logger stopped the run: " << progress_reader.loggerError()
+                  << "; stopping the others\n";
+      } else {
+        std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
+                  << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
+        printTail((fs::path(out_dir) / (e.name + ".log")).string(), 15);
+      }
       for (const ChildExit& other : supervisor.stopAll(5.0))
         if (other.failed() && other.signal != SIGTERM)
           std::cerr << "lagrange run: process '" << other.name << "' " << other.describe() << "\n";
@@ -410,7 +447,14 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
   progress.finish();
   close(progress_pipe[0]);
-  if (exit_code == 0) addLauncherFacts(out_dir, cpu, supervision);
+  if (exit_code == 0 && runsHere(opt, "logger")) {
+    try {
+      addLauncherFacts(out_dir, cpu, supervision);
+    } catch (const std::exception& e) {
+      std::cerr << "lagrange run: " << e.what() << "\n";
+      exit_code = kExitFailed;
+    }
+  }
   if (exit_code != kExitInterrupted) writeRunReport(opt, out_dir);
   if (exit_code == 0 && !opt.quiet) {
     if (runsHere(opt, "logger"))
@@ -423,7 +467,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
 }
 }  // namespace
 
-int runScenario(const RunOptions& opt) {
+namespace {
+int runScenarioLocked(const RunOptions& opt) {
   if (opt.check && !runsHere(opt, "logger")) {
     std::cerr << "lagrange run: --check reads the run's summary.json, which the logger writes on its own "
                  "host; expected --processes to include logger\n";
@@ -443,12 +488,21 @@ int runScenario(const RunOptions& opt) {
     std::cerr << "lagrange run: " << e.what() << "\n";
     return kExitBadInput;
   }
+  // The launcher's lock on the output directory, for the whole run: taken
+  // by the process that runs it (after the re-exec into a private network
+  // namespace, which would drop it), before anything is written there.
+  std::optional<OutDirLock> lock;
+  auto lockOutDir = [&] {
+    lock.emplace(out_dir, "lagrange run");
+    checkOutputPaths(out_dir, opt.report);
+  };
 
   if (scenario.mode == config::Mode::kInproc) {
     if (!opt.processes.empty()) {
       std::cerr << "lagrange run: --processes does not apply to mode inproc (one process, no LCM)\n";
       return kExitBadInput;
     }
+    lockOutDir();
     const controller::GainReport gains = controller::checkGains(scenario);
     if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
     writeResolved(scenario, opt.config_path, out_dir);
@@ -475,10 +529,30 @@ int runScenario(const RunOptions& opt) {
       return kExitFailed;
     }
   }
+  lockOutDir();
   if (!gainsAllowRun(scenario, controller::checkGains(scenario), opt)) return kExitBadInput;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
 
   return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));
+}
+}  // namespace
+
+// A link planted in the output directory or another run holding it is bad
+// input (exit 2); a file that cannot be written (full disk, I/O error) a
+// runtime fault (exit 1). Both name the file.
+int runScenario(const RunOptions& opt) {
+  try {
+    return runScenarioLocked(opt);
+  } catch (const config::ConfigError& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const util::UnsafeOutputPath& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange run: " << e.what() << "\n";
+    return kExitFailed;
+  }
 }
 
 }  // namespace lagrange::tools

@@ -13,6 +13,7 @@
 
 #include "model/error.hpp"
 #include "tools/netns.hpp"
+#include "util/output_file.hpp"
 
 namespace lagrange::tools {
 
@@ -33,9 +34,7 @@ void writeEndpoint(const std::string& out_dir, const RunEndpoint& endpoint) {
   nlohmann::json j = {{"lcm_url", endpoint.lcm_url}, {"run_id", endpoint.run_id}, {"netns_pid", nullptr}};
   if (endpoint.netns_pid) j["netns_pid"] = *endpoint.netns_pid;
   if (endpoint.launcher_pid) j["launcher_pid"] = *endpoint.launcher_pid;
-  std::ofstream out(fs::path(out_dir) / kEndpointFile);
-  out << j.dump(2) << "\n";
-  if (!out) throw std::runtime_error("cannot write " + out_dir + "/" + kEndpointFile);
+  util::writeOutputFile((fs::path(out_dir) / kEndpointFile).string(), j.dump(2) + "\n");
 }
 
 RunEndpoint readEndpoint(const std::string& out_dir) {

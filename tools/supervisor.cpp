@@ -9,9 +9,12 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <thread>
+
+#include "model/error.hpp"
 
 namespace lagrange::tools {
 
@@ -32,13 +35,20 @@ void Supervisor::start(const ChildSpec& spec) {
     // The child must not outlive the launcher.
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(1);
-    const int fd =
-        open(spec.log_path.c_str(), O_WRONLY | O_CREAT | (spec.append_log ? O_APPEND : O_TRUNC), 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-      close(fd);
+    // Never through a link planted in the output directory (O_NOFOLLOW); a
+    // fresh log replaces the old file rather than truncating it (O_EXCL
+    // after unlink), so a hard link's other names keep their bytes.
+    if (!spec.append_log) unlink(spec.log_path.c_str());
+    const int fd = open(spec.log_path.c_str(),
+                        O_WRONLY | O_CREAT | O_NOFOLLOW | (spec.append_log ? O_APPEND : O_EXCL), 0644);
+    if (fd < 0) {
+      std::fprintf(stderr, "lagrange run: cannot create '%s': %s; expected a writable output directory\n",
+                   spec.log_path.c_str(), std::strerror(errno));
+      _exit(kExitFailed);
     }
+    dup2(fd, STDOUT_FILENO);
+    dup2(fd, STDERR_FILENO);
+    close(fd);
     if (spec.pass_fd >= 0) dup2(spec.pass_fd, 3);  // dup2 clears close-on-exec
     const int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, STDIN_FILENO);

@@ -1,7 +1,6 @@
 #include "tools/sweep.hpp"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,10 +15,12 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #include "model/error.hpp"
+#include "tools/out_dir_lock.hpp"
 #include "tools/spawn_logged.hpp"
 #include "tools/sweep_maps.hpp"
 #include "tools/sweep_plan.hpp"
@@ -62,16 +63,6 @@ void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
   std::ofstream(plan_path.string() + ".tmp", std::ios::binary) << text;
   fs::rename(plan_path.string() + ".tmp", plan_path);
   fs::copy_file(plan.spec.file, fs::path(out_dir) / "sweep.yaml", fs::copy_options::overwrite_existing);
-}
-
-// One sweep at a time in OUT: two would run the same rows. The lock goes
-// with the process (flock), also when it is killed.
-void lockOutDir(const std::string& out_dir) {
-  const std::string path = (fs::path(out_dir) / "lock").string();
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0 || ::flock(fd, LOCK_EX | LOCK_NB) != 0)
-    throw ConfigError("--out " + out_dir + ": another lagrange sweep is running in it (it holds " + path +
-                      "); expected it to end first, or another --out directory");
 }
 
 SweepPlan loadPlan(const std::string& out_dir) {
@@ -281,6 +272,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
 }  // namespace
 
 int runSweep(const SweepOptions& o) {
+  std::optional<OutDirLock> lock;
   SweepPlan plan;
   try {
     plan = planSweep(readSweepSpec(o.sweep_file));
@@ -291,8 +283,12 @@ int runSweep(const SweepOptions& o) {
       std::cout << "\n";
       return kExitOk;
     }
+    // One sweep at a time in OUT: two would run the same rows. Locked
+    // before plan.json is written (tools/out_dir_lock.hpp: names the
+    // holder's pid, dies with it).
+    fs::create_directories(o.out_dir);
+    lock.emplace(o.out_dir, "lagrange sweep");
     prepareOutDir(o.out_dir, plan);
-    lockOutDir(o.out_dir);
   } catch (const ConfigError& e) {
     std::cerr << "lagrange sweep: " << e.what() << "\n";
     return kExitBadInput;

@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// The logger's last word to the launcher when it stops on an error: one
+/// line "error: WHAT" on its progress pipe (--progress-fd). The launcher
+/// prints it; the logger's own log may be on the disk that just filled up.
+
+#include <unistd.h>
+
+#include <string>
+
+namespace lagrange::logger {
+
+inline constexpr const char* kLoggerErrorPrefix = "error: ";
+
+/// Best effort, like the progress lines: never blocks, never throws.
+inline void sendErrorLine(int fd, const std::string& what) {
+  if (fd < 0) return;
+  std::string line = kLoggerErrorPrefix + what;
+  for (char& c : line)
+    if (c == '\n') c = ' ';
+  line += '\n';
+  [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
+}
+
+}  // namespace lagrange::logger

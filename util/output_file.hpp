@@ -1,0 +1,111 @@
+#pragma once
+/// @file
+/// Creating an output file without following a link someone planted in its
+/// place. An output directory may be shared or reused: DIR/summary.json could
+/// be a symbolic link to a file of the user's, DIR/run.lcm a hard link to
+/// one; writing through either (std::ofstream, fopen "w", O_TRUNC) would
+/// overwrite that file. So a file is always made new: a planted symbolic link
+/// is refused (UnsafeOutputPath, naming the file), an old regular file is
+/// unlinked (a hard link's other names keep their bytes) and the new one is
+/// created with O_CREAT | O_EXCL | O_NOFOLLOW, which never follows a link.
+/// Every failure names the file and says why (strerror).
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace lagrange::util {
+
+/// A path where an output must not be written: a symbolic link, a directory,
+/// a device. Bad input (exit 2), unlike a write error (exit 1).
+class UnsafeOutputPath : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// "writing 'PATH' failed: No space left on device", from errno.
+inline std::string ioErrorText(const std::string& what, const std::string& path, int error) {
+  return what + " '" + path + "' failed: " + std::strerror(error);
+}
+
+/// Throws UnsafeOutputPath unless nothing or a regular file is at `path`.
+inline void checkOutputPath(const std::string& path) {
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return;
+    throw std::runtime_error(ioErrorText("examining", path, errno));
+  }
+  if (S_ISLNK(st.st_mode)) {
+    char target[PATH_MAX] = {};
+    const ssize_t n = readlink(path.c_str(), target, sizeof target - 1);
+    throw UnsafeOutputPath("'" + path + "' is a symbolic link (to '" + std::string(target, n > 0 ? n : 0) +
+                           "'); expected a regular file or nothing there: outputs are never written "
+                           "through a link. Remove the link or choose another --out directory");
+  }
+  if (!S_ISREG(st.st_mode))
+    throw UnsafeOutputPath("'" + path +
+                           "' is not a regular file; expected a regular file or nothing there (an output "
+                           "of a run goes there)");
+}
+
+/// Creates `path` anew, replacing a regular file (see the file comment);
+/// returns the open descriptor (close-on-exec).
+inline int createOutputFile(const std::string& path, mode_t mode = 0644) {
+  checkOutputPath(path);
+  if (unlink(path.c_str()) != 0 && errno != ENOENT)
+    throw std::runtime_error(ioErrorText("replacing", path, errno));
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
+  if (fd >= 0) return fd;
+  const int error = errno;
+  if (error == EEXIST || error == ELOOP)  // something was put there between the unlink and the open
+    throw UnsafeOutputPath("'" + path + "' reappeared while it was being created (" + std::strerror(error) +
+                           "); expected nothing else to write the output directory during a run");
+  throw std::runtime_error(ioErrorText("creating", path, error));
+}
+
+/// Writes all of `data` to `fd`; throws naming `path` and the error.
+inline void writeAll(int fd, const std::string& data, const std::string& path) {
+  size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw std::runtime_error(ioErrorText("writing", path, errno));
+    done += static_cast<size_t>(n);
+  }
+}
+
+/// A whole output file: created anew (createOutputFile), written, closed;
+/// every step checked -- close reports a delayed write error (NFS, quota).
+inline void writeOutputFile(const std::string& path, const std::string& data, mode_t mode = 0644) {
+  const int fd = createOutputFile(path, mode);
+  try {
+    writeAll(fd, data, path);
+  } catch (...) {
+    close(fd);
+    throw;
+  }
+  if (close(fd) != 0) throw std::runtime_error(ioErrorText("writing", path, errno));
+}
+
+/// Makes directory `path` unless it is one already; throws UnsafeOutputPath
+/// if a symbolic link or a file is there (files go into it next).
+inline void makeOutputDirectory(const std::string& path) {
+  if (mkdir(path.c_str(), 0755) == 0) return;
+  if (errno != EEXIST) throw std::runtime_error(ioErrorText("creating the directory", path, errno));
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0) throw std::runtime_error(ioErrorText("examining", path, errno));
+  if (S_ISLNK(st.st_mode))
+    throw UnsafeOutputPath("'" + path +
+                           "' is a symbolic link; expected a directory of this run's own or nothing there: "
+                           "outputs are never written through a link");
+  if (!S_ISDIR(st.st_mode))
+    throw UnsafeOutputPath("'" + path + "' is not a directory; expected a directory or nothing there");
+}
+
+}  // namespace lagrange::util
