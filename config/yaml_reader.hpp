@@ -3,7 +3,8 @@
 /// Strict, path-aware reading of a YAML map: every key read is remembered, so
 /// finish() can reject the ones nobody asked for (unknown keys are errors,
 /// never ignored), and every error names the dotted key, the value, what was
-/// expected and the line.
+/// expected and the line. Every number read is checked against its key's
+/// range (config/key_ranges.hpp) after the reader's own checks.
 
 #include <yaml-cpp/yaml.h>
 
@@ -66,6 +67,11 @@ class MapReader {
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
  private:
+  double finiteNumber(const std::string& key);  ///< required; no range check
+  /// Fails unless v is in the key's range (config/key_ranges.hpp); `entry`
+  /// prefixes the message ("entry 2: ") for a list.
+  void checkRange(const std::string& key, double v, const std::string& entry = "") const;
+
   YAML::Node node_;
   std::string path_;
 };
