@@ -32,7 +32,7 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
     const std::filesystem::path path = std::filesystem::path(c.file).is_relative()
                                            ? std::filesystem::path(base_dir) / c.file
                                            : std::filesystem::path(c.file);
-    const FileText text = readRegularFile(path.string(), kMaxUrdfBytes, "a URDF file");
+    const FileText text = readRegularFile(path.string(), kMaxUrdfBytes, "a URDF file", c.file);
     if (!text.error.empty()) {
       if (!std::filesystem::exists(path))
         u.fail(

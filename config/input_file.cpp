@@ -32,9 +32,10 @@ const char* kindOf(mode_t mode) {
 }
 }  // namespace
 
-FileText readRegularFile(const std::string& path, std::uintmax_t max_bytes, const std::string& expected) {
+FileText readRegularFile(const std::string& path, std::uintmax_t max_bytes, const std::string& expected,
+                         const std::string& shown) {
   FileText out;
-  const std::string quoted = "'" + path + "'";
+  const std::string quoted = "'" + (shown.empty() ? path : shown) + "'";
   struct stat st {};
   if (stat(path.c_str(), &st) != 0) {
     out.error = "cannot read " + quoted + " (" + std::strerror(errno) + "); expected " + expected;

@@ -24,8 +24,10 @@ struct FileText {
 /// The whole of `path` when it is a readable regular file of at most
 /// max_bytes; otherwise `error` says what it is and that `expected` (e.g. "a
 /// YAML scenario file") was expected. Never blocks on a FIFO, never reads
-/// more than max_bytes + 1 bytes.
-FileText readRegularFile(const std::string& path, std::uintmax_t max_bytes, const std::string& expected);
+/// more than max_bytes + 1 bytes. Messages name the file as `shown` (the
+/// path as the user wrote it), or as `path` when empty.
+FileText readRegularFile(const std::string& path, std::uintmax_t max_bytes, const std::string& expected,
+                         const std::string& shown = "");
 
 /// "1 MiB", "16 MiB", "2.5 MiB", "800 bytes": a size for a message.
 std::string sizeText(std::uintmax_t bytes);
