@@ -55,7 +55,7 @@ const KeyRange kSeed{0.0, 1e9, false, "", ""};
 const std::map<std::string, KeyRange>& keyRanges() {
   static const std::map<std::string, KeyRange> table = {
       {"duration",
-       {0.0, 1e9, true, "s", "the samples it asks for are bounded too (docs/configuration.md, Work)"}},
+       {0.0, 1e9, true, "s", "the samples, physics steps, memory and log it asks for are bounded too"}},
       {"robot.links[i].length", {1e-4, 1e3, false, "m", ""}},
       {"robot.links[i].com", {0.0, 1e3, false, "m", ""}},
       {"robot.links[i].mass", {1e-6, 1e6, false, "kg", ""}},
@@ -104,7 +104,7 @@ const std::map<std::string, KeyRange>& keyRanges() {
       {"metrics.xi_tolerance", {0.0, 1e15, true, "", ""}},
       {"lockstep.retransmit_timeout",
        {1e-3, 3600.0, false, "s",
-        "faster re-sends flood the bus and the log (each re-send is logged) before an answer can come back"}},
+        "faster re-sends flood the bus and the log, where each is recorded, before an answer can come back"}},
       {"lockstep.logger_window", {1.0, 1e4, false, "ticks", ""}},
       {"realtime.max_torque_age", {1.0, 1e6, false, "periods", ""}},
       {"realtime.hold_periods", {0.0, 1e6, false, "periods", ""}},
