@@ -73,11 +73,11 @@ double MapReader::finiteNumber(const std::string& key) {
   return v;
 }
 
-void MapReader::checkRange(const std::string& key, double v, const std::string& entry) const {
+void MapReader::checkRange(const std::string& key, double v, const std::string& entry) {
   const KeyRange* range = rangeOf(keyPath(key));
   if (range == nullptr || range->contains(v)) return;
-  fail(key, entry + "expected a number " + rangeText(*range) + ", got " + shortNumber(v) +
-                (range->why.empty() ? "" : " (" + range->why + ")"));
+  out_of_range_.push_back({key, entry + "expected a number " + rangeText(*range) + ", got " + shortNumber(v) +
+                                    (range->why.empty() ? "" : " (" + range->why + ")")});
 }
 
 double MapReader::number(const std::string& key) {
@@ -168,6 +168,7 @@ MapReader MapReader::map(const std::string& key) {
 }
 
 void MapReader::finish(const std::set<std::string>& known) const {
+  if (!out_of_range_.empty()) fail(out_of_range_.front().first, out_of_range_.front().second);
   for (const auto& entry : node_) {
     const std::string key = entry.first.Scalar();
     if (known.count(key) == 0) {

@@ -4,7 +4,8 @@
 /// finish() can reject the ones nobody asked for (unknown keys are errors,
 /// never ignored), and every error names the dotted key, the value, what was
 /// expected and the line. Every number read is checked against its key's
-/// range (config/key_ranges.hpp) after the reader's own checks.
+/// range (config/key_ranges.hpp) when the section is finished, after the
+/// reader's own checks.
 
 #include <yaml-cpp/yaml.h>
 
@@ -12,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "util/enum_names.hpp"
@@ -56,7 +58,8 @@ class MapReader {
 
   MapReader map(const std::string& key);  ///< required sub-map
 
-  /// @throws ConfigError listing the first unknown key and the known ones.
+  /// @throws ConfigError naming the first number read out of its key's range,
+  /// else the first unknown key and the known ones.
   void finish(const std::set<std::string>& known) const;
 
   /// The keys of the map, in file order (for maps keyed by name).
@@ -68,11 +71,15 @@ class MapReader {
 
  private:
   double finiteNumber(const std::string& key);  ///< required; no range check
-  /// Fails unless v is in the key's range (config/key_ranges.hpp); `entry`
-  /// prefixes the message ("entry 2: ") for a list.
-  void checkRange(const std::string& key, double v, const std::string& entry = "") const;
+  /// Notes v when it is outside its key's range (config/key_ranges.hpp), for
+  /// finish() to report: the section reader's own checks, which come between
+  /// the read and finish(), say more ("a SCHED_FIFO priority from 1 to 99, or
+  /// 0 for the normal scheduler") and come first. `entry` prefixes the
+  /// message ("entry 2: ") for a list.
+  void checkRange(const std::string& key, double v, const std::string& entry = "");
 
   YAML::Node node_;
+  std::vector<std::pair<std::string, std::string>> out_of_range_;  ///< key, message
   std::string path_;
 };
 
