@@ -13,12 +13,12 @@
 
 namespace lagrange::config {
 
-/// Samples (ticks) of one run: 1e8 is 28 hours at 1 kHz; shipped runs take 2e4.
+/// Samples (ticks) of one run: 1e8 is 28 hours at 1 kHz; shipped runs take at most 1.5e4.
 inline constexpr double kMaxSamples = 1e8;
 /// Physics steps per sample: 1e5 is a 10 ns step at 1 kHz.
 inline constexpr double kMaxStepsPerSample = 1e5;
 /// Physics steps of one run: 1e9 is 28 hours at a 0.1 ms step, about an hour
-/// of computing for a small arm; shipped runs take at most 8e5.
+/// of computing for a small arm; shipped runs take at most 4e5.
 inline constexpr double kMaxPhysicsSteps = 1e9;
 /// Joints of an arm (links of a planar chain, moving joints of a URDF chain):
 /// the gain check's proven k_c costs O(n^5) memory and O(n^6) time in the
