@@ -4,11 +4,11 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "config/input_file.hpp"
 #include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
+#include "config/work_bounds.hpp"
 #include "model/planar_chain.hpp"
 
 namespace lagrange::config::sections {
@@ -32,15 +32,17 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
     const std::filesystem::path path = std::filesystem::path(c.file).is_relative()
                                            ? std::filesystem::path(base_dir) / c.file
                                            : std::filesystem::path(c.file);
-    std::ifstream in(path);
-    if (!in)
-      u.fail("file",
-             "cannot read '" + c.file + "'; expected a readable URDF file" +
-                 (std::filesystem::path(c.file).is_relative() ? ", relative to the scenario's folder" : "") +
-                 " (looked at '" + path.string() + "')");
-    std::stringstream text;
-    text << in.rdbuf();
-    c.xml = text.str();
+    const FileText text = readRegularFile(path.string(), kMaxUrdfBytes, "a URDF file", c.file);
+    if (!text.error.empty()) {
+      if (!std::filesystem::exists(path))
+        u.fail(
+            "file",
+            "cannot read '" + c.file + "'; expected a readable URDF file" +
+                (std::filesystem::path(c.file).is_relative() ? ", relative to the scenario's folder" : "") +
+                " (looked at '" + path.string() + "')");
+      u.fail("file", text.error);
+    }
+    c.xml = text.text;
   }
   u.finish(keys::kUrdf);
   try {
@@ -49,6 +51,11 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
   } catch (const lagrange::Error& e) {
     robot.fail("urdf", e.what());
   }
+  if (s.urdf_model->dof() > kMaxJoints)
+    robot.fail("urdf", (c.file.empty() ? std::string("robot.urdf.xml") : c.file) + ": the chain from '" +
+                           c.base_link + "' to '" + c.tip_link + "' has " +
+                           std::to_string(s.urdf_model->dof()) + " moving joints; at most " +
+                           std::to_string(kMaxJoints) + " are allowed (the gain check's cost grows as n^6)");
   s.urdf = c;
 }
 
@@ -70,6 +77,10 @@ model::ChainParams readRobot(MapReader robot) {
     YAML::Node links = robot.child("links");
     if (!links.IsSequence() || links.size() == 0)
       robot.fail("links", "expected a non-empty list of links, each with length, com, mass, inertia");
+    if (links.size() > static_cast<std::size_t>(kMaxJoints))
+      robot.fail("links", "a chain of " + std::to_string(links.size()) + " links; at most " +
+                              std::to_string(kMaxJoints) +
+                              " are allowed (the gain check's cost grows as n^6)");
     for (size_t i = 0; i < links.size(); ++i) {
       MapReader link(links[i], robot.keyPath("links") + "[" + std::to_string(i) + "]");
       model::LinkParams p;

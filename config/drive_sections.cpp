@@ -49,6 +49,7 @@ void readActuatorSection(MapReader& root, Scenario& s) {
         wrapper["row"] = rows[i];
         MapReader row(wrapper, act.keyPath("initial_state") + "[" + std::to_string(i) + "]");
         s.actuator.initial_state.row(i) = row.vector("row", n, true, false).transpose();
+        row.finish({"row"});
       }
     }
     act.finish(keys::kActuator);

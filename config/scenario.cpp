@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "config/input_file.hpp"
 #include "config/scenario_keys.hpp"
 #include "config/scenario_sections.hpp"
+#include "config/work_bounds.hpp"
+#include "config/yaml_duplicates.hpp"
 #include "config/yaml_reader.hpp"
 #include "model/joint_springs.hpp"
 
@@ -88,6 +90,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readFaultsSection(root, s);
   readCompareSection(root, s);
   root.finish(keys::kTop);
+  checkWorkBounds(s);
   return s;
 }
 
@@ -109,6 +112,7 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
   if (!root.IsMap())
     throw ConfigError("config: " + source + ": expected a map of keys at the top level, got a " +
                       (root.IsSequence() ? "list" : "single value"));
+  rejectDuplicateKeys(root, source);
   for (const auto& o : overrides) applyOverride(root, o);
   try {
     return readScenario(MapReader(root, ""), source);
@@ -120,11 +124,9 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
 }
 
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("config: cannot read '" + path + "': expected a readable YAML file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseScenario(buffer.str(), path, overrides);
+  const FileText file = readRegularFile(path, kMaxScenarioBytes, "a YAML scenario file");
+  if (!file.error.empty()) throw ConfigError("config: " + file.error);
+  return parseScenario(file.text, path, overrides);
 }
 
 }  // namespace lagrange::config

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "config/key_ranges.hpp"
 #include "config/scenario.hpp"
 
 namespace lagrange::config {
@@ -65,10 +66,23 @@ bool MapReader::has(const std::string& key) const { return node_[key].IsDefined(
 
 YAML::Node MapReader::child(const std::string& key) { return node_[key]; }
 
-double MapReader::number(const std::string& key) {
+double MapReader::finiteNumber(const std::string& key) {
   if (!has(key)) fail(key, "missing; expected a number");
   double v = 0.0;
   if (!toNumber(node_[key], v)) fail(key, "expected a finite number, got " + show(node_[key]));
+  return v;
+}
+
+void MapReader::checkRange(const std::string& key, double v, const std::string& entry) {
+  const KeyRange* range = rangeOf(keyPath(key));
+  if (range == nullptr || range->contains(v)) return;
+  out_of_range_.push_back({key, entry + "expected a number " + rangeText(*range) + ", got " + shortNumber(v) +
+                                    (range->why.empty() ? "" : " (" + range->why + ")")});
+}
+
+double MapReader::number(const std::string& key) {
+  const double v = finiteNumber(key);
+  checkRange(key, v);
   return v;
 }
 
@@ -78,8 +92,9 @@ double MapReader::number(const std::string& key, double fallback) {
 
 double MapReader::positive(const std::string& key) {
   if (!has(key)) fail(key, "missing; expected a positive number");
-  const double v = number(key);
+  const double v = finiteNumber(key);
   if (!(v > 0.0)) fail(key, "expected a positive number, got " + show(node_[key]));
+  checkRange(key, v);
   return v;
 }
 
@@ -89,8 +104,9 @@ double MapReader::positive(const std::string& key, double fallback) {
 
 int MapReader::integer(const std::string& key, int fallback) {
   if (!has(key)) return fallback;
-  const double v = number(key);
+  const double v = finiteNumber(key);
   if (v != std::floor(v) || std::abs(v) > 1e9) fail(key, "expected a whole number, got " + show(node_[key]));
+  checkRange(key, v);
   return static_cast<int>(v);
 }
 
@@ -123,6 +139,7 @@ Eigen::VectorXd MapReader::vector(const std::string& key, int n, bool allow_scal
   if (value.IsScalar()) {
     if (!allow_scalar || !toNumber(value, x)) fail(key, "expected " + expected + ", got " + show(value));
     if (positive_only && !(x > 0.0)) fail(key, "expected " + expected + ", got " + show(value));
+    checkRange(key, x);
     out.setConstant(x);
     return out;
   }
@@ -132,6 +149,7 @@ Eigen::VectorXd MapReader::vector(const std::string& key, int n, bool allow_scal
   for (int i = 0; i < n; ++i) {
     if (!toNumber(value[i], x) || (positive_only && !(x > 0.0)))
       fail(key, "entry " + std::to_string(i + 1) + ": expected a " + kind + ", got " + show(value[i]));
+    checkRange(key, x, "entry " + std::to_string(i + 1) + ": ");
     out(i) = x;
   }
   return out;
@@ -150,6 +168,7 @@ MapReader MapReader::map(const std::string& key) {
 }
 
 void MapReader::finish(const std::set<std::string>& known) const {
+  if (!out_of_range_.empty()) fail(out_of_range_.front().first, out_of_range_.front().second);
   for (const auto& entry : node_) {
     const std::string key = entry.first.Scalar();
     if (known.count(key) == 0) {

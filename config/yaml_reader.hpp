@@ -3,7 +3,9 @@
 /// Strict, path-aware reading of a YAML map: every key read is remembered, so
 /// finish() can reject the ones nobody asked for (unknown keys are errors,
 /// never ignored), and every error names the dotted key, the value, what was
-/// expected and the line.
+/// expected and the line. Every number read is checked against its key's
+/// range (config/key_ranges.hpp) when the section is finished, after the
+/// reader's own checks.
 
 #include <yaml-cpp/yaml.h>
 
@@ -11,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "util/enum_names.hpp"
@@ -55,7 +58,8 @@ class MapReader {
 
   MapReader map(const std::string& key);  ///< required sub-map
 
-  /// @throws ConfigError listing the first unknown key and the known ones.
+  /// @throws ConfigError naming the first number read out of its key's range,
+  /// else the first unknown key and the known ones.
   void finish(const std::set<std::string>& known) const;
 
   /// The keys of the map, in file order (for maps keyed by name).
@@ -66,7 +70,16 @@ class MapReader {
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
  private:
+  double finiteNumber(const std::string& key);  ///< required; no range check
+  /// Notes v when it is outside its key's range (config/key_ranges.hpp), for
+  /// finish() to report: the section reader's own checks, which come between
+  /// the read and finish(), say more ("a SCHED_FIFO priority from 1 to 99, or
+  /// 0 for the normal scheduler") and come first. `entry` prefixes the
+  /// message ("entry 2: ") for a list.
+  void checkRange(const std::string& key, double v, const std::string& entry = "");
+
   YAML::Node node_;
+  std::vector<std::pair<std::string, std::string>> out_of_range_;  ///< key, message
   std::string path_;
 };
 

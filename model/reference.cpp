@@ -204,8 +204,12 @@ double Reference::jointBound(int joint, int order) const {
   const double settle = std::cbrt(std::log(1e12) / alpha);  // exp(-alpha t^3) < 1e-12 after it
   const double period = w > 0.0 ? 2.0 * M_PI / w : settle;
   const double horizon = settle + period;
-  // Resolve both the transient (time scale alpha^-1/3) and the oscillation.
-  const double step = std::min(period, std::cbrt(1.0 / alpha)) / 20000.0;
+  // Resolve both the transient (time scale alpha^-1/3) and the oscillation,
+  // in at most kMaxBoundSamples samples: a slow oscillation with a fast
+  // start-up (w = 1e-6, alpha = 1e6) would otherwise ask for 1e13.
+  constexpr double kMaxBoundSamples = 4e6;
+  const double step =
+      std::max(std::min(period, std::cbrt(1.0 / alpha)) / 20000.0, horizon / kMaxBoundSamples);
   double sampled = 0.0;
   for (double t = 0.0; t <= horizon; t += step)
     sampled = std::max(sampled, std::abs(jointDerivative(joint, order, t)));

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "model/error.hpp"
+#include "model/urdf_tree.hpp"
 #include "util/enum_names.hpp"
 
 namespace lagrange::model {
@@ -156,6 +157,7 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
   if (!robot)
     throw Error(where + ": not a valid URDF document (urdfdom: " +
                 (messages.text.empty() ? "could not parse it" : messages.text) + ")");
+  checkUrdfTree(*robot, where);
   auto known_links = [&] {
     std::vector<urdf::LinkSharedPtr> links;
     robot->getLinks(links);

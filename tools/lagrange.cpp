@@ -117,8 +117,7 @@ int DoMain(int argc, char** argv) {
   CLI::App* run_cmd =
       app.add_subcommand("run", "Run a scenario: plant, actuator, controller and logger as LCM processes");
   run_cmd->add_option("config", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   run_cmd->add_option("-o,--out", run.out_dir, "Output directory (created if missing)")->required();
   run_cmd->add_option(
       "--set", run.overrides,
@@ -166,7 +165,7 @@ int DoMain(int argc, char** argv) {
       "for m >= 2) and whether the sampled implementation at the configured rate is adequate, "
       "without running it; exit 1 if a condition is violated or the "
       "sampled loop is unstable");
-  gains_cmd->add_option("config", gains_config, "Scenario YAML file")->required()->check(CLI::ExistingFile);
+  gains_cmd->add_option("config", gains_config, "Scenario YAML file")->required();
   gains_cmd->add_option("--set", gains_overrides, "Override a config key: key=value; repeatable");
   bool suggest = false;
   gains_cmd->add_flag(
@@ -325,7 +324,8 @@ int DoMain(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every other parse error is bad input (CLI11's own codes are 100+).
+    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   if (*run_cmd) {
     run.private_netns = !no_netns;

@@ -102,7 +102,7 @@ std::vector<uint8_t> forge(const std::string& channel, int64_t run_id, int64_t t
     m.q = off;
     m.qdot = {0.0, 0.0};
     m.tau_applied = {0.0, 0.0};
-    m.input_torque_tick = tick - 1;
+    m.input_actuator_tick = tick - 1;
     return encodeSealed(m);
   }
   if (channel == "CONTROL_COMMAND") {
@@ -121,8 +121,11 @@ std::vector<uint8_t> forge(const std::string& channel, int64_t run_id, int64_t t
     m.header = forgedHeader(run_id, "actuator", tick, seq);
     m.input_command_tick = tick;
     m.num_joints = 2;
+    m.order = 0;
+    m.u_commanded = {63.8, 63.8};
     m.torque_steps = 1;
     m.tau_applied = {{63.8, 63.8}};
+    m.saturated = {false, false};
     return encodeSealed(m);
   }
   if (channel == "STATUS") {
