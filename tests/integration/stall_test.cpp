@@ -50,9 +50,14 @@ TEST(Stall, AControllerWithTheWrongKeyIsNamedWithItsRejectedCommands) {
   std::filesystem::create_directories(dir);
   const std::string key = dir + "/other.key";
   ASSERT_EQ(lagrange("keygen " + quote(key)).exit_code, 0);
-  const std::string command = "[sh, -c, 'exec \"$0\" --config \"$LAGRANGE_CONFIG\" --lcm-url \"$LAGRANGE_LCM_URL\" "
-                              "--run-id \"$LAGRANGE_RUN_ID\" --key-file " +
-                              key + "', " + kBin + "/lagrange-controller]";
+  // The controller, joining the run as an external program would, but with the other key.
+  const std::string wrapper = dir + "/controller.sh";
+  std::ofstream(wrapper) << "#!/bin/sh\nexec " << kBin
+                         << "/lagrange-controller --config " << quote(kRigid)
+                         << " --lcm-url \"$LAGRANGE_LCM_URL\" --run-id \"$LAGRANGE_RUN_ID\" --key-file " << quote(key)
+                         << "\n";
+  std::filesystem::permissions(wrapper, std::filesystem::perms::owner_all);
+  const std::string command = "[" + wrapper + "]";
   const std::string out = dir + "/run";
   const Timed t = timedRun(out, "--set \"controller={type: external, command: " + command + "}\"");
   EXPECT_EQ(t.result.exit_code, 1) << t.result.output;

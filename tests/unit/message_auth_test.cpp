@@ -17,6 +17,7 @@
 #include "lagrange/plant_position_t.hpp"
 #include "runtime/key_file.hpp"
 #include "transport/channels.hpp"
+#include "transport/checksum.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
 
@@ -105,6 +106,7 @@ TEST(MessageAuth, ANodeWithAKeyAcceptsOnlyItsOwnSignedMessages) {
   forged.header.publisher = "plant";
   forged.header.publisher_pid = 1;
   forged.header.seq = 1000;
+  seal(forged);
   std::vector<uint8_t> bytes(static_cast<size_t>(forged.getEncodedSize()));
   forged.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
   node.raw().publish(kPlantPosition, bytes.data(), static_cast<unsigned>(bytes.size()));
@@ -176,6 +178,7 @@ TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
     m.header.publisher = "plant";
     m.header.publisher_pid = 9;
     m.header.seq = seq;
+    seal(m);
     std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
     m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
     key.sign(bytes);
