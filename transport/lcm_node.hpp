@@ -70,7 +70,6 @@ class LcmNode {
   /// included, see the payload without the trailer. Without a key a node
   /// neither signs nor checks (a process on its own, tests).
   void authenticate(const MessageKey& key);
-  bool authenticated() const { return auth_ != nullptr; }
 
   /// What a subscription does with a datagram older than the newest one of its publisher.
   enum class Order {
