@@ -20,6 +20,7 @@
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
+#include "tools/log_reader.hpp"
 #include "transport/checksum.hpp"
 #include "transport/messages.hpp"
 #include "transport/safe_decode.hpp"
@@ -74,10 +75,10 @@ inline std::vector<std::pair<std::string, long long>> readTicks(const std::strin
   lcm::LogFile log(log_path, "r");
   if (!log.good()) throw std::runtime_error("cannot open " + log_path);
   std::vector<std::pair<std::string, long long>> out;
-  auto note = [&](const lcm::LogEvent& ev, auto message) {  // corrupted copies skipped, as in readTruth
-    if (transport::safeDecode(ev.data, static_cast<size_t>(ev.datalen), message) &&
-        (message.header.checksum == 0 || transport::intact(message)))
-      out.emplace_back(ev.channel, message.header.tick);
+  // As lagrange's readers decode: corrupted copies skipped, and a run's MAC
+  // trailer skipped where another logger (a stock lcm-logger) recorded it.
+  auto note = [&](const lcm::LogEvent& ev, auto message) {
+    if (tools::decodeEvent(ev, message)) out.emplace_back(ev.channel, message.header.tick);
   };
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     if (ev->channel == "PLANT_POSITION") note(*ev, lagrange::plant_position_t{});
