@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <lcm/lcm-cpp.hpp>
 #include <regex>
 #include <sstream>
 
@@ -338,14 +339,43 @@ TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
         },
         30))
         << slurp(output);
-    // A golden log predates ROBOT_DESCRIPTION: its arm comes from its SCENARIO.
+    // The golden log as it is.
+    httplib::Client client("127.0.0.1", std::stoi(port));
+    const auto api = client.Get("/api/log");
+    ASSERT_TRUE(api);
+    EXPECT_EQ(json::parse(api->body)["description"]["kind"], "planar_chain") << api->body.substr(0, 300);
+    remote.signal(SIGTERM);
+    EXPECT_EQ(remote.wait(10), 0);
+  }
+  {
+    // A log from before ROBOT_DESCRIPTION (the golden log without it): its
+    // arm comes from its SCENARIO, and the viewer says so.
+    const std::string old_log = dir + "/no-description.lcm";
+    {
+      lcm::LogFile in(log, "r"), out(old_log, "w");
+      while (const lcm::LogEvent* ev = in.readNextEvent())
+        if (ev->channel != "ROBOT_DESCRIPTION") out.writeEvent(const_cast<lcm::LogEvent*>(ev));
+    }
+    const std::string output = dir + "/old.out";
+    Child old({kBin + "/lagrange", "view", old_log, "--port", "0"}, output);
+    std::string port;
+    const std::regex url(R"(http://127\.0\.0\.1:([0-9]+)/)");
+    ASSERT_TRUE(waitFor(
+        [&] {
+          std::smatch m;
+          const std::string text = slurp(output);
+          if (std::regex_search(text, m, url)) port = m[1];
+          return !port.empty();
+        },
+        30))
+        << slurp(output);
     httplib::Client client("127.0.0.1", std::stoi(port));
     const auto api = client.Get("/api/log");
     ASSERT_TRUE(api);
     EXPECT_EQ(json::parse(api->body)["description"]["kind"], "planar_chain") << api->body.substr(0, 300);
     EXPECT_NE(slurp(output).find("drawn from its SCENARIO"), std::string::npos) << slurp(output);
-    remote.signal(SIGTERM);
-    EXPECT_EQ(remote.wait(10), 0);
+    old.signal(SIGTERM);
+    EXPECT_EQ(old.wait(10), 0);
   }
   {
     // A finished run whose launcher's pid now belongs to another program
