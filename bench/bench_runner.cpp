@@ -221,7 +221,8 @@ int main(int argc, char** argv) {
     rows.push_back({"lockstep ticks/s with the MAC / without",
                     fmt(median(lockstep), "%.0f") + " / " + fmt(median(unsigned_lockstep), "%.0f") + " = " +
                         fmt(results["lockstep_signed_vs_unsigned"].get<double>(), "%.2f"),
-                    ">= 0.9", results["lockstep_signed_vs_unsigned"].get<double>() >= 0.9 ? "met" : "MISSED"});
+                    ">= 0.9",
+                    results["lockstep_signed_vs_unsigned"].get<double>() >= 0.9 ? "met" : "MISSED"});
     results["lockstep_ticks_per_s"] = median(lockstep);
     results["lcm_ring_rounds_per_s"] = median(ring);
     results["lockstep_vs_ring"] = median(lockstep) / median(ring);

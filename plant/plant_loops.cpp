@@ -37,10 +37,9 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   const int n = s.dof();
   const int64_t last_tick = s.lastTick();
   ScenarioSensors sensors = sensorsFor(s);
-  LockstepProtocol<PlantSample> protocol(
-      {last_tick, s.lockstep.logger_window,
-       std::chrono::duration_cast<Clock::duration>(
-           std::chrono::duration<double>(s.lockstep.retransmit_timeout))});
+  LockstepProtocol<PlantSample> protocol({last_tick, s.lockstep.logger_window,
+                                          std::chrono::duration_cast<Clock::duration>(
+                                              std::chrono::duration<double>(s.lockstep.retransmit_timeout))});
 
   const int torque_steps = s.torqueStepsPerTick();
   Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(torque_steps, n);  // row j: held over step j of the period
@@ -62,7 +61,8 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   const auto stall = std::chrono::duration<double>(s.lockstep.stall_timeout);
   const auto startup = std::chrono::duration<double>(startupTimeout(s));
   auto stalled = [&](int64_t k, Clock::time_point since) {
-    return StallFacts{k, std::chrono::duration<double>(Clock::now() - since).count(), peers, node.channelStats()};
+    return StallFacts{k, std::chrono::duration<double>(Clock::now() - since).count(), peers,
+                      node.channelStats()};
   };
   // The measurements go with the truth: the controller and the actuator
   // answer a re-sent tick with what they sent for it, which the logger may
@@ -183,7 +183,8 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   node.subscribe<lagrange::status_t>(
       transport::kStatus, [](const auto& m) { return transport::validate(m); },
       [&](const lagrange::status_t& m) {
-        if (m.process == "logger" || m.process == "controller" || m.process == "actuator") peers[m.process] = m;
+        if (m.process == "logger" || m.process == "controller" || m.process == "actuator")
+          peers[m.process] = m;
       });
 
   status.publish(State::kReady, -1, 0.0);

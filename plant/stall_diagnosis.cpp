@@ -52,11 +52,13 @@ std::string inputSeen(const lagrange::status_t& s, const std::string& channel) {
 
 std::string describeRejections(const lagrange::channel_stats_t& c) {
   if (c.rejected == 0) return "";
-  const std::pair<const char*, int64_t> reasons[] = {
-      {"unauthenticated", c.rejected_unauthenticated}, {"corrupt (checksum)", c.rejected_corrupt},
-      {"undecodable", c.rejected_undecodable},         {"of another run", c.rejected_other_run},
-      {"from the wrong publisher", c.rejected_wrong_publisher},
-      {"old or repeated", c.rejected_old_or_repeated}, {"invalid", c.rejected_invalid}};
+  const std::pair<const char*, int64_t> reasons[] = {{"unauthenticated", c.rejected_unauthenticated},
+                                                     {"corrupt (checksum)", c.rejected_corrupt},
+                                                     {"undecodable", c.rejected_undecodable},
+                                                     {"of another run", c.rejected_other_run},
+                                                     {"from the wrong publisher", c.rejected_wrong_publisher},
+                                                     {"old or repeated", c.rejected_old_or_repeated},
+                                                     {"invalid", c.rejected_invalid}};
   std::string parts;
   for (const auto& [what, n] : reasons)
     if (n > 0) parts += (parts.empty() ? "" : ", ") + std::to_string(n) + " " + what;
@@ -65,21 +67,27 @@ std::string describeRejections(const lagrange::channel_stats_t& c) {
 
 std::string describeAnswerStall(const StallFacts& f) {
   const std::string k = std::to_string(f.tick);
-  const std::string head = "stalled at tick " + k + ": no ACTUATOR_STATE answered it in " + seconds(f.seconds);
+  const std::string head =
+      "stalled at tick " + k + ": no ACTUATOR_STATE answered it in " + seconds(f.seconds);
   const std::string own = ownRejections(f, "ACTUATOR_STATE") + ownRejections(f, "STATUS");
   const lagrange::status_t* actuator = peer(f, "actuator");
   const lagrange::status_t* controller = peer(f, "controller");
   if (actuator == nullptr)
-    return head + "; awaited: the actuator, never heard (no STATUS from it: not running, on another LCM URL, "
-                  "or without the run's key)" + own;
+    return head +
+           "; awaited: the actuator, never heard (no STATUS from it: not running, on another LCM URL, "
+           "or without the run's key)" +
+           own;
   if (actuator->last_tick >= f.tick)
-    return head + "; awaited: the actuator's ACTUATOR_STATE, lost on the way (the actuator answered up to "
-                  "tick " + std::to_string(actuator->last_tick) + ")" + own;
+    return head +
+           "; awaited: the actuator's ACTUATOR_STATE, lost on the way (the actuator answered up to "
+           "tick " +
+           std::to_string(actuator->last_tick) + ")" + own;
   std::string why = head + "; awaited: the controller -- no valid CONTROL_COMMAND for tick " + k +
                     " reached the actuator (" + inputSeen(*actuator, "CONTROL_COMMAND") + ")";
   if (controller == nullptr)
-    why += "; the controller was never heard (no STATUS from it: not running, on another LCM URL, or "
-           "without the run's key)";
+    why +=
+        "; the controller was never heard (no STATUS from it: not running, on another LCM URL, or "
+        "without the run's key)";
   else if (controller->last_tick >= f.tick)
     why += "; the controller answered up to tick " + std::to_string(controller->last_tick);
   else
@@ -92,8 +100,9 @@ std::string describeLoggerStall(const StallFacts& f, int64_t confirmed) {
   why += confirmed < 0 ? "no tick" : "ticks up to " + std::to_string(confirmed);
   why += " in " + seconds(f.seconds) + " (lockstep.logger_window lets the plant run ahead of it only so far)";
   if (const lagrange::status_t* logger = peer(f, "logger"); logger == nullptr)
-    why += "; the logger was never heard (no STATUS from it: not running, on another LCM URL, or without the "
-           "run's key)";
+    why +=
+        "; the logger was never heard (no STATUS from it: not running, on another LCM URL, or without the "
+        "run's key)";
   else
     why += "; " + whereIs(*logger) + ", " + inputSeen(*logger, "PLANT_TRUTH");
   return why + ownRejections(f, "STATUS");

@@ -28,8 +28,8 @@ class PlantStalled : public lagrange::Error {
 
 /// What the plant knows when a wait runs out.
 struct StallFacts {
-  int64_t tick = 0;     ///< the tick awaited (its answer, or the logger before it goes out)
-  double seconds = 0;   ///< how long it waited
+  int64_t tick = 0;    ///< the tick awaited (its answer, or the logger before it goes out)
+  double seconds = 0;  ///< how long it waited
   /// The newest STATUS of each other process heard ("logger", "controller", "actuator").
   std::map<std::string, lagrange::status_t> peers;
   /// The plant's own counters (channelStats()): what reached it and what it rejected.

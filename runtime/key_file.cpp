@@ -30,15 +30,16 @@ struct Fd {
 
 transport::MessageKey readKeyFile(const std::string& path) {
   const Fd file{open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
-  if (file.fd < 0) fail(path, std::string(std::strerror(errno)) + "; expected a file made by `lagrange keygen`");
+  if (file.fd < 0)
+    fail(path, std::string(std::strerror(errno)) + "; expected a file made by `lagrange keygen`");
   struct stat st {};
   if (fstat(file.fd, &st) != 0) fail(path, std::strerror(errno));
   if (!S_ISREG(st.st_mode)) fail(path, "not a regular file; expected a file of 64 hex digits");
   if ((st.st_mode & (S_IRWXG | S_IRWXO)) != 0) {
     char mode[8];
     std::snprintf(mode, sizeof mode, "%03o", static_cast<unsigned>(st.st_mode & 0777));
-    fail(path, std::string("open to others (mode ") + mode + "); expected mode 600 or 400: chmod 600 '" + path +
-                   "'");
+    fail(path, std::string("open to others (mode ") + mode + "); expected mode 600 or 400: chmod 600 '" +
+                   path + "'");
   }
   if (st.st_size > kMaxKeyFileBytes)
     fail(path, std::to_string(st.st_size) + " bytes; expected 64 hex digits and a newline");

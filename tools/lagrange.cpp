@@ -145,9 +145,10 @@ int DoMain(int argc, char** argv) {
                    "Start only these processes here (comma-separated: logger, controller, actuator, plant), "
                    "for a run spread over several hosts; needs --no-netns and --lcm-url")
       ->delimiter(',');
-  run_cmd->add_option("--key-file", run.key_file,
-                      "The run's secret key (from `lagrange keygen`, mode 600) instead of a fresh one in "
-                      "OUT/run.key; every host of a run spread with --processes needs the same one")
+  run_cmd
+      ->add_option("--key-file", run.key_file,
+                   "The run's secret key (from `lagrange keygen`, mode 600) instead of a fresh one in "
+                   "OUT/run.key; every host of a run spread with --processes needs the same one")
       ->check(CLI::ExistingFile);
   run_cmd->add_flag("--check", run.check,
                     "Exit 3, naming the metric and its value, when the run completes but misses its stated "

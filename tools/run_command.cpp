@@ -371,9 +371,11 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     // needs to join the run comes in its environment (docs/external_controllers.md).
     controller.argv = scenario.controller.command;
     controller.working_directory = scenario.controller.working_directory;
-    controller.env = {"LAGRANGE_LCM_URL=" + url, "LAGRANGE_RUN_ID=" + std::to_string(run_id),
+    controller.env = {"LAGRANGE_LCM_URL=" + url,
+                      "LAGRANGE_RUN_ID=" + std::to_string(run_id),
                       "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
-                      "LAGRANGE_CONFIG=" + resolved, "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
+                      "LAGRANGE_CONFIG=" + resolved,
+                      "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
                       "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
   }
   std::vector<ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};

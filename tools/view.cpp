@@ -234,8 +234,8 @@ int runView(const ViewOptions& opt) {
           return kExitBadInput;
         }
       } else {
-        std::cerr << "lagrange view: warning: no --key-file: the page draws whatever reaches " << source.lcm_url
-                  << " unauthenticated (anyone on the group can draw into it)\n";
+        std::cerr << "lagrange view: warning: no --key-file: the page draws whatever reaches "
+                  << source.lcm_url << " unauthenticated (anyone on the group can draw into it)\n";
       }
       feed = std::make_unique<LiveFeed>(source.lcm_url, source.run_id, key);
     }

@@ -73,8 +73,8 @@ ViewLog readViewLog(const std::string& path) {
   return out;
 }
 
-LiveFeed::LiveFeed(const std::string& lcm_url, int64_t run_id, const std::optional<transport::MessageKey>& key,
-                   size_t capacity)
+LiveFeed::LiveFeed(const std::string& lcm_url, int64_t run_id,
+                   const std::optional<transport::MessageKey>& key, size_t capacity)
     : lcm_(lcm_url),
       run_id_(run_id),
       auth_(key ? std::make_unique<transport::MessageAuthenticator>(*key) : nullptr),

@@ -9,9 +9,9 @@
 #include <condition_variable>
 #include <deque>
 #include <lcm/lcm-cpp.hpp>
+#include <memory>
 #include <mutex>
 #include <optional>
-#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -19,7 +19,6 @@
 #include "lagrange/robot_description_t.hpp"
 #include "tools/log_reader.hpp"
 #include "tools/view_frames.hpp"
-
 #include "transport/message_auth.hpp"
 
 namespace lagrange::tools {

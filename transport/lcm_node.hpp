@@ -143,7 +143,8 @@ class LcmNode {
     thread_local std::vector<uint8_t> bytes;
     bytes.resize(static_cast<size_t>(msg.getEncodedSize()));
     msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    if (auth_) auth_->sign(bytes);  // before fault injection: a corrupted copy fails the check, as it would on a wire
+    // Signed before fault injection: a corrupted copy fails the check, as it would on a wire.
+    if (auth_) auth_->sign(bytes);
     if (faults_) return faults_->publish(channel, bytes);
     return lcm_.publish(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
   }
@@ -177,7 +178,7 @@ class LcmNode {
   const lcm::ReceiveBuffer* last_lost_ = nullptr;  ///< the datagram counted last (one per handler pass)
   int64_t last_lost_utime_ = -1;
   bool lostOnReceive(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  std::map<std::string, int64_t> last_seq_;        ///< per channel, publisher and pid
+  std::map<std::string, int64_t> last_seq_;  ///< per channel, publisher and pid
   struct SequenceWindow {
     int64_t newest = 0;
     std::set<int64_t> seen;  ///< the numbers accepted within kSequenceWindow of the newest

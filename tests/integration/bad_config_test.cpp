@@ -55,7 +55,8 @@ TEST(BadConfigCorpus, UnwritableOutputAndBadOverridesAreRefused) {
     const RunResult r = runScenario(config, out, "-q");
     EXPECT_EQ(r.exit_code, 2) << r.output;
     // The system's reason in brackets between the two.
-    EXPECT_NE(r.output.find("output directory '" + out + "' cannot be created or written ("), std::string::npos)
+    EXPECT_NE(r.output.find("output directory '" + out + "' cannot be created or written ("),
+              std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("); expected a writable directory"), std::string::npos) << r.output;
   }

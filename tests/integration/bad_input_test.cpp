@@ -24,12 +24,12 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "logger/tracking_metrics.hpp"
+#include "runtime/key_file.hpp"
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/rk4.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
-#include "runtime/key_file.hpp"
 #include "transport/checksum.hpp"
 #include "transport/message_auth.hpp"
 

@@ -45,7 +45,7 @@ namespace lagrange::testing {
 namespace {
 
 const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
-const std::vector<std::string> kForgedChannels = {"PLANT_POSITION", "PLANT_TRUTH",    "PLANT_MOTOR",
+const std::vector<std::string> kForgedChannels = {"PLANT_POSITION", "PLANT_TRUTH",     "PLANT_MOTOR",
                                                   "PLANT_RATE",     "CONTROL_COMMAND", "ACTUATOR_STATE",
                                                   "STATUS",         "SCENARIO",        "ROBOT_DESCRIPTION"};
 
@@ -64,7 +64,8 @@ lagrange::header_t forgedHeader(int64_t run_id, const std::string& publisher, in
 
 template <class Msg>
 std::vector<uint8_t> encodeSealed(Msg m) {
-  if constexpr (!std::is_same_v<Msg, lagrange::scenario_t> && !std::is_same_v<Msg, lagrange::robot_description_t>)
+  if constexpr (!std::is_same_v<Msg, lagrange::scenario_t> &&
+                !std::is_same_v<Msg, lagrange::robot_description_t>)
     transport::seal(m);
   std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
   m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
@@ -223,7 +224,8 @@ void expectForgeriesCounted(const nlohmann::json& summary) {
     // SCENARIO is for stock loggers: no process of the run listens to it, so
     // a forged one reaches nobody to count it (the logger writes its own first).
     if (channel == "SCENARIO") continue;
-    EXPECT_GT(rejected(summary, channel, "unauthenticated"), 0) << channel << " " << summary["messages"].dump();
+    EXPECT_GT(rejected(summary, channel, "unauthenticated"), 0)
+        << channel << " " << summary["messages"].dump();
   }
   // Replayed authentic messages: counted as repeats by those who read them.
   long long repeats = 0;
@@ -286,7 +288,8 @@ TEST(Forgery, RealtimeUnderAttackAcceptsNothingForged) {
       {"CONTROL_COMMAND", {"controller", "actuator"}},
       {"ACTUATOR_STATE", {"actuator", "plant"}}};
   for (const auto& [channel, who] : readers) {
-    const long long sent = processes.at(who.first).at("channels").at(channel).at("published").get<long long>();
+    const long long sent =
+        processes.at(who.first).at("channels").at(channel).at("published").get<long long>();
     const long long accepted =
         processes.at(who.second).at("channels").at(channel).at("received").get<long long>();
     EXPECT_GT(accepted, 0) << channel;

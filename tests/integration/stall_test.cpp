@@ -37,8 +37,10 @@ TEST(Stall, AControllerThatNeverAnswersStopsTheRunNamingIt) {
   EXPECT_LT(t.seconds, 25.0) << t.result.output;
   EXPECT_GE(t.seconds, 3.0) << "the start is allowed 3 x stall_timeout: " << t.result.output;
   EXPECT_TRUE(has(t.result.output, "process 'plant' exited with code 1")) << t.result.output;
-  EXPECT_TRUE(has(t.result.output, "stalled at tick 0: no ACTUATOR_STATE answered it in 3 s")) << t.result.output;
-  EXPECT_TRUE(has(t.result.output, "no valid CONTROL_COMMAND for tick 0 reached the actuator")) << t.result.output;
+  EXPECT_TRUE(has(t.result.output, "stalled at tick 0: no ACTUATOR_STATE answered it in 3 s"))
+      << t.result.output;
+  EXPECT_TRUE(has(t.result.output, "no valid CONTROL_COMMAND for tick 0 reached the actuator"))
+      << t.result.output;
   EXPECT_TRUE(has(t.result.output, "the controller was never heard")) << t.result.output;
 }
 
@@ -52,18 +54,18 @@ TEST(Stall, AControllerWithTheWrongKeyIsNamedWithItsRejectedCommands) {
   ASSERT_EQ(lagrange("keygen " + quote(key)).exit_code, 0);
   // The controller, joining the run as an external program would, but with the other key.
   const std::string wrapper = dir + "/controller.sh";
-  std::ofstream(wrapper) << "#!/bin/sh\nexec " << kBin
-                         << "/lagrange-controller --config " << quote(kRigid)
-                         << " --lcm-url \"$LAGRANGE_LCM_URL\" --run-id \"$LAGRANGE_RUN_ID\" --key-file " << quote(key)
-                         << "\n";
+  std::ofstream(wrapper) << "#!/bin/sh\nexec " << kBin << "/lagrange-controller --config " << quote(kRigid)
+                         << " --lcm-url \"$LAGRANGE_LCM_URL\" --run-id \"$LAGRANGE_RUN_ID\" --key-file "
+                         << quote(key) << "\n";
   std::filesystem::permissions(wrapper, std::filesystem::perms::owner_all);
   const std::string command = "[" + wrapper + "]";
   const std::string out = dir + "/run";
   const Timed t = timedRun(out, "--set \"controller={type: external, command: " + command + "}\"");
   EXPECT_EQ(t.result.exit_code, 1) << t.result.output;
   EXPECT_LT(t.seconds, 25.0) << t.result.output;
-  EXPECT_TRUE(has(t.result.output, "no valid CONTROL_COMMAND for tick 0 reached the actuator (it accepted 0 "
-                                   "CONTROL_COMMAND and rejected"))
+  EXPECT_TRUE(has(t.result.output,
+                  "no valid CONTROL_COMMAND for tick 0 reached the actuator (it accepted 0 "
+                  "CONTROL_COMMAND and rejected"))
       << t.result.output;
   EXPECT_TRUE(has(t.result.output, "unauthenticated")) << t.result.output;
   // The key file of the run is gone with it; the user's own is left alone.

@@ -14,8 +14,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -315,6 +315,21 @@ TEST(View, FollowsARunningScenarioLive) {
   EXPECT_EQ(server.stop(), 0) << server.output();
 }
 
+// The port a viewer printed in its URL (`url` captures it) within 30 s, or "".
+std::string servedPort(const std::string& output, const std::string& url) {
+  const std::regex pattern(url);
+  std::string port;
+  waitFor(
+      [&] {
+        std::smatch m;
+        const std::string text = slurp(output);
+        if (std::regex_search(text, m, pattern)) port = m[1];
+        return !port.empty();
+      },
+      30);
+  return port;
+}
+
 TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
   const std::string dir = freshDir("view-bind");
   fs::create_directories(dir);
@@ -328,17 +343,8 @@ TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
     const std::string output = dir + "/remote.out";
     Child remote({kBin + "/lagrange", "view", log, "--host", "0.0.0.0", "--port", "0", "--allow-remote"},
                  output);
-    std::string port;
-    const std::regex url(R"(http://0\.0\.0\.0:([0-9]+)/)");
-    ASSERT_TRUE(waitFor(
-        [&] {
-          std::smatch m;
-          const std::string text = slurp(output);
-          if (std::regex_search(text, m, url)) port = m[1];
-          return !port.empty();
-        },
-        30))
-        << slurp(output);
+    const std::string port = servedPort(output, R"(http://0\.0\.0\.0:([0-9]+)/)");
+    ASSERT_FALSE(port.empty()) << slurp(output);
     // The golden log as it is.
     httplib::Client client("127.0.0.1", std::stoi(port));
     const auto api = client.Get("/api/log");
@@ -358,17 +364,8 @@ TEST(View, RefusesANonLoopbackAddressUnlessAskedAndNamesBadSources) {
     }
     const std::string output = dir + "/old.out";
     Child old({kBin + "/lagrange", "view", old_log, "--port", "0"}, output);
-    std::string port;
-    const std::regex url(R"(http://127\.0\.0\.1:([0-9]+)/)");
-    ASSERT_TRUE(waitFor(
-        [&] {
-          std::smatch m;
-          const std::string text = slurp(output);
-          if (std::regex_search(text, m, url)) port = m[1];
-          return !port.empty();
-        },
-        30))
-        << slurp(output);
+    const std::string port = servedPort(output, R"(http://127\.0\.0\.1:([0-9]+)/)");
+    ASSERT_FALSE(port.empty()) << slurp(output);
     httplib::Client client("127.0.0.1", std::stoi(port));
     const auto api = client.Get("/api/log");
     ASSERT_TRUE(api);

@@ -8,27 +8,14 @@
 
 #include "config/scenario.hpp"
 #include "model/joint_springs.hpp"
+#include "support/scenario_text.hpp"
 
 namespace lagrange::config {
 namespace {
 
-const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string errorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parseScenario(text, "test.yaml", overrides);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::errorOf;
+using testing::kConfigs;
+using testing::readFile;
 
 TEST(Scenario, EveryShippedConfigLoadsAndRoundTrips) {
   int count = 0;

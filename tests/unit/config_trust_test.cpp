@@ -23,27 +23,14 @@
 #include "model/error.hpp"
 #include "model/urdf_arm.hpp"
 #include "model/urdf_tree.hpp"
+#include "support/scenario_text.hpp"
 
 namespace lagrange::config {
 namespace {
 
-const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string errorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parseScenario(text, "test.yaml", overrides);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using testing::errorOf;
+using testing::kConfigs;
+using testing::readFile;
 
 std::string loadError(const std::string& path) {
   try {
@@ -62,7 +49,7 @@ struct Refused {
 class OutOfBounds : public ::testing::TestWithParam<Refused> {};
 
 TEST_P(OutOfBounds, IsRefusedWithTheNumberAndTheBound) {
-  const std::string error = errorOf(readText(kConfigs + "/rigid_2dof.yaml"), GetParam().overrides);
+  const std::string error = errorOf(readFile(kConfigs + "/rigid_2dof.yaml"), GetParam().overrides);
   EXPECT_NE(error.find("config: test.yaml: " + GetParam().message), std::string::npos) << "got: " << error;
 }
 
@@ -160,7 +147,7 @@ TEST(KeyRanges, EveryBoundIsFiniteAndOrdered) {
 }
 
 TEST(DuplicateKeys, AreRefusedWithBothLines) {
-  const std::string base = readText(kConfigs + "/rigid_2dof.yaml");
+  const std::string base = readFile(kConfigs + "/rigid_2dof.yaml");
   const std::string error = errorOf(base + "duration: 3\n");
   EXPECT_NE(error.find("config: test.yaml: duplicate key 'duration' at line "), std::string::npos) << error;
   EXPECT_NE(error.find("(first at line "), std::string::npos) << error;
@@ -228,7 +215,7 @@ TEST_F(ScenarioFile, ALargeFileIsRefusedBeforeItIsRead) {
 }
 
 TEST_F(ScenarioFile, AUrdfThatIsNotARegularFileIsNamed) {
-  std::string text = readText(kConfigs + "/panda_theorem1.yaml");
+  std::string text = readFile(kConfigs + "/panda_theorem1.yaml");
   const auto from = text.find("file: ");
   ASSERT_NE(from, std::string::npos);
   text.replace(from, text.find('\n', from) - from, "file: /dev/zero");

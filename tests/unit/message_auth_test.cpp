@@ -57,8 +57,7 @@ TEST(MessageAuth, IsStandardHmacSha256) {
   std::copy(jefe.begin(), jefe.end(), key.begin());
   // HMAC pads a short key with zeros to the block: "Jefe" and "Jefe" + 28 zero bytes are one key.
   const std::string text = "what do ya want for nothing?";
-  const auto mac =
-      MessageAuthenticator(key).mac(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  const auto mac = MessageAuthenticator(key).mac(reinterpret_cast<const uint8_t*>(text.data()), text.size());
   std::string hex;
   for (const uint8_t b : mac) {
     static const char* digits = "0123456789abcdef";
@@ -142,8 +141,9 @@ TEST(MessageAuth, RawHandlersSeeThePayloadOnlyAndEachForgeryIsCountedOnce) {
   LcmNode node("plant", "memq://", 42);
   node.authenticate(keyOf(3));
   std::vector<size_t> sizes;
-  node.subscribeRaw(kPlantPosition,
-                    [&](const lcm::ReceiveBuffer* rbuf, const std::string&) { sizes.push_back(rbuf->data_size); });
+  node.subscribeRaw(kPlantPosition, [&](const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    sizes.push_back(rbuf->data_size);
+  });
   int typed = 0;
   node.subscribe<lagrange::plant_position_t>(
       kPlantPosition, [](const auto&) { return Rejection(); }, [&](const auto&) { ++typed; });
@@ -158,8 +158,8 @@ TEST(MessageAuth, RawHandlersSeeThePayloadOnlyAndEachForgeryIsCountedOnce) {
   ASSERT_EQ(sizes.size(), 1u);
   EXPECT_EQ(sizes[0], static_cast<size_t>(stamped.getEncodedSize()));
   EXPECT_EQ(typed, 1);
-  EXPECT_EQ(node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kUnauthenticated)],
-            1);
+  EXPECT_EQ(
+      node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kUnauthenticated)], 1);
 }
 
 // Records (Order::kAcceptReordered) take a sequence number once, in any order,
@@ -170,7 +170,8 @@ TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
   std::vector<int64_t> seqs;
   node.subscribe<lagrange::plant_position_t>(
       kPlantPosition, [](const auto&) { return Rejection(); },
-      [&](const lagrange::plant_position_t& m) { seqs.push_back(m.header.seq); }, LcmNode::Order::kAcceptReordered);
+      [&](const lagrange::plant_position_t& m) { seqs.push_back(m.header.seq); },
+      LcmNode::Order::kAcceptReordered);
   const MessageAuthenticator key(keyOf(5));
   auto send = [&](int64_t seq) {
     lagrange::plant_position_t m = position(1);
@@ -189,7 +190,8 @@ TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
   const int64_t w = LcmNode::kSequenceWindow;
   for (const int64_t seq : {int64_t{5}, 3 * w, 2 * w + 1, 3 * w, 2 * w, int64_t{5}, 3 * w - 1}) send(seq);
   EXPECT_EQ(seqs, (std::vector<int64_t>{5, 3 * w, 2 * w + 1, 3 * w - 1}));
-  EXPECT_EQ(node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)], 3);
+  EXPECT_EQ(node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)],
+            3);
 }
 
 class KeyFile : public ::testing::Test {

@@ -52,7 +52,8 @@ TEST(StallDiagnosis, ACommandTheActuatorRejectsNamesTheControllerAndWhy) {
   EXPECT_TRUE(has(why, "awaited: the controller -- no valid CONTROL_COMMAND for tick 0 reached the actuator"))
       << why;
   EXPECT_TRUE(has(why, "rejected 214 (214 corrupt (checksum))")) << why;
-  EXPECT_TRUE(has(why, "reports no counters of PLANT_POSITION")) << why;  // an external program's empty STATUS
+  EXPECT_TRUE(has(why, "reports no counters of PLANT_POSITION"))
+      << why;  // an external program's empty STATUS
 }
 
 TEST(StallDiagnosis, ASilentControllerAndAForgerOnStatusAreBothNamed) {
