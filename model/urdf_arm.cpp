@@ -157,6 +157,19 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
   if (!robot)
     throw Error(where + ": not a valid URDF document (urdfdom: " +
                 (messages.text.empty() ? "could not parse it" : messages.text) + ")");
+  // urdfdom ties each link to its children with shared_ptrs, so a document
+  // whose joints form a loop (refused below) leaves a cycle that would outlive
+  // the model: a leak on every such file. Cut the ties when build is done with
+  // the model, refused or not; nothing built here keeps urdfdom's links.
+  struct CutLinkTies {
+    const urdf::ModelInterfaceSharedPtr& model;
+    ~CutLinkTies() {
+      for (auto& named : model->links_) {
+        named.second->child_links.clear();
+        named.second->child_joints.clear();
+      }
+    }
+  } cut_link_ties{robot};
   checkUrdfTree(*robot, where);
   auto known_links = [&] {
     std::vector<urdf::LinkSharedPtr> links;

@@ -57,7 +57,9 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         if (m.process != "plant") peers[m.process] = m;
       });
   // Nothing waits forever (lockstep.stall_timeout); the first answer and the
-  // logger's first word get the start-up time, while processes come up.
+  // logger's first word get the start-up time, while processes come up, and
+  // so does any wait after a SIGCONT (runtime::takeResumeNotice: the plant
+  // was stopped, or the launcher has restarted a peer that now starts up).
   const auto stall = std::chrono::duration<double>(s.lockstep.stall_timeout);
   const auto startup = std::chrono::duration<double>(startupTimeout(s));
   auto stalled = [&](int64_t k, Clock::time_point since) {
@@ -78,10 +80,15 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   auto next_status = Clock::now();
   for (int64_t k = 0; k <= last_tick; ++k) {
     const double t = static_cast<double>(k) * s.tickPeriod();
-    const auto wait_start = Clock::now();
+    auto wait_start = Clock::now();
     protocol.awaitLogger(wait_start);
+    bool resumed = false;
     while (!protocol.mayPublish(k) && !runtime::stopRequested()) {
-      if (Clock::now() - wait_start > (protocol.loggerHeard() ? stall : startup))
+      if (runtime::takeResumeNotice()) {
+        wait_start = Clock::now();
+        resumed = true;
+      }
+      if (Clock::now() - wait_start > (protocol.loggerHeard() && !resumed ? stall : startup))
         throw PlantStalled(describeLoggerStall(stalled(k, wait_start), protocol.loggerTick()));
       node.handle(5);
       resendForLogger();
@@ -101,8 +108,11 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       status.publish(State::kRunning, k, t);
       next_status = Clock::now() + std::chrono::milliseconds(500);
     }
-    const auto answer_deadline = published_at + (k == 0 ? startup : stall);
+    auto answer_deadline = published_at + (k == 0 ? startup : stall);
     while (!protocol.answered() && !runtime::stopRequested()) {
+      if (const auto renewed = Clock::now() + startup;
+          runtime::takeResumeNotice() && renewed > answer_deadline)
+        answer_deadline = renewed;
       if (Clock::now() > answer_deadline) throw PlantStalled(describeAnswerStall(stalled(k, published_at)));
       node.handle(5);
       if (protocol.positionResendDue(Clock::now())) publishMeasurements(node, out);

@@ -19,9 +19,12 @@ namespace lagrange::runtime {
 namespace {
 std::atomic<bool> stop_flag{false};
 void onStopSignal(int) { stop_flag = true; }
+std::atomic<bool> resumed_flag{false};
+void onContinueSignal(int) { resumed_flag = true; }
 }  // namespace
 
 bool stopRequested() { return stop_flag.load(); }
+bool takeResumeNotice() { return resumed_flag.exchange(false); }
 
 std::string withReceiveBuffer(const std::string& url, int bytes) {
   if (bytes <= 0 || url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos)
@@ -58,6 +61,7 @@ int runProcess(const std::string& name, const std::string& description, int argc
 
   std::signal(SIGINT, onStopSignal);
   std::signal(SIGTERM, onStopSignal);
+  std::signal(SIGCONT, onContinueSignal);
   std::signal(SIGPIPE, SIG_IGN);
 
   try {

@@ -22,6 +22,15 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 /// True once SIGINT or SIGTERM arrived.
 bool stopRequested();
 
+/// True once per SIGCONT received since the last call: the process was
+/// stopped and resumed, or the launcher restarted one of its peers (it sends
+/// SIGCONT to the plant then). Either way the wall time since the plant's
+/// last progress is nobody's fault, and its deadlines start over with the
+/// start-up allowance. SIGCONT, not a signal of our own: its default action
+/// is harmless, so a notice that arrives before the handler is installed
+/// cannot kill the process.
+bool takeResumeNotice();
+
 /// The body of a process: gets the validated scenario and a connected node;
 /// returns the exit code.
 using ProcessBody = std::function<int(const config::Scenario&, transport::LcmNode&)>;

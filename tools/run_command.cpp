@@ -424,6 +424,10 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                   << "; restarting it (restart " << supervision["restarts"][e.name].get<int>()
                   << " of at most " << scenario.supervision.max_restarts << ", supervision.restart)\n";
         supervisor.restart(e.name);
+        // The plant's stall deadline starts over with the start-up allowance
+        // (runtime::takeResumeNotice): the restarted process loads and checks
+        // its gains before it can answer.
+        supervisor.signal("plant", SIGCONT);
         continue;
       }
       progress.finish();

@@ -79,6 +79,12 @@ void Supervisor::restart(const std::string& name) {
   start(spec);
 }
 
+bool Supervisor::signal(const std::string& name, int sig) {
+  for (const auto& c : children_)
+    if (c.spec.name == name && c.running) return ::kill(c.pid, sig) == 0;
+  return false;
+}
+
 std::vector<ChildExit> Supervisor::reap() {
   std::vector<ChildExit> out;
   for (auto& c : children_) {

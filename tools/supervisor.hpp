@@ -41,6 +41,9 @@ class Supervisor {
   /// @throws std::runtime_error if there is no such child, or it still runs.
   void restart(const std::string& name);
 
+  /// Sends `sig` to the named child if it runs; false if it does not.
+  bool signal(const std::string& name, int sig);
+
   /// Children that exited since the last call (non-blocking).
   std::vector<ChildExit> reap();
 

@@ -9,6 +9,7 @@
 
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
+#include "support/signal_run.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -72,6 +73,38 @@ TEST(Stall, AControllerWithTheWrongKeyIsNamedWithItsRejectedCommands) {
   // The key file of the run is gone with it; the user's own is left alone.
   EXPECT_FALSE(std::filesystem::exists(out + "/run.key"));
   EXPECT_TRUE(std::filesystem::exists(key));
+}
+
+// A restarted controller loads and checks its gains before it answers; the
+// launcher tells the plant (SIGCONT) and the plant's wait gets the start-up
+// allowance. The restarted program here takes 4.5 s to start: past
+// stall_timeout (3 s), within the allowance (9 s). Without the notice the
+// plant would stop the run 3 s after the kill.
+TEST(Stall, ARestartedControllerGetsTheStartUpAllowance) {
+  const std::string dir = freshDir("stall-restart");
+  std::filesystem::create_directories(dir);
+  const std::string config = dir + "/run-controller.yaml";  // puts dir/run on its command line
+  std::filesystem::copy_file(kRigid, config);
+  const std::string wrapper = dir + "/controller.sh";
+  std::ofstream(wrapper) << "#!/bin/sh\n"
+                         << "if [ -e " << quote(dir + "/started") << " ]; then sleep 4.5; fi\n"
+                         << "touch " << quote(dir + "/started") << "\n"
+                         << "exec " << kBin << "/lagrange-controller --config " << quote(config)
+                         << " --set duration=5 --lcm-url \"$LAGRANGE_LCM_URL\" --run-id \"$LAGRANGE_RUN_ID\""
+                         << " --key-file \"$LAGRANGE_KEY_FILE\"\n";
+  std::filesystem::permissions(wrapper, std::filesystem::perms::owner_all);
+  const SignalledRun run = signalMidRun(
+      dir + "/run", kRigid, "lagrange-controller", SIGKILL,
+      "-q --set duration=5 --set lockstep.stall_timeout=3 --set supervision.restart=[controller] "
+      "--set \"controller={type: external, command: [" +
+          wrapper + "]}\"",
+      300'000);
+  ASSERT_TRUE(run.signalled) << run.result.output;
+  EXPECT_EQ(run.result.exit_code, 0) << run.result.output;
+  EXPECT_TRUE(has(run.result.output, "restarting it (restart 1")) << run.result.output;
+  const auto j = readSummary(dir + "/run");
+  EXPECT_EQ(j["supervision"]["restarts"]["controller"], 1) << j["supervision"].dump();
+  EXPECT_EQ(j["tracking"]["samples"], 5001);
 }
 
 }  // namespace

@@ -54,7 +54,10 @@ inline SignalledRun signalMidRun(const std::string& dir, const std::string& conf
     done = true;
   });
   const fs::path log = fs::path(dir) / "run.lcm";
-  for (int i = 0; i < 1200 && !out.signalled && !done; ++i) {
+  // Polls until the run is far enough or over: a sanitizer build runs the
+  // Panda several times slower than 30 s would allow (the cap is only there
+  // so a run that never ends cannot hold the test forever).
+  for (int i = 0; i < 12000 && !out.signalled && !done; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(25));
     if (!fs::exists(log) || fs::file_size(log) < log_bytes) continue;
     const pid_t pid = findProcess(process, dir);
