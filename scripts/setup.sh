@@ -8,7 +8,7 @@ packages=(
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java
   gnuplot-nox  # lagrange report's plots
   liburdfdom-dev liborocos-kdl-dev  # URDF arms: the document, the dynamics
-  libsodium-dev  # every message's HMAC-SHA256, each run's random key
+  libsodium-dev libssl-dev  # each run's random key; every message's HMAC-SHA256 (libcrypto)
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless
   iproute2 util-linux

@@ -4,9 +4,9 @@
 /// model"). Anyone on a run's multicast group can read its run id off the
 /// wire and publish with it, so the run id proves nothing. Each run has a
 /// secret key instead; every datagram is the message's LCM encoding followed
-/// by a 32-byte trailer, HMAC-SHA256 (libsodium) of that encoding under the
-/// key. A receiver checks the trailer, in constant time, before any byte of
-/// the payload reaches a decoder, and drops what fails.
+/// by a 32-byte trailer, HMAC-SHA256 of that encoding under the key
+/// (OpenSSL's libcrypto computes it; libsodium draws the key and compares). A receiver checks the trailer, in
+/// constant time, before any byte of the payload reaches a decoder, and drops what fails.
 ///
 /// Why a trailer and not a field of header_t: the message types stay as they
 /// were, so lcm-spy and any LCM decoder (which read a message's fields and
