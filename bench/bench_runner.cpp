@@ -179,7 +179,9 @@ int main(int argc, char** argv) {
   app.add_option("--configs", g_configs, "Directory of the scenario files")->required();
   app.add_option("--out", out_path, "JSON results file")->capture_default_str();
   app.add_option("--baseline", baseline_path, "Baseline JSON to compare with");
-  app.add_option("--repeats", repeats, "Repetitions of each throughput figure (median)")
+  app.add_option(
+         "--repeats", repeats,
+         "Repetitions of each throughput figure (median; the signed/unsigned lockstep pairs: at least 9)")
       ->capture_default_str();
   app.add_option("--realtime-seconds", realtime_seconds, "Length of the realtime run [s]")
       ->capture_default_str();
@@ -206,23 +208,34 @@ int main(int argc, char** argv) {
   const std::string rigid = g_configs + "/rigid_2dof.yaml";
   const std::string at_default_step = "--set plant.physics_step=1.0e-4 --set duration=10";
 
-  std::vector<double> ring, lockstep, unsigned_lockstep, inproc, ode;
+  std::vector<double> ring, lockstep, unsigned_lockstep, signed_vs_unsigned, inproc, ode;
   if (want("ring")) {
     std::fprintf(stderr, "1/7 lockstep (signed and unsigned) vs bare LCM ring ...\n");
-    for (int r = 0; r < repeats; ++r) {
+    // At least nine pairs: one pair's ratio swings by +-10 % on a shared
+    // 2-core machine, more than the MAC's cost (docs/performance.md).
+    for (int r = 0; r < std::max(repeats, 9); ++r) {
       ring.push_back(std::stod(capture(g_bin + "/lagrange-bench-ring --rounds 20000")));
       lockstep.push_back(ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step), 1000));
       unsigned_lockstep.push_back(
           ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step, g_unsigned_lagrange), 1000));
+      signed_vs_unsigned.push_back(lockstep.back() / unsigned_lockstep.back());
     }
-    // What the messages' MAC costs: the same run with and without it, side by side.
+    // What the messages' MAC costs: the same run with and without it, side
+    // by side; the median of the pairs' ratios, which a machine whose speed
+    // drifts during the bench moves less than a ratio of the two medians.
     results["lockstep_unsigned_ticks_per_s"] = median(unsigned_lockstep);
-    results["lockstep_signed_vs_unsigned"] = median(lockstep) / median(unsigned_lockstep);
-    rows.push_back({"lockstep ticks/s with the MAC / without",
-                    fmt(median(lockstep), "%.0f") + " / " + fmt(median(unsigned_lockstep), "%.0f") + " = " +
-                        fmt(results["lockstep_signed_vs_unsigned"].get<double>(), "%.2f"),
-                    ">= 0.9",
-                    results["lockstep_signed_vs_unsigned"].get<double>() >= 0.9 ? "met" : "MISSED"});
+    results["lockstep_signed_vs_unsigned"] = median(signed_vs_unsigned);
+    results["lockstep_signed_vs_unsigned_min"] =
+        *std::min_element(signed_vs_unsigned.begin(), signed_vs_unsigned.end());
+    results["lockstep_signed_vs_unsigned_max"] =
+        *std::max_element(signed_vs_unsigned.begin(), signed_vs_unsigned.end());
+    rows.push_back(
+        {"lockstep ticks/s with the MAC / without",
+         fmt(median(lockstep), "%.0f") + " / " + fmt(median(unsigned_lockstep), "%.0f") + "; pairs' median " +
+             fmt(results["lockstep_signed_vs_unsigned"].get<double>(), "%.2f") + " (" +
+             fmt(results["lockstep_signed_vs_unsigned_min"].get<double>(), "%.2f") + "-" +
+             fmt(results["lockstep_signed_vs_unsigned_max"].get<double>(), "%.2f") + ")",
+         ">= 0.9", results["lockstep_signed_vs_unsigned"].get<double>() >= 0.9 ? "met" : "MISSED"});
     results["lockstep_ticks_per_s"] = median(lockstep);
     results["lcm_ring_rounds_per_s"] = median(ring);
     results["lockstep_vs_ring"] = median(lockstep) / median(ring);

@@ -115,18 +115,21 @@ void PlantSim::checkBounded() const {
     finite = finite && bodyStateFinite(b);
     worst = std::max(worst, std::abs(dBodyGetAngularVel(b)[2]));
   }
-  const std::string at = "at t = " + std::to_string(time_) + " s";
+  // Built only when the run stops: formatting a double on every call was a
+  // per-step cost (printf's float formatting showed in the plant's profile).
+  const auto at = [this] { return "at t = " + std::to_string(time_) + " s"; };
   if (!finite || !q_.allFinite() || (flexible_ && !motor_q_.allFinite()))
-    throw PlantStopped("plant: the simulation diverged " + at + ": the state is no longer finite");
+    throw PlantStopped("plant: the simulation diverged " + at() + ": the state is no longer finite");
   const double resolvable = kMaxTurnPerStep / physics_step_;
   if (!(worst < resolvable))
-    throw PlantStopped("plant: the simulation diverged " + at + ": a body turns at " + std::to_string(worst) +
-                       " rad/s, more than pi/2 per physics step (limit " + std::to_string(resolvable) +
+    throw PlantStopped("plant: the simulation diverged " + at() + ": a body turns at " +
+                       std::to_string(worst) + " rad/s, more than pi/2 per physics step (limit " +
+                       std::to_string(resolvable) +
                        " rad/s at plant.physics_step = " + std::to_string(physics_step_) +
                        " s), which ODE cannot integrate; the closed loop is unstable, or needs a smaller "
                        "physics_step");
   if (max_rate_ && !(worst <= *max_rate_))
-    throw PlantStopped("plant: stopped " + at + ": a body turns at " + std::to_string(worst) +
+    throw PlantStopped("plant: stopped " + at() + ": a body turns at " + std::to_string(worst) +
                        " rad/s, above plant.max_rate = " + std::to_string(*max_rate_) + " rad/s");
 }
 
