@@ -29,6 +29,7 @@
 #include "tools/spawn_logged.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/output_stream.hpp"
 
 namespace lagrange::tools {
 
@@ -162,7 +163,7 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
 // per joint -- what the overlay plots draw.
 void writeSeries(const CompareRun& run, const config::Scenario& s) {
   const model::Reference reference(s.reference);
-  std::ofstream out(fs::path(run.dir) / "series.csv");
+  util::OutputStream out(fs::path(run.dir) / "series.csv");
   out << "t,error_norm";
   for (int j = 0; j < s.dof(); ++j) out << ",tau" << j;
   out << "\n";

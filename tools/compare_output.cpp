@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "util/number_text.hpp"
+#include "util/output_stream.hpp"
 
 namespace lagrange::tools {
 
@@ -68,9 +68,9 @@ std::string writeComparison(const ComparisonTables& t, const std::string& out_di
     for (const RunNumbers& n : t.runs)
       if (n.value) md += markdownRow(n, true);
   }
-  std::ofstream out_md(fs::path(out_dir) / "comparison.md");
+  util::OutputStream out_md(fs::path(out_dir) / "comparison.md");
   out_md << md;
-  std::ofstream csv(fs::path(out_dir) / "comparison.csv");
+  util::OutputStream csv(fs::path(out_dir) / "comparison.csv");
   csv << "controller,sweep_key,sweep_value,status,convergence_time,final_error,rms_last_second,max_abs_"
          "torque,"
          "torque_total_variation,control_energy\n";
@@ -145,7 +145,7 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
                           "set ylabel 'RMS ||q - q_d|| over the last second [rad]' noenhanced\nplot ";
       for (size_t i = 0; i < types.size(); ++i) {
         const std::string file = "sweep_" + types[i] + ".csv";
-        std::ofstream data(fs::path(out_dir) / file);
+        util::OutputStream data(fs::path(out_dir) / file);
         data << "value,rms_last_second,final_error\n";
         for (const RunNumbers& n : t.runs)
           if (n.value && n.type == types[i])
@@ -158,7 +158,7 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
       sections.push_back(sweep + "\n");
     }
   }
-  std::ofstream script(fs::path(out_dir) / "compare.gp");
+  util::OutputStream script(fs::path(out_dir) / "compare.gp");
   script << "# gnuplot script written by lagrange compare; run: cd THIS_DIR && gnuplot compare.gp\n";
   for (const std::string& s : sections) script << "\n" << s;
   if (!script.flush()) throw PlotError("cannot write " + out_dir + "/compare.gp");

@@ -1,7 +1,6 @@
 #include "tools/csv_export.hpp"
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <set>
@@ -18,6 +17,7 @@
 #include "tools/log_reader.hpp"
 #include "transport/channels.hpp"
 #include "util/number_text.hpp"
+#include "util/output_stream.hpp"
 
 namespace lagrange::tools {
 
@@ -111,8 +111,7 @@ void notePublishTime(const lcm::LogEvent& ev, PublishTimes& times) {
 // TIMING.csv: per tick, the plant's period error and the latencies from its
 // sample to the command and to the actuator state answering it [us].
 long long writeTiming(const PublishTimes& times, double period, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  util::OutputStream out(path);
   out << "tick,period_error_us,command_latency_us,actuator_latency_us\n";
   long long rows = 0;
   const auto after = [&](const std::map<int64_t, int64_t>& m, int64_t tick, int64_t published) {
@@ -129,7 +128,7 @@ long long writeTiming(const PublishTimes& times, double period, const std::strin
     previous = {tick, published};
     ++rows;
   }
-  if (!out.flush()) throw std::runtime_error("writing " + path + " failed");
+  out.close();
   return rows;
 }
 
@@ -141,16 +140,15 @@ class TickOrderedCsv {
  public:
   static constexpr int64_t kHeldTicks = 1000;
 
-  explicit TickOrderedCsv(const std::filesystem::path& path) : out_(path) {}
-  bool opened() const { return static_cast<bool>(out_); }
+  explicit TickOrderedCsv(const std::filesystem::path& path) : out_(path.string()) {}
   void header(const std::string& line) { out_ << line << "\n"; }
   void add(int64_t tick, std::string line) {
     held_.emplace(tick, std::move(line));
     while (!held_.empty() && held_.begin()->first < held_.rbegin()->first - kHeldTicks) writeFirst();
   }
-  bool finish() {
+  void finish() {
     while (!held_.empty()) writeFirst();
-    return static_cast<bool>(out_.flush());
+    out_.close();
   }
 
  private:
@@ -158,14 +156,14 @@ class TickOrderedCsv {
     out_ << held_.begin()->second << "\n";
     held_.erase(held_.begin());
   }
-  std::ofstream out_;
+  util::OutputStream out_;
   std::map<int64_t, std::string> held_;
 };
 
 }  // namespace
 
 CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
-  std::filesystem::create_directories(out_dir);
+  util::makeOutputDirectories(out_dir);
   CsvExport result;
   std::map<std::string, TickOrderedCsv> files;
   std::map<std::string, std::set<int64_t>> seen;
@@ -177,15 +175,12 @@ CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
     auto it = files.find(ev.channel);
     if (it == files.end()) {
       it = files.try_emplace(ev.channel, std::filesystem::path(out_dir) / (ev.channel + ".csv")).first;
-      if (!it->second.opened())
-        throw std::runtime_error("cannot write " + out_dir + "/" + ev.channel + ".csv");
       it->second.header(row.header());
     }
     it->second.add(tick, row.line());
     ++result.rows[ev.channel];
   });
-  for (auto& [channel, file] : files)
-    if (!file.finish()) throw std::runtime_error("writing " + out_dir + "/" + channel + ".csv failed");
+  for (auto& [channel, file] : files) file.finish();
   return result;
 }
 

@@ -15,6 +15,7 @@
 
 #include "tools/csv_export.hpp"
 #include "transport/channels.hpp"
+#include "util/output_stream.hpp"
 
 namespace lagrange::tools {
 
@@ -348,7 +349,7 @@ PlotScript plotScript(const PlotSpec& spec) {
 Plots drawPlots(const PlotSpec& spec) {
   const PlotScript script = plotScript(spec);
   {
-    std::ofstream out(fs::path(spec.dir) / "plots.gp");
+    util::OutputStream out(fs::path(spec.dir) / "plots.gp");
     out << script.text;
     if (!out) throw PlotError("cannot write " + spec.dir + "/plots.gp");
   }

@@ -27,6 +27,7 @@
 #include "tools/sweep_progress.hpp"
 #include "tools/sweep_runner.hpp"
 #include "tools/sweep_store.hpp"
+#include "util/output_file.hpp"
 
 namespace lagrange::tools {
 
@@ -60,9 +61,9 @@ void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
                         "--out directory");
     return;
   }
-  std::ofstream(plan_path.string() + ".tmp", std::ios::binary) << text;
+  util::writeOutputFile(plan_path.string() + ".tmp", text);
   fs::rename(plan_path.string() + ".tmp", plan_path);
-  fs::copy_file(plan.spec.file, fs::path(out_dir) / "sweep.yaml", fs::copy_options::overwrite_existing);
+  util::writeOutputFile((fs::path(out_dir) / "sweep.yaml").string(), readFile(plan.spec.file));
 }
 
 SweepPlan loadPlan(const std::string& out_dir) {
@@ -192,12 +193,11 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   const fs::path slurm = dir / "slurm";
   fs::create_directories(slurm);
   const fs::path script = slurm / "shard.sh";
-  {
-    std::ofstream sh(script);
-    sh << "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " << n
-       << " == K.\nexec " << shellQuote(o.self_exe) << " sweep-shard " << shellQuote(dir.string())
-       << " --shard \"$SLURM_ARRAY_TASK_ID\" --of " << n << "\n";
-  }
+  util::writeOutputFile(
+      script.string(),
+      "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " +
+          std::to_string(n) + " == K.\nexec " + shellQuote(o.self_exe) + " sweep-shard " +
+          shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) + "\n");
   fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                               fs::perms::others_read | fs::perms::others_exec);
   std::vector<std::string> args = {"sbatch",

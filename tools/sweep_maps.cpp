@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <vector>
+
+#include "util/output_stream.hpp"
 
 namespace lagrange::tools {
 
@@ -80,7 +81,7 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
   int k = 0;
   for (const auto& [g, points] : converged) {
     const std::string file = "convergence_" + std::to_string(k) + ".csv";
-    std::ofstream out(dir / file);
+    util::OutputStream out(dir / file);
     out << "x0_norm,convergence_time\n";
     for (const auto& [x, t] : points) out << num(x) << "," << num(t) << "\n";
     plot += std::string(k ? ", \\\n     " : "") + "'" + file +
@@ -94,7 +95,7 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
       if (what == kind) xs.push_back(x);
     if (xs.empty()) continue;
     const std::string file = kind == "diverged" ? "diverged.csv" : "not_converged.csv";
-    std::ofstream out(dir / file);
+    util::OutputStream out(dir / file);
     out << "x0_norm,y\n";
     for (double x : xs) out << num(x) << "," << num(top * (kind == "diverged" ? 1.5 : 1.0)) << "\n";
     plot += std::string(k++ ? ", \\\n     " : "") + "'" + file + "' skip 1 using 1:2 with points pt " +
@@ -122,7 +123,7 @@ std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, co
     ys.push_back(*y);
   }
   if (cells.empty()) return std::nullopt;
-  std::ofstream out(dir / "heat_map.csv");
+  util::OutputStream out(dir / "heat_map.csv");
   out << xcol << "," << ycol << ",converged_fraction,runs\n";
   for (const auto& [xy, c] : cells)
     out << num(xy.first) << "," << num(xy.second) << "," << num(double(c.first) / c.second) << "," << c.second
@@ -149,7 +150,7 @@ std::optional<Picture> marginMap(const fs::path& dir, const std::string& title,
       ++c.second;
     }
   if (by_margin.empty()) return std::nullopt;
-  std::ofstream out(dir / "margin.csv");
+  util::OutputStream out(dir / "margin.csv");
   out << "gain_margin,converged_fraction,runs\n";
   for (const auto& [m, c] : by_margin)
     out << num(m) << "," << num(double(c.first) / c.second) << "," << c.second << "\n";
@@ -171,14 +172,14 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
     if (f && x) by_rate[*f].push_back({*x, r.value("converged", false)});
   }
   if (by_rate.size() < 2) return std::nullopt;
-  std::ofstream out(dir / "region_vs_rate.csv");
+  util::OutputStream out(dir / "region_vs_rate.csv");
   out << "rate,all_converged_below,largest_converged,runs\n";
   // A rate where no run converged has no region: drawn as a cross below the
   // smallest initial state swept, so that it is not silently missing.
   double smallest = 0;
   for (const auto& [f, runs] : by_rate)
     for (const auto& [x, ok] : runs) smallest = smallest > 0 ? std::min(smallest, x) : x;
-  std::ofstream none(dir / "region_none.csv");
+  util::OutputStream none(dir / "region_none.csv");
   none << "rate,y\n";
   bool any_none = false;
   for (auto& [f, runs] : by_rate) {
@@ -215,7 +216,7 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
 
 Plots drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const std::map<long, Row>& rows) {
   const fs::path dir = fs::path(out_dir) / "maps";
-  fs::create_directories(dir);
+  util::makeOutputDirectories(dir.string());
   const std::string title = fs::path(plan.spec.file).stem().string();
   // Parameter columns a map can use: not a norm axis's direction index.
   std::vector<std::string> axes;
@@ -242,7 +243,7 @@ Plots drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const std
     sections.push_back(p.script);
     all += p.script + "\n";
   }
-  std::ofstream(dir / "maps.gp") << all;
+  util::writeOutputFile((dir / "maps.gp").string(), all);
   return drawPictures(dir.string(), pngs, sections);
 }
 

@@ -12,6 +12,7 @@
 
 #include "tools/sweep_runner.hpp"
 #include "util/number_text.hpp"
+#include "util/output_file.hpp"
 
 namespace lagrange::tools {
 
@@ -33,12 +34,7 @@ std::string csvField(const nlohmann::ordered_json& v) {
 
 void writeAtomically(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out.flush())
-      throw std::runtime_error("cannot write " + tmp.string() + "; expected a writable directory");
-  }
+  util::writeOutputFile(tmp.string(), text);  // never through a link planted at tmp
   fs::rename(tmp, path);
 }
 

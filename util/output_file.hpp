@@ -17,6 +17,7 @@
 #include <cerrno>
 #include <climits>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -106,6 +107,16 @@ inline void makeOutputDirectory(const std::string& path) {
                            "outputs are never written through a link");
   if (!S_ISDIR(st.st_mode))
     throw UnsafeOutputPath("'" + path + "' is not a directory; expected a directory or nothing there");
+}
+
+/// Makes directory `path` and its missing parents; the last one as
+/// makeOutputDirectory does (never a link: the files go there), the parents
+/// as the user named them.
+inline void makeOutputDirectories(std::string path) {
+  while (path.size() > 1 && path.back() == '/') path.pop_back();  // "DIR/" would follow a link at DIR
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  makeOutputDirectory(path);
 }
 
 }  // namespace lagrange::util

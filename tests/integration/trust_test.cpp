@@ -161,6 +161,30 @@ TEST(Trust, PlantedReportLinkIsRefused) {
   EXPECT_TRUE(fs::is_empty(users));
 }
 
+// Links planted inside report/ in the place of its files (a CSV, the
+// plots script): `lagrange report` refuses (exit 2) naming the link, and the
+// link's target keeps its bytes.
+TEST(Trust, PlantedLinksInsideTheReportAreRefused) {
+  const std::string dir = freshDir("report-inner-link");
+  const RunResult run = runScenario(kRigid, dir, "--set duration=0.3 -q");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string users = freshDir("users-report-file");
+  fs::create_directories(users);
+  for (const std::string name : {"PLANT_TRUTH.csv", "CONTROL_COMMAND.csv", "plots.gp"}) {
+    const std::string report = dir + "/report-" + fs::path(name).stem().string();
+    fs::create_directories(report);
+    const std::string target = users + "/precious-" + name;
+    const std::string bytes = "the user's own " + name + "\n";
+    std::ofstream(target, std::ios::binary) << bytes;
+    fs::create_symlink(target, fs::path(report) / name);
+    const RunResult r = lagrange("report " + quote(dir) + " -o " + quote(report));
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.output;
+    EXPECT_NE(r.output.find("'" + report + "/" + name + "' is a symbolic link"), std::string::npos)
+        << name << ": " << r.output;
+    EXPECT_EQ(readBytes(target), bytes) << name;
+  }
+}
+
 // A hard link to a user's file in the place of an output: the output is a
 // new file; the user's file keeps its bytes (no truncation through the link).
 TEST(Trust, HardLinkedOutputIsReplacedNotWrittenThrough) {
