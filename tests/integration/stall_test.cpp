@@ -4,12 +4,22 @@
 // name whom it waited for, on which channel, and what was seen instead.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
+#include <lcm/lcm-cpp.hpp>
+#include <thread>
+#include <vector>
 
+#include "lagrange/control_command_t.hpp"
+#include "lagrange/plant_position_t.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
+#include "tools/spy.hpp"
+#include "transport/checksum.hpp"
+#include "transport/message_auth.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -73,6 +83,101 @@ TEST(Stall, AControllerWithTheWrongKeyIsNamedWithItsRejectedCommands) {
   // The key file of the run is gone with it; the user's own is left alone.
   EXPECT_FALSE(std::filesystem::exists(out + "/run.key"));
   EXPECT_TRUE(std::filesystem::exists(key));
+}
+
+// A controller that has the key but whose every command fails the checksum:
+// the test answers each PLANT_POSITION itself, in the controller's name,
+// signed with the run's key (read from OUT/run.key, as an external program
+// would) but with a checksum one off. The actuator rejects each as corrupt,
+// and the plant's diagnosis counts them.
+class BadChecksumController {
+ public:
+  explicit BadChecksumController(const std::string& out_dir) : thread_([this, out_dir] { serve(out_dir); }) {}
+  ~BadChecksumController() {
+    stop_ = true;
+    thread_.join();
+  }
+  long long sent() const { return sent_; }
+
+ private:
+  void serve(const std::string& out_dir) {
+    while (!stop_ &&
+           !(std::filesystem::exists(out_dir + "/lcm.json") && std::filesystem::exists(out_dir + "/run.key")))
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (stop_) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // both written whole
+    std::ifstream key_in(out_dir + "/run.key");
+    std::string hex;
+    key_in >> hex;
+    transport::MessageKey key{};
+    if (!transport::fromHex(hex, key)) return;
+    const transport::MessageAuthenticator auth(key);
+    const tools::RunEndpoint run = tools::readEndpoint(out_dir);
+    lcm::LCM bus(run.lcm_url);
+    if (!bus.good()) return;
+    struct Context {
+      BadChecksumController* self;
+      lcm::LCM* bus;
+      const transport::MessageAuthenticator* auth;
+      int64_t run_id;
+      int64_t seq = 0;
+    } context{this, &bus, &auth, run.run_id};
+    bus.subscribeFunction(
+        "PLANT_POSITION",
+        +[](const lcm::ReceiveBuffer* rbuf, const std::string&, Context* c) {
+          lagrange::plant_position_t p;
+          if (p.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size)) < 0) return;
+          lagrange::control_command_t m{};
+          m.header.tick = p.header.tick;
+          m.header.sim_time = p.header.sim_time;
+          m.header.run_id = c->run_id;
+          m.header.publisher = "controller";
+          m.header.publisher_pid = 4242;
+          m.header.seq = ++c->seq;
+          m.input_position_tick = p.header.tick;
+          m.input_actuator_tick = -1;
+          m.input_motor_tick = -1;
+          m.num_joints = p.num_joints;
+          m.u = m.q_desired = m.q_error = m.theta = m.filter_state = std::vector<double>(p.num_joints, 0.0);
+          transport::seal(m);
+          m.header.checksum += 1;  // the one thing wrong
+          std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+          m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+          c->auth->sign(bytes);
+          c->bus->publish("CONTROL_COMMAND", bytes.data(), static_cast<unsigned>(bytes.size()));
+          ++c->self->sent_;
+        },
+        &context);
+    while (!stop_) bus.handleTimeout(20);
+  }
+
+  std::atomic<bool> stop_{false};
+  std::atomic<long long> sent_{0};
+  std::thread thread_;
+};
+
+TEST(Stall, AControllerWhoseCommandsFailTheChecksumIsNamedWithTheirCount) {
+  const std::string out = freshDir("stall-checksum");
+  Timed t;
+  long long sent = 0;
+  {
+    const BadChecksumController controller(out);
+    // On the test's own network (where this thread is), not a private one.
+    t = timedRun(out,
+                 "--no-netns --lcm-url 'udpm://239.255.76.67:7695?ttl=0' "
+                 "--set 'controller={type: external, command: [sleep, \"600\"]}'");
+    sent = controller.sent();
+  }
+  EXPECT_GT(sent, 0) << "the test's controller never answered: " << t.result.output;
+  EXPECT_EQ(t.result.exit_code, 1) << t.result.output;
+  EXPECT_LT(t.seconds, 25.0) << t.result.output;
+  EXPECT_TRUE(
+      has(t.result.output,
+          "no valid CONTROL_COMMAND for tick 0 reached the actuator (it accepted 0 CONTROL_COMMAND and "
+          "rejected"))
+      << t.result.output;
+  EXPECT_TRUE(has(t.result.output, "corrupt (checksum)")) << t.result.output;
+  EXPECT_FALSE(has(t.result.output, "unauthenticated")) << "the MAC was right: " << t.result.output;
 }
 
 // A restarted controller loads and checks its gains before it answers; the
