@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <map>
@@ -110,9 +111,8 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     }
     auto answer_deadline = published_at + (k == 0 ? startup : stall);
     while (!protocol.answered() && !runtime::stopRequested()) {
-      if (const auto renewed = Clock::now() + startup;
-          runtime::takeResumeNotice() && renewed > answer_deadline)
-        answer_deadline = renewed;
+      if (runtime::takeResumeNotice())
+        answer_deadline = std::max(answer_deadline, decltype(answer_deadline)(Clock::now() + startup));
       if (Clock::now() > answer_deadline) throw PlantStalled(describeAnswerStall(stalled(k, published_at)));
       node.handle(5);
       if (protocol.positionResendDue(Clock::now())) publishMeasurements(node, out);
