@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs what is missing (scripts/setup.sh), then configures and builds
-# into build/ (binaries in build/bin/). Extra arguments go to cmake.
+# everything into build/ (binaries in build/bin/). Extra arguments go to
+# cmake's configure step (e.g. -DLAGRANGE_BUILD_BENCH=OFF).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLAGRANGE_BUILD_TESTS=ON -DLAGRANGE_BUILD_JAVA=ON \
+  -DLAGRANGE_BUILD_BENCH=ON "$@" >/dev/null
 cmake --build build -j2

@@ -1,17 +1,27 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package lagrange needs to build, test and run.
-# A no-op (no apt-get call at all) when everything is already present.
+# Installs the Debian 12 packages lagrange needs. A no-op (no apt-get call at
+# all) when everything is already present.
+#   scripts/setup.sh          everything: build, run, the test suite, benchmarks
+#   scripts/setup.sh --run    only what building the programs and running a
+#                             scenario with its report needs (scripts/demo.sh)
 set -euo pipefail
 
-packages=(
-  build-essential cmake pkg-config git
-  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev libjchart2d-java
+# Building the five programs and running one scenario with --report.
+run_packages=(
+  build-essential cmake pkg-config
+  liblcm-dev liblcm-bin libglib2.0-dev  # LCM and lcm-gen
   gnuplot-nox  # lagrange report's plots
   liburdfdom-dev liborocos-kdl-dev  # URDF arms: the document, the dynamics
   libsodium-dev libssl-dev  # each run's random key; every message's HMAC-SHA256 (libcrypto)
-  libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev
-  libgtest-dev libbenchmark-dev nlohmann-json3-dev default-jdk-headless
-  iproute2 util-linux
+  libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libcpp-httplib-dev libjs-three  # lagrange view: its HTTP server, three.js for its page
+  iproute2 util-linux  # each run's private network namespace
+)
+# Everything else: the Java message classes (lcm-spy), the test suite, the
+# benchmarks, the fuzzers.
+more_packages=(
+  git liblcm-java libjchart2d-java default-jdk-headless
+  libgtest-dev libbenchmark-dev
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it
   default-jre fonts-dejavu-core xvfb imagemagick tesseract-ocr tesseract-ocr-eng
@@ -20,12 +30,21 @@ packages=(
   # systemd invoke-rc.d declines; with it they find no /etc/slurm/slurm.conf);
   # under systemd munge's own service may start, on a local socket only.
   munge slurmctld slurmd slurm-client
-  # lagrange view: its HTTP server, three.js for its page; its test drives
-  # headless chromium through chromedriver and reads the screenshots
-  libcpp-httplib-dev libjs-three chromium chromium-driver libpng-dev
+  # lagrange view's test drives headless chromium through chromedriver and
+  # reads the screenshots
+  chromium chromium-driver libpng-dev
   # scripts/fuzz.sh: libFuzzer with clang
   clang libclang-rt-14-dev
 )
+
+case "${1:-}" in
+  "") packages=("${run_packages[@]}" "${more_packages[@]}") ;;
+  --run) packages=("${run_packages[@]}") ;;
+  *)
+    echo "setup: error: unknown argument '$1'; expected none (everything) or --run" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

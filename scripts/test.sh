@@ -1,13 +1,21 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the whole test suite. The suite runs inside a
-# private network namespace (tests/in_netns.sh), so its LCM traffic never
-# touches this machine's interfaces. Tests run one at a time: the realtime
-# tests run at wall-clock rate, and on a 2-core machine a parallel neighbour
-# would be what they measure. Then the suite runs again under AddressSanitizer
-# and UndefinedBehaviorSanitizer (scripts/test_sanitizers.sh).
+# The test suite: installs what is missing, builds (all but the benchmarks)
+# and runs every test.
+#   scripts/test.sh [CTEST_ARGS...]             the suite
+#   scripts/test.sh --sanitize [CTEST_ARGS...]  the suite again under
+#       AddressSanitizer and UndefinedBehaviorSanitizer, in build-asan/
+#       (scripts/test_sanitizers.sh; .ci/run runs both)
+# Tests run in parallel (ctest -j, LAGRANGE_TEST_JOBS, default 3: most of a
+# lockstep run's time is its processes waiting for each other), each
+# integration test in a network namespace of its own (tests/own_netns.sh), so
+# neighbours never share a multicast group or a port. The tests that measure
+# wall-clock behaviour (label `timing`: realtime runs, deadlines, the progress
+# bar, the browser) run alone: a neighbour would be what they measure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
-tests/in_netns.sh ctest --test-dir build --output-on-failure "$@"
-# Then again under ASan and UBSan (build-asan/), all but the timing tests.
-bash scripts/test_sanitizers.sh "$@"
+if [[ "${1:-}" == --sanitize ]]; then
+  shift
+  exec bash scripts/test_sanitizers.sh "$@"
+fi
+bash scripts/build.sh -DLAGRANGE_BUILD_BENCH=OFF
+exec tests/in_netns.sh ctest --test-dir build --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" "$@"

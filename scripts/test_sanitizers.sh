@@ -12,7 +12,7 @@
 #    flexible arm under faults (73 s and 43 s here): the same code paths as
 #    the tests kept (the Panda's and the flexible arm's golden logs, the
 #    restarted controllers, the other faults runs, the motor sensor's run), at
-#    a cost that would push the whole test command past 30 minutes;
+#    a cost that would double this pass's time;
 #  - the external controller's tests: its Java PD needs the jar of message
 #    types, which this build leaves out (-DLAGRANGE_BUILD_JAVA=OFF), and runs
 #    on the JVM, which the sanitizers do not see;
@@ -34,4 +34,5 @@ timing='Progress\.|Spy\.|RealtimeUnderAttack|OrdinaryRunSaysItsLogIsComplete|Sto
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*(panda|flexible)|FilteredMotorRateConverges'
 java='ExternalController\.'
 slurm='SlurmSweep\.'
-exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -E "$timing|$sweeps|$java|$slurm" "$@"
+# In parallel as scripts/test.sh runs them (the tests labelled serial alone).
+exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm" "$@"

@@ -25,13 +25,13 @@
 #include <string>
 #include <vector>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 
 namespace lagrange::testing {
 namespace {
 
-const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 const char* kChannels[] = {"PLANT_POSITION", "PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS"};
 
 // The run under faults is the fault-free one: all 1001 samples, each bit for

@@ -35,6 +35,7 @@
 #include "lagrange/robot_description_t.hpp"
 #include "lagrange/scenario_t.hpp"
 #include "lagrange/status_t.hpp"
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "tools/spy.hpp"
@@ -44,7 +45,6 @@
 namespace lagrange::testing {
 namespace {
 
-const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 const std::vector<std::string> kForgedChannels = {"PLANT_POSITION", "PLANT_TRUTH",     "PLANT_MOTOR",
                                                   "PLANT_RATE",     "CONTROL_COMMAND", "ACTUATOR_STATE",
                                                   "STATUS",         "SCENARIO",        "ROBOT_DESCRIPTION"};

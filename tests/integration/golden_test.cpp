@@ -9,15 +9,15 @@
 #include <lcm/lcm-cpp.hpp>
 #include <regex>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 
 namespace lagrange::testing {
 namespace {
 
-const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/";
 const char* kRerecord = "\n(if this change of the outputs is intended: bash scripts/record_golden.sh)";
 
-std::string golden(const std::string& name) { return kGolden + name + ".lcm"; }
+std::string golden(const std::string& name) { return kGoldenDir + name + ".lcm"; }
 
 const std::vector<std::string> kLogs = {"rigid_2dof_lockstep", "chain_m2_lockstep",
                                         "flexible_2dof_filtered_rate_lockstep", "chain_m1_realtime",

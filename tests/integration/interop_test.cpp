@@ -27,14 +27,13 @@
 #include "lagrange/scenario_t.hpp"
 #include "lagrange/status_t.hpp"
 #include "support/child.hpp"
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "tools/view_source.hpp"
 
 namespace lagrange::testing {
 namespace {
-
-const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/";
 
 std::string freshUrl() {
   static std::mt19937 rng(std::random_device{}());
@@ -122,7 +121,7 @@ size_t fewestTicks(const std::string& path) {
 class LogplayerIntoLiveController : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LogplayerIntoLiveController, AnswersWithTheRecordedCommands) {
-  const std::string golden = kGolden + GetParam() + ".lcm";
+  const std::string golden = kGoldenDir + GetParam() + ".lcm";
   const std::string dir = freshDir("logplayer");
   std::filesystem::create_directories(dir);
   const std::string url = freshUrl();

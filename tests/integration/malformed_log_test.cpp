@@ -9,14 +9,13 @@
 #include <iterator>
 #include <string>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 
 namespace lagrange::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/rigid_2dof_lockstep.lcm";
 
 uint32_t bigEndian32(const std::string& bytes, std::size_t at) {
   uint32_t v = 0;
@@ -36,11 +35,11 @@ struct Crafted {
 // The golden log with one length field of event `index` overwritten:
 // `field` 20 is the channel length, 24 the data length (LCM log format).
 Crafted damaged(const std::string& tag, int index, std::size_t field, uint32_t value) {
-  std::ifstream in(kGolden, std::ios::binary);
+  std::ifstream in(kGoldenRigidLockstep, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::size_t offset = 0;
   for (int i = 0; i < index; ++i) {
-    EXPECT_EQ(bigEndian32(bytes, offset), 0xEDA1DA01u) << "event " << i << " of " << kGolden;
+    EXPECT_EQ(bigEndian32(bytes, offset), 0xEDA1DA01u) << "event " << i << " of " << kGoldenRigidLockstep;
     offset += 28 + bigEndian32(bytes, offset + 20) + bigEndian32(bytes, offset + 24);
   }
   EXPECT_EQ(bigEndian32(bytes, offset), 0xEDA1DA01u);

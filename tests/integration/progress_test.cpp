@@ -5,16 +5,15 @@
 
 #include <regex>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 
 namespace lagrange::testing {
 namespace {
 
-const std::string kConfig = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
-
 TEST(Progress, PlainLinesWhenNotATerminal) {
   // Realtime: 3 s of wall time, so lines at about 0 s and 2 s, and the final one.
-  const RunResult r = runScenario(kConfig, freshDir("progress-plain"), "--mode realtime --set duration=3");
+  const RunResult r = runScenario(kRigid, freshDir("progress-plain"), "--mode realtime --set duration=3");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::regex line(
       R"(progress: t = [0-9]+\.[0-9]{2} / 3\.00 s \( *[0-9]+%\), [0-9.]+x real time, \|q~\| = (--|[0-9.]+e[-+][0-9]+ rad))");
@@ -32,7 +31,7 @@ TEST(Progress, ABarOnATerminal) {
   const std::string out = freshDir("progress-tty");
   const RunResult r =
       shell("script -qec " +
-            quote(kBin + "/lagrange run " + kConfig + " -o " + out + " --mode realtime --set duration=2") +
+            quote(kBin + "/lagrange run " + kRigid + " -o " + out + " --mode realtime --set duration=2") +
             " /dev/null");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(std::regex_search(

@@ -10,13 +10,13 @@
 #include <lcm/lcm-cpp.hpp>
 #include <set>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 
 namespace lagrange::testing {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/";
 
 // Width and height of a PNG file (its IHDR chunk), or {0, 0} if it is not a PNG.
 std::pair<uint32_t, uint32_t> pngSize(const std::string& path) {
@@ -70,7 +70,7 @@ TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
   };
   for (const auto& [log, expected, title] : cases) {
     const std::string out = freshDir("report-" + log);
-    const RunResult r = lagrange("report " + quote(kGolden + log + ".lcm") + " -o " + quote(out));
+    const RunResult r = lagrange("report " + quote(kGoldenDir + log + ".lcm") + " -o " + quote(out));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
     expectPlots(out, expected, log);
@@ -86,7 +86,7 @@ TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
 TEST(Report, AUrdfArmsPlotsNameItsJoints) {
   const std::string out = freshDir("report-panda");
   ASSERT_EQ(
-      lagrange("report " + quote(kGolden + "panda_theorem1_lockstep.lcm") + " -o " + quote(out)).exit_code,
+      lagrange("report " + quote(kGoldenDir + "panda_theorem1_lockstep.lcm") + " -o " + quote(out)).exit_code,
       0);
   std::ifstream script(out + "/plots.gp");
   const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
@@ -98,7 +98,8 @@ TEST(Report, AUrdfArmsPlotsNameItsJoints) {
   EXPECT_GE(pngSize(out + "/joints.png").second, 7u * 260u);
   const std::string planar = freshDir("report-planar");
   ASSERT_EQ(
-      lagrange("report " + quote(kGolden + "rigid_2dof_lockstep.lcm") + " -o " + quote(planar)).exit_code, 0);
+      lagrange("report " + quote(kGoldenDir + "rigid_2dof_lockstep.lcm") + " -o " + quote(planar)).exit_code,
+      0);
   std::ifstream planar_script(planar + "/plots.gp");
   const std::string planar_text((std::istreambuf_iterator<char>(planar_script)),
                                 std::istreambuf_iterator<char>());
@@ -108,7 +109,7 @@ TEST(Report, AUrdfArmsPlotsNameItsJoints) {
 
 TEST(Report, RealtimeTimingTableHasARowPerTick) {
   const std::string out = freshDir("report-timing");
-  ASSERT_EQ(lagrange("report " + quote(kGolden + "chain_m1_realtime.lcm") + " -o " + quote(out)).exit_code,
+  ASSERT_EQ(lagrange("report " + quote(kGoldenDir + "chain_m1_realtime.lcm") + " -o " + quote(out)).exit_code,
             0);
   std::ifstream timing(out + "/TIMING.csv");
   std::string header, line;
@@ -142,7 +143,7 @@ TEST(Report, ALogWithoutItsScenarioStillGetsPlots) {
   fs::create_directories(dir);
   const std::string log = dir + "/no_scenario.lcm";
   {
-    lcm::LogFile in(kGolden + "chain_m2_lockstep.lcm", "r"), out(log, "w");
+    lcm::LogFile in(kGoldenDir + "chain_m2_lockstep.lcm", "r"), out(log, "w");
     while (const lcm::LogEvent* ev = in.readNextEvent())
       if (ev->channel != "SCENARIO") out.writeEvent(const_cast<lcm::LogEvent*>(ev));
   }

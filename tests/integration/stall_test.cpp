@@ -14,6 +14,7 @@
 
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_position_t.hpp"
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
@@ -23,8 +24,6 @@
 
 namespace lagrange::testing {
 namespace {
-
-const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 
 struct Timed {
   RunResult result;

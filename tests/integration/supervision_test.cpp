@@ -8,14 +8,13 @@
 
 #include <filesystem>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
 
 namespace lagrange::testing {
 namespace {
-
-const std::string kRigid = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
 
 // About 600 kB of log per simulated second of the realtime rigid_2dof run:
 // 1.5 MB is about 2.5 s, well after the first convergence (0.9 s).

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "support/child.hpp"
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/wait.hpp"
 
@@ -24,8 +25,6 @@ namespace lagrange::testing {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-const std::string kGolden = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/rigid_2dof_lockstep.lcm";
 
 // `lagrange view ARGS --port 0` in the background, and the port it printed.
 class Viewer {
@@ -192,7 +191,7 @@ TEST(ViewGuard, IdleConnectionsAndOpenLiveStreamsDoNotStarvePageLoads) {
 }
 
 TEST(ViewGuard, AFloodOfConnectionsIsRefusedAtOnceAndTheViewerRecovers) {
-  Viewer viewer({kGolden});
+  Viewer viewer({kGoldenRigidLockstep});
   ASSERT_GT(viewer.port(), 0) << viewer.output();
   const std::string host = "127.0.0.1:" + std::to_string(viewer.port());
   std::vector<std::unique_ptr<Connection>> flood;
@@ -223,7 +222,7 @@ TEST(ViewGuard, AFloodOfConnectionsIsRefusedAtOnceAndTheViewerRecovers) {
 }
 
 TEST(ViewGuard, AForeignHostHeaderIsRefusedAsDnsRebinding) {
-  Viewer viewer({kGolden});
+  Viewer viewer({kGoldenRigidLockstep});
   ASSERT_GT(viewer.port(), 0) << viewer.output();
   const std::string port = std::to_string(viewer.port());
   for (const std::string& host :
@@ -252,7 +251,7 @@ TEST(ViewGuard, AForeignHostHeaderIsRefusedAsDnsRebinding) {
 // --allow-remote on every address: this machine's name is answered too,
 // other names still are not.
 TEST(ViewGuard, AllowRemoteAcceptsThisMachinesNameAndStillRefusesOthers) {
-  Viewer viewer({kGolden, "--host", "0.0.0.0", "--allow-remote"}, R"(0\.0\.0\.0)");
+  Viewer viewer({kGoldenRigidLockstep, "--host", "0.0.0.0", "--allow-remote"}, R"(0\.0\.0\.0)");
   ASSERT_GT(viewer.port(), 0) << viewer.output();
   char name[256] = {};
   ASSERT_EQ(gethostname(name, sizeof name - 1), 0);

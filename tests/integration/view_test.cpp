@@ -21,6 +21,7 @@
 
 #include "config/scenario.hpp"
 #include "support/child.hpp"
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/png_image.hpp"
 #include "support/wait.hpp"
@@ -34,7 +35,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs/";
 constexpr int kTipRgb[3] = {255, 0, 255};    // viewer.js TIP_COLOR
 constexpr int kRotorRgb[3] = {240, 140, 0};  // viewer.js ROTOR_COLOR
 
@@ -92,7 +92,7 @@ Eigen::VectorXd vec(const std::vector<double>& v) {
 }
 
 std::string inprocLog(const std::string& config, const std::string& dir, const std::string& sets) {
-  const RunResult r = runScenario(kConfigs + config, dir + "/run", "--mode inproc -q " + sets);
+  const RunResult r = runScenario(kConfigs + "/" + config, dir + "/run", "--mode inproc -q " + sets);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return dir + "/run/run.lcm";
 }
@@ -171,7 +171,7 @@ TEST(View, APlanarLogIsDrawnWhereItsAnglesPutTheTip) {
   fs::create_directories(dir);
   const std::string log = inprocLog("rigid_2dof.yaml", dir, "--set duration=1");
   const Logged logged = readLogged(log);
-  const config::Scenario s = config::loadScenario(kConfigs + "rigid_2dof.yaml");
+  const config::Scenario s = config::loadScenario(kConfigs + "/rigid_2dof.yaml");
   ViewServer server(log, dir);
   Browser browser(dir, 1280, 720);
   openViewer(browser, server);
@@ -250,7 +250,7 @@ TEST(View, AUrdfArmAndFlexibleJointsAreDrawnFromTheirLogs) {
   {
     const std::string log = inprocLog("panda_theorem1.yaml", dir + "/panda", "--set duration=0.3");
     const Logged logged = readLogged(log);
-    const config::Scenario s = config::loadScenario(kConfigs + "panda_theorem1.yaml");
+    const config::Scenario s = config::loadScenario(kConfigs + "/panda_theorem1.yaml");
     ViewServer server(log, dir + "/panda");
     Browser browser(dir + "/panda", 1280, 720);
     openViewer(browser, server);
@@ -264,7 +264,7 @@ TEST(View, AUrdfArmAndFlexibleJointsAreDrawnFromTheirLogs) {
     const std::string log = inprocLog("flexible_2dof.yaml", dir + "/flexible", "--set duration=1");
     const Logged logged = readLogged(log);
     ASSERT_FALSE(logged.motor.empty());
-    const config::Scenario s = config::loadScenario(kConfigs + "flexible_2dof.yaml");
+    const config::Scenario s = config::loadScenario(kConfigs + "/flexible_2dof.yaml");
     ViewServer server(log, dir + "/flexible");
     Browser browser(dir + "/flexible", 1280, 720);
     openViewer(browser, server);
@@ -280,7 +280,7 @@ TEST(View, FollowsARunningScenarioLive) {
   const std::string dir = freshDir("view-live");
   fs::create_directories(dir);
   const std::string out = dir + "/run";
-  Child run({kBin + "/lagrange", "run", kConfigs + "rigid_2dof.yaml", "--out", out, "--set", "mode=realtime",
+  Child run({kBin + "/lagrange", "run", kConfigs + "/rigid_2dof.yaml", "--out", out, "--set", "mode=realtime",
              "--set", "duration=60", "-q"},
             dir + "/run.out");
   ASSERT_TRUE(waitFor([&] { return fs::exists(out + "/lcm.json"); }, 20)) << slurp(dir + "/run.out");

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// The shipped scenario files (configs/), for tests that run each of them.
+/// The shipped scenario files (configs/) and the golden logs, for the tests
+/// that read them (defined once: the tests compile as unity batches).
 
 #include <algorithm>
 #include <filesystem>
@@ -10,6 +11,12 @@
 namespace lagrange::testing {
 
 inline const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
+/// The default scenario, the one most tests run.
+inline const std::string kRigid = kConfigs + "/rigid_2dof.yaml";
+/// The golden logs (tests/data/golden/, scripts/record_golden.sh), with the
+/// trailing slash, and the default scenario's lockstep one.
+inline const std::string kGoldenDir = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/golden/";
+inline const std::string kGoldenRigidLockstep = kGoldenDir + "rigid_2dof_lockstep.lcm";
 
 /// The stem of every configs/*.yaml, sorted.
 inline std::vector<std::string> shippedConfigs() {

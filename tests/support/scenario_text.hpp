@@ -9,10 +9,9 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "support/configs.hpp"
 
 namespace lagrange::testing {
-
-inline const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
 
 inline std::string readFile(const std::string& path) {
   std::ifstream in(path);

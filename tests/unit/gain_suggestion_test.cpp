@@ -6,11 +6,12 @@
 #include <stdexcept>
 
 #include "controller/gain_report.hpp"
+#include "support/configs.hpp"
 
 namespace lagrange::controller {
 namespace {
 
-const std::string kConfigs = std::string(LAGRANGE_SOURCE_DIR) + "/configs";
+using testing::kConfigs;
 
 TEST(GainSuggestion, RepairsAViolatedEquation11) {
   const config::Scenario s = config::loadScenario(kConfigs + "/rigid_2dof.yaml", {"controller.kd=0.01"});
