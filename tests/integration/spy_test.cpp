@@ -72,9 +72,10 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
     Child spy({kBin + "/lagrange", "spy", run}, dir + "/spy.out");
     ASSERT_TRUE(waitFor([&] { return slurp(dir + "/spy.out").find("LCM types") != std::string::npos; }, 30))
         << slurp(dir + "/spy.out");
-    std::this_thread::sleep_for(std::chrono::seconds(5));  // traffic fills the table
+    // Traffic fills the table: read it until four of the types show (a
+    // screenshot and its OCR take about a second), for at most 20 s.
+    waitFor([&] { return (letters = readTypeColumn(display, dir, "spy"), typesNamed(letters) >= 4); }, 20);
     EXPECT_TRUE(spy.running()) << slurp(dir + "/spy.out");
-    letters = readTypeColumn(display, dir, "spy");
   }
   const std::string spy_out = slurp(dir + "/spy.out");
   int project_types = 0;  // one Java class per lcmtypes/*.lcm
@@ -105,8 +106,14 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
     ASSERT_TRUE(
         waitFor([&] { return slurp(dir + "/control.out").find("LCM types") != std::string::npos; }, 30))
         << slurp(dir + "/control.out");
-    std::this_thread::sleep_for(std::chrono::seconds(5));
-    const std::string control_letters = readTypeColumn(display, dir, "control");
+    // Until the table lists the channels (its SCENARIO row read back), for at most 20 s.
+    std::string control_letters;
+    waitFor(
+        [&] {
+          control_letters = readTypeColumn(display, dir, "control");
+          return control_letters.find("scenario") != std::string::npos;
+        },
+        20);
     EXPECT_NE(slurp(dir + "/control.out").find("Found 0 LCM types"), std::string::npos)
         << slurp(dir + "/control.out");
     EXPECT_EQ(typesNamed(control_letters), 0) << "OCR without the types jar: " << control_letters;
