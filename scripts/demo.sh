@@ -14,6 +14,6 @@ if [[ ! -f build/CMakeCache.txt ]]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF \
     -DLAGRANGE_BUILD_JAVA=OFF >/dev/null
 fi
-cmake --build build -j2 --target lagrange lagrange-plant lagrange-controller lagrange-actuator lagrange-logger
+cmake --build build -j2 --target programs
 out=runs/rigid_2dof
 exec build/bin/lagrange run configs/rigid_2dof.yaml --out "$out" --report "$@"

@@ -8,9 +8,10 @@
 # Tests run in parallel (ctest -j, LAGRANGE_TEST_JOBS, default 3: most of a
 # lockstep run's time is its processes waiting for each other), each
 # integration test in a network namespace of its own (tests/own_netns.sh), so
-# neighbours never share a multicast group or a port. The tests that measure
-# wall-clock behaviour (label `timing`: realtime runs, deadlines, the progress
-# bar, the browser) run alone: a neighbour would be what they measure.
+# neighbours never share a multicast group or a port. The tests whose result
+# depends on wall-clock speed (label `serial`, listed in tests/CMakeLists.txt:
+# realtime runs, deadlines, the progress bar, the browser) run alone: a
+# neighbour would be what they measure.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ "${1:-}" == --sanitize ]]; then

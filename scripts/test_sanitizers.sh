@@ -34,5 +34,5 @@ timing='Progress\.|Spy\.|RealtimeUnderAttack|OrdinaryRunSaysItsLogIsComplete|Sto
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*(panda|flexible)|FilteredMotorRateConverges'
 java='ExternalController\.'
 slurm='SlurmSweep\.'
-# In parallel as scripts/test.sh runs them (the tests labelled serial alone).
+# In parallel as scripts/test.sh runs them (those labelled `serial` alone).
 exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm" "$@"
