@@ -1,8 +1,45 @@
 #include "controller/controller_lcm.hpp"
 
+#include "transport/channels.hpp"
 #include "transport/messages.hpp"
 
 namespace lagrange::controller {
+
+void subscribeDeclaredInputs(transport::LcmNode& node, const Needs& needs, const MeasurementShape& shape,
+                             InputAssembly& assembly) {
+  // The callbacks run while the node is handled, after this returns: they
+  // capture values, and the caller's assembly.
+  if (needs.actuator_order > 0) {
+    node.subscribe<lagrange::actuator_state_t>(
+        transport::kActuatorState,
+        [shape, order = needs.actuator_order](const lagrange::actuator_state_t& a) {
+          const std::string why = transport::validate(a, shape.joints, shape.torque_steps_per_tick);
+          if (!why.empty() || a.order == order) return why;
+          return "actuator order is " + std::to_string(a.order) + ", expected " + std::to_string(order);
+        },
+        [&assembly](const lagrange::actuator_state_t& a) {
+          assembly.chainState(a.header.tick, transport::toEigen(a.xi));
+        });
+  }
+  if (needs.motor_angles) {
+    node.subscribe<lagrange::plant_motor_t>(
+        transport::kPlantMotor,
+        [shape](const lagrange::plant_motor_t& m) {
+          return transport::validate(m, shape.joints, shape.motor_rates);
+        },
+        [&assembly](const lagrange::plant_motor_t& m) {
+          assembly.motorSample(m.header.tick, motorSample(m));
+        });
+  }
+  if (needs.joint_rates) {
+    node.subscribe<lagrange::plant_rate_t>(
+        transport::kPlantRate,
+        [shape](const lagrange::plant_rate_t& m) { return transport::validate(m, shape.joints); },
+        [&assembly](const lagrange::plant_rate_t& m) {
+          assembly.rateSample(m.header.tick, transport::toEigen(m.qdot));
+        });
+  }
+}
 
 using transport::toStd;
 

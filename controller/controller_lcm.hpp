@@ -10,8 +10,23 @@
 #include "controller/theorem1.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_motor_t.hpp"
+#include "transport/lcm_node.hpp"
 
 namespace lagrange::controller {
+
+/// What the measurements of a run look like, for checking them on arrival.
+struct MeasurementShape {
+  int joints = 0;
+  int torque_steps_per_tick = 0;  ///< of ACTUATOR_STATE (actuator.rate)
+  bool motor_rates = false;       ///< PLANT_MOTOR carries q2' (a motor rate sensor)
+};
+
+/// Subscribes NODE to the measurements besides q that a controller declared
+/// (NEEDS: ACTUATOR_STATE of its order, PLANT_MOTOR, PLANT_RATE), each checked
+/// against SHAPE and handed to ASSEMBLY with its tick. ASSEMBLY must outlive
+/// the node's handling.
+void subscribeDeclaredInputs(transport::LcmNode& node, const Needs& needs, const MeasurementShape& shape,
+                             InputAssembly& assembly);
 
 lagrange::control_command_t commandMessage(const Theorem1Output& out, int64_t position_tick, double sim_time,
                                            InputTicks inputs = {});

@@ -5,9 +5,8 @@
 ///   PLANT_POSITION [+ ACTUATOR_STATE, PLANT_MOTOR, PLANT_RATE as the controller declares]
 ///     -> validate -> controller::InputAssembly -> Controller::step -> CONTROL_COMMAND
 ///
-/// Besides PLANT_POSITION and STATUS it subscribes only to what the
-/// controller's needs() declare: only a controller that declares joint rates
-/// (and a scenario with a velocity sensor) gets a joint velocity.
+/// Besides PLANT_POSITION and STATUS it reads only what its needs() declare
+/// (controller::subscribeDeclaredInputs).
 /// Lockstep: one command per position tick; a repeated tick (the plant
 /// re-sending after a timeout) is answered with the cached command, so the
 /// filter never steps twice on one sample.
@@ -16,7 +15,6 @@
 
 #include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
-#include "controller/input_assembly.hpp"
 #include "controller/registry.hpp"
 #include "runtime/process.hpp"
 #include "runtime/realtime_responder.hpp"
@@ -43,54 +41,27 @@ int DoMain(int argc, char** argv) {
       // The launcher prints the sampled-data check; here it would only delay the first tick.
       [&](const config::Scenario& s) { gains = controller::checkGains(s, false); },
       [&](const config::Scenario& s, transport::LcmNode& node) {
-        if (gains.holds()) {
-          spdlog::info("{}", controller::describe(gains));
-        } else if (strict) {
+        if (!gains.holds() && strict) {
           spdlog::error("{} (refusing to start: --strict)", controller::describe(gains));
           return 3;
-        } else {
-          spdlog::warn("{} (running anyway; --strict makes this an error)", controller::describe(gains));
         }
+        const char* const running = gains.holds() ? "" : " (running anyway; --strict makes this an error)";
+        spdlog::log(gains.holds() ? spdlog::level::info : spdlog::level::warn, "{}{}",
+                    controller::describe(gains), running);
 
         const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
         const controller::Needs needs = ctl->needs();
         // The measurements besides q that it declared, assembled per tick
         // (lockstep) or newest (realtime) by controller::InputAssembly.
-        const bool rate_sensor = s.flexible && s.flexible->rate_sensor;
         controller::InputAssembly assembly = controller::makeInputAssembly(s, needs);
-        if (needs.actuator_order > 0) {
-          node.subscribe<lagrange::actuator_state_t>(
-              transport::kActuatorState,
-              [&](const lagrange::actuator_state_t& a) {
-                const std::string why = transport::validate(a, s.dof(), s.torqueStepsPerTick());
-                if (!why.empty() || a.order == needs.actuator_order) return why;
-                return "actuator order is " + std::to_string(a.order) + ", expected " +
-                       std::to_string(needs.actuator_order);
-              },
-              [&](const lagrange::actuator_state_t& a) {
-                assembly.chainState(a.header.tick, transport::toEigen(a.xi));
-              });
-        }
-        if (needs.motor_angles) {
-          node.subscribe<lagrange::plant_motor_t>(
-              transport::kPlantMotor,
-              [&](const auto& m) { return transport::validate(m, s.dof(), rate_sensor); },
-              [&](const lagrange::plant_motor_t& m) {
-                assembly.motorSample(m.header.tick, controller::motorSample(m));
-              });
-        }
-        if (needs.joint_rates) {
-          node.subscribe<lagrange::plant_rate_t>(
-              transport::kPlantRate, [&](const auto& m) { return transport::validate(m, s.dof()); },
-              [&](const lagrange::plant_rate_t& m) {
-                assembly.rateSample(m.header.tick, transport::toEigen(m.qdot));
-              });
-        }
+        controller::subscribeDeclaredInputs(
+            node, needs, {s.dof(), s.torqueStepsPerTick(), s.flexible && s.flexible->rate_sensor}, assembly);
         auto command = [&](const lagrange::plant_position_t& m,
                            const std::optional<controller::AssembledInputs>& in)
             -> std::optional<lagrange::control_command_t> {
           if (!in) return std::nullopt;
-          return controller::commandMessage(ctl->step(in->inputs), m.header.tick, m.header.sim_time, in->ticks);
+          return controller::commandMessage(ctl->step(in->inputs), m.header.tick, m.header.sim_time,
+                                            in->ticks);
         };
         if (s.mode == config::Mode::kRealtime) {
           // A quarter period after the plant: its position has arrived.

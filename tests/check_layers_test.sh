@@ -1,0 +1,55 @@
+#!/bin/bash
+# Proves that tests/check_layers.sh can fail: on a copy of the sources, an
+# include planted up the layers, a file in no layer and a transport header in
+# config other than the fault rule are each named and fail the check; the
+# copy as it is passes. Then docs/architecture.md must show the rules the
+# check enforces (its --rules table, verbatim).
+# Usage: tests/check_layers_test.sh SOURCE_DIR
+set -euo pipefail
+src=$(cd "${1:?usage: check_layers_test.sh SOURCE_DIR}" && pwd)
+check="$src/tests/check_layers.sh"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+mkdir "$work/tree"
+(cd "$src" && find . \( -name 'build*' -o -name .git -o -name runs \) -prune -o -type f \
+  \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) -print0 | xargs -0 cp --parents -t "$work/tree")
+
+# expect_failure NAME PATTERN: the check fails and its output matches PATTERN.
+expect_failure() {
+  local out status=0
+  out=$(bash "$check" "$work/tree" 2>&1) || status=$?
+  [[ $status -eq 1 ]] || fail "$1: exit $status, expected 1; output: $out"
+  grep -qE "$2" <<<"$out" || fail "$1: output does not match '$2': $out"
+  echo "ok: $1"
+}
+
+bash "$check" "$work/tree" >/dev/null || fail "the unchanged copy does not pass"
+
+cp "$work/tree/model/bounds.cpp" "$work/bounds.cpp"
+echo '#include "tools/run_command.hpp"' >>"$work/tree/model/bounds.cpp"
+expect_failure "model including a tool" 'model/bounds\.cpp:[0-9]+: #include "tools/run_command\.hpp" <- model may include only: +util'
+cp "$work/bounds.cpp" "$work/tree/model/bounds.cpp"
+
+mkdir -p "$work/tree/newpart"
+echo 'int f() { return 0; }' >"$work/tree/newpart/f.cpp"
+expect_failure "a file in no layer" 'newpart/f\.cpp: in no layer'
+rm -r "$work/tree/newpart"
+
+cp "$work/tree/config/scenario.cpp" "$work/scenario.cpp"
+echo '#include "transport/fault_rule.hpp"' >>"$work/tree/config/scenario.cpp"
+bash "$check" "$work/tree" >/dev/null || fail "config including transport/fault_rule.hpp is refused"
+echo '#include "transport/lcm_node.hpp"' >>"$work/tree/config/scenario.cpp"
+expect_failure "config including LCM" 'config/scenario\.cpp:[0-9]+: #include "transport/lcm_node\.hpp" <- config'
+cp "$work/scenario.cpp" "$work/tree/config/scenario.cpp"
+
+bash "$check" "$work/tree" >/dev/null || fail "the restored copy does not pass"
+
+# The picture in the docs is the one enforced.
+rules=$(bash "$check" --rules)
+doc="$src/docs/architecture.md"
+while IFS= read -r line; do
+  grep -qxF "    $line" "$doc" || fail "docs/architecture.md lacks the rule line '    $line' (print them with tests/check_layers.sh --rules)"
+done <<<"$rules"
+echo "ok: docs/architecture.md shows the $(wc -l <<<"$rules") rules"
