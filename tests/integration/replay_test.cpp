@@ -15,23 +15,29 @@
 namespace lagrange::testing {
 namespace {
 
-// One short recording per wiring, shared by the tests below.
+// One short recording per wiring, shared by the tests below. A recording that
+// fails fails every test (in SetUp): GoogleTest skips a suite whose
+// SetUpTestSuite failed, and ctest counts a skipped test as no failure.
 class Recorded : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     auto record = [](const std::string& config, const std::string& extra) {
       const std::string dir = freshDir("replay-" + config);
       const RunResult r = runScenario(kConfigs + "/" + config + ".yaml", dir, "-q --set duration=1 " + extra);
-      EXPECT_EQ(r.exit_code, 0) << r.output;
+      if (r.exit_code != 0)
+        recording_errors_ += config + " " + extra + ": exit " + std::to_string(r.exit_code) + "\n" + r.output;
       return dir + "/run.lcm";
     };
     chain_ = record("chain_m2", "");
     flexible_ = record("flexible_2dof_filtered_rate", "");
     realtime_ = record("chain_m1", "--mode realtime");
   }
-  static std::string chain_, flexible_, realtime_;
+  void SetUp() override {
+    ASSERT_TRUE(recording_errors_.empty()) << "a recording failed: " << recording_errors_;
+  }
+  static std::string chain_, flexible_, realtime_, recording_errors_;
 };
-std::string Recorded::chain_, Recorded::flexible_, Recorded::realtime_;
+std::string Recorded::chain_, Recorded::flexible_, Recorded::realtime_, Recorded::recording_errors_;
 
 // Offset of the first event (LCM sync word 0xEDA1DA01) at or after `from`, so
 // the damage below lands at the same place in every recording: where events
