@@ -16,7 +16,6 @@
 
 #include "controller/cascaded.hpp"
 #include "controller/theorem1.hpp"
-#include "model/error.hpp"
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
@@ -24,13 +23,14 @@
 #include "model/urdf_arm.hpp"
 #include "transport/fault_rule.hpp"
 #include "util/enum_names.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::config {
 
 /// A user-facing configuration error: names the key, the value and what was expected.
-class ConfigError : public lagrange::Error {
+class ConfigError : public lagrange::BadInput {
  public:
-  using lagrange::Error::Error;
+  using lagrange::BadInput::BadInput;
 };
 
 struct InitialState {

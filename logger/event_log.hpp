@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::logger {
@@ -33,7 +34,7 @@ class EventLog {
     if (log_.f == nullptr) {
       const int error = errno;
       ::close(fd);
-      throw std::runtime_error(util::ioErrorText("opening", path, error));
+      throw lagrange::RuntimeFault(util::ioErrorText("opening", path, error));
     }
   }
   ~EventLog() {
@@ -60,7 +61,7 @@ class EventLog {
   }
   /// Throws the first write error, if there was one.
   void check() const {
-    if (!error_.empty()) throw std::runtime_error(error_);
+    if (!error_.empty()) throw lagrange::RuntimeFault(error_);
   }
   /// Encode an LCM message and append it.
   template <class Msg>
@@ -87,7 +88,7 @@ class EventLog {
 
  private:
   [[noreturn]] void fail(const char* what) const {
-    throw std::runtime_error(util::ioErrorText(what, path_, errno != 0 ? errno : EIO));
+    throw lagrange::RuntimeFault(util::ioErrorText(what, path_, errno != 0 ? errno : EIO));
   }
 
   std::string path_;

@@ -23,7 +23,7 @@ struct LoggerOptions {
 /// `gains`: the scenario's gain report without the sampled-data check
 /// (controller::checkGains(s, false)), computed before the run starts; the
 /// check is added at the end, for summary.json. Returns the exit code; throws
-/// std::runtime_error if summary.json cannot be written.
+/// lagrange::RuntimeFault if summary.json cannot be written.
 int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options,
               controller::GainReport gains);
 

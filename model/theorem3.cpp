@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "model/definiteness.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::model {
 
@@ -88,8 +89,9 @@ Eigen::MatrixXd solveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q
   const Eigen::MatrixXd sym = 0.5 * (pm + pm.transpose());
   const double residual = (at * sym + sym * a + q).norm() / q.norm();
   if (!sym.allFinite() || residual > 1e-6)
-    throw std::runtime_error("the Lyapunov equation A^T P + P A = -Q has no accurate solution (residual " +
-                             std::to_string(residual) + ")");
+    throw lagrange::RuntimeFault(
+        "the Lyapunov equation A^T P + P A = -Q has no accurate solution (residual " +
+        std::to_string(residual) + ")");
   return sym;
 }
 
@@ -134,7 +136,7 @@ std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const 
       const Eigen::MatrixXd p = solveLyapunov(a, q);
       if (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff() > 0.0)
         best = std::max(best, condition786(p, q, b, e));
-    } catch (const std::runtime_error&) {
+    } catch (const lagrange::RuntimeFault&) {
       unsolved = !identity_works;
     }
     if (best == -1e300) best = -1.0;  // no usable P: the condition cannot be shown to hold

@@ -38,7 +38,7 @@ double appendixMu(const std::vector<ScalarStage>& stages, int i, int k);
 Eigen::MatrixXd theorem3A(const std::vector<ScalarStage>& stages);
 Eigen::VectorXd theorem3B(const std::vector<ScalarStage>& stages);
 
-/// Solves A^T P + P A = -Q (Kronecker form). @throws std::runtime_error if singular.
+/// Solves A^T P + P A = -Q (Kronecker form). @throws lagrange::RuntimeFault if singular.
 Eigen::MatrixXd solveLyapunov(const Eigen::MatrixXd& a, const Eigen::MatrixXd& q);
 
 /// Per-joint stage gains: stages[i] = {kp, kd, a, b} vectors of stage i+1.

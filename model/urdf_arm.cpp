@@ -12,9 +12,9 @@
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <sstream>
 
-#include "model/error.hpp"
 #include "model/urdf_tree.hpp"
 #include "util/enum_names.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::model {
 
@@ -76,26 +76,27 @@ KDL::RigidBodyInertia linkInertia(const urdf::Link& link, const std::string& whe
   Eigen::Matrix3d tensor;
   tensor << i->ixx, i->ixy, i->ixz, i->ixy, i->iyy, i->iyz, i->ixz, i->iyz, i->izz;
   if (!std::isfinite(i->mass) || !tensor.allFinite())
-    throw Error(what +
-                "<inertial> has a value that is not a finite number; expected finite mass and inertia");
+    throw BadInput(what +
+                   "<inertial> has a value that is not a finite number; expected finite mass and inertia");
   if (i->mass < 0.0)
-    throw Error(what + "mass " + number(i->mass) +
-                " kg; expected a positive mass (or 0 for a massless frame)");
+    throw BadInput(what + "mass " + number(i->mass) +
+                   " kg; expected a positive mass (or 0 for a massless frame)");
   if (i->mass == 0.0) {
     if (!tensor.isZero(0.0))
-      throw Error(what +
-                  "mass 0 with a non-zero inertia tensor; expected a positive mass, or a zero tensor for a "
-                  "massless frame");
+      throw BadInput(
+          what +
+          "mass 0 with a non-zero inertia tensor; expected a positive mass, or a zero tensor for a "
+          "massless frame");
     return KDL::RigidBodyInertia::Zero();
   }
   const Eigen::Vector3d m = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(tensor).eigenvalues();
   if (m(0) <= 0.0)
-    throw Error(what + "the inertia tensor is not positive definite (principal moments " + moments(m) +
-                " kg m^2); expected all three positive");
+    throw BadInput(what + "the inertia tensor is not positive definite (principal moments " + moments(m) +
+                   " kg m^2); expected all three positive");
   if (m(2) > (m(0) + m(1)) * (1.0 + 1e-9))
-    throw Error(what + "the inertia tensor's principal moments " + moments(m) +
-                " kg m^2 violate the triangle inequality (the largest exceeds the sum of the other two); "
-                "expected the moments of a physical body");
+    throw BadInput(what + "the inertia tensor's principal moments " + moments(m) +
+                   " kg m^2 violate the triangle inequality (the largest exceeds the sum of the other two); "
+                   "expected the moments of a physical body");
   return toKdl(i);
 }
 
@@ -155,8 +156,8 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
   ParserMessages messages;
   const urdf::ModelInterfaceSharedPtr robot = messages.parse(spec.xml);
   if (!robot)
-    throw Error(where + ": not a valid URDF document (urdfdom: " +
-                (messages.text.empty() ? "could not parse it" : messages.text) + ")");
+    throw BadInput(where + ": not a valid URDF document (urdfdom: " +
+                   (messages.text.empty() ? "could not parse it" : messages.text) + ")");
   // urdfdom ties each link to its children with shared_ptrs, so a document
   // whose joints form a loop (refused below) leaves a cycle that would outlive
   // the model: a leak on every such file. Cut the ties when build is done with
@@ -183,9 +184,10 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
   };
   const urdf::LinkConstSharedPtr base = robot->getLink(spec.base_link);
   if (!base)
-    throw Error(where + ": no link '" + spec.base_link + "' (base_link); its links: " + known_links());
+    throw BadInput(where + ": no link '" + spec.base_link + "' (base_link); its links: " + known_links());
   urdf::LinkConstSharedPtr tip = robot->getLink(spec.tip_link);
-  if (!tip) throw Error(where + ": no link '" + spec.tip_link + "' (tip_link); its links: " + known_links());
+  if (!tip)
+    throw BadInput(where + ": no link '" + spec.tip_link + "' (tip_link); its links: " + known_links());
 
   // The path, tip up to base.
   std::vector<urdf::LinkConstSharedPtr> path;
@@ -194,9 +196,9 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
       std::string above;
       for (urdf::LinkConstSharedPtr a = tip->getParent(); a; a = a->getParent())
         above += (above.empty() ? "" : ", ") + a->name;
-      throw Error(where + ": tip_link '" + spec.tip_link + "' is not below base_link '" + spec.base_link +
-                  "' (the links above it: " + (above.empty() ? "none" : above) +
-                  "); expected two links on one serial chain, the base above the tip");
+      throw BadInput(where + ": tip_link '" + spec.tip_link + "' is not below base_link '" + spec.base_link +
+                     "' (the links above it: " + (above.empty() ? "none" : above) +
+                     "); expected two links on one serial chain, the base above the tip");
     }
     path.push_back(l);
   }
@@ -209,9 +211,9 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
     const urdf::Link& link = *path[i];
     const urdf::Joint& joint = *link.parent_joint;
     if (!isArmJoint(joint) && joint.type != urdf::Joint::FIXED)
-      throw Error(where + ": joint '" + joint.name + "' on the chain from '" + spec.base_link + "' to '" +
-                  spec.tip_link + "' is " + typeName(joint.type) +
-                  "; expected revolute, continuous or fixed");
+      throw BadInput(where + ": joint '" + joint.name + "' on the chain from '" + spec.base_link + "' to '" +
+                     spec.tip_link + "' is " + typeName(joint.type) +
+                     "; expected revolute, continuous or fixed");
     // The link with every branch off the chain lumped into it.
     KDL::RigidBodyInertia inertia = linkInertia(link, where);
     const urdf::LinkConstSharedPtr next = i + 1 < path.size() ? path[i + 1] : nullptr;
@@ -245,8 +247,8 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
     impl->chain.addSegment(KDL::Segment(link.name, kdl_joint, origin, inertia));
   }
   if (impl->joint_names.empty())
-    throw Error(where + ": no revolute or continuous joint between '" + spec.base_link + "' and '" +
-                spec.tip_link + "'");
+    throw BadInput(where + ": no revolute or continuous joint between '" + spec.base_link + "' and '" +
+                   spec.tip_link + "'");
 
   // The moving bodies at q = 0: fixed segments merged into the body before them.
   KDL::Frame frame = KDL::Frame::Identity();
@@ -275,8 +277,9 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
     // ODE needs a positive mass in every moving body, and D(q) would be
     // singular without one.
     if (!(body.mass > 0.0))
-      throw Error(where + ": joint '" + body.joint + "' moves no mass (link '" + body.link +
-                  "' and the links fixed to it are massless); expected a positive mass on every moving body");
+      throw BadInput(
+          where + ": joint '" + body.joint + "' moves no mass (link '" + body.link +
+          "' and the links fixed to it are massless); expected a positive mass on every moving body");
     const KDL::Vector com = body.mass > 0.0 ? in_base.getCOG() : KDL::Vector::Zero();
     body.com = toEigen(com);
     // KDL keeps the rotational inertia about the frame's origin: move it to the centre of mass.
@@ -413,7 +416,7 @@ Eigen::VectorXd UrdfArm::inverseDynamics(const Eigen::VectorXd& q, const Eigen::
   KDL::JntArray tau(static_cast<unsigned>(dof()));
   const KDL::Wrenches no_external(impl_->chain.getNrOfSegments(), KDL::Wrench::Zero());
   if (rne.CartToJnt(toKdl(q), toKdl(v), toKdl(a), no_external, tau) < 0)
-    throw std::runtime_error("urdf model: KDL's inverse dynamics failed");
+    throw lagrange::RuntimeFault("urdf model: KDL's inverse dynamics failed");
   return tau.data;
 }
 }  // namespace lagrange::model

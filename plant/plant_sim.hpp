@@ -25,9 +25,9 @@
 #include <optional>
 #include <stdexcept>
 
-#include "model/error.hpp"
 #include "model/flexible_joint.hpp"
 #include "plant/arm_world.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::plant {
 
@@ -45,9 +45,9 @@ struct PlantEnergy {
 };
 
 /// Why the plant stopped a run: the simulation failed, or a limit the user set was crossed.
-class PlantStopped : public lagrange::Error {
+class PlantStopped : public lagrange::RuntimeFault {
  public:
-  using lagrange::Error::Error;
+  using lagrange::RuntimeFault::RuntimeFault;
 };
 
 /// No artificial limit on the state: the global results are about large

@@ -15,15 +15,15 @@
 
 #include "lagrange/channel_stats_t.hpp"
 #include "lagrange/status_t.hpp"
-#include "model/error.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::plant {
 
 /// A wait of the run ran out (lockstep.stall_timeout): the plant stops the
 /// run (exit 1) with the diagnosis as its message.
-class PlantStalled : public lagrange::Error {
+class PlantStalled : public lagrange::RuntimeFault {
  public:
-  using lagrange::Error::Error;
+  using lagrange::RuntimeFault::RuntimeFault;
 };
 
 /// What the plant knows when a wait runs out.

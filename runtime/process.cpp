@@ -8,11 +8,11 @@
 #include <csignal>
 #include <optional>
 
-#include "model/error.hpp"
 #include "runtime/key_file.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::runtime {
 
@@ -99,12 +99,14 @@ int runProcess(const std::string& name, const std::string& description, int argc
       spdlog::info("{} loses {} of the datagrams it receives (faults.receivers)", name, it->second);
     }
     return body(scenario, node);
-  } catch (const config::ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return kExitBadInput;
   } catch (const std::exception& e) {
-    spdlog::error("{}: {}", name, e.what());
-    return kExitFailed;
+    // Bad input names its key or file itself; a fault is told with the process's name.
+    const ExitCode code = exitCodeOf(e);
+    if (code == kExitBadInput)
+      spdlog::error("{}", e.what());
+    else
+      spdlog::error("{}: {}", name, e.what());
+    return code;
   }
 }
 

@@ -19,6 +19,7 @@
 #include "runtime/status_reporter.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::runtime {
 
@@ -69,7 +70,7 @@ int serveUntilPlantFinished(Node& node, const Progress& progress, const std::fun
   int64_t seen_tick = progress.last_tick;
   auto moved_at = Clock::now();
   while (!plant_finished && !stopRequested()) {
-    if (!node.handle(when_idle ? 5 : 50)) throw std::runtime_error("LCM receive failed");
+    if (!node.handle(when_idle ? 5 : 50)) throw lagrange::RuntimeFault("LCM receive failed");
     if (when_idle) {
       const auto now = Clock::now();
       if (progress.last_tick != seen_tick) {

@@ -21,14 +21,15 @@
 #include "config/controller_params.hpp"
 #include "config/scenario.hpp"
 #include "config/yaml_reader.hpp"
-#include "model/error.hpp"
 #include "model/reference.hpp"
+#include "tools/command_error.hpp"
 #include "tools/compare_output.hpp"
 #include "tools/log_reader.hpp"
 #include "tools/out_dir_lock.hpp"
 #include "tools/spawn_logged.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/error.hpp"
 #include "util/output_stream.hpp"
 
 namespace lagrange::tools {
@@ -121,7 +122,7 @@ std::vector<int> runAll(const CompareOptions& o, const std::vector<CompareRun>& 
     const pid_t pid = waitpid(-1, &wstatus, 0);
     if (pid < 0) {
       if (errno == EINTR) continue;
-      throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+      throw RuntimeFault(std::string("waitpid: ") + std::strerror(errno));
     }
     const auto it = running.find(pid);
     if (it == running.end()) continue;
@@ -247,9 +248,8 @@ int runComparison(const CompareOptions& o) {
   ComparisonPlan plan;
   try {
     plan = planComparison(o);
-  } catch (const ConfigError& e) {
-    std::cerr << "lagrange compare: " << e.what() << "\n";
-    return kExitBadInput;
+  } catch (const std::exception& e) {
+    return failWith("lagrange compare", e);
   }
   // One comparison per directory, like one run (tools/out_dir_lock.hpp):
   // two would run into the same runs/TYPE and write one comparison.md.
@@ -257,12 +257,8 @@ int runComparison(const CompareOptions& o) {
   try {
     fs::create_directories(o.out_dir);
     lock.emplace(o.out_dir, "lagrange compare");
-  } catch (const ConfigError& e) {
-    std::cerr << "lagrange compare: " << e.what() << "\n";
-    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "lagrange compare: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange compare", e);
   }
   try {
     const std::vector<CompareRun>& runs = plan.runs;
@@ -284,8 +280,7 @@ int runComparison(const CompareOptions& o) {
       if (n.status.rfind("failed", 0) == 0) return kExitFailed;
     return kExitOk;
   } catch (const std::exception& e) {
-    std::cerr << "lagrange compare: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange compare", e);
   }
 }
 

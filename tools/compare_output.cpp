@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "util/error.hpp"
 #include "util/number_text.hpp"
 #include "util/output_stream.hpp"
 
@@ -81,8 +82,7 @@ std::string writeComparison(const ComparisonTables& t, const std::string& out_di
       csv << "," << full(x);
     csv << "\n";
   }
-  if (!out_md.flush() || !csv.flush())
-    throw std::runtime_error("cannot write the comparison into " + out_dir);
+  if (!out_md.flush() || !csv.flush()) throw RuntimeFault("cannot write the comparison into " + out_dir);
   return md;
 }
 

@@ -36,7 +36,7 @@ struct ComparisonTables {
 };
 
 /// Writes OUT/comparison.md and OUT/comparison.csv; returns the Markdown.
-/// @throws std::runtime_error when a file cannot be written.
+/// @throws RuntimeFault when a file cannot be written.
 std::string writeComparison(const ComparisonTables& tables, const std::string& out_dir);
 
 /// Writes OUT/compare.gp and draws error.png, torque.png and (with a sweep of

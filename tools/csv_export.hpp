@@ -27,7 +27,7 @@ struct CsvExport {
   LogScan scan;                           ///< what was read, and what could not be
 };
 
-/// @throws LogError if the log cannot be read; std::runtime_error if a file cannot be written.
+/// @throws LogError if the log cannot be read; RuntimeFault if a file cannot be written.
 CsvExport exportCsv(const std::string& log_path, const std::string& out_dir);
 
 /// Writes OUT_DIR/TIMING.csv for a run of tick `period` [s]; returns its rows (0: no PLANT_POSITION).

@@ -15,12 +15,12 @@
 #include "logger/event_log.hpp"
 #include "logger/summary.hpp"
 #include "logger/tracking_metrics.hpp"
-#include "model/error.hpp"
 #include "plant/plant_lcm.hpp"
 #include "plant/scenario_plant.hpp"
 #include "tools/progress.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {

@@ -15,8 +15,8 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
-#include "model/error.hpp"
 #include "runtime/key_file.hpp"
+#include "tools/command_error.hpp"
 #include "tools/compare.hpp"
 #include "tools/netns.hpp"
 #include "tools/replay.hpp"
@@ -26,6 +26,7 @@
 #include "tools/spy.hpp"
 #include "tools/sweep.hpp"
 #include "tools/view.hpp"
+#include "util/error.hpp"
 
 namespace lagrange {
 namespace {
@@ -55,11 +56,9 @@ int checkGains(const std::string& path, const std::vector<std::string>& override
               << controller::describe(check) << "\n";
     return check.holds() ? 0 : 1;
   } catch (const config::ConfigError& e) {
-    std::cerr << "lagrange check-gains: " << e.what() << "\n";
-    return kExitBadInput;
+    return tools::failWith("lagrange check-gains", e);
   } catch (const std::exception& e) {
-    std::cerr << "lagrange check-gains: cannot evaluate the gain conditions: " << e.what() << "\n";
-    return kExitBadInput;
+    return tools::failWith("lagrange check-gains: cannot evaluate the gain conditions", e);
   }
 }
 
@@ -87,11 +86,9 @@ int replay(const std::string& log_path, const std::string& component,
     return kExitOk;
   } catch (const tools::ReplayError& e) {
     for (const auto& w : e.warnings()) std::cerr << "lagrange replay: warning: " << w << "\n";
-    std::cerr << "lagrange replay: " << e.what() << "\n";
-    return kExitBadInput;
+    return tools::failWith("lagrange replay", e);
   } catch (const std::exception& e) {
-    std::cerr << "lagrange replay: " << e.what() << "\n";
-    return kExitBadInput;
+    return tools::failWith("lagrange replay", e);
   }
 }
 
@@ -103,8 +100,7 @@ int report(const std::string& target, std::string out_dir) {
     tools::printReport(tools::writeReport(log_path, out_dir), out_dir, "lagrange report: ");
     return kExitOk;
   } catch (const std::exception& e) {
-    std::cerr << "lagrange report: " << e.what() << "\n";
-    return kExitBadInput;
+    return tools::failWith("lagrange report", e);
   }
 }
 
@@ -342,9 +338,8 @@ int DoMain(int argc, char** argv) {
     try {
       runtime::writeKeyFile(keygen_file, transport::randomMessageKey());
       return kExitOk;
-    } catch (const config::ConfigError& e) {
-      std::cerr << "lagrange keygen: " << e.what() << "\n";
-      return kExitBadInput;
+    } catch (const std::exception& e) {
+      return tools::failWith("lagrange keygen", e);
     }
   }
   if (*compare_cmd) {

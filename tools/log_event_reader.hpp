@@ -31,14 +31,14 @@
 #include <string>
 #include <vector>
 
-#include "model/error.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
 /// A file that is not an LCM log at all, is malformed, or cannot be opened.
-class LogError : public lagrange::Error {
+class LogError : public lagrange::BadInput {
  public:
-  using lagrange::Error::Error;
+  using lagrange::BadInput::BadInput;
 };
 
 /// The LCM log format's constants, and the limits this reader holds a header to.

@@ -12,6 +12,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "util/error.hpp"
+
 namespace lagrange::tools {
 
 namespace {
@@ -20,7 +22,7 @@ constexpr const char* kEnvMarker = "LAGRANGE_PRIVATE_NETNS";
 std::string findIp() {
   for (const char* p : {"/usr/sbin/ip", "/sbin/ip", "/usr/bin/ip", "/bin/ip"})
     if (access(p, X_OK) == 0) return p;
-  throw std::runtime_error(
+  throw RuntimeFault(
       "the 'ip' command (Debian package iproute2) is needed to set up the "
       "private network namespace; install it or run with --no-netns");
 }
@@ -34,7 +36,7 @@ void runIp(const std::string& ip, const std::vector<std::string>& args) {
   }
   argv.push_back(nullptr);
   const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+  if (pid < 0) throw RuntimeFault("fork failed: " + std::string(std::strerror(errno)));
   if (pid == 0) {
     execv(ip.c_str(), argv.data());
     _exit(127);
@@ -42,7 +44,7 @@ void runIp(const std::string& ip, const std::vector<std::string>& args) {
   int status = 0;
   waitpid(pid, &status, 0);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("'" + cmd + "' failed in the private network namespace");
+    throw RuntimeFault("'" + cmd + "' failed in the private network namespace");
 }
 }  // namespace
 
@@ -70,7 +72,7 @@ NamespaceFile namespaceOf(long pid, const char* kind) {
   struct stat theirs {
   }, ours{};
   if (stat(path.c_str(), &theirs) != 0)
-    throw std::runtime_error("cannot read " + path + ": " + std::strerror(errno));
+    throw RuntimeFault("cannot read " + path + ": " + std::strerror(errno));
   const std::string own = std::string("/proc/self/ns/") + kind;
   const bool same =
       stat(own.c_str(), &ours) == 0 && ours.st_ino == theirs.st_ino && ours.st_dev == theirs.st_dev;
@@ -80,13 +82,13 @@ NamespaceFile namespaceOf(long pid, const char* kind) {
 void enter(const NamespaceFile& ns, int type) {
   if (ns.same_as_ours) return;
   const int fd = open(ns.path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw std::runtime_error("cannot open " + ns.path + ": " + std::strerror(errno));
+  if (fd < 0) throw RuntimeFault("cannot open " + ns.path + ": " + std::strerror(errno));
   const int rc = setns(fd, type);
   const int err = errno;
   close(fd);
   if (rc != 0)
-    throw std::runtime_error("cannot enter " + ns.path + ": " + std::strerror(err) +
-                             (err == EPERM ? " (join a run started by the same user, or as root)" : ""));
+    throw RuntimeFault("cannot enter " + ns.path + ": " + std::strerror(err) +
+                       (err == EPERM ? " (join a run started by the same user, or as root)" : ""));
 }
 }  // namespace
 

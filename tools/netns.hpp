@@ -19,7 +19,7 @@ std::string reexecInPrivateNetns(const std::vector<std::string>& argv);
 
 /// Moves this (single-threaded) process into the network namespace of
 /// process `pid` -- through its user namespace first when it has its own
-/// (a run started without root). @throws std::runtime_error naming the step
+/// (a run started without root). @throws RuntimeFault naming the step
 /// that failed and why.
 void joinNetnsOf(long pid);
 
@@ -27,7 +27,7 @@ void joinNetnsOf(long pid);
 std::string freshLcmUrl();
 
 /// Brings up lo with multicast and routes 224.0.0.0/4 to it.
-/// @throws std::runtime_error naming the failed `ip` command.
+/// @throws RuntimeFault naming the failed `ip` command.
 void configureLoopbackMulticast();
 
 }  // namespace lagrange::tools

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "config/scenario.hpp"
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {
@@ -32,14 +33,14 @@ OutDirLock::OutDirLock(const std::string& dir, const std::string& who) {
   // Never unlinked and re-created: a second launcher must lock the same
   // inode as the first. O_NOFOLLOW: a link planted after the check fails here.
   fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error(util::ioErrorText("creating the lock file", path, errno));
+  if (fd_ < 0) throw RuntimeFault(util::ioErrorText("creating the lock file", path, errno));
   for (int attempt = 0; attempt < 3; ++attempt) {
     struct flock lock = writeLock(F_WRLCK);
     if (fcntl(fd_, F_SETLK, &lock) == 0) return;
     if (errno != EACCES && errno != EAGAIN) {
       const int error = errno;
       close(fd_);
-      throw std::runtime_error(util::ioErrorText("locking", path, error));
+      throw RuntimeFault(util::ioErrorText("locking", path, error));
     }
     struct flock holder = writeLock(F_WRLCK);
     if (fcntl(fd_, F_GETLK, &holder) == 0 && holder.l_type != F_UNLCK) {

@@ -21,7 +21,7 @@ class OutDirLock {
   /// Locks `dir` (an existing directory) for `who` (e.g. "lagrange run").
   /// Throws config::ConfigError (exit 2) naming the directory and the
   /// holder's pid when another process holds it, or when the lock file is a
-  /// link planted there; std::runtime_error when it cannot be created.
+  /// link planted there; RuntimeFault when it cannot be created.
   OutDirLock(const std::string& dir, const std::string& who);
   ~OutDirLock();
   OutDirLock(const OutDirLock&) = delete;

@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "model/error.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
 /// gnuplot missing or failing; the CSV files are written regardless.
-class PlotError : public lagrange::Error {
+class PlotError : public lagrange::RuntimeFault {
  public:
-  using lagrange::Error::Error;
+  using lagrange::RuntimeFault::RuntimeFault;
 };
 
 /// What the plots need to know about the run.

@@ -15,16 +15,16 @@
 #include <string>
 #include <vector>
 
-#include "model/error.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
 /// A log that cannot be replayed: unreadable, no SCENARIO, or an input a
 /// command names is missing. The message says what was still read.
-class ReplayError : public lagrange::Error {
+class ReplayError : public lagrange::BadInput {
  public:
   explicit ReplayError(const std::string& what, std::vector<std::string> warnings = {})
-      : lagrange::Error(what), warnings_(std::move(warnings)) {}
+      : lagrange::BadInput(what), warnings_(std::move(warnings)) {}
   /// What else was wrong with the log (corrupt or missing bytes), found before this error.
   const std::vector<std::string>& warnings() const { return warnings_; }
 

@@ -19,7 +19,7 @@ struct Report {
 };
 
 /// @throws LogError when the log cannot be read or holds no message of this
-///         project; std::runtime_error when a file cannot be written.
+///         project; RuntimeFault when a file cannot be written.
 Report writeReport(const std::string& log_path, const std::string& out_dir);
 
 /// Prints what `report` wrote, and its warnings, for a person.

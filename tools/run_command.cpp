@@ -21,8 +21,8 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "logger/error_line.hpp"
-#include "model/error.hpp"
 #include "runtime/key_file.hpp"
+#include "tools/command_error.hpp"
 #include "tools/inproc_runner.hpp"
 #include "tools/netns.hpp"
 #include "tools/out_dir_lock.hpp"
@@ -33,6 +33,7 @@
 #include "tools/supervisor.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {
@@ -51,7 +52,7 @@ std::string prepareOutDir(const std::string& dir) {
   fs::create_directories(dir, ec);
   const std::string probe = (fs::path(dir) / ".lagrange-write-test").string();
   try {
-    if (ec) throw std::runtime_error(ec.message());
+    if (ec) throw RuntimeFault(ec.message());
     close(util::createOutputFile(probe));  // not through a link planted there
   } catch (const util::UnsafeOutputPath& e) {
     throw config::ConfigError(std::string("output directory: ") + e.what());
@@ -318,9 +319,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   std::optional<RunKey> key;
   try {
     if (opt.sign) key.emplace(opt.key_file, out_dir);
-  } catch (const config::ConfigError& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return kExitBadInput;
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
   }
   const std::vector<std::string> key_args =
       key ? std::vector<std::string>{"--key-file", key->path()} : std::vector<std::string>{};
@@ -330,8 +330,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     writeEndpoint(out_dir,
                   {url, run_id, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt, getpid()});
   } catch (const std::exception& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange run", e);
   }
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
@@ -457,8 +456,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     try {
       addLauncherFacts(out_dir, cpu, supervision);
     } catch (const std::exception& e) {
-      std::cerr << "lagrange run: " << e.what() << "\n";
-      exit_code = kExitFailed;
+      exit_code = failWith("lagrange run", e);
     }
   }
   if (exit_code != kExitInterrupted) writeRunReport(opt, out_dir);
@@ -490,9 +488,8 @@ int runScenarioLocked(const RunOptions& opt) {
     scenario = config::loadScenario(opt.config_path, opt.overrides);
     if (!opt.key_file.empty()) runtime::readKeyFile(opt.key_file);  // a bad key file stops nothing half-way
     out_dir = prepareOutDir(opt.out_dir);
-  } catch (const config::ConfigError& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return kExitBadInput;
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
   }
   // The launcher's lock on the output directory, for the whole run: taken
   // by the process that runs it (after the re-exec into a private network
@@ -531,8 +528,7 @@ int runScenarioLocked(const RunOptions& opt) {
     try {
       configureLoopbackMulticast();
     } catch (const std::exception& e) {
-      std::cerr << "lagrange run: " << e.what() << "\n";
-      return kExitFailed;
+      return failWith("lagrange run", e);
     }
   }
   lockOutDir();
@@ -549,15 +545,8 @@ int runScenarioLocked(const RunOptions& opt) {
 int runScenario(const RunOptions& opt) {
   try {
     return runScenarioLocked(opt);
-  } catch (const config::ConfigError& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const util::UnsafeOutputPath& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "lagrange run: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange run", e);
   }
 }
 

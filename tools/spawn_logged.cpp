@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "util/error.hpp"
+
 extern char** environ;
 
 namespace lagrange::tools {
@@ -31,7 +33,7 @@ pid_t spawnLogged(const std::vector<std::string>& args, const SpawnLog& log, boo
   const int err = posix_spawnp(&pid, argv[0], &actions, &attr, argv.data(), environ);
   posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&actions);
-  if (err != 0) throw std::runtime_error("cannot start " + args[0] + ": " + std::strerror(err));
+  if (err != 0) throw RuntimeFault("cannot start " + args[0] + ": " + std::strerror(err));
   return pid;
 }
 

@@ -19,7 +19,7 @@ struct SpawnLog {
 
 /// Starts argv (argv[0] a path, or a name looked up on PATH) without a shell.
 /// `own_group`: the child leads a process group of its own, out of reach of
-/// the terminal's Ctrl-C. @throws std::runtime_error naming argv[0] and why.
+/// the terminal's Ctrl-C. @throws RuntimeFault naming argv[0] and why.
 pid_t spawnLogged(const std::vector<std::string>& argv, const SpawnLog& log, bool own_group = false);
 
 }  // namespace lagrange::tools

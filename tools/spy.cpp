@@ -11,8 +11,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "model/error.hpp"
+#include "tools/command_error.hpp"
 #include "tools/netns.hpp"
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {
@@ -23,7 +24,7 @@ namespace {
 constexpr const char* kEndpointFile = "lcm.json";
 
 std::string requireFile(const fs::path& path, const std::string& what_provides_it) {
-  if (!fs::exists(path)) throw std::runtime_error(path.string() + " not found; " + what_provides_it);
+  if (!fs::exists(path)) throw BadInput(path.string() + " not found; " + what_provides_it);
   return path.string();
 }
 
@@ -41,10 +42,9 @@ RunEndpoint readEndpoint(const std::string& out_dir) {
   const fs::path path = fs::path(out_dir) / kEndpointFile;
   std::ifstream in(path);
   if (!in)
-    throw std::runtime_error(
-        "no " + path.string() +
-        ": expected the output directory of a `lagrange run` over LCM (inproc runs have no "
-        "LCM traffic)");
+    throw BadInput("no " + path.string() +
+                   ": expected the output directory of a `lagrange run` over LCM (inproc runs have no "
+                   "LCM traffic)");
   try {
     const nlohmann::json j = nlohmann::json::parse(in);
     RunEndpoint e;
@@ -54,8 +54,7 @@ RunEndpoint readEndpoint(const std::string& out_dir) {
     if (j.contains("launcher_pid")) e.launcher_pid = j.at("launcher_pid").get<long>();
     return e;
   } catch (const nlohmann::json::exception& ex) {
-    throw std::runtime_error(path.string() +
-                             " is not what lagrange run writes (lcm_url, netns_pid): " + ex.what());
+    throw BadInput(path.string() + " is not what lagrange run writes (lcm_url, netns_pid): " + ex.what());
   }
 }
 
@@ -79,9 +78,9 @@ int runSpy(const SpyOptions& opt) {
       if (url.empty()) url = e.lcm_url;
       if (e.netns_pid && !opt.print_only) {
         if (!processAlive(*e.netns_pid))
-          throw std::runtime_error("the run in " + opt.run_dir + " has ended (its launcher, pid " +
-                                   std::to_string(*e.netns_pid) +
-                                   ", is gone); start lagrange spy while the run is going");
+          throw BadInput("the run in " + opt.run_dir + " has ended (its launcher, pid " +
+                         std::to_string(*e.netns_pid) +
+                         ", is gone); start lagrange spy while the run is going");
         joinNetnsOf(*e.netns_pid);
       }
     }
@@ -91,18 +90,17 @@ int runSpy(const SpyOptions& opt) {
       return kExitOk;
     }
     if (std::getenv("DISPLAY") == nullptr)
-      throw std::runtime_error(
+      throw BadInput(
           "lcm-spy opens a window and DISPLAY is not set (log in with ssh -X, or use a virtual "
           "display: xvfb-run lagrange spy ...)");
     std::vector<char*> argv;
     for (const auto& c : cmd) argv.push_back(const_cast<char*>(c.c_str()));
     argv.push_back(nullptr);
     execvp("java", argv.data());
-    throw std::runtime_error(std::string("cannot run java: ") + std::strerror(errno) +
-                             " (install Debian's default-jre)");
+    throw BadInput(std::string("cannot run java: ") + std::strerror(errno) +
+                   " (install Debian's default-jre)");
   } catch (const std::exception& e) {
-    std::cerr << "lagrange spy: " << e.what() << "\n";
-    return kExitBadInput;
+    return failWith("lagrange spy", e);
   }
 }
 

@@ -24,13 +24,13 @@ struct RunEndpoint {
   std::optional<long> launcher_pid;
 };
 
-/// Writes OUT/lcm.json. @throws std::runtime_error if it cannot be written.
+/// Writes OUT/lcm.json. @throws RuntimeFault if it cannot be written.
 void writeEndpoint(const std::string& out_dir, const RunEndpoint& endpoint);
-/// @throws std::runtime_error naming the file and what is wrong with it.
+/// @throws BadInput naming the file and what is wrong with it.
 RunEndpoint readEndpoint(const std::string& out_dir);
 
 /// The java command line of lcm-spy with the LCM jar, jchart2d and this
-/// project's types jar. @throws std::runtime_error naming a missing jar and its Debian package.
+/// project's types jar. @throws BadInput naming a missing jar and its Debian package.
 std::vector<std::string> spyCommand(const std::string& lcm_url);
 
 struct SpyOptions {

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "model/error.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
@@ -30,7 +30,7 @@ Supervisor::~Supervisor() {
 void Supervisor::start(const ChildSpec& spec) {
   const pid_t parent = getpid();
   const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("fork failed: " + std::string(std::strerror(errno)));
+  if (pid < 0) throw RuntimeFault("fork failed: " + std::string(std::strerror(errno)));
   if (pid == 0) {
     // The child must not outlive the launcher.
     prctl(PR_SET_PDEATHSIG, SIGTERM);
@@ -72,8 +72,8 @@ void Supervisor::restart(const std::string& name) {
   const Child* last = nullptr;
   for (const auto& c : children_)
     if (c.spec.name == name) last = &c;
-  if (last == nullptr) throw std::runtime_error("no process '" + name + "' to restart");
-  if (last->running) throw std::runtime_error("process '" + name + "' still runs");
+  if (last == nullptr) throw std::logic_error("no process '" + name + "' to restart");
+  if (last->running) throw std::logic_error("process '" + name + "' still runs");
   ChildSpec spec = last->spec;
   spec.append_log = true;
   start(spec);

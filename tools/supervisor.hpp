@@ -34,11 +34,11 @@ class Supervisor {
  public:
   ~Supervisor();  ///< kills whatever is still running
 
-  /// @throws std::runtime_error if fork or exec setup fails.
+  /// @throws RuntimeFault if fork or exec setup fails.
   void start(const ChildSpec& spec);
 
   /// Starts the named child again (it must have exited), appending to its log.
-  /// @throws std::runtime_error if there is no such child, or it still runs.
+  /// @throws std::logic_error if there is no such child, or it still runs.
   void restart(const std::string& name);
 
   /// Sends `sig` to the named child if it runs; false if it does not.

@@ -19,7 +19,7 @@
 #include <sstream>
 #include <thread>
 
-#include "model/error.hpp"
+#include "tools/command_error.hpp"
 #include "tools/out_dir_lock.hpp"
 #include "tools/spawn_logged.hpp"
 #include "tools/sweep_maps.hpp"
@@ -27,6 +27,7 @@
 #include "tools/sweep_progress.hpp"
 #include "tools/sweep_runner.hpp"
 #include "tools/sweep_store.hpp"
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {
@@ -216,9 +217,8 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   pid_t pid = -1;
   try {  // in a process group of its own: Ctrl-C stops the waiting, not the job
     pid = spawnLogged(args, {sbatch_out.string()}, /*own_group=*/true);
-  } catch (const std::runtime_error& e) {
-    throw std::runtime_error(std::string(e.what()) +
-                             "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
+  } catch (const RuntimeFault& e) {
+    throw RuntimeFault(std::string(e.what()) + "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
   }
   RowCounter counter(o.out_dir);
   std::string job;
@@ -289,9 +289,8 @@ int runSweep(const SweepOptions& o) {
     fs::create_directories(o.out_dir);
     lock.emplace(o.out_dir, "lagrange sweep");
     prepareOutDir(o.out_dir, plan);
-  } catch (const ConfigError& e) {
-    std::cerr << "lagrange sweep: " << e.what() << "\n";
-    return kExitBadInput;
+  } catch (const std::exception& e) {
+    return failWith("lagrange sweep", e);
   }
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
@@ -306,8 +305,7 @@ int runSweep(const SweepOptions& o) {
       return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ") > 0 ? kExitFailed : kExitOk;
     return o.slurm ? runSlurm(o, plan, remaining) : runLocal(o, plan, remaining);
   } catch (const std::exception& e) {
-    std::cerr << "lagrange sweep: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange sweep", e);
   }
 }
 
@@ -316,12 +314,8 @@ int collectSweep(const std::string& out_dir, bool quiet) {
     const SweepPlan plan = loadPlan(out_dir);
     return finish(out_dir, plan, quiet, "lagrange sweep collect: ", /*collecting=*/true) > 0 ? kExitFailed
                                                                                              : kExitOk;
-  } catch (const ConfigError& e) {
-    std::cerr << "lagrange sweep collect: " << e.what() << "\n";
-    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "lagrange sweep collect: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange sweep collect", e);
   }
 }
 
@@ -365,12 +359,8 @@ int runSweepShard(const std::string& out_dir, int shard, int of, int parent) {
     std::cout << "shard " << shard << " of " << of << ": ran " << ran << " runs"
               << (stopRequested() ? " (stopped by a signal)" : "") << "\n";
     return stopRequested() ? kExitInterrupted : kExitOk;
-  } catch (const ConfigError& e) {
-    std::cerr << "lagrange sweep-shard: " << e.what() << "\n";
-    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "lagrange sweep-shard: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange sweep-shard", e);
   }
 }
 

@@ -14,6 +14,7 @@
 #include "config/yaml_reader.hpp"
 #include "model/reference.hpp"
 #include "tools/sweep_random.hpp"
+#include "util/error.hpp"
 #include "util/number_text.hpp"
 
 namespace lagrange::tools {
@@ -331,7 +332,7 @@ SweepPlan planFromJson(const std::string& text, const std::string& source) {
   SweepPlan plan;
   try {
     size_t pos = text.find('\n');
-    if (pos == std::string::npos) throw std::runtime_error("no header line");
+    if (pos == std::string::npos) throw BadInput("no header line");
     const auto head = nlohmann::json::parse(text.substr(0, pos));
     plan.spec.file = head.at("sweep_file").get<std::string>();
     plan.spec.scenario_path = head.at("scenario").get<std::string>();
@@ -342,7 +343,7 @@ SweepPlan planFromJson(const std::string& text, const std::string& source) {
     while (plan.rows.size() < rows) {
       const size_t start = pos + 1;
       pos = text.find('\n', start);
-      if (pos == std::string::npos) throw std::runtime_error("fewer rows than its header says");
+      if (pos == std::string::npos) throw BadInput("fewer rows than its header says");
       const auto j = nlohmann::json::parse(text.substr(start, pos - start));
       plan.rows.push_back({j.at("index").get<long>(), j.at("params").get<std::vector<std::string>>(),
                            j.at("overrides").get<std::vector<std::string>>()});

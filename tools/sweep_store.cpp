@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "tools/sweep_runner.hpp"
+#include "util/error.hpp"
 #include "util/number_text.hpp"
 #include "util/output_file.hpp"
 
@@ -63,14 +64,14 @@ std::map<long, nlohmann::ordered_json> readFinishedRows(const std::string& out_d
 
 RowWriter::RowWriter(const std::string& path) : path_(path) {
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
+  if (fd_ < 0) throw RuntimeFault("cannot open " + path + ": " + std::strerror(errno));
   // Cut a partial last line (a writer killed mid-write) back to the last newline.
   const off_t size = ::lseek(fd_, 0, SEEK_END);
   off_t keep = size;
   char c = '\n';
   while (keep > 0 && ::pread(fd_, &c, 1, keep - 1) == 1 && c != '\n') --keep;
   if (keep != size && ::ftruncate(fd_, keep) != 0)
-    throw std::runtime_error("cannot truncate " + path + ": " + std::strerror(errno));
+    throw RuntimeFault("cannot truncate " + path + ": " + std::strerror(errno));
 }
 
 RowWriter::~RowWriter() {
@@ -83,8 +84,7 @@ void RowWriter::append(const nlohmann::ordered_json& row) {
   // tail without its newline, which readers drop.
   const ssize_t n = ::write(fd_, line.data(), line.size());
   if (n != static_cast<ssize_t>(line.size()))
-    throw std::runtime_error("cannot append to " + path_ + ": " +
-                             (n < 0 ? std::strerror(errno) : "short write"));
+    throw RuntimeFault("cannot append to " + path_ + ": " + (n < 0 ? std::strerror(errno) : "short write"));
 }
 
 std::vector<std::string> tableColumns(const SweepPlan& plan) {

@@ -15,13 +15,14 @@
 #include <sstream>
 #include <thread>
 
-#include "model/error.hpp"
 #include "runtime/key_file.hpp"
+#include "tools/command_error.hpp"
 #include "tools/netns.hpp"
 #include "tools/spy.hpp"
 #include "tools/view_host_check.hpp"
 #include "tools/view_server.hpp"
 #include "tools/view_source.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
@@ -63,7 +64,7 @@ Source resolveSource(const ViewOptions& opt) {
   Source s;
   if (opt.source.empty()) {
     if (opt.lcm_url.empty())
-      throw Error("nothing to view: expected a run's output directory, a log file, or --lcm-url URL");
+      throw BadInput("nothing to view: expected a run's output directory, a log file, or --lcm-url URL");
     s.live = true;
     s.lcm_url = opt.lcm_url;
     s.key_file = opt.key_file;
@@ -71,7 +72,7 @@ Source resolveSource(const ViewOptions& opt) {
     return s;
   }
   if (!fs::exists(opt.source))
-    throw Error(opt.source + " does not exist; expected a run's output directory or a log file");
+    throw BadInput(opt.source + " does not exist; expected a run's output directory or a log file");
   if (fs::is_directory(opt.source)) {
     if (fs::exists(fs::path(opt.source) / "lcm.json")) {
       const RunEndpoint e = readEndpoint(opt.source);
@@ -87,9 +88,9 @@ Source resolveSource(const ViewOptions& opt) {
     }
     s.log_path = (fs::path(opt.source) / "run.lcm").string();
     if (!fs::exists(s.log_path))
-      throw Error(opt.source +
-                  " holds no run.lcm and no running scenario; expected the output directory of "
-                  "`lagrange run`");
+      throw BadInput(opt.source +
+                     " holds no run.lcm and no running scenario; expected the output directory of "
+                     "`lagrange run`");
   } else {
     s.log_path = opt.source;
   }
@@ -99,7 +100,7 @@ Source resolveSource(const ViewOptions& opt) {
 
 std::string readFile(const fs::path& path, const std::string& what_provides_it) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string() + " not found; " + what_provides_it);
+  if (!in) throw BadInput(path.string() + " not found; " + what_provides_it);
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -200,12 +201,13 @@ int runView(const ViewOptions& opt) {
   int port = opt.port;
   try {
     if (!isLoopbackHost(opt.host) && !opt.allow_remote)
-      throw Error("--host " + opt.host +
-                  " is not a loopback address: the viewer has no authentication and anyone who reaches it "
-                  "sees the run; expected 127.0.0.1, ::1 or localhost, or --allow-remote to serve it anyway");
+      throw BadInput(
+          "--host " + opt.host +
+          " is not a loopback address: the viewer has no authentication and anyone who reaches it "
+          "sees the run; expected 127.0.0.1, ::1 or localhost, or --allow-remote to serve it anyway");
     if (opt.port < 0 || opt.port > 65535)
-      throw Error("--port " + std::to_string(opt.port) +
-                  " is not a port; expected 0 (any free port) to 65535");
+      throw BadInput("--port " + std::to_string(opt.port) +
+                     " is not a port; expected 0 (any free port) to 65535");
     source = resolveSource(opt);
     assets = loadAssets();
     if (!source.live) log = std::make_unique<ViewLog>(readViewLog(source.log_path));
@@ -213,12 +215,12 @@ int runView(const ViewOptions& opt) {
     // from this machine's network, the run's traffic from its own.
     port = server.bindPort(opt.host, opt.port);
     if (port < 0)
-      throw Error("cannot listen on " + opt.host + ":" + std::to_string(opt.port) +
-                  " (in use, or not an address of this machine); expected a free port (--port 0 picks one)");
+      throw BadInput(
+          "cannot listen on " + opt.host + ":" + std::to_string(opt.port) +
+          " (in use, or not an address of this machine); expected a free port (--port 0 picks one)");
     if (source.netns_pid) joinNetnsOf(*source.netns_pid);
   } catch (const std::exception& e) {
-    std::cerr << "lagrange view: " << e.what() << "\n";
-    return kExitBadInput;
+    return failWith("lagrange view", e);
   }
 
   std::unique_ptr<LiveFeed> feed;
@@ -228,10 +230,9 @@ int runView(const ViewOptions& opt) {
       if (!source.key_file.empty()) {
         try {
           key = runtime::readKeyFile(source.key_file);
-        } catch (const lagrange::Error& e) {  // a ConfigError (config/ is not included here: its Eigen
-                                              // breaks after httplib, whose resolv.h defines _res)
-          std::cerr << "lagrange view: " << e.what() << "\n";
-          return kExitBadInput;
+        } catch (const std::exception& e) {  // a ConfigError, bad input (config/ is not included
+                                             // here: its Eigen breaks after httplib's resolv.h)
+          return failWith("lagrange view", e);
         }
       } else {
         std::cerr << "lagrange view: warning: no --key-file: the page draws whatever reaches "
@@ -240,8 +241,7 @@ int runView(const ViewOptions& opt) {
       feed = std::make_unique<LiveFeed>(source.lcm_url, source.run_id, key);
     }
   } catch (const std::exception& e) {
-    std::cerr << "lagrange view: " << e.what() << "\n";
-    return kExitFailed;
+    return failWith("lagrange view", e);
   }
 
   // DNS rebinding: a page of another site, its name resolved to this

@@ -2,6 +2,7 @@
 
 #include "config/robot_description_lcm.hpp"
 #include "transport/channels.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
@@ -79,8 +80,7 @@ LiveFeed::LiveFeed(const std::string& lcm_url, int64_t run_id,
       run_id_(run_id),
       auth_(key ? std::make_unique<transport::MessageAuthenticator>(*key) : nullptr),
       capacity_(capacity) {
-  if (!lcm_.good())
-    throw std::runtime_error("LCM cannot open " + (lcm_url.empty() ? "its default URL" : lcm_url));
+  if (!lcm_.good()) throw RuntimeFault("LCM cannot open " + (lcm_url.empty() ? "its default URL" : lcm_url));
   for (const char* channel : {transport::kRobotDescription, transport::kPlantTruth,
                               transport::kControlCommand, transport::kPlantMotor})
     lcm_.subscribeFunction(

@@ -45,7 +45,7 @@ class LiveFeed {
   /// carrying its MAC are read (the run's own check, before decoding);
   /// without, a run's MAC trailer is skipped unchecked and anyone on the
   /// group can draw into the page (runView says so). @throws
-  /// std::runtime_error if LCM cannot open `lcm_url`.
+  /// RuntimeFault if LCM cannot open `lcm_url`.
   LiveFeed(const std::string& lcm_url, int64_t run_id, const std::optional<transport::MessageKey>& key,
            size_t capacity = 200000);
   ~LiveFeed();

@@ -7,15 +7,16 @@
 #include <cerrno>
 
 #include "transport/channels.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::transport {
 
 LcmNode::LcmNode(const std::string& process_name, const std::string& url, int64_t run_id)
     : process_name_(process_name), lcm_(url), run_id_(run_id), pid_(static_cast<int32_t>(getpid())) {
   if (!lcm_.good())
-    throw std::runtime_error(process_name + ": cannot open LCM at '" + url +
-                             "'; expected a working LCM URL such as udpm://239.255.76.67:7667?ttl=0 "
-                             "and a network interface with multicast enabled");
+    throw lagrange::RuntimeFault(process_name + ": cannot open LCM at '" + url +
+                                 "'; expected a working LCM URL such as udpm://239.255.76.67:7667?ttl=0 "
+                                 "and a network interface with multicast enabled");
 }
 
 void LcmNode::authenticate(const MessageKey& key) { auth_ = std::make_unique<MessageAuthenticator>(key); }

@@ -59,7 +59,7 @@ class LcmNode {
   /// @param run_id the run's identity, stamped on every message published and
   ///        required of every message received; 0: a process on its own,
   ///        which stamps 0 and accepts any run.
-  /// @throws std::runtime_error naming the URL if LCM cannot be initialised.
+  /// @throws lagrange::RuntimeFault naming the URL if LCM cannot be initialised.
   LcmNode(const std::string& process_name, const std::string& url, int64_t run_id = 0);
   int64_t runId() const { return run_id_; }
 

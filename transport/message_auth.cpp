@@ -8,13 +8,15 @@
 #include <new>
 #include <stdexcept>
 
+#include "util/error.hpp"
+
 namespace lagrange::transport {
 
 namespace {
 void initSodium() {
   // Idempotent and thread-safe; -1 only when the system has no usable
   // random source, which nothing here can work around.
-  if (sodium_init() < 0) throw std::runtime_error("libsodium cannot initialise (no random source?)");
+  if (sodium_init() < 0) throw lagrange::RuntimeFault("libsodium cannot initialise (no random source?)");
 }
 }  // namespace
 
@@ -66,7 +68,7 @@ MessageAuthenticator::MessageAuthenticator(const MessageKey& key) : keyed_(new S
     EVP_MAC_CTX_free(keyed_->keyed);
     EVP_MAC_free(keyed_->mac);
     delete keyed_;
-    throw std::runtime_error("OpenSSL's libcrypto offers no HMAC-SHA256 here (EVP_MAC_fetch failed)");
+    throw lagrange::RuntimeFault("OpenSSL's libcrypto offers no HMAC-SHA256 here (EVP_MAC_fetch failed)");
   }
 }
 

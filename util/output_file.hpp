@@ -21,13 +21,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "util/error.hpp"
+
 namespace lagrange::util {
 
 /// A path where an output must not be written: a symbolic link, a directory,
 /// a device. Bad input (exit 2), unlike a write error (exit 1).
-class UnsafeOutputPath : public std::runtime_error {
+class UnsafeOutputPath : public lagrange::BadInput {
  public:
-  using std::runtime_error::runtime_error;
+  using lagrange::BadInput::BadInput;
 };
 
 /// "writing 'PATH' failed: No space left on device", from errno.
@@ -40,7 +42,7 @@ inline void checkOutputPath(const std::string& path) {
   struct stat st {};
   if (lstat(path.c_str(), &st) != 0) {
     if (errno == ENOENT) return;
-    throw std::runtime_error(ioErrorText("examining", path, errno));
+    throw lagrange::RuntimeFault(ioErrorText("examining", path, errno));
   }
   if (S_ISLNK(st.st_mode)) {
     char target[PATH_MAX] = {};
@@ -60,14 +62,14 @@ inline void checkOutputPath(const std::string& path) {
 inline int createOutputFile(const std::string& path, mode_t mode = 0644) {
   checkOutputPath(path);
   if (unlink(path.c_str()) != 0 && errno != ENOENT)
-    throw std::runtime_error(ioErrorText("replacing", path, errno));
+    throw lagrange::RuntimeFault(ioErrorText("replacing", path, errno));
   const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
   if (fd >= 0) return fd;
   const int error = errno;
   if (error == EEXIST || error == ELOOP)  // something was put there between the unlink and the open
     throw UnsafeOutputPath("'" + path + "' reappeared while it was being created (" + std::strerror(error) +
                            "); expected nothing else to write the output directory during a run");
-  throw std::runtime_error(ioErrorText("creating", path, error));
+  throw lagrange::RuntimeFault(ioErrorText("creating", path, error));
 }
 
 /// Writes all of `data` to `fd`; throws naming `path` and the error.
@@ -76,7 +78,7 @@ inline void writeAll(int fd, const std::string& data, const std::string& path) {
   while (done < data.size()) {
     const ssize_t n = write(fd, data.data() + done, data.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw std::runtime_error(ioErrorText("writing", path, errno));
+    if (n < 0) throw lagrange::RuntimeFault(ioErrorText("writing", path, errno));
     done += static_cast<size_t>(n);
   }
 }
@@ -91,16 +93,16 @@ inline void writeOutputFile(const std::string& path, const std::string& data, mo
     close(fd);
     throw;
   }
-  if (close(fd) != 0) throw std::runtime_error(ioErrorText("writing", path, errno));
+  if (close(fd) != 0) throw lagrange::RuntimeFault(ioErrorText("writing", path, errno));
 }
 
 /// Makes directory `path` unless it is one already; throws UnsafeOutputPath
 /// if a symbolic link or a file is there (files go into it next).
 inline void makeOutputDirectory(const std::string& path) {
   if (mkdir(path.c_str(), 0755) == 0) return;
-  if (errno != EEXIST) throw std::runtime_error(ioErrorText("creating the directory", path, errno));
+  if (errno != EEXIST) throw lagrange::RuntimeFault(ioErrorText("creating the directory", path, errno));
   struct stat st {};
-  if (lstat(path.c_str(), &st) != 0) throw std::runtime_error(ioErrorText("examining", path, errno));
+  if (lstat(path.c_str(), &st) != 0) throw lagrange::RuntimeFault(ioErrorText("examining", path, errno));
   if (S_ISLNK(st.st_mode))
     throw UnsafeOutputPath("'" + path +
                            "' is a symbolic link; expected a directory of this run's own or nothing there: "

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::util {
@@ -20,7 +21,7 @@ namespace lagrange::util {
 class OutputStream : public std::ostream {
  public:
   /// @throws UnsafeOutputPath for a link or a non-regular file at `path`,
-  /// std::runtime_error (naming the path and the reason) if it cannot be made.
+  /// lagrange::RuntimeFault (naming the path and the reason) if it cannot be made.
   explicit OutputStream(const std::string& path)
       : std::ostream(nullptr), path_(path), buffer_(createOutputFile(path), std::ios::out) {
     rdbuf(&buffer_);
@@ -33,7 +34,7 @@ class OutputStream : public std::ostream {
     const bool written = good();
     const int error = errno;
     if (buffer_.close() == nullptr || !written)
-      throw std::runtime_error(ioErrorText("writing", path_, error));
+      throw lagrange::RuntimeFault(ioErrorText("writing", path_, error));
   }
 
   const std::string& path() const { return path_; }

@@ -20,10 +20,10 @@
 #include "config/key_ranges.hpp"
 #include "config/scenario.hpp"
 #include "config/work_bounds.hpp"
-#include "model/error.hpp"
 #include "model/urdf_arm.hpp"
 #include "model/urdf_tree.hpp"
 #include "support/scenario_text.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::config {
 namespace {

@@ -10,11 +10,11 @@
 #include <random>
 #include <sstream>
 
-#include "model/error.hpp"
 #include "model/planar_chain.hpp"
 #include "support/geometry_pose.hpp"
 #include "support/robot_model_properties.hpp"
 #include "support/urdf_rnea.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::model {
 namespace {
