@@ -1,6 +1,6 @@
 /// @file
 /// libFuzzer target: arbitrary bytes as an LCM log file, read by the log
-/// reader every command uses (tools/log_event_reader.hpp) -- what `lagrange
+/// reader every command uses (logs/log_event_reader.hpp) -- what `lagrange
 /// replay`, `report` and `view` do with a log before anything decodes a
 /// message. A crash, a sanitizer report (ASan, UBSan), an exception other
 /// than LogError escaping, or bytes unaccounted for is a finding: every byte
@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "tools/log_event_reader.hpp"
+#include "logs/log_event_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;  // fmemopen refuses an empty buffer; the empty log is a unit test

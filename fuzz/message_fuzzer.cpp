@@ -21,7 +21,7 @@
 #include "lagrange/robot_description_t.hpp"
 #include "lagrange/scenario_t.hpp"
 #include "lagrange/status_t.hpp"
-#include "tools/view_frames.hpp"
+#include "tools/view/view_frames.hpp"
 #include "transport/messages.hpp"
 #include "transport/safe_decode.hpp"
 

@@ -21,8 +21,10 @@ config     : util model core transport/fault_rule.hpp
 scenario   : util model core config
 lcm        : util model core config scenario transport messages
 runtime    : util model config transport messages
-process    : util model core config scenario lcm runtime transport messages
-test       : util model core config scenario lcm runtime transport messages process
+logs       : util transport messages
+wiring     : util model core config scenario lcm runtime transport messages
+process    : util model core config scenario lcm runtime transport messages logs wiring
+test       : util model core config scenario lcm runtime transport messages logs wiring process
 EOF
 }
 
@@ -48,6 +50,8 @@ layer_of() {
     logger/logger_loop.*) echo process ;;
     logger/*) echo lcm ;;  # metrics, summary, coverage: message-level, no process scaffolding
     runtime/*) echo runtime ;;
+    logs/*) echo logs ;;
+    wiring/*) echo wiring ;;
     tools/*) echo process ;;
     tests/* | bench/* | fuzz/*) echo test ;;
     *) echo "" ;;
@@ -96,8 +100,103 @@ if ((checked < 50)); then
   echo "check_layers.sh: only $checked files found under $(pwd); expected the project's sources" >&2
   exit 1
 fi
-if ((failures > 0)); then
-  echo "$failures include(s) point up the layers or files are in none" >&2
+
+# The same rules over CMake's link graph: every library of the project takes
+# the layer of its sources (one layer per library), and links only libraries of
+# its own layer or of one its layer may include. Every library gets the
+# repository root as its include directory, so this -- not the compiler --
+# is what keeps a library from reaching above its layer through the linker.
+declare -A lib_layer alias_of
+libraries=0
+# One line per command, "DIR<TAB>name(args)", comments dropped.
+cmake_commands() {
+  local f dir
+  while IFS= read -r f; do
+    dir=$(dirname "${f#./}")
+    sed 's/#.*//' "$f" | tr '\n' ' ' |
+      { grep -oE '(add_library|add_executable|target_link_libraries|lagrange_subcommand)\([^)]*\)' || true; } |
+      sed "s|^|$dir\t|"
+  done < <(find . \( -name 'build*' -o -name .git -o -name runs -o -name tests -o -name bench -o -name fuzz \) \
+    -prune -o -name CMakeLists.txt -print | sort)
+}
+# place_library NAME DIR SOURCE...: its layer from its sources' (lcmtypes/: messages).
+place_library() {
+  local name=$1 dir=$2 src layer layers=""
+  shift 2
+  for src in "$@"; do
+    [[ $src == *.cpp ]] || continue
+    [[ $src == '${PROJECT_SOURCE_DIR}/'* ]] && src=${src#'${PROJECT_SOURCE_DIR}/'} || src=$dir/$src
+    layer=$(layer_of "$src")
+    [[ " $layers " == *" $layer "* ]] || layers="$layers $layer"
+  done
+  [[ $dir == lcmtypes ]] && layers=" messages"
+  layers=${layers# }
+  if [[ -z $layers ]]; then
+    echo "$dir/CMakeLists.txt: library $name has no sources check_layers.sh can place"
+    failures=$((failures + 1))
+  elif [[ $layers == *" "* ]]; then
+    echo "$dir/CMakeLists.txt: library $name mixes layers ($layers); expected one layer per library"
+    failures=$((failures + 1))
+  fi
+  lib_layer[$name]=${layers%% *}
+  libraries=$((libraries + 1))
+}
+links=()
+while IFS=$'\t' read -r dir command; do
+  kind=${command%%(*}
+  read -ra args <<<"${command#*(}"
+  args[-1]=${args[-1]%)}
+  [[ ${args[-1]} == "" ]] && unset 'args[-1]'
+  case $kind in
+    add_library)
+      name=${args[0]}
+      [[ $name == *'${'* ]] && continue  # lagrange_subcommand's own add_library
+      if [[ ${args[1]:-} == ALIAS ]]; then
+        alias_of[$name]=${args[2]}
+        continue
+      fi
+      place_library "$name" "$dir" "${args[@]:1}"
+      ;;
+    add_executable) lib_layer[${args[0]}]=process ;;  # a program: a process
+    lagrange_subcommand)
+      name=lagrange_tool_${args[0]}
+      sources=() tool_links=() part=""
+      for a in "${args[@]:1}"; do
+        case $a in
+          SOURCES | LINKS) part=$a ;;
+          *) [[ $part == SOURCES ]] && sources+=("$a") || tool_links+=("$a") ;;
+        esac
+      done
+      place_library "$name" "$dir" "${sources[@]}"
+      links+=("$dir $name ${tool_links[*]}")
+      ;;
+    target_link_libraries) links+=("$dir ${args[*]}") ;;
+  esac
+done < <(cmake_commands)
+for link in "${links[@]}"; do
+  read -ra words <<<"$link"
+  dir=${words[0]}
+  name=${words[1]}
+  [[ $name == *'${'* ]] && continue
+  own=${lib_layer[$name]:-}
+  [[ -n $own ]] || continue
+  for target in "${words[@]:2}"; do
+    target=${alias_of[$target]:-$target}
+    theirs=${lib_layer[$target]:-}
+    [[ -n $theirs ]] || continue  # not the project's (Eigen3::Eigen, PkgConfig::LCM, PUBLIC, ...)
+    [[ $theirs == "$own" ]] && continue
+    [[ ${allowed[$own]} == *" $theirs "* ]] && continue
+    echo "$dir/CMakeLists.txt: $name links $target ($theirs) <- $own may link only:${allowed[$own]}(and $own)"
+    failures=$((failures + 1))
+  done
+done
+if ((libraries < 20)); then
+  echo "check_layers.sh: only $libraries libraries found in CMakeLists.txt files; expected the project's" >&2
   exit 1
 fi
-echo "layers: $checked files, every include points down"
+
+if ((failures > 0)); then
+  echo "$failures include(s) or link(s) point up the layers, or files or libraries are in none" >&2
+  exit 1
+fi
+echo "layers: $checked files, every include points down; $libraries libraries, every link points down"

@@ -1,9 +1,10 @@
 #!/bin/bash
 # Proves that tests/check_layers.sh can fail: on a copy of the sources, an
-# include planted up the layers, a file in no layer and a transport header in
-# config other than the fault rule are each named and fail the check; the
-# copy as it is passes. Then docs/architecture.md must show the rules the
-# check enforces (its --rules table, verbatim).
+# include planted up the layers, a file in no layer, a transport header in
+# config other than the fault rule, a CMake link up the layers and a library
+# in two layers are each named and fail the check; the copy as it is passes.
+# Then docs/architecture.md must show the rules the check enforces (its
+# --rules table, verbatim).
 # Usage: tests/check_layers_test.sh SOURCE_DIR
 set -euo pipefail
 src=$(cd "${1:?usage: check_layers_test.sh SOURCE_DIR}" && pwd)
@@ -14,7 +15,8 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 mkdir "$work/tree"
 (cd "$src" && find . \( -name 'build*' -o -name .git -o -name runs \) -prune -o -type f \
-  \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' \) -print0 | xargs -0 cp --parents -t "$work/tree")
+  \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name CMakeLists.txt \) -print0 |
+  xargs -0 cp --parents -t "$work/tree")
 
 # expect_failure NAME PATTERN: the check fails and its output matches PATTERN.
 expect_failure() {
@@ -28,8 +30,8 @@ expect_failure() {
 bash "$check" "$work/tree" >/dev/null || fail "the unchanged copy does not pass"
 
 cp "$work/tree/model/bounds.cpp" "$work/bounds.cpp"
-echo '#include "tools/run_command.hpp"' >>"$work/tree/model/bounds.cpp"
-expect_failure "model including a tool" 'model/bounds\.cpp:[0-9]+: #include "tools/run_command\.hpp" <- model may include only: +util'
+echo '#include "tools/run/run_command.hpp"' >>"$work/tree/model/bounds.cpp"
+expect_failure "model including a tool" 'model/bounds\.cpp:[0-9]+: #include "tools/run/run_command\.hpp" <- model may include only: +util'
 cp "$work/bounds.cpp" "$work/tree/model/bounds.cpp"
 
 mkdir -p "$work/tree/newpart"
@@ -43,6 +45,17 @@ bash "$check" "$work/tree" >/dev/null || fail "config including transport/fault_
 echo '#include "transport/lcm_node.hpp"' >>"$work/tree/config/scenario.cpp"
 expect_failure "config including LCM" 'config/scenario\.cpp:[0-9]+: #include "transport/lcm_node\.hpp" <- config'
 cp "$work/scenario.cpp" "$work/tree/config/scenario.cpp"
+
+# The link graph: a library linking one above its layer, and one whose
+# sources sit in two layers.
+cp "$work/tree/model/CMakeLists.txt" "$work/model.cmake"
+echo 'target_link_libraries(lagrange_model PUBLIC lagrange::runtime)' >>"$work/tree/model/CMakeLists.txt"
+expect_failure "model linking runtime" 'model/CMakeLists\.txt: lagrange_model links lagrange_runtime \(runtime\) <- model may link only: +util'
+cp "$work/model.cmake" "$work/tree/model/CMakeLists.txt"
+cp "$work/tree/transport/CMakeLists.txt" "$work/transport.cmake"
+echo 'add_library(lagrange_mixed lcm_node.cpp ${PROJECT_SOURCE_DIR}/tools/front_end.cpp)' >>"$work/tree/transport/CMakeLists.txt"
+expect_failure "a library in two layers" 'transport/CMakeLists\.txt: library lagrange_mixed mixes layers \(transport process\)'
+cp "$work/transport.cmake" "$work/tree/transport/CMakeLists.txt"
 
 bash "$check" "$work/tree" >/dev/null || fail "the restored copy does not pass"
 

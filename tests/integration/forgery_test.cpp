@@ -38,7 +38,7 @@
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
-#include "tools/spy.hpp"
+#include "tools/spy/spy.hpp"
 #include "transport/checksum.hpp"
 #include "transport/message_auth.hpp"
 

@@ -30,7 +30,7 @@
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
-#include "tools/view_source.hpp"
+#include "tools/view/view_source.hpp"
 
 namespace lagrange::testing {
 namespace {

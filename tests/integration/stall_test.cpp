@@ -18,7 +18,7 @@
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
-#include "tools/spy.hpp"
+#include "tools/spy/spy.hpp"
 #include "transport/checksum.hpp"
 #include "transport/message_auth.hpp"
 

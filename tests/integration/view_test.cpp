@@ -20,13 +20,13 @@
 #include <sstream>
 
 #include "config/scenario.hpp"
+#include "logs/log_reader.hpp"
 #include "support/child.hpp"
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/png_image.hpp"
 #include "support/wait.hpp"
 #include "support/webdriver.hpp"
-#include "tools/log_reader.hpp"
 #include "transport/channels.hpp"
 
 namespace lagrange::testing {

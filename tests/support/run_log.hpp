@@ -20,7 +20,7 @@
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
-#include "tools/log_reader.hpp"
+#include "logs/log_reader.hpp"
 #include "transport/checksum.hpp"
 #include "transport/messages.hpp"
 #include "transport/safe_decode.hpp"

@@ -7,12 +7,12 @@
 #include <stdexcept>
 
 #include "config/scenario.hpp"
+#include "logs/log_event_reader.hpp"
 #include "plant/plant_sim.hpp"
 #include "plant/stall_diagnosis.hpp"
 #include "tools/command_error.hpp"
-#include "tools/log_event_reader.hpp"
-#include "tools/plots.hpp"
-#include "tools/replay.hpp"
+#include "tools/replay/replay.hpp"
+#include "tools/report/plots.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
@@ -55,7 +55,8 @@ TEST(ErrorKinds, FailWithNamesTheCommandAndReturnsTheKindsCode) {
   std::ostringstream captured;
   std::streambuf* const old = std::cerr.rdbuf(captured.rdbuf());
   const int bad = tools::failWith("lagrange report", tools::LogError("run.lcm: not an LCM log"));
-  const int fault = tools::failWith("lagrange run", RuntimeFault("writing 'x' failed: No space left on device"));
+  const int fault =
+      tools::failWith("lagrange run", RuntimeFault("writing 'x' failed: No space left on device"));
   std::cerr.rdbuf(old);
   EXPECT_EQ(bad, kExitBadInput);
   EXPECT_EQ(fault, kExitFailed);

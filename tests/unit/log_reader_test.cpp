@@ -3,7 +3,7 @@
 // offset and what was expected) before allocating anything, skips a corrupt
 // stretch to the next whole event, and reads a log cut at any byte up to its
 // last whole event.
-#include "tools/log_reader.hpp"
+#include "logs/log_reader.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,8 +1,8 @@
-// lagrange sweep's plan and rows files (tools/sweep_plan.hpp,
-// tools/sweep_store.hpp): what each row runs is fixed by the sweep file and
+// lagrange sweep's plan and rows files (tools/sweep/sweep_plan.hpp,
+// tools/sweep/sweep_store.hpp): what each row runs is fixed by the sweep file and
 // its seed; bad sweep files are named with what was expected; a partial line
 // a killed shard left is dropped and cut.
-#include "tools/sweep_plan.hpp"
+#include "tools/sweep/sweep_plan.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 
 #include "model/reference.hpp"
 #include "support/configs.hpp"
-#include "tools/sweep_random.hpp"
-#include "tools/sweep_store.hpp"
+#include "tools/sweep/sweep_random.hpp"
+#include "tools/sweep/sweep_store.hpp"
 
 namespace lagrange::tools {
 namespace {

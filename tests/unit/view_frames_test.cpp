@@ -1,6 +1,6 @@
 // lagrange view's FrameAssembler: PLANT_TRUTH, CONTROL_COMMAND and
 // PLANT_MOTOR joined by tick, in whatever order they arrive.
-#include "tools/view_frames.hpp"
+#include "tools/view/view_frames.hpp"
 
 #include <gtest/gtest.h>
 

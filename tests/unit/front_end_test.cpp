@@ -1,0 +1,90 @@
+// The front end's seam (tools/front_end.hpp, tools/subcommand.hpp): a
+// subcommand is its own files plus one entry in the list the front end is
+// given -- shown here by a test-only command beside real ones -- and the
+// front end turns every command line CLI11 refuses into bad input (exit 2).
+#include "tools/front_end.hpp"
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "support/configs.hpp"
+#include "tools/check_gains/check_gains.hpp"
+#include "tools/run/run_command.hpp"
+#include "util/error.hpp"
+
+namespace lagrange::tools {
+namespace {
+
+struct GreetSeen {
+  std::string word;
+  int runs = 0;
+  Invocation invocation;
+};
+GreetSeen greet_seen;
+
+// A subcommand that exists only in this test: its options, bound to state
+// its runner owns, and what it returns.
+Subcommand addGreetCommand(CLI::App& app) {
+  auto word = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("greet", "test-only: remember a word");
+  cmd->add_option("word", *word, "the word")->required();
+  return {cmd, [word](const Invocation& inv) {
+            greet_seen.word = *word;
+            greet_seen.runs += 1;
+            greet_seen.invocation = inv;
+            return 7;
+          }};
+}
+
+int dispatchArgs(std::vector<std::string> args, const std::vector<AddSubcommand>& commands) {
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return dispatch(static_cast<int>(args.size()), argv.data(), commands);
+}
+
+TEST(FrontEnd, ATestOnlySubcommandBesideRealOnesRunsWithItsOptions) {
+  greet_seen = {};
+  EXPECT_EQ(
+      dispatchArgs({"lagrange", "greet", "hello"}, {addRunCommand, addGreetCommand, addCheckGainsCommand}),
+      7);
+  EXPECT_EQ(greet_seen.runs, 1);
+  EXPECT_EQ(greet_seen.word, "hello");
+  ASSERT_EQ(greet_seen.invocation.argv.size(), 3u);
+  EXPECT_EQ(greet_seen.invocation.argv[0], greet_seen.invocation.self_exe);  // absolute, to re-execute
+  EXPECT_EQ(greet_seen.invocation.argv[2], "hello");
+  EXPECT_TRUE(greet_seen.invocation.sign);
+}
+
+TEST(FrontEnd, EveryRefusedCommandLineIsBadInputAndRunsNothing) {
+  greet_seen = {};
+  const std::vector<AddSubcommand> commands = {addGreetCommand, addCheckGainsCommand};
+  EXPECT_EQ(dispatchArgs({"lagrange"}, commands), kExitBadInput);           // no subcommand
+  EXPECT_EQ(dispatchArgs({"lagrange", "nope"}, commands), kExitBadInput);   // unknown one
+  EXPECT_EQ(dispatchArgs({"lagrange", "greet"}, commands), kExitBadInput);  // its argument missing
+  EXPECT_EQ(dispatchArgs({"lagrange", "greet", "a", "--x"}, commands), kExitBadInput);  // an unknown option
+  EXPECT_EQ(greet_seen.runs, 0);
+  EXPECT_EQ(dispatchArgs({"lagrange", "--help"}, commands), kExitOk);
+  EXPECT_EQ(dispatchArgs({"lagrange", "greet", "--help"}, commands), kExitOk);
+  EXPECT_EQ(greet_seen.runs, 0);
+}
+
+TEST(FrontEnd, ARealCommandGetsItsOwnOptionsThroughTheDispatch) {
+  const std::string config = testing::kRigid;
+  EXPECT_EQ(dispatchArgs({"lagrange", "check-gains", config}, {addGreetCommand, addCheckGainsCommand}),
+            kExitOk);
+  // --set reaches the scenario: a gain eq. (11) refuses, then a key no reader knows.
+  EXPECT_EQ(dispatchArgs({"lagrange", "check-gains", config, "--set", "controller.kp=[0.001, 0.001]"},
+                         {addCheckGainsCommand}),
+            kExitFailed);
+  EXPECT_EQ(dispatchArgs({"lagrange", "check-gains", config, "--set", "controller.no_such_key=1"},
+                         {addCheckGainsCommand}),
+            kExitBadInput);
+}
+
+}  // namespace
+}  // namespace lagrange::tools

@@ -1,0 +1,33 @@
+/// @file
+/// tools/front_end.hpp.
+#include "tools/front_end.hpp"
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+
+#include "util/error.hpp"
+
+namespace lagrange::tools {
+
+int dispatch(int argc, char** argv, const std::vector<AddSubcommand>& commands, const FrontEnd& front_end) {
+  CLI::App app{front_end.description, front_end.name};
+  app.require_subcommand(1);
+  std::vector<Subcommand> declared;
+  for (const AddSubcommand add : commands) declared.push_back(add(app));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version exit 0; every other parse error is bad input (CLI11's own codes are 100+).
+    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+  }
+  Invocation invocation;
+  invocation.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
+  invocation.argv.assign(argv, argv + argc);
+  invocation.argv[0] = invocation.self_exe;
+  invocation.sign = front_end.sign;
+  for (const Subcommand& command : declared)
+    if (*command.cli) return command.run(invocation);
+  return kExitBadInput;  // unreachable: CLI11 requires one subcommand
+}
+
+}  // namespace lagrange::tools

@@ -1,0 +1,33 @@
+/// @file
+/// `lagrange keygen` (tools/keygen/keygen.hpp).
+#include "tools/keygen/keygen.hpp"
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+
+#include "runtime/key_file.hpp"
+#include "tools/command_error.hpp"
+#include "transport/message_auth.hpp"
+#include "util/error.hpp"
+
+namespace lagrange::tools {
+
+Subcommand addKeygenCommand(CLI::App& app) {
+  auto file = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand(
+      "keygen",
+      "Write a fresh secret key (64 hex digits, mode 600) for runs spread over hosts: give the same file to "
+      "each host's `lagrange run --processes ... --key-file FILE`");
+  cmd->add_option("file", *file, "The key file to create (never overwritten)")->required();
+  return {cmd, [file](const Invocation&) {
+            try {
+              runtime::writeKeyFile(*file, transport::randomMessageKey());
+              return static_cast<int>(kExitOk);
+            } catch (const std::exception& e) {
+              return failWith("lagrange keygen", e);
+            }
+          }};
+}
+
+}  // namespace lagrange::tools

@@ -1,0 +1,553 @@
+#include "tools/run/run_command.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <random>
+#include <sstream>
+
+#include "config/scenario.hpp"
+#include "controller/gain_report.hpp"
+#include "logger/error_line.hpp"
+#include "logs/out_dir_lock.hpp"
+#include "runtime/key_file.hpp"
+#include "tools/command_error.hpp"
+#include "tools/report/report.hpp"
+#include "tools/run/run_key.hpp"
+#include "tools/spy/spy.hpp"
+#include "transport/channels.hpp"
+#include "transport/messages.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+#include "wiring/inproc_runner.hpp"
+#include "wiring/netns.hpp"
+#include "wiring/progress.hpp"
+#include "wiring/supervisor.hpp"
+
+namespace lagrange::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::atomic<int> launcher_signal{0};
+void onSignal(int sig) { launcher_signal = sig; }
+
+std::string executableDir() { return fs::read_symlink("/proc/self/exe").parent_path().string(); }
+
+// Creates the directory and proves it writable, before anything starts.
+std::string prepareOutDir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const std::string probe = (fs::path(dir) / ".lagrange-write-test").string();
+  try {
+    if (ec) throw RuntimeFault(ec.message());
+    close(util::createOutputFile(probe));  // not through a link planted there
+  } catch (const util::UnsafeOutputPath& e) {
+    throw config::ConfigError(std::string("output directory: ") + e.what());
+  } catch (const std::exception& e) {
+    throw config::ConfigError("output directory '" + dir + "' cannot be created or written (" + e.what() +
+                              "); expected a writable directory (--out)");
+  }
+  fs::remove(probe, ec);
+  return fs::absolute(dir).string();
+}
+
+// Every file a run writes into the output directory, so that a link planted
+// in the place of one is refused (exit 2) before anything starts, rather
+// than at the moment its writer comes to it. Each writer creates its file
+// with util::createOutputFile all the same (a link planted during the run).
+void checkOutputPaths(const std::string& out_dir, bool report) {
+  for (const char* name : {"run.lcm", "summary.json", "config.resolved.yaml", "lcm.json", "run.key",
+                           "logger.log", "controller.log", "actuator.log", "plant.log"})
+    util::checkOutputPath((fs::path(out_dir) / name).string());
+  const std::string report_dir = (fs::path(out_dir) / "report").string();
+  if (!report || !fs::exists(fs::symlink_status(report_dir))) return;
+  util::makeOutputDirectory(report_dir);  // refuses a link or a file named report
+  // The report's writers (CSV, plots) replace the files of an earlier report.
+  for (const auto& entry : fs::directory_iterator(report_dir)) util::checkOutputPath(entry.path().string());
+}
+
+// Prints what the robot's model leaves out of its description (URDF limits,
+// damping, lumped branches) and the gain report; false when --strict forbids running.
+bool gainsAllowRun(const config::Scenario& scenario, const controller::GainReport& gains,
+                   const RunOptions& opt) {
+  if (!opt.quiet && scenario.urdf_model)
+    for (const std::string& note : scenario.urdf_model->notes()) std::cout << "robot.urdf: " << note << "\n";
+  if (!opt.quiet) std::cout << controller::describe(gains) << "\n";
+  if (!gains.holds() && opt.strict) {
+    std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is "
+              << (gains.unchecked ? "not checked" : "violated") << "\n";
+    return false;
+  }
+  return true;
+}
+
+std::string writeResolved(const config::Scenario& scenario, const std::string& source,
+                          const std::string& out_dir) {
+  const std::string path = (fs::path(out_dir) / "config.resolved.yaml").string();
+  util::writeOutputFile(path, "# Resolved scenario of this run: defaults, the file " + source +
+                                  " and --set overrides.\n" + config::toYaml(scenario));
+  return path;
+}
+
+// The logger wrote summary.json before the others were reaped; the launcher
+// adds what only it knows: each process's CPU time, and the processes that
+// died and were restarted (supervision).
+void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
+                      const nlohmann::json& supervision) {
+  const fs::path path = fs::path(out_dir) / "summary.json";
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(std::ifstream(path));
+  } catch (const std::exception&) {
+    return;  // printResult reports the unreadable summary
+  }
+  j["timing"]["cpu_seconds"] = cpu;
+  j["supervision"] = supervision;
+  util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
+}
+
+// Reads "sim_time tracking_error" lines from the logger's progress pipe.
+class ProgressReader {
+ public:
+  explicit ProgressReader(int fd) : fd_(fd) {}
+  /// Waits up to timeout_ms for data; returns the newest complete line's values.
+  std::optional<std::pair<double, double>> wait(int timeout_ms) {
+    pollfd p{fd_, POLLIN, 0};
+    if (poll(&p, 1, timeout_ms) <= 0) return std::nullopt;
+    char buf[4096];
+    const ssize_t got = read(fd_, buf, sizeof buf);
+    if (got <= 0) return std::nullopt;
+    pending_.append(buf, static_cast<size_t>(got));
+    std::optional<std::pair<double, double>> newest;
+    for (size_t end; (end = pending_.find('\n')) != std::string::npos; pending_.erase(0, end + 1)) {
+      const std::string line = pending_.substr(0, end);
+      // The logger's last word when it stops on an error (logger/main.cpp):
+      // its own log may be on the disk that just filled up.
+      if (line.rfind(logger::kLoggerErrorPrefix, 0) == 0) {
+        logger_error_ = line.substr(std::strlen(logger::kLoggerErrorPrefix));
+        continue;
+      }
+      std::istringstream in(line);
+      double t = 0.0, error = 0.0;
+      if (in >> t >> error) newest = std::make_pair(t, error);
+    }
+    return newest;
+  }
+  /// Why the logger stopped, if it said so ("" otherwise).
+  const std::string& loggerError() const { return logger_error_; }
+
+ private:
+  int fd_;
+  std::string pending_;
+  std::string logger_error_;
+};
+
+void printTail(const std::string& path, int lines) {
+  std::ifstream in(path);
+  std::vector<std::string> all;
+  for (std::string l; std::getline(in, l);) all.push_back(l);
+  const size_t from = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0;
+  for (size_t i = from; i < all.size(); ++i) std::cerr << "    " << all[i] << "\n";
+}
+
+void printResult(const std::string& out_dir) {
+  std::ifstream in(fs::path(out_dir) / "summary.json");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception&) {
+    std::cout << "summary.json could not be read in " << out_dir << "\n";
+    return;
+  }
+  const auto& t = j["tracking"];
+  std::printf("\nscenario %s: %s\n", j["scenario"].get<std::string>().c_str(),
+              j["status"].get<std::string>().c_str());
+  std::printf("  final tracking error  %.3e rad (tolerance %.1e)\n", t["final_error"].get<double>(),
+              t["tolerance"].get<double>());
+  if (t["convergence_time"].is_null())
+    std::printf("  convergence time      never (the error did not stay below the tolerance)\n");
+  else
+    std::printf("  convergence time      %.3f s (deadline %.3f s: %s)\n", t["convergence_time"].get<double>(),
+                t["convergence_deadline"].get<double>(), t["met"].get<bool>() ? "met" : "MISSED");
+  std::printf("  max |torque|          %.3f N m\n", j["torque"]["max_abs"].get<double>());
+  // A controller without a known stability condition has no verdict to print.
+  if (j["gains"].value("checked", true))
+    std::printf("  gain condition        %s (margin %.4g)\n",
+                j["gains"]["condition_holds"].get<bool>() ? "holds" : "VIOLATED",
+                j["gains"]["margin"].get<double>());
+  else
+    std::printf("  gain condition        not checked (%s)\n", j["gains"].value("why", "").c_str());
+  std::printf("  sim %.2f s in %.2f s wall (%.1fx real time)\n", j["timing"]["sim_time"].get<double>(),
+              j["timing"]["wall_time"].get<double>(), j["timing"]["realtime_factor"].get<double>());
+  std::string files;
+  for (const auto& entry : fs::directory_iterator(out_dir))
+    files += (files.empty() ? "" : ", ") + entry.path().filename().string();
+  std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
+}
+// --check: a completed run that missed its stated metric exits kExitMetricMissed,
+// naming each metric it missed with its value, so CI can guard a controller.
+int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code) {
+  if (!opt.check || exit_code != 0) return exit_code;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(std::ifstream(fs::path(out_dir) / "summary.json"));
+  } catch (const std::exception&) {
+    std::cerr << "lagrange run: --check: summary.json could not be read in " << out_dir
+              << "; expected the logger's summary of this run\n";
+    return kExitMetricMissed;
+  }
+  const auto& t = j.at("tracking");
+  if (t.at("met").get<bool>()) return kExitOk;
+  const double deadline = t.at("convergence_deadline").get<double>();
+  auto when = [](const nlohmann::json& ct) {
+    return ct.is_null() ? std::string("never") : std::to_string(ct.get<double>()) + " s";
+  };
+  std::cerr << "lagrange run: --check: metric MISSED: ||q~|| below " << t.at("tolerance").get<double>()
+            << " rad by t = " << deadline << " s and staying there: converged "
+            << when(t.at("convergence_time")) << ", final error " << t.at("final_error").get<double>()
+            << " rad\n";
+  if (t.contains("chain"))
+    for (const auto& c : t.at("chain"))
+      if (c.at("convergence_time").is_null() || c.at("convergence_time").get<double>() > deadline)
+        std::cerr << "lagrange run: --check: metric MISSED: ||xit_" << c.at("stage").get<int>() << "|| below "
+                  << c.at("tolerance").get<double>() << " by t = " << deadline << " s: converged "
+                  << when(c.at("convergence_time")) << ", final error " << c.at("final_error").get<double>()
+                  << "\n";
+  return kExitMetricMissed;
+}
+
+bool runsHere(const RunOptions& opt, const std::string& process) {
+  return opt.processes.empty() ||
+         std::find(opt.processes.begin(), opt.processes.end(), process) != opt.processes.end();
+}
+
+// A run spread over hosts: each launcher starts its share, on a URL they all use.
+std::string checkProcesses(const RunOptions& opt) {
+  for (const auto& p : opt.processes)
+    if (std::find(kProcesses.begin(), kProcesses.end(), p) == kProcesses.end())
+      return "--processes: unknown process '" + p + "'; expected some of logger, controller, actuator, plant";
+  if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) return "";
+  if (opt.private_netns)
+    return "--processes starts part of a run here and the rest runs elsewhere, which a private network "
+           "namespace would cut off; add --no-netns";
+  if (opt.lcm_url.empty())
+    return "--processes: every host must use the same LCM URL; give it with --lcm-url (TTL 1 or more to "
+           "cross "
+           "hosts, e.g. udpm://239.255.76.67:7667?ttl=1)";
+  if (opt.key_file.empty())
+    return "--processes: every host must sign with the same secret key; make one with `lagrange keygen "
+           "FILE`, copy it to each host (mode 600) and give it with --key-file FILE";
+  return "";
+}
+
+// --report: CSV and plots of the log in OUT/report; a failed or diverged run
+// is reported too (its plots show what went wrong). Never changes the exit code.
+void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
+  if (!opt.report || !runsHere(opt, "logger")) return;
+  const std::string report_dir = (fs::path(out_dir) / "report").string();
+  try {
+    util::makeOutputDirectory(report_dir);  // never into a link planted during the run
+    const Report report = writeReport((fs::path(out_dir) / "run.lcm").string(), report_dir);
+    if (opt.quiet) {
+      for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
+    } else {
+      std::cout << "report: " << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) << " CSV files, "
+                << report.plots.written.size() << " plots in " << report_dir << "\n";
+      for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "lagrange run: report: " << e.what() << "\n";
+  }
+}
+
+// A run's identity. One launcher: random. Several (--processes): they must
+// agree without talking, so it is derived from what they share -- the URL and
+// the resolved scenario (FNV-1a) -- unless --run-id gives it.
+int64_t runIdFor(const RunOptions& opt, const std::string& url, const std::string& resolved_path) {
+  if (opt.run_id) return *opt.run_id;
+  if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) {
+    std::random_device rd;
+    const uint64_t r = (static_cast<uint64_t>(rd()) << 32) ^ rd();
+    return static_cast<int64_t>(r >> 1) | 1;  // positive, never 0 ("any run")
+  }
+  std::ifstream in(resolved_path);
+  const std::string text = url + "\n" + std::string(std::istreambuf_iterator<char>(in), {});
+  uint64_t h = 1469598103934665603ULL;
+  for (const unsigned char ch : text) h = (h ^ ch) * 1099511628211ULL;
+  return static_cast<int64_t>(h >> 1) | 1;
+}
+
+// CPU time of a process, summed over its restarts.
+void addCpu(nlohmann::json& cpu, const ChildExit& e) {
+  nlohmann::json& c = cpu[e.name];
+  if (!c.is_object()) c = {{"user", 0.0}, {"system", 0.0}};
+  c["user"] = c.value("user", 0.0) + e.cpu_user;
+  c["system"] = c.value("system", 0.0) + e.cpu_system;
+}
+
+// A dead process is restarted when the scenario says so and it has restarts
+// left; every death is noted in `supervision` either way.
+bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervision, const ChildExit& e) {
+  const int done = supervision["restarts"].value(e.name, 0);
+  const bool restart = policy.restarts(e.name) && done < policy.max_restarts;
+  supervision["deaths"].push_back({{"process", e.name}, {"how", e.describe()}, {"restarted", restart}});
+  if (restart) supervision["restarts"][e.name] = done + 1;
+  return restart;
+}
+
+// Starts logger, controller, actuator and plant on a fresh LCM URL, shows
+// progress, and watches them until all have exited; returns the exit code.
+int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
+                       const std::string& resolved) {
+  const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
+  const int64_t run_id = runIdFor(opt, url, resolved);
+  // The run's secret (docs/reliability.md): the processes get the file's
+  // path, never the key itself, and a key made here ends with the run.
+  std::optional<RunKey> key;
+  try {
+    if (opt.sign) key.emplace(opt.key_file, out_dir);
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
+  }
+  const std::vector<std::string> key_args =
+      key ? std::vector<std::string>{"--key-file", key->path()} : std::vector<std::string>{};
+  // Where `lagrange spy OUT` finds this run: its URL and, in a private
+  // network namespace, a process (this one) to take the namespace from.
+  try {
+    writeEndpoint(out_dir,
+                  {url, run_id, opt.private_netns ? std::optional<long>(getpid()) : std::nullopt, getpid()});
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
+  }
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  std::signal(SIGPIPE, SIG_IGN);
+
+  // Progress comes from the logger through a pipe (its --progress-fd), not
+  // over LCM: a launcher on the LCM URL would receive every message of the
+  // run for the sake of one line every 100 ms.
+  int progress_pipe[2];
+  if (pipe2(progress_pipe, O_CLOEXEC | O_NONBLOCK) != 0) {
+    std::cerr << "lagrange run: cannot create a pipe: " << std::strerror(errno) << "\n";
+    return kExitFailed;
+  }
+  ProgressDisplay progress(scenario.duration, opt.quiet);
+  ProgressReader progress_reader(progress_pipe[0]);
+
+  const std::string bin = executableDir();
+  Supervisor supervisor;
+  auto spec = [&](const std::string& name, std::vector<std::string> extra) {
+    ChildSpec c;
+    c.name = name;
+    c.argv = {bin + "/lagrange-" + name, "--config", resolved, "--lcm-url", url, "--run-id",
+              std::to_string(run_id)};
+    c.argv.insert(c.argv.end(), key_args.begin(), key_args.end());
+    c.argv.insert(c.argv.end(), extra.begin(), extra.end());
+    c.log_path = (fs::path(out_dir) / (name + ".log")).string();
+    return c;
+  };
+  // The logger first, so that it records from the first tick; the plant waits
+  // for the logger's STATUS before it starts the clock anyway.
+  ChildSpec logger = spec("logger", {"--out", out_dir, "--progress-fd", "3"});
+  logger.pass_fd = progress_pipe[1];
+  ChildSpec controller =
+      spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{});
+  if (scenario.controller.type == "external") {
+    // A program from outside the project in the controller's place; what it
+    // needs to join the run comes in its environment (docs/external_controllers.md).
+    controller.argv = scenario.controller.command;
+    controller.working_directory = scenario.controller.working_directory;
+    controller.env = {"LAGRANGE_LCM_URL=" + url,
+                      "LAGRANGE_RUN_ID=" + std::to_string(run_id),
+                      "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
+                      "LAGRANGE_CONFIG=" + resolved,
+                      "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
+                      "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
+  }
+  std::vector<ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};
+  for (const auto& s : specs)
+    if (runsHere(opt, s.name)) supervisor.start(s);
+  close(progress_pipe[1]);
+
+  int exit_code = kExitOk;
+  nlohmann::json cpu = nlohmann::json::object();
+  nlohmann::json supervision = {{"restart", scenario.supervision.restart},
+                                {"restarts", nlohmann::json::object()},
+                                {"deaths", nlohmann::json::array()}};
+  // After the plant has finished, the others get this long to follow (they
+  // normally need milliseconds); then they are stopped, so that a lost final
+  // STATUS can never hang a run.
+  constexpr double kFollowSeconds = 10.0;
+  std::optional<std::chrono::steady_clock::time_point> plant_done;
+  while (supervisor.anyRunning()) {
+    if (const auto latest = progress_reader.wait(50)) progress.update(latest->first, latest->second);
+    progress.tick();
+    if (launcher_signal != 0) {
+      progress.finish();
+      std::cerr << "lagrange run: interrupted; stopping every process\n";
+      supervisor.stopAll(5.0);
+      exit_code = kExitInterrupted;
+      break;
+    }
+    if (plant_done &&
+        std::chrono::steady_clock::now() - *plant_done > std::chrono::duration<double>(kFollowSeconds)) {
+      progress.finish();
+      std::cerr << "lagrange run: warning: processes still running " << kFollowSeconds
+                << " s after the plant finished; stopping them\n";
+      for (const ChildExit& e : supervisor.stopAll(5.0)) {
+        addCpu(cpu, e);
+        if (e.failed() && e.signal != SIGTERM) exit_code = kExitFailed;
+      }
+      break;
+    }
+    for (const ChildExit& e : supervisor.reap()) {
+      addCpu(cpu, e);
+      if (e.name == "plant" && !e.failed()) plant_done = std::chrono::steady_clock::now();
+      if (!e.failed()) continue;
+      if (!plant_done && mayRestart(scenario.supervision, supervision, e)) {
+        progress.finish();
+        std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
+                  << "; restarting it (restart " << supervision["restarts"][e.name].get<int>()
+                  << " of at most " << scenario.supervision.max_restarts << ", supervision.restart)\n";
+        supervisor.restart(e.name);
+        // The plant's stall deadline starts over with the start-up allowance
+        // (runtime::takeResumeNotice): the restarted process loads and checks
+        // its gains before it can answer.
+        supervisor.signal("plant", SIGCONT);
+        continue;
+      }
+      progress.finish();
+      if (e.name == "logger") progress_reader.wait(0);  // its last word, if it said one
+      if (e.name == "logger" && !progress_reader.loggerError().empty()) {
+        // A write error: the log tail would be on the same full disk.
+        std::cerr << "lagrange run: the logger stopped the run: " << progress_reader.loggerError()
+                  << "; stopping the others\n";
+      } else {
+        std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
+                  << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
+        printTail((fs::path(out_dir) / (e.name + ".log")).string(), 15);
+      }
+      for (const ChildExit& other : supervisor.stopAll(5.0))
+        if (other.failed() && other.signal != SIGTERM)
+          std::cerr << "lagrange run: process '" << other.name << "' " << other.describe() << "\n";
+      exit_code = kExitFailed;
+      break;
+    }
+  }
+  key.reset();  // every process has ended: the run's secret goes with it
+  // The logger's last line (the final sample) may have come after the loop's last read.
+  if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
+  progress.finish();
+  close(progress_pipe[0]);
+  if (exit_code == 0 && runsHere(opt, "logger")) {
+    try {
+      addLauncherFacts(out_dir, cpu, supervision);
+    } catch (const std::exception& e) {
+      exit_code = failWith("lagrange run", e);
+    }
+  }
+  if (exit_code != kExitInterrupted) writeRunReport(opt, out_dir);
+  if (exit_code == 0 && !opt.quiet) {
+    if (runsHere(opt, "logger"))
+      printResult(out_dir);
+    else
+      std::cout << "this host's processes finished; the log and summary.json are where the logger ran\n";
+  }
+  if (exit_code != 0) std::cerr << "lagrange run: the log so far is kept in " << out_dir << "/run.lcm\n";
+  return exit_code;
+}
+}  // namespace
+
+namespace {
+int runScenarioLocked(const RunOptions& opt) {
+  if (opt.check && !runsHere(opt, "logger")) {
+    std::cerr << "lagrange run: --check reads the run's summary.json, which the logger writes on its own "
+                 "host; expected --processes to include logger\n";
+    return kExitBadInput;
+  }
+  if (const std::string why = checkProcesses(opt); !why.empty()) {
+    std::cerr << "lagrange run: " << why << "\n";
+    return kExitBadInput;
+  }
+  config::Scenario scenario;
+  std::string out_dir;
+  try {
+    scenario = config::loadScenario(opt.config_path, opt.overrides);
+    if (!opt.key_file.empty()) runtime::readKeyFile(opt.key_file);  // a bad key file stops nothing half-way
+    out_dir = prepareOutDir(opt.out_dir);
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
+  }
+  // The launcher's lock on the output directory, for the whole run: taken
+  // by the process that runs it (after the re-exec into a private network
+  // namespace, which would drop it), before anything is written there.
+  std::optional<OutDirLock> lock;
+  auto lockOutDir = [&] {
+    lock.emplace(out_dir, "lagrange run");
+    checkOutputPaths(out_dir, opt.report);
+  };
+
+  if (scenario.mode == config::Mode::kInproc) {
+    if (!opt.processes.empty()) {
+      std::cerr << "lagrange run: --processes does not apply to mode inproc (one process, no LCM)\n";
+      return kExitBadInput;
+    }
+    lockOutDir();
+    const controller::GainReport gains = controller::checkGains(scenario);
+    if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
+    writeResolved(scenario, opt.config_path, out_dir);
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    ProgressDisplay progress(scenario.duration, opt.quiet);
+    const int code = runInProcess(scenario, gains, out_dir, progress, [] { return launcher_signal != 0; });
+    progress.finish();
+    if (code != kExitInterrupted) writeRunReport(opt, out_dir);
+    if (code == 0 && !opt.quiet) printResult(out_dir);
+    return checkMetric(opt, out_dir, code);
+  }
+
+  if (opt.private_netns && !insidePrivateNetns()) {
+    const std::string why = reexecInPrivateNetns(opt.self_argv);
+    std::cerr << "lagrange run: " << why << "; install util-linux or run with --no-netns\n";
+    return kExitFailed;
+  }
+  if (opt.private_netns) {
+    try {
+      configureLoopbackMulticast();
+    } catch (const std::exception& e) {
+      return failWith("lagrange run", e);
+    }
+  }
+  lockOutDir();
+  if (!gainsAllowRun(scenario, controller::checkGains(scenario), opt)) return kExitBadInput;
+  const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
+
+  return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));
+}
+}  // namespace
+
+// A link planted in the output directory or another run holding it is bad
+// input (exit 2); a file that cannot be written (full disk, I/O error) a
+// runtime fault (exit 1). Both name the file.
+int runScenario(const RunOptions& opt) {
+  try {
+    return runScenarioLocked(opt);
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
+  }
+}
+
+}  // namespace lagrange::tools

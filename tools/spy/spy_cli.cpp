@@ -1,0 +1,24 @@
+/// @file
+/// `lagrange spy`'s command line (tools/spy/spy.hpp).
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "tools/spy/spy.hpp"
+
+namespace lagrange::tools {
+
+Subcommand addSpyCommand(CLI::App& app) {
+  auto spy = std::make_shared<SpyOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "spy",
+      "Start lcm-spy with this project's message types on a running scenario's LCM URL (joining its private "
+      "network namespace), so every channel is decoded; needs a display");
+  cmd->add_option("run", spy->run_dir, "Output directory of a running `lagrange run` (it holds lcm.json)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--lcm-url", spy->lcm_url,
+                  "LCM URL to watch (default: the run's; without a run, LCM's default URL)");
+  cmd->add_flag("--print-command", spy->print_only, "Print the java command line instead of running it");
+  return {cmd, [spy](const Invocation&) { return runSpy(*spy); }};
+}
+
+}  // namespace lagrange::tools

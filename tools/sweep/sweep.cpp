@@ -1,0 +1,367 @@
+#include "tools/sweep/sweep.hpp"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "logs/out_dir_lock.hpp"
+#include "tools/command_error.hpp"
+#include "tools/sweep/sweep_maps.hpp"
+#include "tools/sweep/sweep_plan.hpp"
+#include "tools/sweep/sweep_progress.hpp"
+#include "tools/sweep/sweep_runner.hpp"
+#include "tools/sweep/sweep_store.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+#include "wiring/spawn_logged.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+using config::ConfigError;
+
+std::atomic<int> sweep_signal{0};
+void onSignal(int sig) { sweep_signal = sig; }
+bool stopRequested() { return sweep_signal != 0; }
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// OUT/plan.json: written on the first start; on a restart it must be the
+// plan the sweep file makes now, or OUT is another sweep's.
+void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
+  fs::create_directories(fs::path(out_dir) / "rows");
+  const fs::path plan_path = fs::path(out_dir) / "plan.json";
+  const std::string text = planJson(plan);
+  if (fs::exists(plan_path)) {
+    if (readFile(plan_path) != text)
+      throw ConfigError("--out " + out_dir + " holds another sweep (its plan.json differs from the plan of " +
+                        plan.spec.file +
+                        " as it is now); expected the same sweep file and scenario to resume it, or a new "
+                        "--out directory");
+    return;
+  }
+  util::writeOutputFile(plan_path.string() + ".tmp", text);
+  fs::rename(plan_path.string() + ".tmp", plan_path);
+  util::writeOutputFile((fs::path(out_dir) / "sweep.yaml").string(), readFile(plan.spec.file));
+}
+
+SweepPlan loadPlan(const std::string& out_dir) {
+  const fs::path plan_path = fs::path(out_dir) / "plan.json";
+  if (!fs::exists(plan_path))
+    throw ConfigError(out_dir +
+                      " is not a sweep's output directory: it has no plan.json; expected the --out "
+                      "directory of lagrange sweep");
+  return planFromJson(readFile(plan_path), plan_path.string());
+}
+
+std::string exitText(int wstatus) {
+  if (WIFEXITED(wstatus)) return "exited with code " + std::to_string(WEXITSTATUS(wstatus));
+  return std::string("was killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
+         strsignal(WTERMSIG(wstatus)) + ")";
+}
+
+// Table and maps from what is in OUT/rows; returns the rows missing.
+long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who,
+            bool collecting = false) {
+  const auto rows = readFinishedRows(out_dir);
+  writeSweepTable(out_dir, plan, rows);
+  long diverged = 0, converged = 0;
+  for (const auto& [i, r] : rows) {
+    diverged += r.value("diverged", false);
+    converged += r.value("converged", false);
+  }
+  const long missing = static_cast<long>(plan.rows.size()) - static_cast<long>(rows.size());
+  if (!quiet) {
+    std::cout << who << rows.size() << " of " << plan.rows.size() << " runs in "
+              << (fs::path(out_dir) / "sweep.csv").string() << " (and sweep.jsonl): " << converged
+              << " converged, " << diverged << " diverged, "
+              << static_cast<long>(rows.size()) - converged - diverged << " neither\n";
+  }
+  try {
+    const Plots maps = drawSweepMaps(out_dir, plan, rows);
+    if (!quiet)
+      for (const std::string& png : maps.written) std::cout << who << "wrote " << png << "\n";
+    for (const std::string& png : maps.failed)
+      std::cerr << who << "gnuplot could not draw " << png << " (see " << maps.log << ")\n";
+  } catch (const PlotError& e) {
+    std::cerr << who << "no maps: " << e.what() << "\n";
+  }
+  if (missing > 0) {
+    std::string list;
+    int shown = 0;
+    for (const SweepRow& r : plan.rows)
+      if (!rows.count(r.index) && shown++ < 10) list += (list.empty() ? "" : ", ") + std::to_string(r.index);
+    std::cerr << who << missing << " runs are not done yet (" << list << (missing > 10 ? ", ..." : "")
+              << "); "
+              << (collecting
+                      ? "a Slurm job may still be running them (squeue); once no task of the sweep runs, "
+                        "the same lagrange sweep command runs what is missing\n"
+                      : "run the same lagrange sweep command again to run them\n");
+  }
+  return missing;
+}
+
+// Local: shards as processes, one per core; progress from the rows files.
+int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int n = static_cast<int>(std::min<long>(o.jobs > 0 ? o.jobs : cores, remaining));
+  fs::create_directories(fs::path(o.out_dir) / "logs");
+  std::map<pid_t, int> running;
+  for (int k = 0; k < n; ++k) {
+    const std::string log =
+        (fs::path(o.out_dir) / "logs" / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".log"))
+            .string();
+    running[spawnLogged({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
+                         std::to_string(n), "--parent", std::to_string(getpid())},
+                        {log, /*append=*/true})] = k;
+  }
+  RowCounter counter(o.out_dir);
+  SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet);
+  bool forwarded = false, failed = false;
+  while (!running.empty()) {
+    int wstatus = 0;
+    const pid_t pid = waitpid(-1, &wstatus, WNOHANG);
+    if (pid > 0 && running.count(pid)) {
+      const int k = running[pid];
+      running.erase(pid);
+      const bool stopped = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == kExitInterrupted;
+      if (!(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0) && !(stopped && sweep_signal)) {
+        failed = true;
+        progress.interrupt();
+        std::cerr << "lagrange sweep: shard " << k << " of " << n << " " << exitText(wstatus) << "; see "
+                  << (fs::path(o.out_dir) / "logs").string() << "\n";
+      }
+      continue;
+    }
+    if (sweep_signal && !forwarded) {  // stop the shards; each keeps the rows it finished
+      for (const auto& [p, k] : running) kill(p, SIGTERM);
+      forwarded = true;
+    }
+    const RowCount c = counter.count();
+    progress.update(c.rows, c.diverged);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  const RowCount end = counter.count();
+  progress.finish(end.rows, end.diverged);
+  const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
+  if (sweep_signal) return kExitInterrupted;
+  return failed || missing > 0 ? kExitFailed : kExitOk;
+}
+
+// The job id sbatch --parsable prints ("ID" or "ID;CLUSTER") on a line of its
+// own, when it has submitted; warnings may come before it. Empty until then.
+std::string jobIdOf(const std::string& sbatch_output) {
+  std::istringstream lines(sbatch_output);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty() && !lines.eof() && std::isdigit(static_cast<unsigned char>(line[0])) &&
+        line.find_first_not_of("0123456789") == line.find(';'))
+      return line.substr(0, line.find(';'));
+  return "";
+}
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// --slurm: a job array of shards, then (unless --no-wait) wait for it.
+int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
+  const int n = static_cast<int>(std::min<long>(o.shards > 0 ? o.shards : 64, remaining));
+  const fs::path dir = fs::absolute(o.out_dir);
+  const fs::path slurm = dir / "slurm";
+  fs::create_directories(slurm);
+  const fs::path script = slurm / "shard.sh";
+  util::writeOutputFile(
+      script.string(),
+      "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " +
+          std::to_string(n) + " == K.\nexec " + shellQuote(o.self_exe) + " sweep-shard " +
+          shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) + "\n");
+  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                              fs::perms::others_read | fs::perms::others_exec);
+  std::vector<std::string> args = {"sbatch",
+                                   "--parsable",
+                                   "--job-name=lagrange-sweep",
+                                   "--array=0-" + std::to_string(n - 1),
+                                   "--output=" + (slurm / "shard-%a.out").string(),
+                                   "--chdir=" + dir.string()};
+  if (!o.partition.empty()) args.push_back("--partition=" + o.partition);
+  if (!o.time_limit.empty()) args.push_back("--time=" + o.time_limit);
+  if (!o.account.empty()) args.push_back("--account=" + o.account);
+  args.insert(args.end(), o.sbatch_args.begin(), o.sbatch_args.end());
+  if (!o.no_wait) args.push_back("--wait");
+  args.push_back(script.string());
+  const fs::path sbatch_out = slurm / "sbatch.out";
+  pid_t pid = -1;
+  try {  // in a process group of its own: Ctrl-C stops the waiting, not the job
+    pid = spawnLogged(args, {sbatch_out.string()}, /*own_group=*/true);
+  } catch (const RuntimeFault& e) {
+    throw RuntimeFault(std::string(e.what()) + "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
+  }
+  RowCounter counter(o.out_dir);
+  std::string job;
+  SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);
+  int wstatus = 0;
+  for (;;) {
+    const pid_t done = waitpid(pid, &wstatus, WNOHANG);
+    if (job.empty()) {
+      job = jobIdOf(readFile(sbatch_out));
+      if (!job.empty()) {
+        if (!o.quiet) {
+          progress.interrupt();
+          std::cout << "lagrange sweep: submitted Slurm job " << job << ", " << n << " array tasks ("
+                    << remaining << " runs)\n"
+                    << std::flush;
+        }
+      }
+    }
+    if (done == pid) break;
+    if (sweep_signal) {
+      progress.interrupt();
+      std::cerr << "lagrange sweep: stopped waiting; job " << (job.empty() ? "?" : job)
+                << " keeps running (scancel it to stop it); then: lagrange sweep collect " << o.out_dir
+                << "\n";
+      return kExitInterrupted;
+    }
+    const RowCount c = counter.count();
+    progress.update(c.rows, c.diverged);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  const RowCount end = counter.count();
+  progress.finish(end.rows, end.diverged);
+  const bool sbatch_ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
+  if (job.empty()) {  // not submitted
+    std::cerr << "lagrange sweep: sbatch " << exitText(wstatus) << " without submitting a job:\n"
+              << readFile(sbatch_out);
+    return kExitFailed;
+  }
+  if (o.no_wait) {
+    std::cout << "lagrange sweep: when job " << job << " has ended: lagrange sweep collect " << o.out_dir
+              << "\n";
+    return kExitOk;
+  }
+  if (!sbatch_ok)  // sbatch --wait exits non-zero when a task did
+    std::cerr << "lagrange sweep: a task of job " << job << " failed (sbatch --wait " << exitText(wstatus)
+              << "); see " << (slurm / "shard-*.out").string() << "\n";
+  const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
+  return missing > 0 ? kExitFailed : kExitOk;
+}
+
+}  // namespace
+
+int runSweep(const SweepOptions& o) {
+  std::optional<OutDirLock> lock;
+  SweepPlan plan;
+  try {
+    plan = planSweep(readSweepSpec(o.sweep_file));
+    if (o.dry_run) {
+      std::cout << "lagrange sweep: " << plan.rows.size() << " runs of " << plan.spec.scenario_path
+                << ", every one checked; columns: ";
+      for (const std::string& c : plan.param_columns) std::cout << c << " ";
+      std::cout << "\n";
+      return kExitOk;
+    }
+    // One sweep at a time in OUT: two would run the same rows. Locked
+    // before plan.json is written (logs/out_dir_lock.hpp: names the
+    // holder's pid, dies with it).
+    fs::create_directories(o.out_dir);
+    lock.emplace(o.out_dir, "lagrange sweep");
+    prepareOutDir(o.out_dir, plan);
+  } catch (const std::exception& e) {
+    return failWith("lagrange sweep", e);
+  }
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  try {
+    const long remaining =
+        static_cast<long>(plan.rows.size()) - static_cast<long>(readFinishedRows(o.out_dir).size());
+    if (!o.quiet)
+      std::cout << "lagrange sweep: " << plan.rows.size() << " runs of " << plan.spec.scenario_path << ", "
+                << remaining << " to run" << (o.slurm ? " on Slurm" : "") << "\n"
+                << std::flush;
+    if (remaining == 0)
+      return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ") > 0 ? kExitFailed : kExitOk;
+    return o.slurm ? runSlurm(o, plan, remaining) : runLocal(o, plan, remaining);
+  } catch (const std::exception& e) {
+    return failWith("lagrange sweep", e);
+  }
+}
+
+int collectSweep(const std::string& out_dir, bool quiet) {
+  try {
+    const SweepPlan plan = loadPlan(out_dir);
+    return finish(out_dir, plan, quiet, "lagrange sweep collect: ", /*collecting=*/true) > 0 ? kExitFailed
+                                                                                             : kExitOk;
+  } catch (const std::exception& e) {
+    return failWith("lagrange sweep collect", e);
+  }
+}
+
+int runSweepShard(const std::string& out_dir, int shard, int of, int parent) {
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  // A local shard ends with its sweep: killed, the sweep leaves no shard
+  // behind to write rows while a restart runs them again.
+  if (parent > 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) return kExitInterrupted;
+  }
+  try {
+    if (of < 1 || shard < 0 || shard >= of)
+      throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +
+                        ": expected 0 <= K < N");
+    const SweepPlan plan = loadPlan(out_dir);
+    if (scenarioDigest(plan.spec.scenario_path) != plan.spec.scenario_digest)
+      throw ConfigError(plan.spec.scenario_path +
+                        " has changed since the sweep was planned; expected it as it was (its rows would "
+                        "mix two scenarios), or a new sweep in a new --out directory");
+    const auto finished = readFinishedRows(out_dir);
+    RowWriter writer((fs::path(out_dir) / "rows" /
+                      ("shard-" + std::to_string(shard) + "-of-" + std::to_string(of) + ".jsonl"))
+                         .string());
+    SweepRunner runner(plan);
+    long ran = 0;
+    for (const SweepRow& row : plan.rows) {
+      if (row.index % of != shard || finished.count(row.index)) continue;
+      if (stopRequested()) break;
+      std::optional<nlohmann::ordered_json> result;
+      try {
+        result = runner.run(row, stopRequested);
+      } catch (const std::exception& e) {  // a result too: the row says why, and a restart does not retry it
+        result = runner.failedRow(row, e.what());
+      }
+      if (!result) break;  // stopped midway: the row is run again on a restart
+      writer.append(*result);
+      ++ran;
+    }
+    std::cout << "shard " << shard << " of " << of << ": ran " << ran << " runs"
+              << (stopRequested() ? " (stopped by a signal)" : "") << "\n";
+    return stopRequested() ? kExitInterrupted : kExitOk;
+  } catch (const std::exception& e) {
+    return failWith("lagrange sweep-shard", e);
+  }
+}
+
+}  // namespace lagrange::tools

@@ -1,0 +1,357 @@
+#include "tools/sweep/sweep_plan.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "config/yaml_reader.hpp"
+#include "model/reference.hpp"
+#include "tools/sweep/sweep_random.hpp"
+#include "util/error.hpp"
+#include "util/number_text.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+using config::ConfigError;
+
+constexpr long kMaxRows = 10'000'000;
+
+inline constexpr util::EnumName<SweepDesign> kDesignNames[] = {
+    {SweepDesign::kGrid, "grid"}, {SweepDesign::kRandom, "random"}, {SweepDesign::kHalton, "halton"}};
+inline constexpr util::EnumName<AxisScale> kScaleNames[] = {{AxisScale::kLinear, "linear"},
+                                                            {AxisScale::kLog, "log"}};
+
+// "config: KEY: what" from the readers, as "sweep FILE: KEY: what".
+[[noreturn]] void rethrow(const std::string& file, const ConfigError& e) {
+  std::string what = e.what();
+  if (what.rfind("config: ", 0) == 0) what = what.substr(8);
+  throw ConfigError("sweep " + file + ": " + what);
+}
+
+std::string vectorText(const Eigen::VectorXd& v) {
+  std::string s = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += (i ? ", " : "") + util::exactText(v[i]);
+  return s + "]";
+}
+
+AxisRange readRange(config::MapReader m, bool grid) {
+  AxisRange r;
+  r.from = m.number("from");
+  r.to = m.number("to");
+  r.scale = m.choice("scale", kScaleNames, "scale", AxisScale::kLinear);
+  m.finish({"from", "to", "count", "scale"});
+  r.count = m.integer("count", grid ? 0 : 1);
+  if (grid && r.count < 1) m.fail("count", "expected a whole number >= 1 of points (a grid needs count)");
+  if (!std::isfinite(r.from) || !std::isfinite(r.to)) m.fail("from", "expected finite bounds");
+  if (r.scale == AxisScale::kLog && (r.from <= 0 || r.to <= 0))
+    m.fail("from", "a log scale needs from > 0 and to > 0");
+  return r;
+}
+
+// The value at fraction f in [0, 1] of a range; the ends are exact.
+double at(const AxisRange& r, double f) {
+  if (f <= 0) return r.from;
+  if (f >= 1) return r.to;
+  if (r.scale == AxisScale::kLinear) return r.from + f * (r.to - r.from);
+  // In decades: a range of powers of ten gives them exactly (10^0 = 1, not 1.0000000000000009).
+  return std::pow(10.0, std::log10(r.from) + f * (std::log10(r.to) - std::log10(r.from)));
+}
+
+}  // namespace
+
+std::string scenarioDigest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bits
+  for (char c; in.get(c);) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+namespace {
+
+double gridPoint(const AxisRange& r, int i) {
+  return r.count == 1 ? r.from : at(r, double(i) / (r.count - 1));
+}
+
+SweepAxis readAxis(config::MapReader m, bool grid) {
+  m.finish({"key", "values", "range", "norm", "directions"});
+  SweepAxis a;
+  a.key = m.text("key");
+  const int kinds = m.has("values") + m.has("range") + m.has("norm");
+  if (kinds != 1) m.fail("key", "axis '" + a.key + "': expected exactly one of values, range or norm");
+  if (m.has("values")) {
+    const YAML::Node list = m.child("values");
+    if (!list.IsSequence() || list.size() == 0)
+      m.fail("values", "axis '" + a.key + "' is empty; expected a list of at least one value");
+    for (const YAML::Node& v : list) a.values.push_back(config::flowYaml(v));
+  }
+  if (m.has("range")) a.range = readRange(m.map("range"), grid);
+  if (m.has("norm")) {
+    a.norm = readRange(m.map("norm"), grid);
+    if (a.norm->from < 0 || a.norm->to < 0) m.fail("norm", "expected norms >= 0");
+    a.directions = m.integer("directions", 1);
+    if (a.directions < 1) m.fail("directions", "expected a whole number >= 1");
+  } else if (m.has("directions")) {
+    m.fail("directions", "applies to a norm axis only");
+  }
+  return a;
+}
+
+// Points of an axis in a grid.
+long gridSize(const SweepAxis& a) {
+  if (!a.values.empty()) return static_cast<long>(a.values.size());
+  if (a.range) return a.range->count;
+  return static_cast<long>(a.norm->count) * a.directions;
+}
+
+// A row's choice on one axis: a parameter text, or (norm axes) a radius and a direction.
+struct AxisPick {
+  std::string text;  // values, range
+  double radius = 0;
+  long direction = 0;
+};
+
+AxisPick gridPick(const SweepAxis& a, long i) {
+  if (!a.values.empty()) return {a.values[static_cast<size_t>(i)]};
+  if (a.range) return {util::exactText(gridPoint(*a.range, static_cast<int>(i)))};
+  return {"", gridPoint(*a.norm, static_cast<int>(i / a.directions)), i % a.directions};
+}
+
+// f in [0, 1) -> the axis's draw in a random or Halton design.
+AxisPick drawnPick(const SweepAxis& a, double f, long row) {
+  if (!a.values.empty()) {
+    const auto n = a.values.size();
+    return {a.values[std::min(n - 1, static_cast<size_t>(f * static_cast<double>(n)))]};
+  }
+  if (a.range) return {util::exactText(at(*a.range, f))};
+  return {"", at(*a.norm, f), row};
+}
+
+// Centre of a norm axis's vectors: the reference's initial state for the
+// arm's initial state (so the norm is the initial tracking error), else 0.
+Eigen::VectorXd centreOf(const std::string& key, const config::Scenario& s) {
+  if (key == "initial_state.q" || key == "initial_state.qdot") {
+    const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);
+    return key == "initial_state.q" ? r0.q() : r0.qd();
+  }
+  return Eigen::VectorXd::Zero(s.dof());
+}
+
+}  // namespace
+
+SweepSpec readSweepSpec(const std::string& path) {
+  SweepSpec spec;
+  spec.file = fs::absolute(path).lexically_normal().string();
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError("sweep " + path + ": cannot read the file; expected a readable sweep YAML file");
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("sweep " + path + ": malformed YAML: " + e.msg + " at line " +
+                      std::to_string(e.mark.line + 1));
+  }
+  try {
+    config::MapReader m(root, "");
+    m.finish({"scenario", "set", "design", "samples", "seed", "axes", "maps"});  // a misspelt key first
+    const std::string scenario = m.text("scenario");
+    spec.scenario_path = (fs::path(spec.file).parent_path() / scenario).lexically_normal().string();
+    if (!fs::is_regular_file(spec.scenario_path))
+      m.fail("scenario", "no such file '" + spec.scenario_path +
+                             "'; expected a scenario YAML file (relative to the sweep file)");
+    spec.scenario_digest = scenarioDigest(spec.scenario_path);
+    if (m.has("set")) {
+      const YAML::Node set = m.child("set");
+      if (!set.IsMap()) m.fail("set", "expected a map of scenario keys to values, e.g. {duration: 5}");
+      for (const auto& kv : set) spec.set.push_back(kv.first.Scalar() + "=" + config::flowYaml(kv.second));
+    }
+    spec.design = m.choice("design", kDesignNames, "design", SweepDesign::kGrid);
+    const bool grid = spec.design == SweepDesign::kGrid;
+    if (!grid) {
+      spec.samples = m.integer("samples", 0);
+      if (spec.samples < 1)
+        m.fail("samples", "expected the number of runs (>= 1) of a random or halton design");
+    } else if (m.has("samples")) {
+      m.fail("samples", "a grid runs every combination of its axes; samples applies to random and halton");
+    }
+    const double seed = m.number("seed", 1);
+    if (seed < 0 || seed != std::floor(seed) || seed > 9.0e15) m.fail("seed", "expected a whole number >= 0");
+    spec.seed = static_cast<std::uint64_t>(seed);
+    const YAML::Node axes = m.child("axes");
+    if (!axes.IsSequence() || axes.size() == 0)
+      m.fail("axes", "expected a list of at least one axis ({key, values | range | norm})");
+    for (size_t i = 0; i < axes.size(); ++i)
+      spec.axes.push_back(readAxis(config::MapReader(axes[i], "axes[" + std::to_string(i) + "]"), grid));
+    if (m.has("maps")) {
+      config::MapReader maps = m.map("maps");
+      const YAML::Node heat = maps.child("heat_map");
+      if (heat.IsDefined()) {
+        if (!heat.IsSequence() || heat.size() != 2)
+          maps.fail("heat_map", "expected two parameter columns, [X, Y]");
+        for (const YAML::Node& k : heat) spec.heat_map.push_back(k.Scalar());
+      }
+      maps.finish({"heat_map"});
+    }
+  } catch (const ConfigError& e) {
+    rethrow(path, e);
+  }
+  return spec;
+}
+
+SweepPlan planSweep(const SweepSpec& spec) {
+  SweepPlan plan;
+  plan.spec = spec;
+  for (const SweepAxis& a : spec.axes) {
+    if (a.norm) {
+      plan.param_columns.push_back(a.key + ".norm");
+      plan.param_columns.push_back(a.key + ".direction");
+    } else {
+      plan.param_columns.push_back(a.key);
+    }
+  }
+  for (const std::string& k : spec.heat_map)
+    if (std::find(plan.param_columns.begin(), plan.param_columns.end(), k) == plan.param_columns.end())
+      throw ConfigError("sweep " + spec.file + ": maps.heat_map: '" + k +
+                        "' is not a parameter column; expected one of the axes' columns");
+
+  long rows = 1;
+  if (spec.design == SweepDesign::kGrid) {
+    for (const SweepAxis& a : spec.axes) {
+      rows *= gridSize(a);
+      if (rows > kMaxRows)
+        throw ConfigError("sweep " + spec.file + ": the grid has more than " + std::to_string(kMaxRows) +
+                          " runs; expected fewer points per axis, or a random or halton design");
+    }
+  } else {
+    rows = spec.samples;
+    if (rows > kMaxRows)
+      throw ConfigError("sweep " + spec.file + ": samples: more than " + std::to_string(kMaxRows) +
+                        " runs; expected fewer, or several sweeps");
+  }
+
+  // Scenarios read so far, by the overrides that are not norm vectors: the
+  // dimension and the reference of every row with them.
+  std::map<std::vector<std::string>, config::Scenario> scenarios;
+  std::set<std::vector<std::string>> norms_checked;
+  const HaltonSequence halton(static_cast<int>(spec.axes.size()), spec.seed);
+  for (long index = 0; index < rows; ++index) {
+    std::vector<AxisPick> picks;
+    long rest = index;
+    for (size_t i = spec.axes.size(); i-- > 0;) {  // grid: the last axis varies fastest
+      const SweepAxis& a = spec.axes[i];
+      if (spec.design == SweepDesign::kGrid) {
+        const long n = gridSize(a);
+        picks.push_back(gridPick(a, rest % n));
+        rest /= n;
+      } else {
+        const double f = spec.design == SweepDesign::kHalton ? halton.at(index, static_cast<int>(i))
+                                                             : uniform01(spec.seed, kStreamDesign + i, index);
+        picks.push_back(drawnPick(a, f, index));
+      }
+    }
+    std::reverse(picks.begin(), picks.end());
+
+    SweepRow row;
+    row.index = index;
+    row.overrides = spec.set;
+    for (size_t i = 0; i < spec.axes.size(); ++i)
+      if (!spec.axes[i].norm) row.overrides.push_back(spec.axes[i].key + "=" + picks[i].text);
+    auto found = scenarios.find(row.overrides);
+    if (found == scenarios.end()) {
+      try {
+        found =
+            scenarios.emplace(row.overrides, config::loadScenario(spec.scenario_path, row.overrides)).first;
+      } catch (const ConfigError& e) {
+        throw ConfigError("sweep " + spec.file + ": run " + std::to_string(index) + " (" + [&] {
+          std::string s;
+          for (size_t i = spec.set.size(); i < row.overrides.size(); ++i)
+            s += (s.empty() ? "" : ", ") + row.overrides[i];
+          return s.empty() ? std::string("the base scenario with set") : s;
+        }() + "): " + e.what());
+      }
+    }
+    const config::Scenario& s = found->second;
+    bool has_norm = false;
+    for (size_t i = 0; i < spec.axes.size(); ++i) {
+      const SweepAxis& a = spec.axes[i];
+      if (!a.norm) {
+        row.params.push_back(picks[i].text);
+        continue;
+      }
+      has_norm = true;
+      const Eigen::VectorXd u = unitDirection(spec.seed, kStreamDirection + i, picks[i].direction, s.dof());
+      row.overrides.push_back(a.key + "=" + vectorText(centreOf(a.key, s) + picks[i].radius * u));
+      row.params.push_back(util::exactText(picks[i].radius));
+      row.params.push_back(std::to_string(picks[i].direction));
+    }
+    // The vectors are the scenario's size by construction; the first row of
+    // each scenario checks that its keys take them.
+    if (has_norm && norms_checked.insert(found->first).second) {
+      try {
+        config::loadScenario(spec.scenario_path, row.overrides);
+      } catch (const ConfigError& e) {
+        throw ConfigError("sweep " + spec.file + ": run " + std::to_string(index) + ": " + e.what());
+      }
+    }
+    plan.rows.push_back(std::move(row));
+  }
+  return plan;
+}
+
+std::string planJson(const SweepPlan& plan) {
+  nlohmann::ordered_json head;
+  head["sweep_file"] = plan.spec.file;
+  head["scenario"] = plan.spec.scenario_path;
+  head["scenario_digest"] = plan.spec.scenario_digest;
+  head["columns"] = plan.param_columns;
+  head["heat_map"] = plan.spec.heat_map;
+  head["rows"] = plan.rows.size();
+  std::string text = head.dump() + "\n";
+  for (const SweepRow& r : plan.rows) {
+    nlohmann::ordered_json j;
+    j["index"] = r.index;
+    j["params"] = r.params;
+    j["overrides"] = r.overrides;
+    text += j.dump() + "\n";
+  }
+  return text;
+}
+
+SweepPlan planFromJson(const std::string& text, const std::string& source) {
+  SweepPlan plan;
+  try {
+    size_t pos = text.find('\n');
+    if (pos == std::string::npos) throw BadInput("no header line");
+    const auto head = nlohmann::json::parse(text.substr(0, pos));
+    plan.spec.file = head.at("sweep_file").get<std::string>();
+    plan.spec.scenario_path = head.at("scenario").get<std::string>();
+    plan.spec.scenario_digest = head.at("scenario_digest").get<std::string>();
+    plan.param_columns = head.at("columns").get<std::vector<std::string>>();
+    plan.spec.heat_map = head.at("heat_map").get<std::vector<std::string>>();
+    const auto rows = head.at("rows").get<size_t>();
+    while (plan.rows.size() < rows) {
+      const size_t start = pos + 1;
+      pos = text.find('\n', start);
+      if (pos == std::string::npos) throw BadInput("fewer rows than its header says");
+      const auto j = nlohmann::json::parse(text.substr(start, pos - start));
+      plan.rows.push_back({j.at("index").get<long>(), j.at("params").get<std::vector<std::string>>(),
+                           j.at("overrides").get<std::vector<std::string>>()});
+    }
+  } catch (const std::exception& e) {
+    throw ConfigError(source + ": not a sweep plan written by lagrange sweep (" + e.what() + ")");
+  }
+  return plan;
+}
+
+}  // namespace lagrange::tools

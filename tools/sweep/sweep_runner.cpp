@@ -1,0 +1,110 @@
+#include "tools/sweep/sweep_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include "model/reference.hpp"
+#include "wiring/inproc_runner.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+
+// ||(q~(0), q~'(0), qc(0))||: the closed loop's initial state, the plant's
+// error and (the paper's controllers) the stage-0 filter state. r0: the
+// reference at t = 0.
+double initialStateNorm(const config::Scenario& s, const model::ReferenceSample& r0) {
+  const Eigen::VectorXd error = s.initial_state.q - r0.q();
+  const double e = error.norm(), e_rate = (s.initial_state.qdot - r0.qd()).norm();
+  double sq = e * e + e_rate * e_rate;
+  if (s.controller.isPaperType())
+    sq += (s.controller.initial_filter_state ? *s.controller.initial_filter_state
+                                             : Eigen::VectorXd(-s.controller.gains.b.cwiseProduct(error)))
+              .squaredNorm();
+  return std::sqrt(sq);
+}
+
+// A parameter in the JSON row: a number when its text is one, else the YAML text.
+nlohmann::json paramValue(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (!text.empty() && end && *end == '\0' && std::isfinite(v)) return v;
+  return text;
+}
+
+}  // namespace
+
+const std::vector<std::string>& resultColumns() {
+  static const std::vector<std::string> columns = {
+      "status",      "diverged",        "converged",       "convergence_time", "final_error",
+      "max_error",   "initial_error",   "x0_norm",         "gains_checked",    "condition_holds",
+      "gain_margin", "sampled_verdict", "spectral_radius", "wall_time",        "stop_reason"};
+  return columns;
+}
+
+const controller::GainReport& SweepRunner::gainsOf(const config::Scenario& s) {
+  config::Scenario key = s;  // the check reads the robot, reference, gains and rate, never the initial state
+  key.initial_state.q.setZero();
+  key.initial_state.qdot.setZero();
+  key.initial_state.motor_q.setZero();
+  key.initial_state.motor_qdot.setZero();
+  key.controller.initial_filter_state.reset();
+  key.controller.stage_starts.clear();
+  key.actuator.initial_state.setZero();
+  const std::string text = config::toYaml(key);
+  auto found = gains_.find(text);
+  if (found == gains_.end()) found = gains_.emplace(text, controller::checkGains(s)).first;
+  return found->second;
+}
+
+nlohmann::ordered_json SweepRunner::failedRow(const SweepRow& row, const std::string& why) const {
+  nlohmann::ordered_json j;
+  j["index"] = row.index;
+  for (size_t i = 0; i < plan_.param_columns.size(); ++i)
+    j[plan_.param_columns[i]] = paramValue(row.params.at(i));
+  for (const std::string& c : resultColumns()) j[c] = nullptr;
+  j["status"] = "failed";
+  j["diverged"] = false;
+  j["converged"] = false;
+  j["stop_reason"] = why;
+  return j;
+}
+
+std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool (*stop_requested)()) {
+  const auto start = std::chrono::steady_clock::now();
+  config::Scenario s = config::loadScenario(plan_.spec.scenario_path, row.overrides);
+  s.mode = config::Mode::kInproc;  // the sampled-data check examines the wiring that runs
+  const controller::GainReport& gains = gainsOf(s);
+  const InProcessOutcome o = simulateInProcess(s, nullptr, nullptr, stop_requested);
+  if (o.status == "interrupted") return std::nullopt;
+
+  const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);
+  nlohmann::ordered_json j;
+  j["index"] = row.index;
+  for (size_t i = 0; i < plan_.param_columns.size(); ++i)
+    j[plan_.param_columns[i]] = paramValue(row.params.at(i));
+  const auto finiteOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  j["status"] = o.status;
+  j["diverged"] = o.status == "diverged";
+  j["converged"] = o.tracking.convergence_time.has_value();
+  j["convergence_time"] =
+      o.tracking.convergence_time ? nlohmann::json(*o.tracking.convergence_time) : nlohmann::json();
+  j["final_error"] = finiteOrNull(o.tracking.final_error);
+  j["max_error"] = finiteOrNull(o.tracking.max_error);
+  j["initial_error"] = (s.initial_state.q - r0.q()).norm();
+  j["x0_norm"] = initialStateNorm(s, r0);
+  j["gains_checked"] = !gains.unchecked;
+  j["condition_holds"] = gains.unchecked ? nlohmann::json() : nlohmann::json(gains.holds());
+  j["gain_margin"] = gains.unchecked ? nlohmann::json() : finiteOrNull(gains.margin());
+  j["sampled_verdict"] = gains.sampled.verdict.empty() ? "not assessed" : gains.sampled.verdict;
+  j["spectral_radius"] = gains.sampled.verdict == "adequate" || gains.sampled.verdict == "slow" ||
+                                 gains.sampled.verdict == "unstable"
+                             ? finiteOrNull(gains.sampled.spectral_radius)
+                             : nlohmann::json();
+  j["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  j["stop_reason"] = o.stop_message;
+  return j;
+}
+
+}  // namespace lagrange::tools
