@@ -14,8 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "controller/cascaded.hpp"
-#include "controller/theorem1.hpp"
+#include "controller/paper_gains.hpp"
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"

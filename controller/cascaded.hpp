@@ -22,30 +22,14 @@
 #include <optional>
 #include <vector>
 
+#include "controller/paper_gains.hpp"
 #include "controller/theorem1.hpp"
 
 namespace lagrange::controller {
 
-/// Gains of one cascade stage i >= 1, per joint.
-struct StageGains {
-  Eigen::VectorXd kp, kd, a, b;
-};
-
 struct CascadedGains {
   Theorem1Gains stage0;            ///< kp0, kd0, a0, b0 of eq. (610a) and filter (602)
   std::vector<StageGains> stages;  ///< i = 1..m
-};
-
-/// How stage i's filter starts (its qc_i(0) and zeta_i(0)), like stage 0's
-/// initial_filter_state: given values (empty: zeros), or bumpless, qc_i(0) =
-/// -b_i xi_i*(t0) - zeta_i(0) at the first sample, so theta_i(t0) = 0 and the
-/// first command has no kick from a filter that has not seen xi_i* yet.
-/// Zeros, the default, give theta_i(t0) = b_i xi_i*(t0): with xi_1* of a few
-/// hundred N m that is a command kick of kd_i b_i xi_i*.
-struct StageStart {
-  bool bumpless = false;
-  Eigen::VectorXd qc;    ///< qc_i(0) when not bumpless; empty: zeros
-  Eigen::VectorXd zeta;  ///< zeta_i(0); empty: zeros
 };
 
 /// The cascade's own states, row i-1 for stage i (m x n each).

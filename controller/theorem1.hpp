@@ -11,18 +11,11 @@
 #include <optional>
 
 #include "controller/dirty_derivative.hpp"
+#include "controller/paper_gains.hpp"
 #include "model/reference.hpp"
 #include "model/robot_model.hpp"
 
 namespace lagrange::controller {
-
-/// Diagonal gains of eq. (90), one entry per joint, all positive.
-struct Theorem1Gains {
-  Eigen::VectorXd kp;  ///< proportional [N m / rad]
-  Eigen::VectorXd kd;  ///< damping on theta [N m s / rad when b = a]
-  Eigen::VectorXd a;   ///< filter pole [1/s]
-  Eigen::VectorXd b;   ///< filter gain [1/s]
-};
 
 /// What one step computed (everything the command message reports).
 struct Theorem1Output {
