@@ -19,7 +19,7 @@ namespace lagrange::tools {
 class OutDirLock {
  public:
   /// Locks `dir` (an existing directory) for `who` (e.g. "lagrange run").
-  /// Throws config::ConfigError (exit 2) naming the directory and the
+  /// Throws lagrange::BadInput (exit 2) naming the directory and the
   /// holder's pid when another process holds it, or when the lock file is a
   /// link planted there; RuntimeFault when it cannot be created.
   OutDirLock(const std::string& dir, const std::string& who);

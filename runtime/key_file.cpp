@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "config/scenario.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::runtime {
 
@@ -16,8 +17,14 @@ namespace {
 // Enough for 64 digits, a CR LF and nothing else worth reading.
 constexpr off_t kMaxKeyFileBytes = 128;
 
+// The file is wrong (missing, open to others, not a key): bad input.
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw config::ConfigError("key file '" + path + "': " + what);
+}
+
+// Reading or writing a file that is right failed (EIO, ENOSPC): a fault.
+[[noreturn]] void ioFault(const std::string& path, const std::string& what) {
+  throw RuntimeFault("key file '" + path + "': " + what);
 }
 
 struct Fd {
@@ -33,7 +40,7 @@ transport::MessageKey readKeyFile(const std::string& path) {
   if (file.fd < 0)
     fail(path, std::string(std::strerror(errno)) + "; expected a file made by `lagrange keygen`");
   struct stat st {};
-  if (fstat(file.fd, &st) != 0) fail(path, std::strerror(errno));
+  if (fstat(file.fd, &st) != 0) ioFault(path, std::strerror(errno));
   if (!S_ISREG(st.st_mode)) fail(path, "not a regular file; expected a file of 64 hex digits");
   if ((st.st_mode & (S_IRWXG | S_IRWXO)) != 0) {
     char mode[8];
@@ -45,7 +52,7 @@ transport::MessageKey readKeyFile(const std::string& path) {
     fail(path, std::to_string(st.st_size) + " bytes; expected 64 hex digits and a newline");
   char buf[kMaxKeyFileBytes + 1];
   const ssize_t got = read(file.fd, buf, sizeof buf);
-  if (got < 0) fail(path, std::strerror(errno));
+  if (got < 0) ioFault(path, std::strerror(errno));
   std::string text(buf, static_cast<size_t>(got));
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
   transport::MessageKey key;
@@ -60,7 +67,7 @@ void writeKeyFile(const std::string& path, const transport::MessageKey& key) {
                    (errno == EEXIST ? " (a key file is never overwritten; remove it or name another)" : ""));
   const std::string text = transport::toHex(key) + "\n";
   if (write(file.fd, text.data(), text.size()) != static_cast<ssize_t>(text.size()) || fsync(file.fd) != 0)
-    fail(path, std::string("cannot write it: ") + std::strerror(errno));
+    ioFault(path, std::string("cannot write it: ") + std::strerror(errno));
 }
 
 }  // namespace lagrange::runtime

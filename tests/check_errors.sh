@@ -1,8 +1,8 @@
 #!/bin/bash
 # The error policy (util/error.hpp): production code throws lagrange::BadInput,
 # lagrange::RuntimeFault or a component's kind derived from them -- never a bare
-# std::runtime_error, whose exit code no command could tell -- and maps an
-# exception to an exit code only through exitCodeOf.
+# std::runtime_error, whose exit code no command could tell. (That exit codes
+# come from exitCodeOf alone is held by review and ErrorKinds.*, not here.)
 # Usage: tests/check_errors.sh SOURCE_DIR   (exit 1 naming each violation)
 #        tests/check_errors.sh --self-test  (a throw planted in a scratch tree is named)
 set -euo pipefail

@@ -113,9 +113,11 @@ cmake_commands() {
   local f dir
   while IFS= read -r f; do
     dir=$(dirname "${f#./}")
-    sed 's/#.*//' "$f" | tr '\n' ' ' |
-      { grep -oE '(add_library|add_executable|target_link_libraries|lagrange_subcommand)\([^)]*\)' || true; } |
-      sed "s|^|$dir\t|"
+    # Commands are case-insensitive in CMake and may have blanks before "(".
+    sed 's/#.*//' "$f" | tr '\r\n' '  ' |
+      { grep -ioE '(add_library|add_executable|target_link_libraries|lagrange_subcommand)[[:space:]]*\([^)]*\)' ||
+        true; } |
+      sed -E "s/^([A-Za-z_]+)[[:space:]]*\(/\L\1(/; s|^|$dir\t|"
   done < <(find . \( -name 'build*' -o -name .git -o -name runs -o -name tests -o -name bench -o -name fuzz \) \
     -prune -o -name CMakeLists.txt -print | sort)
 }
@@ -127,6 +129,11 @@ place_library() {
     [[ $src == *.cpp ]] || continue
     [[ $src == '${PROJECT_SOURCE_DIR}/'* ]] && src=${src#'${PROJECT_SOURCE_DIR}/'} || src=$dir/$src
     layer=$(layer_of "$src")
+    if [[ -z $layer ]]; then
+      echo "$dir/CMakeLists.txt: library $name compiles $src, which is in no layer"
+      failures=$((failures + 1))
+      continue
+    fi
     [[ " $layers " == *" $layer "* ]] || layers="$layers $layer"
   done
   [[ $dir == lcmtypes ]] && layers=" messages"
@@ -142,6 +149,7 @@ place_library() {
   libraries=$((libraries + 1))
 }
 links=()
+links_checked=0
 while IFS=$'\t' read -r dir command; do
   kind=${command%%(*}
   read -ra args <<<"${command#*(}"
@@ -184,14 +192,16 @@ for link in "${links[@]}"; do
     target=${alias_of[$target]:-$target}
     theirs=${lib_layer[$target]:-}
     [[ -n $theirs ]] || continue  # not the project's (Eigen3::Eigen, PkgConfig::LCM, PUBLIC, ...)
+    links_checked=$((links_checked + 1))
     [[ $theirs == "$own" ]] && continue
     [[ ${allowed[$own]} == *" $theirs "* ]] && continue
     echo "$dir/CMakeLists.txt: $name links $target ($theirs) <- $own may link only:${allowed[$own]}(and $own)"
     failures=$((failures + 1))
   done
 done
-if ((libraries < 20)); then
-  echo "check_layers.sh: only $libraries libraries found in CMakeLists.txt files; expected the project's" >&2
+if ((libraries < 20 || links_checked < 40)); then
+  echo "check_layers.sh: only $libraries libraries and $links_checked links between them found in" \
+    "CMakeLists.txt files; expected the project's" >&2
   exit 1
 fi
 
@@ -199,4 +209,4 @@ if ((failures > 0)); then
   echo "$failures include(s) or link(s) point up the layers, or files or libraries are in none" >&2
   exit 1
 fi
-echo "layers: $checked files, every include points down; $libraries libraries, every link points down"
+echo "layers: $checked files, every include points down; $libraries libraries, $links_checked links, every one points down"

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 
+#include "tools/command_error.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::tools {
@@ -21,12 +22,24 @@ int dispatch(int argc, char** argv, const std::vector<AddSubcommand>& commands, 
     return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   }
   Invocation invocation;
-  invocation.self_exe = std::filesystem::read_symlink("/proc/self/exe").string();
+  // Without /proc (a chroot), argv[0] stands in: only the commands that
+  // re-execute the program need the path.
+  std::error_code no_proc;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", no_proc);
+  invocation.self_exe = no_proc ? std::string(argv[0]) : self.string();
   invocation.argv.assign(argv, argv + argc);
   invocation.argv[0] = invocation.self_exe;
   invocation.sign = front_end.sign;
-  for (const Subcommand& command : declared)
-    if (*command.cli) return command.run(invocation);
+  for (const Subcommand& command : declared) {
+    if (!*command.cli) continue;
+    // A command catches what it can explain; anything that still escapes
+    // ends here, named and with the exit code of its kind, never as a crash.
+    try {
+      return command.run(invocation);
+    } catch (const std::exception& e) {
+      return failWith(std::string(front_end.name) + " " + command.cli->get_name(), e);
+    }
+  }
   return kExitBadInput;  // unreachable: CLI11 requires one subcommand
 }
 

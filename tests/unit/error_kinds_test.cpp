@@ -32,6 +32,9 @@ TEST(ErrorKinds, RuntimeFaultsAndAnythingElseExitOne) {
   EXPECT_EQ(exitCodeOf(plant::PlantStopped("non-finite state")), kExitFailed);
   EXPECT_EQ(exitCodeOf(plant::PlantStalled("no answer")), kExitFailed);
   EXPECT_EQ(exitCodeOf(tools::PlotError("no gnuplot")), kExitFailed);
+  // Replaying an external controller that dies is a fault, not a bad log.
+  EXPECT_EQ(exitCodeOf(tools::ReplayError("the external controller died", {}, ErrorKind::kRuntimeFault)),
+            kExitFailed);
   // A core's broken precondition or the system out of memory is no user's
   // input: a bug or a fault, never "bad input".
   EXPECT_EQ(exitCodeOf(std::invalid_argument("sizes differ")), kExitFailed);

@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <CLI/CLI.hpp>
+#include <iostream>
 #include <memory>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,6 +40,18 @@ Subcommand addGreetCommand(CLI::App& app) {
             greet_seen.runs += 1;
             greet_seen.invocation = inv;
             return 7;
+          }};
+}
+
+// A test-only command that throws what its argument names, past its own code.
+Subcommand addThrowCommand(CLI::App& app) {
+  auto what = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("throw", "test-only: throw");
+  cmd->add_option("what", *what, "bad-input, fault or other")->required();
+  return {cmd, [what](const Invocation&) -> int {
+            if (*what == "bad-input") throw BadInput("the file is wrong");
+            if (*what == "fault") throw RuntimeFault("the disk is full");
+            throw std::invalid_argument("a broken precondition");
           }};
 }
 
@@ -71,6 +86,22 @@ TEST(FrontEnd, EveryRefusedCommandLineIsBadInputAndRunsNothing) {
   EXPECT_EQ(dispatchArgs({"lagrange", "--help"}, commands), kExitOk);
   EXPECT_EQ(dispatchArgs({"lagrange", "greet", "--help"}, commands), kExitOk);
   EXPECT_EQ(greet_seen.runs, 0);
+}
+
+TEST(FrontEnd, WhatACommandLetsEscapeIsNamedAndExitsByItsKindNotAsACrash) {
+  std::ostringstream captured;
+  std::streambuf* const old = std::cerr.rdbuf(captured.rdbuf());
+  const int bad = dispatchArgs({"lagrange", "throw", "bad-input"}, {addThrowCommand});
+  const int fault = dispatchArgs({"lagrange", "throw", "fault"}, {addThrowCommand});
+  const int other = dispatchArgs({"lagrange", "throw", "other"}, {addThrowCommand});
+  std::cerr.rdbuf(old);
+  EXPECT_EQ(bad, kExitBadInput);
+  EXPECT_EQ(fault, kExitFailed);
+  EXPECT_EQ(other, kExitFailed);
+  EXPECT_EQ(captured.str(),
+            "lagrange throw: the file is wrong\n"
+            "lagrange throw: the disk is full\n"
+            "lagrange throw: a broken precondition\n");
 }
 
 TEST(FrontEnd, ARealCommandGetsItsOwnOptionsThroughTheDispatch) {

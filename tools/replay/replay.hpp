@@ -20,12 +20,16 @@
 
 namespace lagrange::tools {
 
-/// A log that cannot be replayed: unreadable, no SCENARIO, or an input a
-/// command names is missing. The message says what was still read.
-class ReplayError : public lagrange::BadInput {
+/// A replay that could not be made. Bad input (the default): the log is
+/// unreadable, has no SCENARIO, or an input a command names is missing, and
+/// the message says what was still read. A runtime fault: what replays an
+/// external controller failed (its network, its key, the program itself died
+/// or went silent).
+class ReplayError : public lagrange::Error {
  public:
-  explicit ReplayError(const std::string& what, std::vector<std::string> warnings = {})
-      : lagrange::BadInput(what), warnings_(std::move(warnings)) {}
+  explicit ReplayError(const std::string& what, std::vector<std::string> warnings = {},
+                       ErrorKind kind = ErrorKind::kBadInput)
+      : lagrange::Error(kind, what), warnings_(std::move(warnings)) {}
   /// What else was wrong with the log (corrupt or missing bytes), found before this error.
   const std::vector<std::string>& warnings() const { return warnings_; }
 

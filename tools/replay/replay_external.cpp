@@ -70,8 +70,9 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   try {
     configureLoopbackMulticast();
   } catch (const std::exception& e) {
-    throw ReplayError(std::string("cannot set up the private network for the external controller: ") +
-                      e.what());
+    throw ReplayError(
+        std::string("cannot set up the private network for the external controller: ") + e.what(), {},
+        ErrorKind::kRuntimeFault);
   }
   const std::string url = freshLcmUrl();
   std::random_device rd;
@@ -82,7 +83,8 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   std::string key_dir = (std::filesystem::temp_directory_path() / "lagrange-replay-key-XXXXXX").string();
   if (mkdtemp(key_dir.data()) == nullptr)
     throw ReplayError("cannot create a private directory for the replay's key in " +
-                      std::filesystem::temp_directory_path().string() + ": " + std::strerror(errno));
+                          std::filesystem::temp_directory_path().string() + ": " + std::strerror(errno),
+                      {}, ErrorKind::kRuntimeFault);
   const std::string key_file = key_dir + "/run.key";
   const transport::MessageKey key = transport::randomMessageKey();
   runtime::writeKeyFile(key_file, key);
@@ -126,11 +128,13 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
       }
       for (const ChildExit& e : supervisor.reap())
         throw ReplayError("the external controller " + e.describe() + " after " +
-                          std::to_string(result.commands) + " of " + std::to_string(o.rec.commands.size()) +
-                          " commands (its output: " + log + ")");
+                              std::to_string(result.commands) + " of " +
+                              std::to_string(o.rec.commands.size()) + " commands (its output: " + log + ")",
+                          {}, ErrorKind::kRuntimeFault);
       if (Clock::now() > deadline)
         throw ReplayError("the external controller did not answer PLANT_POSITION tick " + std::to_string(k) +
-                          " within 10 s (its output: " + log + ")");
+                              " within 10 s (its output: " + log + ")",
+                          {}, ErrorKind::kRuntimeFault);
       node.handle(5);
     }
     ++result.commands;

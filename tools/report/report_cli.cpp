@@ -18,8 +18,9 @@ struct ReportCommandLine {
 
 int report(const ReportCommandLine& o) {
   namespace fs = std::filesystem;
+  std::error_code not_a_directory;
   const std::string log_path =
-      fs::is_directory(o.target) ? (fs::path(o.target) / "run.lcm").string() : o.target;
+      fs::is_directory(o.target, not_a_directory) ? (fs::path(o.target) / "run.lcm").string() : o.target;
   const std::string out_dir =
       o.out_dir.empty() ? (fs::path(log_path).parent_path() / "report").string() : o.out_dir;
   try {
