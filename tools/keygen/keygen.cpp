@@ -7,7 +7,6 @@
 #include <string>
 
 #include "runtime/key_file.hpp"
-#include "tools/command_error.hpp"
 #include "transport/message_auth.hpp"
 #include "util/error.hpp"
 
@@ -20,13 +19,10 @@ Subcommand addKeygenCommand(CLI::App& app) {
       "Write a fresh secret key (64 hex digits, mode 600) for runs spread over hosts: give the same file to "
       "each host's `lagrange run --processes ... --key-file FILE`");
   cmd->add_option("file", *file, "The key file to create (never overwritten)")->required();
+  // An error ends in tools::dispatch: "lagrange keygen: ...", exit by its kind.
   return {cmd, [file](const Invocation&) {
-            try {
-              runtime::writeKeyFile(*file, transport::randomMessageKey());
-              return static_cast<int>(kExitOk);
-            } catch (const std::exception& e) {
-              return failWith("lagrange keygen", e);
-            }
+            runtime::writeKeyFile(*file, transport::randomMessageKey());
+            return static_cast<int>(kExitOk);
           }};
 }
 

@@ -41,10 +41,8 @@ int replay(const ReplayCommandLine& o, const std::vector<std::string>& self_argv
     std::cout << "lagrange replay: " << o.component << " reproduced all " << r.commands
               << " recorded outputs bit for bit (" << r.events << " events read)\n";
     return kExitOk;
-  } catch (const ReplayError& e) {
+  } catch (const ReplayError& e) {  // anything else ends in tools::dispatch, the same way
     for (const auto& w : e.warnings()) std::cerr << "lagrange replay: warning: " << w << "\n";
-    return failWith("lagrange replay", e);
-  } catch (const std::exception& e) {
     return failWith("lagrange replay", e);
   }
 }
