@@ -15,6 +15,7 @@
 
 #include "controller/controller_lcm.hpp"
 #include "controller/gain_report.hpp"
+#include "controller/gain_report_json.hpp"
 #include "controller/registry.hpp"
 #include "runtime/process.hpp"
 #include "runtime/realtime_responder.hpp"
@@ -27,6 +28,7 @@ namespace {
 
 int DoMain(int argc, char** argv) {
   bool strict = false;
+  std::string gains_path;
   controller::GainReport gains;
   return runtime::runProcess(
       "controller",
@@ -37,9 +39,16 @@ int DoMain(int argc, char** argv) {
         app.add_flag(
             "--strict", strict,
             "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
+        app.add_option("--gains", gains_path,
+                       "The launcher's gain report of this scenario (OUT/gains.json), instead of checking "
+                       "the gains again");
       },
       // The launcher prints the sampled-data check; here it would only delay the first tick.
-      [&](const config::Scenario& s) { gains = controller::checkGains(s, false); },
+      [&](const config::Scenario& s) {
+        controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);
+        if (!handed.note.empty()) spdlog::warn("{}", handed.note);
+        gains = std::move(handed.report);
+      },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         if (!gains.holds() && strict) {
           spdlog::error("{} (refusing to start: --strict)", controller::describe(gains));

@@ -10,6 +10,9 @@
 /// The first event of the log is the resolved scenario on channel SCENARIO,
 /// so a log describes itself.
 
+#include <spdlog/spdlog.h>
+
+#include "controller/gain_report_json.hpp"
 #include "logger/error_line.hpp"
 #include "logger/logger_loop.hpp"
 #include "runtime/process.hpp"
@@ -21,6 +24,7 @@ constexpr int kLoggerReceiveBuffer = 4 << 20;
 
 int DoMain(int argc, char** argv) {
   logger::LoggerOptions options;
+  std::string gains_path;
   controller::GainReport gains;
   return runtime::runProcess(
       "logger", "Records every LCM channel to run.lcm and writes summary.json.", argc, argv,
@@ -33,10 +37,17 @@ int DoMain(int argc, char** argv) {
         app.add_option("--progress-fd", options.progress_fd,
                        "File descriptor to write progress lines to (\"SIM_TIME ERROR\" every 100 ms); "
                        "the launcher uses it for its progress display");
+        app.add_option("--gains", gains_path,
+                       "The launcher's gain report of this scenario (OUT/gains.json) for summary.json, "
+                       "instead of checking the gains again");
       },
-      // The gain report goes into summary.json; computed here, under the
-      // normal scheduler (runtime/process.hpp).
-      [&](const config::Scenario& s) { gains = controller::checkGains(s, false); },
+      // The gain report goes into summary.json; read (or computed) here,
+      // under the normal scheduler (runtime/process.hpp).
+      [&](const config::Scenario& s) {
+        controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);
+        if (!handed.note.empty()) spdlog::warn("{}", handed.note);
+        gains = std::move(handed.report);
+      },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         try {
           return logger::runLogger(s, node, options, gains);

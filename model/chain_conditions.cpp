@@ -8,20 +8,24 @@
 namespace lagrange::model {
 
 namespace {
-Eigen::VectorXd h(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
-  const ReferenceSample r = reference.evaluate(t, 2);
-  // D q_d'' + C(q, q_d') q_d' + g: one inverse-dynamics call (a kind without
-  // its own computes exactly this expression; a URDF arm needs no C for it).
+// D q_d'' + C(q, q_d') q_d' + g at the reference sample r (evaluated to
+// order 2): one inverse-dynamics call (a kind without its own computes
+// exactly this expression; a URDF arm needs no C for it).
+Eigen::VectorXd h(const RobotModel& arm, const ReferenceSample& r, const Eigen::VectorXd& q) {
   return arm.inverseDynamics(q, r.qd(), r.qdd());
+}
+Eigen::VectorXd h(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
+  return h(arm, reference.evaluate(t, 2), q);
 }
 
 Eigen::MatrixXd dhdq(const RobotModel& arm, const Reference& reference, double t, const Eigen::VectorXd& q) {
   const int n = arm.dof();
   const double step = 1e-6;
+  const ReferenceSample r = reference.evaluate(t, 2);  // once: every column is at the same t
   Eigen::MatrixXd j(n, n);
   for (int k = 0; k < n; ++k) {
     const Eigen::VectorXd e = Eigen::VectorXd::Unit(n, k) * step;
-    j.col(k) = (h(arm, reference, t, q + e) - h(arm, reference, t, q - e)) / (2 * step);
+    j.col(k) = (h(arm, r, q + e) - h(arm, r, q - e)) / (2 * step);
   }
   return j;
 }
@@ -80,13 +84,19 @@ EtaEstimate estimateEta(const RobotModel& arm, const Reference& reference, const
   std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
   const double t_max = horizon(reference), dt = 1e-6;
   const double t_last = t_max + dt;  // the sampled t run up to it; dhdt needs t - dt >= 0
-  auto eta2_at = [&](double t, const Eigen::VectorXd& q) {
-    return (dhdq(arm, reference, t, q) - damping).jacobiSvd().singularValues()(0);
+  // Both ratios rest on dh/dq at (t, q) (2 n inverse-dynamics calls): the
+  // sampling below computes it once for the two.
+  auto eta2_from = [&](const Eigen::MatrixXd& jacobian) {
+    return (jacobian - damping).jacobiSvd().singularValues()(0);
   };
-  auto eta1_at = [&](double t, const Eigen::VectorXd& q) {
+  auto eta1_from = [&](const Eigen::MatrixXd& jacobian, double t, const Eigen::VectorXd& q) {
     const ReferenceSample r = reference.evaluate(t, 1);
     const Eigen::VectorXd dhdt = (h(arm, reference, t + dt, q) - h(arm, reference, t - dt, q)) / (2 * dt);
-    return (dhdq(arm, reference, t, q) * r.qd() + dhdt).norm() / std::min((q - r.q()).norm(), 1.0);
+    return (jacobian * r.qd() + dhdt).norm() / std::min((q - r.q()).norm(), 1.0);
+  };
+  auto eta2_at = [&](double t, const Eigen::VectorXd& q) { return eta2_from(dhdq(arm, reference, t, q)); };
+  auto eta1_at = [&](double t, const Eigen::VectorXd& q) {
+    return eta1_from(dhdq(arm, reference, t, q), t, q);
   };
   // The kStarts best samples of each, largest first: the starts of the ascent.
   struct Sample {
@@ -109,8 +119,9 @@ EtaEstimate estimateEta(const RobotModel& arm, const Reference& reference, const
         Eigen::VectorXd dir(n);
         for (int i = 0; i < n; ++i) dir(i) = normal(rng);
         const Eigen::VectorXd q = r.q() + radius * dir.normalized();
-        keep(best2, eta2_at(t, q), t, q);
-        keep(best1, eta1_at(t, q), t, q);
+        const Eigen::MatrixXd jacobian = dhdq(arm, reference, t, q);
+        keep(best2, eta2_from(jacobian), t, q);
+        keep(best1, eta1_from(jacobian, t, q), t, q);
       }
     }
     for (int d = 0; d < 4; ++d) {

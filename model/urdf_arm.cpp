@@ -10,6 +10,7 @@
 #include <kdl/chaindynparam.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
+#include <mutex>
 #include <sstream>
 
 #include "model/urdf_tree.hpp"
@@ -149,6 +150,46 @@ struct UrdfArm::Impl {
   std::vector<std::string> joint_names;
   std::vector<std::string> notes;
   std::vector<UrdfBody> bodies;
+
+  // KDL's dynamics solvers keep scratch space, so one serves one call at a
+  // time; building one per call was a fifth of the gain check's time (it
+  // samples C and h at thousands of states). A call borrows a pair from this
+  // pool and gives it back, which keeps the model safe to share between
+  // threads (model/robot_model.hpp's contract). Each call overwrites all the
+  // scratch it reads, so a reused solver computes what a fresh one would.
+  struct Solvers {
+    Solvers(const KDL::Chain& c, const KDL::Vector& g) : dynamics(c, g), rne(c, g) {}
+    KDL::ChainDynParam dynamics;
+    KDL::ChainIdSolver_RNE rne;
+  };
+  class Borrowed {
+   public:
+    Borrowed(Impl& owner, std::unique_ptr<Solvers> solvers) : owner_(owner), solvers_(std::move(solvers)) {}
+    Borrowed(const Borrowed&) = delete;
+    Borrowed& operator=(const Borrowed&) = delete;
+    ~Borrowed() {
+      const std::lock_guard<std::mutex> lock(owner_.idle_mutex);
+      owner_.idle.push_back(std::move(solvers_));
+    }
+    Solvers* operator->() const { return solvers_.get(); }
+
+   private:
+    Impl& owner_;
+    std::unique_ptr<Solvers> solvers_;
+  };
+  Borrowed borrowSolvers() {
+    {
+      const std::lock_guard<std::mutex> lock(idle_mutex);
+      if (!idle.empty()) {
+        std::unique_ptr<Solvers> ready = std::move(idle.back());
+        idle.pop_back();
+        return Borrowed(*this, std::move(ready));
+      }
+    }
+    return Borrowed(*this, std::make_unique<Solvers>(chain, gravity));
+  }
+  std::mutex idle_mutex;
+  std::vector<std::unique_ptr<Solvers>> idle;
 };
 
 std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
@@ -330,22 +371,19 @@ Eigen::Vector3d UrdfArm::tipPosition(const Eigen::VectorXd& q) const {
   return toEigen(tip.p);
 }
 
-// KDL's solvers keep scratch space: one per call keeps the model constant and
-// safe to share between threads (model/robot_model.hpp's contract).
+// The dynamics below borrow KDL's solvers from the arm's pool (Impl::borrowSolvers).
 Eigen::MatrixXd UrdfArm::inertia(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
-  KDL::ChainDynParam dyn(impl_->chain, impl_->gravity);
   KDL::JntSpaceInertiaMatrix d(static_cast<unsigned>(dof()));
-  dyn.JntToMass(toKdl(q), d);
+  impl_->borrowSolvers()->dynamics.JntToMass(toKdl(q), d);
   return d.data;
 }
 
 Eigen::VectorXd UrdfArm::velocityTerms(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
   checkSize(q, "q");
   checkSize(v, "v");
-  KDL::ChainDynParam dyn(impl_->chain, impl_->gravity);
   KDL::JntArray h(static_cast<unsigned>(dof()));
-  dyn.JntToCoriolis(toKdl(q), toKdl(v), h);
+  impl_->borrowSolvers()->dynamics.JntToCoriolis(toKdl(q), toKdl(v), h);
   return h.data;
 }
 
@@ -386,9 +424,8 @@ std::vector<Eigen::MatrixXd> UrdfArm::coriolisPerVelocity(const Eigen::VectorXd&
 
 Eigen::VectorXd UrdfArm::gravity(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
-  KDL::ChainDynParam dyn(impl_->chain, impl_->gravity);
   KDL::JntArray g(static_cast<unsigned>(dof()));
-  dyn.JntToGravity(toKdl(q), g);
+  impl_->borrowSolvers()->dynamics.JntToGravity(toKdl(q), g);
   return g.data;
 }
 
@@ -412,10 +449,9 @@ Eigen::VectorXd UrdfArm::inverseDynamics(const Eigen::VectorXd& q, const Eigen::
   checkSize(q, "q");
   checkSize(v, "v");
   checkSize(a, "a");
-  KDL::ChainIdSolver_RNE rne(impl_->chain, impl_->gravity);
   KDL::JntArray tau(static_cast<unsigned>(dof()));
   const KDL::Wrenches no_external(impl_->chain.getNrOfSegments(), KDL::Wrench::Zero());
-  if (rne.CartToJnt(toKdl(q), toKdl(v), toKdl(a), no_external, tau) < 0)
+  if (impl_->borrowSolvers()->rne.CartToJnt(toKdl(q), toKdl(v), toKdl(a), no_external, tau) < 0)
     throw lagrange::RuntimeFault("urdf model: KDL's inverse dynamics failed");
   return tau.data;
 }

@@ -39,7 +39,7 @@ layer_of() {
     transport/*) echo transport ;;
     */main.cpp) echo process ;;
     */*_lcm.hpp | */*_lcm.cpp) echo lcm ;;
-    controller/gain_report.* | controller/registry.* | controller/paper_controllers.* | \
+    controller/gain_report.* | controller/gain_report_json.* | controller/registry.* | controller/paper_controllers.* | \
       controller/gain_suggestion.* | controller/sampled_data.* | controller/baselines.*) echo scenario ;;
     controller/*) echo core ;;
     actuator/*) echo core ;;

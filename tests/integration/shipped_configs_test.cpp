@@ -27,6 +27,7 @@
 #include "support/rk4.hpp"
 #include "support/run_log.hpp"
 #include "support/signal_run.hpp"
+#include "support/wait.hpp"
 #include "transport/checksum.hpp"
 
 namespace lagrange::testing {
@@ -79,6 +80,11 @@ TEST_P(ShippedConfig, MeetsItsStatedMetricAndRunsBitIdenticallyInProcess) {
   ASSERT_EQ(a.exit_code, 0) << a.output;
   ASSERT_EQ(b.exit_code, 0) << b.output;
   expectItsStatedMetric(GetParam(), lockstep);
+  // The controller and the logger took the launcher's gain check (gains.json)
+  // instead of repeating it: each says when it could not.
+  for (const char* process : {"controller", "logger"})
+    EXPECT_EQ(slurp(lockstep + "/" + process + ".log").find("--gains"), std::string::npos)
+        << process << ".log: " << slurp(lockstep + "/" + process + ".log");
   const auto ta = readTruth(lockstep + "/run.lcm"), tb = readTruth(inproc + "/run.lcm");
   const size_t common = forCommonTicks(ta, tb, [](const TruthSample& x, const TruthSample& y) {
     ASSERT_EQ(x.q, y.q) << "tick " << x.tick;

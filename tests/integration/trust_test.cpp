@@ -123,8 +123,8 @@ TEST(Trust, KilledRunLeavesNoStaleLock) {
 TEST(Trust, PlantedLinkIsRefusedAndItsTargetUntouched) {
   const std::string users = freshDir("users-file");
   fs::create_directories(users);
-  for (const std::string name :
-       {"run.lcm", "summary.json", "config.resolved.yaml", "lcm.json", "logger.log", "plant.log"}) {
+  for (const std::string name : {"run.lcm", "summary.json", "config.resolved.yaml", "gains.json", "lcm.json",
+                                 "logger.log", "plant.log"}) {
     for (const std::string mode : {"lockstep", "inproc"}) {
       if (mode == "inproc" && (name == "lcm.json" || name == "logger.log" || name == "plant.log")) continue;
       const std::string dir = freshDir("link");

@@ -20,6 +20,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
+#include "controller/gain_report_json.hpp"
 #include "logger/error_line.hpp"
 #include "logs/out_dir_lock.hpp"
 #include "runtime/key_file.hpp"
@@ -69,8 +70,8 @@ std::string prepareOutDir(const std::string& dir) {
 // than at the moment its writer comes to it. Each writer creates its file
 // with util::createOutputFile all the same (a link planted during the run).
 void checkOutputPaths(const std::string& out_dir, bool report) {
-  for (const char* name : {"run.lcm", "summary.json", "config.resolved.yaml", "lcm.json", "run.key",
-                           "logger.log", "controller.log", "actuator.log", "plant.log"})
+  for (const char* name : {"run.lcm", "summary.json", "config.resolved.yaml", "gains.json", "lcm.json",
+                           "run.key", "logger.log", "controller.log", "actuator.log", "plant.log"})
     util::checkOutputPath((fs::path(out_dir) / name).string());
   const std::string report_dir = (fs::path(out_dir) / "report").string();
   if (!report || !fs::exists(fs::symlink_status(report_dir))) return;
@@ -99,6 +100,15 @@ std::string writeResolved(const config::Scenario& scenario, const std::string& s
   const std::string path = (fs::path(out_dir) / "config.resolved.yaml").string();
   util::writeOutputFile(path, "# Resolved scenario of this run: defaults, the file " + source +
                                   " and --set overrides.\n" + config::toYaml(scenario));
+  return path;
+}
+
+// OUT/gains.json: the check made here, for the controller and the logger to
+// read instead of repeating it (controller/gain_report_json.hpp).
+std::string writeGains(const config::Scenario& scenario, const controller::GainReport& gains,
+                       const std::string& out_dir) {
+  const std::string path = (fs::path(out_dir) / "gains.json").string();
+  util::writeOutputFile(path, controller::gainReportJson(gains, config::toYaml(scenario)));
   return path;
 }
 
@@ -310,8 +320,15 @@ bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervi
 
 // Starts logger, controller, actuator and plant on a fresh LCM URL, shows
 // progress, and watches them until all have exited; returns the exit code.
+// The files the launcher wrote for its processes to read.
+struct HandedFiles {
+  std::string resolved;  ///< config.resolved.yaml: every process's --config
+  std::string gains;     ///< gains.json: the controller's and the logger's --gains
+};
+
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
-                       const std::string& resolved) {
+                       const HandedFiles& handed) {
+  const std::string& resolved = handed.resolved;
   const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
   const int64_t run_id = runIdFor(opt, url, resolved);
   // The run's secret (docs/reliability.md): the processes get the file's
@@ -361,10 +378,11 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   };
   // The logger first, so that it records from the first tick; the plant waits
   // for the logger's STATUS before it starts the clock anyway.
-  ChildSpec logger = spec("logger", {"--out", out_dir, "--progress-fd", "3"});
+  ChildSpec logger = spec("logger", {"--out", out_dir, "--progress-fd", "3", "--gains", handed.gains});
   logger.pass_fd = progress_pipe[1];
-  ChildSpec controller =
-      spec("controller", opt.strict ? std::vector<std::string>{"--strict"} : std::vector<std::string>{});
+  std::vector<std::string> controller_args = {"--gains", handed.gains};
+  if (opt.strict) controller_args.push_back("--strict");
+  ChildSpec controller = spec("controller", controller_args);
   if (scenario.controller.type == "external") {
     // A program from outside the project in the controller's place; what it
     // needs to join the run comes in its environment (docs/external_controllers.md).
@@ -509,6 +527,7 @@ int runScenarioLocked(const RunOptions& opt) {
     const controller::GainReport gains = controller::checkGains(scenario);
     if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
     writeResolved(scenario, opt.config_path, out_dir);
+    writeGains(scenario, gains, out_dir);  // as every run leaves it, though nothing here reads it
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     ProgressDisplay progress(scenario.duration, opt.quiet);
@@ -532,10 +551,12 @@ int runScenarioLocked(const RunOptions& opt) {
     }
   }
   lockOutDir();
-  if (!gainsAllowRun(scenario, controller::checkGains(scenario), opt)) return kExitBadInput;
+  const controller::GainReport gains = controller::checkGains(scenario);
+  if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
+  const std::string gains_path = writeGains(scenario, gains, out_dir);
 
-  return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, resolved));
+  return checkMetric(opt, out_dir, superviseProcesses(scenario, opt, out_dir, {resolved, gains_path}));
 }
 }  // namespace
 

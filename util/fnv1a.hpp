@@ -1,0 +1,19 @@
+#pragma once
+/// @file
+/// FNV-1a, 64 bit, with the standard offset basis: a fingerprint of text
+/// (which scenario a file was made for), not a defence against anyone.
+/// Message checksums use transport/checksum.hpp's own basis, which recorded
+/// logs fix.
+
+#include <cstdint>
+#include <string_view>
+
+namespace lagrange::util {
+
+inline std::uint64_t fnv1a64(std::string_view bytes) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ULL;
+  return h;
+}
+
+}  // namespace lagrange::util
