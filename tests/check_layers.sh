@@ -1,6 +1,6 @@
 #!/bin/bash
 # Fails when an #include points up the layers (docs/architecture.md, "Layers").
-# Every C++ file of the repository has a layer (below, `layer_of`; a file no
+# Every C++ file of the repository has a layer (below, `place`; a file no
 # rule places is itself an error), and each layer may include only the layers
 # `allowed` lists for it, besides its own. Project includes are the quoted
 # ones ("model/bounds.hpp"); "lagrange/*.hpp" are the generated message types.
@@ -29,32 +29,35 @@ EOF
 }
 
 # The layer of a file (a path relative to the source root) or of an included
-# header; empty when no rule places it.
-layer_of() {
+# header, in $layer; empty when no rule places it. (A variable, not output:
+# the check asks this for every include, and a subshell per question made it
+# take seconds.)
+place() {
   local f=$1
+  layer=""
   case $f in
-    util/*) echo util ;;
-    model/*) echo model ;;
-    lagrange/*) echo messages ;;
-    transport/*) echo transport ;;
-    */main.cpp) echo process ;;
-    */*_lcm.hpp | */*_lcm.cpp) echo lcm ;;
+    util/*) layer=util ;;
+    model/*) layer=model ;;
+    lagrange/*) layer=messages ;;
+    transport/*) layer=transport ;;
+    */main.cpp) layer=process ;;
+    */*_lcm.hpp | */*_lcm.cpp) layer=lcm ;;
     controller/gain_report.* | controller/gain_report_json.* | controller/registry.* | controller/paper_controllers.* | \
-      controller/gain_suggestion.* | controller/sampled_data.* | controller/baselines.*) echo scenario ;;
-    controller/*) echo core ;;
-    actuator/*) echo core ;;
-    plant/scenario_plant.*) echo lcm ;;  # the plant a scenario describes, with its messages' translation
-    plant/plant_loops.* | plant/stall_diagnosis.*) echo process ;;
-    plant/*) echo core ;;
-    config/*) echo config ;;
-    logger/logger_loop.*) echo process ;;
-    logger/*) echo lcm ;;  # metrics, summary, coverage: message-level, no process scaffolding
-    runtime/*) echo runtime ;;
-    logs/*) echo logs ;;
-    wiring/*) echo wiring ;;
-    tools/*) echo process ;;
-    tests/* | bench/* | fuzz/*) echo test ;;
-    *) echo "" ;;
+      controller/gain_suggestion.* | controller/sampled_data.* | controller/baselines.*) layer=scenario ;;
+    controller/*) layer=core ;;
+    actuator/*) layer=core ;;
+    plant/scenario_plant.*) layer=lcm ;;  # the plant a scenario describes, with its messages' translation
+    plant/plant_loops.* | plant/stall_diagnosis.*) layer=process ;;
+    plant/*) layer=core ;;
+    config/*) layer=config ;;
+    logger/logger_loop.*) layer=process ;;
+    logger/*) layer=lcm ;;  # metrics, summary, coverage: message-level, no process scaffolding
+    runtime/*) layer=runtime ;;
+    logs/*) layer=logs ;;
+    wiring/*) layer=wiring ;;
+    tools/*) layer=process ;;
+    tests/* | bench/* | fuzz/*) layer=test ;;
+    *) layer="" ;;
   esac
 }
 
@@ -72,29 +75,37 @@ done < <(rules)
 
 failures=0
 checked=0
-while IFS= read -r f; do
-  f=${f#./}
-  own=$(layer_of "$f")
-  if [[ -z $own ]]; then
-    echo "$f: in no layer (tests/check_layers.sh's layer_of places every C++ file)"
+mapfile -t files < <(find . \( -name 'build*' -o -name .git -o -name runs \) -prune -o -type f \
+  \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name '*.cc' \) -print | sed 's|^\./||' | sort)
+declare -A own_layer
+for f in "${files[@]}"; do
+  place "$f"
+  if [[ -z $layer ]]; then
+    echo "$f: in no layer (tests/check_layers.sh's place() puts every C++ file in one)"
     failures=$((failures + 1))
     continue
   fi
+  own_layer[$f]=$layer
   checked=$((checked + 1))
-  while IFS= read -r hit; do
-    line=${hit%%:*}
-    header=${hit#*\"}
-    header=${header%%\"*}
-    [[ $header == */* ]] || continue  # a header next to the file ("rk4.hpp"): its own folder
-    theirs=$(layer_of "$header")
-    [[ -n $theirs ]] || continue      # not a project header (a test's "support/...")
-    [[ $theirs == "$own" ]] && continue
-    [[ ${allowed[$own]} == *" $theirs "* || ${allowed[$own]} == *" $header "* ]] && continue
-    echo "$f:$line: #include \"$header\" <- $own may include only:${allowed[$own]}(and $own)"
-    failures=$((failures + 1))
-  done < <(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' "$f" || true)
-done < <(find . \( -name 'build*' -o -name .git -o -name runs \) -prune -o -type f \
-  \( -name '*.cpp' -o -name '*.hpp' -o -name '*.h' -o -name '*.cc' \) -print | sort)
+done
+# Every quoted include of every file, in one grep: "FILE:LINE:#include "H"".
+while IFS= read -r hit; do
+  f=${hit%%:*}
+  rest=${hit#*:}
+  line=${rest%%:*}
+  own=${own_layer[$f]:-}
+  [[ -n $own ]] || continue  # in no layer: said above
+  header=${rest#*\"}
+  header=${header%%\"*}
+  [[ $header == */* ]] || continue  # a header next to the file ("rk4.hpp"): its own folder
+  place "$header"
+  theirs=$layer
+  [[ -n $theirs ]] || continue      # not a project header (a test's "support/...")
+  [[ $theirs == "$own" ]] && continue
+  [[ ${allowed[$own]} == *" $theirs "* || ${allowed[$own]} == *" $header "* ]] && continue
+  echo "$f:$line: #include \"$header\" <- $own may include only:${allowed[$own]}(and $own)"
+  failures=$((failures + 1))
+done < <(((${#files[@]})) && grep -HnE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' "${files[@]}" || true)
 
 if ((checked < 50)); then
   echo "check_layers.sh: only $checked files found under $(pwd); expected the project's sources" >&2
@@ -128,7 +139,7 @@ place_library() {
   for src in "$@"; do
     [[ $src == *.cpp ]] || continue
     [[ $src == '${PROJECT_SOURCE_DIR}/'* ]] && src=${src#'${PROJECT_SOURCE_DIR}/'} || src=$dir/$src
-    layer=$(layer_of "$src")
+    place "$src"
     if [[ -z $layer ]]; then
       echo "$dir/CMakeLists.txt: library $name compiles $src, which is in no layer"
       failures=$((failures + 1))
