@@ -168,6 +168,7 @@ ProcessGainReport processGainReport(const config::Scenario& scenario, const std:
     if (file.error.empty()) handed = gainReportFromJson(file.text, config::toYaml(scenario));
     if (handed.report) {
       out.report = std::move(*handed.report);
+      if (!out.report.sampled.verdict.empty()) out.sampled = out.report.sampled;
       out.report.sampled = SampledDataCheck{};  // as checkGains(s, false) leaves it
       return out;
     }

@@ -34,16 +34,18 @@ struct HandedGainReport {
 HandedGainReport gainReportFromJson(const std::string& json_text, const std::string& scenario_yaml);
 
 struct ProcessGainReport {
+  /// Without the sampled-data check: what checkGains(s, false) gives.
   GainReport report;
+  /// The launcher's sampled-data check (checkSampledData(s)), when its
+  /// report has one: the logger's summary.json takes it from here.
+  std::optional<SampledDataCheck> sampled;
   std::string note;  ///< "" when read from the launcher's file or none was named; else why it was not
 };
 
 /// What a process of the run needs: the launcher's report from `path` (its
-/// --gains; "" when none was given) without the sampled-data check, which
-/// processes leave to the launcher and the logger's summary, so it is the
-/// report checkGains(s, false) gives; or, when the file is missing,
-/// unreadable or for another scenario, checkGains(s, false) itself, with
-/// `note` saying why.
+/// --gains; "" when none was given), its sampled-data check apart; or, when
+/// the file is missing, unreadable or for another scenario, checkGains(s,
+/// false) itself, with `note` saying why.
 ProcessGainReport processGainReport(const config::Scenario& scenario, const std::string& path);
 
 }  // namespace lagrange::controller

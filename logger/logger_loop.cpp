@@ -180,7 +180,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   facts.wall_time = std::chrono::duration<double>(Clock::now() - wall_start).count();
   facts.missing_records = gaps.missing(facts.final_status);
 
-  gains.sampled = controller::checkSampledData(s);
+  if (gains.sampled.verdict.empty()) gains.sampled = controller::checkSampledData(s);
   const auto summary = makeSummary(s, metrics.summary(), gains, facts);
   const std::string summary_path = (std::filesystem::path(options.out_dir) / "summary.json").string();
   util::writeOutputFile(summary_path, summary.dump(2) + "\n");  // throws naming the file and the error

@@ -20,9 +20,10 @@ struct LoggerOptions {
   int progress_fd = -1;       ///< "SIM_TIME ERROR" lines every 100 ms for the launcher; -1: none
 };
 
-/// `gains`: the scenario's gain report without the sampled-data check
-/// (controller::checkGains(s, false)), computed before the run starts; the
-/// check is added at the end, for summary.json. Returns the exit code; throws
+/// `gains`: the scenario's gain report (controller::checkGains(s, false)),
+/// computed or read before the run starts, with the launcher's sampled-data
+/// check when it handed one (controller/gain_report_json.hpp); without one,
+/// the check is made at the end, for summary.json. Returns the exit code; throws
 /// lagrange::RuntimeFault if summary.json cannot be written.
 int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options,
               controller::GainReport gains);

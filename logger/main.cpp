@@ -47,6 +47,7 @@ int DoMain(int argc, char** argv) {
         controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);
         if (!handed.note.empty()) spdlog::warn("{}", handed.note);
         gains = std::move(handed.report);
+        if (handed.sampled) gains.sampled = *handed.sampled;  // else the logger checks it at the end
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         try {

@@ -130,7 +130,9 @@ TEST_F(GainsFile, AProcessReadsTheLaunchersReport) {
       processGainReport(s, write("gains.json", gainReportJson(planted, config::toYaml(s))));
   EXPECT_EQ(got.note, "");
   EXPECT_EQ(got.report.kc, 12345.678);
-  EXPECT_EQ(got.report.sampled.verdict, "");
+  EXPECT_EQ(got.report.sampled.verdict, "");  // apart, for the logger alone
+  ASSERT_TRUE(got.sampled);
+  EXPECT_EQ(got.sampled->spectral_radius, planted.sampled.spectral_radius);
   EXPECT_EQ(got.report.condition.lhs, planted.condition.lhs);
 }
 
@@ -159,6 +161,7 @@ TEST_F(GainsFile, AProcessChecksItselfWhenTheFileCannotBeUsed) {
     const ProcessGainReport got = processGainReport(s, c.path);
     EXPECT_NE(got.note.find("--gains " + c.path + " not used"), std::string::npos) << got.note;
     EXPECT_NE(got.note.find(c.said), std::string::npos) << got.note;
+    EXPECT_FALSE(got.sampled);
     expectSameReport(got.report, expected);
   }
   // No file named: the check, silently (a process started by hand).
