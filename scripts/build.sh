@@ -5,6 +5,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" -DLAGRANGE_BUILD_TESTS=ON -DLAGRANGE_BUILD_JAVA=ON \
-  -DLAGRANGE_BUILD_BENCH=ON "$@" >/dev/null
+bash scripts/configure.sh -DLAGRANGE_BUILD_TESTS=ON -DLAGRANGE_BUILD_JAVA=ON -DLAGRANGE_BUILD_BENCH=ON "$@"
 cmake --build build -j2

@@ -5,14 +5,14 @@
 # the outputs are, plots included (runs/rigid_2dof/report/*.png). Arguments
 # are passed to `lagrange run` (e.g. --set controller.kp=[100,8]).
 # A build/ configured before (by scripts/build.sh or scripts/test.sh) is kept
-# as it is; a new one leaves out the tests, benchmarks and the Java classes,
-# which scripts/build.sh adds later.
+# as it is; a new one (scripts/configure.sh: the flags scripts/build.sh uses)
+# leaves out the tests, benchmarks and the Java classes, which
+# scripts/build.sh adds later without rebuilding what is built.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh --run
 if [[ ! -f build/CMakeCache.txt ]]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF \
-    -DLAGRANGE_BUILD_JAVA=OFF >/dev/null
+  bash scripts/configure.sh -DLAGRANGE_BUILD_TESTS=OFF -DLAGRANGE_BUILD_BENCH=OFF -DLAGRANGE_BUILD_JAVA=OFF
 fi
 cmake --build build -j2 --target programs
 out=runs/rigid_2dof
