@@ -22,22 +22,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (file == nullptr) return 0;
   const auto total = static_cast<long long>(size);
   try {
-    lagrange::tools::LogEventReader reader(file, total, "fuzz.lcm");
+    lagrange::logs::LogEventReader reader(file, total, "fuzz.lcm");
     long long event_bytes = 0;
     unsigned sum = 0;
     while (const lcm::LogEvent* ev = reader.next()) {
       if (ev->datalen < 0 || ev->datalen > total || ev->channel.empty()) std::abort();
       // Every byte handed out is read: ASan reports a short buffer.
       for (int32_t i = 0; i < ev->datalen; ++i) sum += static_cast<const unsigned char*>(ev->data)[i];
-      event_bytes += lagrange::tools::log_format::kHeaderBytes + static_cast<long long>(ev->channel.size()) +
-                     ev->datalen;
+      event_bytes +=
+          lagrange::logs::log_format::kHeaderBytes + static_cast<long long>(ev->channel.size()) + ev->datalen;
     }
-    const lagrange::tools::LogScan& scan = reader.scan();
+    const lagrange::logs::LogScan& scan = reader.scan();
     if (event_bytes + scan.skipped_bytes + scan.unreadable_tail_bytes != total) std::abort();
     if ((scan.skipped_bytes > 0) != (scan.first_skipped_at >= 0)) std::abort();
     (void)scan.problems();
     (void)sum;
-  } catch (const lagrange::tools::LogError&) {
+  } catch (const lagrange::logs::LogError&) {
     // A malformed log, named: what the commands report with exit 2.
   }
   std::fclose(file);

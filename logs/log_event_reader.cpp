@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
-namespace lagrange::tools {
+namespace lagrange::logs {
 
 namespace {
 
@@ -182,4 +182,4 @@ const lcm::LogEvent* LogEventReader::next() {
   return nullptr;
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::logs

@@ -33,7 +33,7 @@
 
 #include "util/error.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::logs {
 
 /// A file that is not an LCM log at all, is malformed, or cannot be opened.
 class LogError : public lagrange::BadInput {
@@ -111,4 +111,4 @@ class LogEventReader {
   std::vector<char> data_;
 };
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::logs

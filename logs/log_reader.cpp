@@ -2,7 +2,7 @@
 
 #include "lagrange/scenario_t.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::logs {
 
 std::optional<std::string> scenarioYaml(const lcm::LogEvent& ev) {
   lagrange::scenario_t m;
@@ -16,4 +16,4 @@ LogScan readLog(const std::string& path, const std::function<void(const lcm::Log
   return reader.scan();
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::logs

@@ -18,7 +18,7 @@
 #include "transport/lcm_node.hpp"
 #include "transport/safe_decode.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::logs {
 
 /// Calls on_event for every event of the log at `path`, in file order.
 /// @throws LogError if the file cannot be opened, holds no event in a nonzero
@@ -56,4 +56,4 @@ bool decodeEvent(const lcm::LogEvent& ev, Msg& m) {
 /// The scenario YAML of a SCENARIO event (scenario_t), or nothing if it is not one.
 std::optional<std::string> scenarioYaml(const lcm::LogEvent& ev);
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::logs

@@ -11,7 +11,7 @@
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::logs {
 
 namespace {
 struct flock writeLock(short type) {
@@ -62,4 +62,4 @@ OutDirLock::~OutDirLock() {
   if (fd_ >= 0) close(fd_);  // releases the lock
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::logs

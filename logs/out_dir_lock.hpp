@@ -14,7 +14,7 @@
 
 #include <string>
 
-namespace lagrange::tools {
+namespace lagrange::logs {
 
 class OutDirLock {
  public:
@@ -33,4 +33,4 @@ class OutDirLock {
   int fd_ = -1;
 };
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::logs

@@ -23,7 +23,7 @@
 #include "util/output_file.hpp"
 #include "wiring/progress.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* log,
                                    ProgressDisplay* progress, bool (*stop_requested)()) {
@@ -138,4 +138,4 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   return outcome.exit_code;
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

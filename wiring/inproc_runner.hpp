@@ -16,7 +16,7 @@ namespace lagrange::logger {
 class EventLog;
 }
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 class ProgressDisplay;
 
@@ -42,4 +42,4 @@ InProcessOutcome simulateInProcess(const config::Scenario& scenario, logger::Eve
 int runInProcess(const config::Scenario& scenario, const controller::GainReport& gains,
                  const std::string& out_dir, ProgressDisplay& progress, bool (*stop_requested)());
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

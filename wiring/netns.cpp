@@ -14,7 +14,7 @@
 
 #include "util/error.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 namespace {
 constexpr const char* kEnvMarker = "LAGRANGE_PRIVATE_NETNS";
@@ -112,4 +112,4 @@ std::string freshLcmUrl() {
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

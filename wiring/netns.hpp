@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 /// True when this process was started by reexecInPrivateNetns.
 bool insidePrivateNetns();
@@ -30,4 +30,4 @@ std::string freshLcmUrl();
 /// @throws RuntimeFault naming the failed `ip` command.
 void configureLoopbackMulticast();
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

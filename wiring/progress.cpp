@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 ProgressDisplay::ProgressDisplay(double duration, bool quiet)
     : duration_(duration),
@@ -64,4 +64,4 @@ void ProgressDisplay::finish() {
   drawn_ = false;
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

@@ -9,7 +9,7 @@
 #include <optional>
 #include <utility>
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 class ProgressDisplay {
  public:
@@ -30,4 +30,4 @@ class ProgressDisplay {
   std::chrono::steady_clock::time_point next_draw_;
 };
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

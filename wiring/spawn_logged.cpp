@@ -11,7 +11,7 @@
 
 extern char** environ;
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 pid_t spawnLogged(const std::vector<std::string>& args, const SpawnLog& log, bool own_group) {
   std::vector<std::string> copy = args;
@@ -37,4 +37,4 @@ pid_t spawnLogged(const std::vector<std::string>& args, const SpawnLog& log, boo
   return pid;
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

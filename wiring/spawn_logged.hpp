@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 struct SpawnLog {
   std::string path;     ///< stdout and stderr of the child
@@ -22,4 +22,4 @@ struct SpawnLog {
 /// the terminal's Ctrl-C. @throws RuntimeFault naming argv[0] and why.
 pid_t spawnLogged(const std::vector<std::string>& argv, const SpawnLog& log, bool own_group = false);
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

@@ -16,7 +16,7 @@
 
 #include "util/error.hpp"
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 std::string ChildExit::describe() const {
   if (signal != 0) return "was killed by signal " + std::to_string(signal) + " (" + strsignal(signal) + ")";
@@ -133,4 +133,4 @@ std::vector<ChildExit> Supervisor::stopAll(double grace_seconds) {
   return exits;
 }
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace lagrange::tools {
+namespace lagrange::wiring {
 
 struct ChildSpec {
   std::string name;               ///< "plant", ...
@@ -65,4 +65,4 @@ class Supervisor {
   std::vector<Child> children_;
 };
 
-}  // namespace lagrange::tools
+}  // namespace lagrange::wiring

@@ -75,13 +75,13 @@ struct Logged {
 
 Logged readLogged(const std::string& log) {
   Logged out;
-  tools::readLog(log, [&](const lcm::LogEvent& ev) {
+  logs::readLog(log, [&](const lcm::LogEvent& ev) {
     if (ev.channel == transport::kPlantTruth) {
       lagrange::plant_truth_t m;
-      if (tools::decodeEvent(ev, m)) out.q.emplace(m.header.sim_time, m.q);
+      if (logs::decodeEvent(ev, m)) out.q.emplace(m.header.sim_time, m.q);
     } else if (ev.channel == transport::kPlantMotor) {
       lagrange::plant_motor_t m;
-      if (tools::decodeEvent(ev, m)) out.motor.emplace(m.header.sim_time, m.q);
+      if (logs::decodeEvent(ev, m)) out.motor.emplace(m.header.sim_time, m.q);
     }
   });
   return out;

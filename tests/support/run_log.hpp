@@ -78,7 +78,7 @@ inline std::vector<std::pair<std::string, long long>> readTicks(const std::strin
   // As lagrange's readers decode: corrupted copies skipped, and a run's MAC
   // trailer skipped where another logger (a stock lcm-logger) recorded it.
   auto note = [&](const lcm::LogEvent& ev, auto message) {
-    if (tools::decodeEvent(ev, message)) out.emplace_back(ev.channel, message.header.tick);
+    if (logs::decodeEvent(ev, message)) out.emplace_back(ev.channel, message.header.tick);
   };
   while (const lcm::LogEvent* ev = log.readNextEvent()) {
     if (ev->channel == "PLANT_POSITION") note(*ev, lagrange::plant_position_t{});

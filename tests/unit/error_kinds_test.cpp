@@ -22,7 +22,7 @@ namespace {
 TEST(ErrorKinds, BadInputOfEveryComponentExitsTwo) {
   EXPECT_EQ(exitCodeOf(BadInput("x")), kExitBadInput);
   EXPECT_EQ(exitCodeOf(config::ConfigError("controller.kp: expected > 0")), kExitBadInput);
-  EXPECT_EQ(exitCodeOf(tools::LogError("not an LCM log")), kExitBadInput);
+  EXPECT_EQ(exitCodeOf(logs::LogError("not an LCM log")), kExitBadInput);
   EXPECT_EQ(exitCodeOf(tools::ReplayError("no SCENARIO")), kExitBadInput);
   EXPECT_EQ(exitCodeOf(util::UnsafeOutputPath("a symbolic link")), kExitBadInput);
 }
@@ -57,7 +57,7 @@ TEST(ErrorKinds, KindSurvivesCatchingByTheRoot) {
 TEST(ErrorKinds, FailWithNamesTheCommandAndReturnsTheKindsCode) {
   std::ostringstream captured;
   std::streambuf* const old = std::cerr.rdbuf(captured.rdbuf());
-  const int bad = tools::failWith("lagrange report", tools::LogError("run.lcm: not an LCM log"));
+  const int bad = tools::failWith("lagrange report", logs::LogError("run.lcm: not an LCM log"));
   const int fault =
       tools::failWith("lagrange run", RuntimeFault("writing 'x' failed: No space left on device"));
   std::cerr.rdbuf(old);

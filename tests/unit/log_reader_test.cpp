@@ -60,11 +60,11 @@ class LogFileTest : public ::testing::Test {
   struct Read {
     std::vector<std::string> channels, data;
     std::vector<int64_t> numbers;
-    LogScan scan;
+    logs::LogScan scan;
   };
   static Read read(const std::string& path) {
     Read r;
-    r.scan = readLog(path, [&](const lcm::LogEvent& ev) {
+    r.scan = logs::readLog(path, [&](const lcm::LogEvent& ev) {
       r.channels.push_back(ev.channel);
       r.data.emplace_back(static_cast<const char*>(ev.data), static_cast<std::size_t>(ev.datalen));
       r.numbers.push_back(ev.eventnum);
@@ -75,7 +75,7 @@ class LogFileTest : public ::testing::Test {
   static std::string refusal(const std::string& path) {
     try {
       read(path);
-    } catch (const LogError& e) {
+    } catch (const logs::LogError& e) {
       return e.what();
     }
     return "";
@@ -231,13 +231,13 @@ TEST_F(LogFileTest, RandomDamageIsReadRefusedOrSkippedAndEveryByteIsAccountedFor
     const std::string path = write(bytes);
     try {
       long long event_bytes = 0;
-      const LogScan scan = readLog(path, [&](const lcm::LogEvent& ev) {
+      const logs::LogScan scan = logs::readLog(path, [&](const lcm::LogEvent& ev) {
         event_bytes += 28 + static_cast<long long>(ev.channel.size()) + ev.datalen;
       });
       EXPECT_EQ(event_bytes + scan.skipped_bytes + scan.unreadable_tail_bytes,
                 static_cast<long long>(bytes.size()));
       ++read_whole;
-    } catch (const LogError& e) {
+    } catch (const logs::LogError& e) {
       EXPECT_NE(std::string(e.what()).find("malformed LCM log: the event at byte"), std::string::npos)
           << e.what();
       ++refused;

@@ -102,7 +102,7 @@ pid_t startRun(const CompareOptions& o, const CompareRun& run) {
   std::vector<std::string> args = {o.self_exe, "run", o.config_path, "--mode",
                                    "inproc",   "-q",  "--out",       run.dir};
   for (const std::string& ov : run.overrides) args.insert(args.end(), {"--set", ov});
-  return spawnLogged(args, {(fs::path(run.dir) / "compare.log").string()});
+  return wiring::spawnLogged(args, {(fs::path(run.dir) / "compare.log").string()});
 }
 
 // Runs every run, at most `jobs` at a time; returns each one's exit status.
@@ -171,10 +171,10 @@ void writeSeries(const CompareRun& run, const config::Scenario& s) {
   std::set<int64_t> seen;
   const std::string log = (fs::path(run.dir) / "run.lcm").string();
   if (!fs::exists(log)) return;
-  readLog(log, [&](const lcm::LogEvent& ev) {
+  logs::readLog(log, [&](const lcm::LogEvent& ev) {
     if (ev.channel != transport::kPlantTruth) return;
     lagrange::plant_truth_t m;
-    if (!decodeEvent(ev, m) || !seen.insert(m.header.tick).second) return;
+    if (!logs::decodeEvent(ev, m) || !seen.insert(m.header.tick).second) return;
     const Eigen::VectorXd q = transport::toEigen(m.q);
     char line[64];
     std::snprintf(line, sizeof line, "%.9g,%.9g", m.header.sim_time,
@@ -253,7 +253,7 @@ int runComparison(const CompareOptions& o) {
   }
   // One comparison per directory, like one run (logs/out_dir_lock.hpp):
   // two would run into the same runs/TYPE and write one comparison.md.
-  std::optional<OutDirLock> lock;
+  std::optional<logs::OutDirLock> lock;
   try {
     fs::create_directories(o.out_dir);
     lock.emplace(o.out_dir, "lagrange compare");

@@ -23,8 +23,8 @@ struct ReplayCommandLine {
 int replay(const ReplayCommandLine& o, const std::vector<std::string>& self_argv) {
   // An external controller is replayed by running it again, on a bus of its
   // own: in a private network namespace, as `lagrange run` does.
-  if (o.component == "controller" && !insidePrivateNetns() && isExternalControllerLog(o.log)) {
-    const std::string why = reexecInPrivateNetns(self_argv);  // returns only on failure
+  if (o.component == "controller" && !wiring::insidePrivateNetns() && isExternalControllerLog(o.log)) {
+    const std::string why = wiring::reexecInPrivateNetns(self_argv);  // returns only on failure
     std::cerr << "lagrange replay: " << why << "; install util-linux to replay an external controller\n";
     return kExitFailed;
   }

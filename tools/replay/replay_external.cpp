@@ -43,17 +43,17 @@ controller::Theorem1Output asOutput(const lagrange::control_command_t& m) {
 
 bool isExternalControllerLog(const std::string& log_path) {
   try {
-    LogEventReader log(log_path);
+    logs::LogEventReader log(log_path);
     for (int i = 0; i < 16; ++i) {
       const lcm::LogEvent* ev = log.next();
       if (ev == nullptr) return false;
       if (ev->channel != transport::kScenario) continue;
-      const std::optional<std::string> yaml = scenarioYaml(*ev);
+      const std::optional<std::string> yaml = logs::scenarioYaml(*ev);
       if (!yaml) return false;
       const YAML::Node controller = YAML::Load(*yaml)["controller"];
       return controller && controller["type"] && controller["type"].as<std::string>() == "external";
     }
-  } catch (const LogError&) {
+  } catch (const logs::LogError&) {
     return false;  // openLog names what is wrong with the log
   } catch (const YAML::Exception&) {
     return false;  // and with its scenario
@@ -63,18 +63,18 @@ bool isExternalControllerLog(const std::string& log_path) {
 
 void replayExternalController(const replay_log::Opened& o, ReplayResult& result) {
   const config::Scenario& s = o.scenario;
-  if (!insidePrivateNetns())
+  if (!wiring::insidePrivateNetns())
     throw ReplayError(
         "replaying an external controller runs it on a bus of its own, in a private network "
         "namespace; lagrange replay enters one itself (it needs util-linux's unshare)");
   try {
-    configureLoopbackMulticast();
+    wiring::configureLoopbackMulticast();
   } catch (const std::exception& e) {
     throw ReplayError(
         std::string("cannot set up the private network for the external controller: ") + e.what(), {},
         ErrorKind::kRuntimeFault);
   }
-  const std::string url = freshLcmUrl();
+  const std::string url = wiring::freshLcmUrl();
   std::random_device rd;
   const int64_t run_id = ((static_cast<int64_t>(rd()) << 20) ^ rd()) | 1;  // never 0: 0 accepts any run
   transport::LcmNode node("plant", url, run_id);
@@ -101,8 +101,8 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   const std::string log = (std::filesystem::temp_directory_path() /
                            ("lagrange-replay-external-" + std::to_string(getpid()) + ".log"))
                               .string();
-  Supervisor supervisor;
-  ChildSpec spec;
+  wiring::Supervisor supervisor;
+  wiring::ChildSpec spec;
   spec.name = "controller";
   spec.argv = s.controller.command;
   spec.working_directory = s.controller.working_directory;
@@ -126,7 +126,7 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
         node.publish(transport::kPlantPosition, position);
         resend = Clock::now() + std::chrono::milliseconds(50);
       }
-      for (const ChildExit& e : supervisor.reap())
+      for (const wiring::ChildExit& e : supervisor.reap())
         throw ReplayError("the external controller " + e.describe() + " after " +
                               std::to_string(result.commands) + " of " +
                               std::to_string(o.rec.commands.size()) + " commands (its output: " + log + ")",

@@ -44,11 +44,11 @@ void keep(const lagrange::control_command_t& m, Recorded& r, FirstCopies& seen) 
 bool record(const lcm::LogEvent& ev, Recorded& r, FirstCopies& seen) {
   if (ev.channel == transport::kScenario) {
     if (r.scenario) return true;
-    r.scenario = scenarioYaml(ev);
+    r.scenario = logs::scenarioYaml(ev);
     return r.scenario.has_value();
   }
   return transport::withChannelMessage(ev.channel, true, [&](auto m) {
-    if (!decodeEvent(ev, m)) return false;
+    if (!logs::decodeEvent(ev, m)) return false;
     keep(m, r, seen);
     return true;
   });
@@ -70,10 +70,11 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
   Recorded& rec = o.rec;
   FirstCopies seen;
   long long undecodable = 0;
-  LogScan scan;
+  logs::LogScan scan;
   try {
-    scan = readLog(log_path, [&](const lcm::LogEvent& ev) { undecodable += record(ev, rec, seen) ? 0 : 1; });
-  } catch (const LogError& e) {
+    scan = logs::readLog(log_path,
+                         [&](const lcm::LogEvent& ev) { undecodable += record(ev, rec, seen) ? 0 : 1; });
+  } catch (const logs::LogError& e) {
     throw ReplayError(e.what());
   }
   // In tick order, which is the order each process computed them in: a copy

@@ -75,7 +75,7 @@ void columns(Row& row, const lagrange::actuator_state_t& m) {
 // The row of one event of a known channel; false if the event is not decodable.
 bool rowOf(const lcm::LogEvent& ev, Row& row, int64_t& tick) {
   return transport::withChannelMessage(ev.channel, false, [&](auto m) {
-    if (!decodeEvent(ev, m)) return false;
+    if (!logs::decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
     columns(row, m);
     tick = m.header.tick;
@@ -103,7 +103,7 @@ void notePublishTime(const Other&, PublishTimes&) {}  // not part of the timing
 
 void notePublishTime(const lcm::LogEvent& ev, PublishTimes& times) {
   transport::withChannelMessage(ev.channel, false, [&](auto m) {
-    if (decodeEvent(ev, m)) notePublishTime(m, times);
+    if (logs::decodeEvent(ev, m)) notePublishTime(m, times);
     return true;
   });
 }
@@ -167,8 +167,8 @@ CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
   CsvExport result;
   std::map<std::string, TickOrderedCsv> files;
   std::map<std::string, std::set<int64_t>> seen;
-  result.scan = readLog(log_path, [&](const lcm::LogEvent& ev) {
-    if (ev.channel == transport::kScenario && !result.scenario) result.scenario = scenarioYaml(ev);
+  result.scan = logs::readLog(log_path, [&](const lcm::LogEvent& ev) {
+    if (ev.channel == transport::kScenario && !result.scenario) result.scenario = logs::scenarioYaml(ev);
     Row row;
     int64_t tick = 0;
     if (!rowOf(ev, row, tick) || !seen[ev.channel].insert(tick).second) return;
@@ -186,7 +186,7 @@ CsvExport exportCsv(const std::string& log_path, const std::string& out_dir) {
 
 long long exportTiming(const std::string& log_path, double period, const std::string& out_dir) {
   PublishTimes times;
-  readLog(log_path, [&](const lcm::LogEvent& ev) { notePublishTime(ev, times); });
+  logs::readLog(log_path, [&](const lcm::LogEvent& ev) { notePublishTime(ev, times); });
   if (times.position.empty()) return 0;
   return writeTiming(times, period,
                      (std::filesystem::path(out_dir) / (std::string(kTimingChannel) + ".csv")).string());

@@ -24,7 +24,7 @@ inline constexpr const char* kTimingChannel = "TIMING";
 struct CsvExport {
   std::map<std::string, long long> rows;  ///< rows written per channel (OUT_DIR/CHANNEL.csv)
   std::optional<std::string> scenario;    ///< the log's SCENARIO text, if it has one
-  LogScan scan;                           ///< what was read, and what could not be
+  logs::LogScan scan;                     ///< what was read, and what could not be
 };
 
 /// @throws LogError if the log cannot be read; RuntimeFault if a file cannot be written.

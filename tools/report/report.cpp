@@ -43,7 +43,7 @@ Report writeReport(const std::string& log_path, const std::string& out_dir) {
   report.csv = exportCsv(log_path, out_dir);
   report.warnings = report.csv.scan.problems();
   if (report.csv.rows.empty())
-    throw LogError(
+    throw logs::LogError(
         log_path + " holds no message of this project among its " + report.csv.scan.describe() +
         " (expected PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR, CONTROL_COMMAND, ACTUATOR_STATE: a log "
         "of a lagrange run)");

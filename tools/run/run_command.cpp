@@ -301,7 +301,7 @@ int64_t runIdFor(const RunOptions& opt, const std::string& url, const std::strin
 }
 
 // CPU time of a process, summed over its restarts.
-void addCpu(nlohmann::json& cpu, const ChildExit& e) {
+void addCpu(nlohmann::json& cpu, const wiring::ChildExit& e) {
   nlohmann::json& c = cpu[e.name];
   if (!c.is_object()) c = {{"user", 0.0}, {"system", 0.0}};
   c["user"] = c.value("user", 0.0) + e.cpu_user;
@@ -310,7 +310,8 @@ void addCpu(nlohmann::json& cpu, const ChildExit& e) {
 
 // A dead process is restarted when the scenario says so and it has restarts
 // left; every death is noted in `supervision` either way.
-bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervision, const ChildExit& e) {
+bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervision,
+                const wiring::ChildExit& e) {
   const int done = supervision["restarts"].value(e.name, 0);
   const bool restart = policy.restarts(e.name) && done < policy.max_restarts;
   supervision["deaths"].push_back({{"process", e.name}, {"how", e.describe()}, {"restarted", restart}});
@@ -329,7 +330,7 @@ struct HandedFiles {
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
                        const HandedFiles& handed) {
   const std::string& resolved = handed.resolved;
-  const std::string url = opt.lcm_url.empty() ? freshLcmUrl() : opt.lcm_url;
+  const std::string url = opt.lcm_url.empty() ? wiring::freshLcmUrl() : opt.lcm_url;
   const int64_t run_id = runIdFor(opt, url, resolved);
   // The run's secret (docs/reliability.md): the processes get the file's
   // path, never the key itself, and a key made here ends with the run.
@@ -361,13 +362,13 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     std::cerr << "lagrange run: cannot create a pipe: " << std::strerror(errno) << "\n";
     return kExitFailed;
   }
-  ProgressDisplay progress(scenario.duration, opt.quiet);
+  wiring::ProgressDisplay progress(scenario.duration, opt.quiet);
   ProgressReader progress_reader(progress_pipe[0]);
 
   const std::string bin = executableDir();
-  Supervisor supervisor;
+  wiring::Supervisor supervisor;
   auto spec = [&](const std::string& name, std::vector<std::string> extra) {
-    ChildSpec c;
+    wiring::ChildSpec c;
     c.name = name;
     c.argv = {bin + "/lagrange-" + name, "--config", resolved, "--lcm-url", url, "--run-id",
               std::to_string(run_id)};
@@ -378,11 +379,12 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   };
   // The logger first, so that it records from the first tick; the plant waits
   // for the logger's STATUS before it starts the clock anyway.
-  ChildSpec logger = spec("logger", {"--out", out_dir, "--progress-fd", "3", "--gains", handed.gains});
+  wiring::ChildSpec logger =
+      spec("logger", {"--out", out_dir, "--progress-fd", "3", "--gains", handed.gains});
   logger.pass_fd = progress_pipe[1];
   std::vector<std::string> controller_args = {"--gains", handed.gains};
   if (opt.strict) controller_args.push_back("--strict");
-  ChildSpec controller = spec("controller", controller_args);
+  wiring::ChildSpec controller = spec("controller", controller_args);
   if (scenario.controller.type == "external") {
     // A program from outside the project in the controller's place; what it
     // needs to join the run comes in its environment (docs/external_controllers.md).
@@ -395,7 +397,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                       "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
                       "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
   }
-  std::vector<ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};
+  std::vector<wiring::ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};
   for (const auto& s : specs)
     if (runsHere(opt, s.name)) supervisor.start(s);
   close(progress_pipe[1]);
@@ -425,13 +427,13 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       progress.finish();
       std::cerr << "lagrange run: warning: processes still running " << kFollowSeconds
                 << " s after the plant finished; stopping them\n";
-      for (const ChildExit& e : supervisor.stopAll(5.0)) {
+      for (const wiring::ChildExit& e : supervisor.stopAll(5.0)) {
         addCpu(cpu, e);
         if (e.failed() && e.signal != SIGTERM) exit_code = kExitFailed;
       }
       break;
     }
-    for (const ChildExit& e : supervisor.reap()) {
+    for (const wiring::ChildExit& e : supervisor.reap()) {
       addCpu(cpu, e);
       if (e.name == "plant" && !e.failed()) plant_done = std::chrono::steady_clock::now();
       if (!e.failed()) continue;
@@ -458,7 +460,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                   << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
         printTail((fs::path(out_dir) / (e.name + ".log")).string(), 15);
       }
-      for (const ChildExit& other : supervisor.stopAll(5.0))
+      for (const wiring::ChildExit& other : supervisor.stopAll(5.0))
         if (other.failed() && other.signal != SIGTERM)
           std::cerr << "lagrange run: process '" << other.name << "' " << other.describe() << "\n";
       exit_code = kExitFailed;
@@ -512,7 +514,7 @@ int runScenarioLocked(const RunOptions& opt) {
   // The launcher's lock on the output directory, for the whole run: taken
   // by the process that runs it (after the re-exec into a private network
   // namespace, which would drop it), before anything is written there.
-  std::optional<OutDirLock> lock;
+  std::optional<logs::OutDirLock> lock;
   auto lockOutDir = [&] {
     lock.emplace(out_dir, "lagrange run");
     checkOutputPaths(out_dir, opt.report);
@@ -530,22 +532,23 @@ int runScenarioLocked(const RunOptions& opt) {
     writeGains(scenario, gains, out_dir);  // as every run leaves it, though nothing here reads it
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
-    ProgressDisplay progress(scenario.duration, opt.quiet);
-    const int code = runInProcess(scenario, gains, out_dir, progress, [] { return launcher_signal != 0; });
+    wiring::ProgressDisplay progress(scenario.duration, opt.quiet);
+    const int code =
+        wiring::runInProcess(scenario, gains, out_dir, progress, [] { return launcher_signal != 0; });
     progress.finish();
     if (code != kExitInterrupted) writeRunReport(opt, out_dir);
     if (code == 0 && !opt.quiet) printResult(out_dir);
     return checkMetric(opt, out_dir, code);
   }
 
-  if (opt.private_netns && !insidePrivateNetns()) {
-    const std::string why = reexecInPrivateNetns(opt.self_argv);
+  if (opt.private_netns && !wiring::insidePrivateNetns()) {
+    const std::string why = wiring::reexecInPrivateNetns(opt.self_argv);
     std::cerr << "lagrange run: " << why << "; install util-linux or run with --no-netns\n";
     return kExitFailed;
   }
   if (opt.private_netns) {
     try {
-      configureLoopbackMulticast();
+      wiring::configureLoopbackMulticast();
     } catch (const std::exception& e) {
       return failWith("lagrange run", e);
     }

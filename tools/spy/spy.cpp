@@ -81,7 +81,7 @@ int runSpy(const SpyOptions& opt) {
           throw BadInput("the run in " + opt.run_dir + " has ended (its launcher, pid " +
                          std::to_string(*e.netns_pid) +
                          ", is gone); start lagrange spy while the run is going");
-        joinNetnsOf(*e.netns_pid);
+        wiring::joinNetnsOf(*e.netns_pid);
       }
     }
     const std::vector<std::string> cmd = spyCommand(url);

@@ -133,9 +133,9 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     const std::string log =
         (fs::path(o.out_dir) / "logs" / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".log"))
             .string();
-    running[spawnLogged({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
-                         std::to_string(n), "--parent", std::to_string(getpid())},
-                        {log, /*append=*/true})] = k;
+    running[wiring::spawnLogged({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
+                                 std::to_string(n), "--parent", std::to_string(getpid())},
+                                {log, /*append=*/true})] = k;
   }
   RowCounter counter(o.out_dir);
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet);
@@ -216,7 +216,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   const fs::path sbatch_out = slurm / "sbatch.out";
   pid_t pid = -1;
   try {  // in a process group of its own: Ctrl-C stops the waiting, not the job
-    pid = spawnLogged(args, {sbatch_out.string()}, /*own_group=*/true);
+    pid = wiring::spawnLogged(args, {sbatch_out.string()}, /*own_group=*/true);
   } catch (const RuntimeFault& e) {
     throw RuntimeFault(std::string(e.what()) + "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
   }
@@ -272,7 +272,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
 }  // namespace
 
 int runSweep(const SweepOptions& o) {
-  std::optional<OutDirLock> lock;
+  std::optional<logs::OutDirLock> lock;
   SweepPlan plan;
   try {
     plan = planSweep(readSweepSpec(o.sweep_file));

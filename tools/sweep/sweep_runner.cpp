@@ -76,7 +76,7 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   config::Scenario s = config::loadScenario(plan_.spec.scenario_path, row.overrides);
   s.mode = config::Mode::kInproc;  // the sampled-data check examines the wiring that runs
   const controller::GainReport& gains = gainsOf(s);
-  const InProcessOutcome o = simulateInProcess(s, nullptr, nullptr, stop_requested);
+  const wiring::InProcessOutcome o = wiring::simulateInProcess(s, nullptr, nullptr, stop_requested);
   if (o.status == "interrupted") return std::nullopt;
 
   const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);

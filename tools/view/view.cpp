@@ -218,7 +218,7 @@ int runView(const ViewOptions& opt) {
       throw BadInput(
           "cannot listen on " + opt.host + ":" + std::to_string(opt.port) +
           " (in use, or not an address of this machine); expected a free port (--port 0 picks one)");
-    if (source.netns_pid) joinNetnsOf(*source.netns_pid);
+    if (source.netns_pid) wiring::joinNetnsOf(*source.netns_pid);
   } catch (const std::exception& e) {
     return failWith("lagrange view", e);
   }

@@ -10,7 +10,7 @@ namespace {
 // One intact message of this run, as a log's are checked.
 template <class Msg>
 bool decodeLive(const lcm::ReceiveBuffer& buffer, int64_t run_id, Msg& m) {
-  if (!decodeSkippingTrailer(buffer.data, buffer.data_size, m)) return false;
+  if (!logs::decodeSkippingTrailer(buffer.data, buffer.data_size, m)) return false;
   if constexpr (transport::HasHeader<Msg>::value) return run_id == 0 || m.header.run_id == run_id;
   return true;
 }
@@ -38,14 +38,15 @@ ViewLog readViewLog(const std::string& path) {
   bool any_truth = false;
   std::optional<std::string> scenario;
   FrameAssembler assembler;
-  out.scan = readLog(path, [&](const lcm::LogEvent& ev) {
+  out.scan = logs::readLog(path, [&](const lcm::LogEvent& ev) {
     if (ev.channel == transport::kScenario) {
-      if (!scenario) scenario = scenarioYaml(ev);
+      if (!scenario) scenario = logs::scenarioYaml(ev);
     } else if (ev.channel == transport::kRobotDescription) {
       if (!described)
-        described = decodeEvent(ev, out.description) && descriptionProblem(out.description).empty();
+        described = logs::decodeEvent(ev, out.description) && descriptionProblem(out.description).empty();
     } else {
-      const bool added = addToFrames(ev.channel, assembler, [&](auto& m) { return decodeEvent(ev, m); });
+      const bool added =
+          addToFrames(ev.channel, assembler, [&](auto& m) { return logs::decodeEvent(ev, m); });
       any_truth = any_truth || (added && ev.channel == transport::kPlantTruth);
     }
   });
@@ -59,17 +60,17 @@ ViewLog readViewLog(const std::string& path) {
           "no ROBOT_DESCRIPTION in the log (recorded before it existed): the arm is drawn from "
           "its SCENARIO");
     } catch (const std::exception& e) {
-      throw LogError(path + " holds no ROBOT_DESCRIPTION message and its SCENARIO cannot be read (" +
-                     e.what() + "); expected a log of `lagrange run`, or of lcm-logger during one");
+      throw logs::LogError(path + " holds no ROBOT_DESCRIPTION message and its SCENARIO cannot be read (" +
+                           e.what() + "); expected a log of `lagrange run`, or of lcm-logger during one");
     }
   }
   if (!described)
-    throw LogError(path +
-                   " holds neither ROBOT_DESCRIPTION nor SCENARIO: nothing says what arm to draw; "
-                   "expected a log of `lagrange run`, or of lcm-logger during one");
+    throw logs::LogError(path +
+                         " holds neither ROBOT_DESCRIPTION nor SCENARIO: nothing says what arm to draw; "
+                         "expected a log of `lagrange run`, or of lcm-logger during one");
   if (!any_truth)
-    throw LogError(path +
-                   " holds no PLANT_TRUTH message: nothing to draw; expected a log of a run that started");
+    throw logs::LogError(
+        path + " holds no PLANT_TRUTH message: nothing to draw; expected a log of a run that started");
   out.frames = assembler.take(true);
   return out;
 }

@@ -26,7 +26,7 @@ namespace lagrange::tools {
 struct ViewLog {
   lagrange::robot_description_t description;
   std::vector<ViewFrame> frames;
-  LogScan scan;
+  logs::LogScan scan;
   std::vector<std::string> notes;  ///< how it was read, for a person (shown with the scan's problems)
 };
 

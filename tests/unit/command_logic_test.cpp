@@ -1,0 +1,115 @@
+// The logic of subcommands that have no unit test of their own elsewhere,
+// run through the front end as a user's command line would: keygen's key
+// file, and compare's tables (tools/compare/compare_output.hpp).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "runtime/key_file.hpp"
+#include "tools/compare/compare_output.hpp"
+#include "tools/front_end.hpp"
+#include "tools/keygen/keygen.hpp"
+#include "util/error.hpp"
+
+namespace lagrange::tools {
+namespace {
+
+class CommandLogic : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/lagrange-commands-XXXXXX";
+    ASSERT_NE(mkdtemp(pattern), nullptr);
+    dir_ = pattern;
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  static int lagrangeCommand(std::vector<std::string> args) {
+    args.insert(args.begin(), "lagrange");
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    return dispatch(static_cast<int>(args.size()), argv.data(), {addKeygenCommand});
+  }
+  static std::string text(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  std::string dir_;
+};
+
+// A key a host reads back, private to its owner; never written over.
+TEST_F(CommandLogic, KeygenWritesAPrivateKeyAndNeverOverwritesOne) {
+  const std::string path = dir_ + "/run.key";
+  ASSERT_EQ(lagrangeCommand({"keygen", path}), kExitOk);
+  struct stat st {};
+  ASSERT_EQ(stat(path.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  const std::string first = text(path);
+  EXPECT_NO_THROW(runtime::readKeyFile(path));
+
+  EXPECT_EQ(lagrangeCommand({"keygen", path}), kExitBadInput);
+  EXPECT_EQ(text(path), first);  // the key hosts already share stays
+
+  const std::string other = dir_ + "/other.key";
+  ASSERT_EQ(lagrangeCommand({"keygen", other}), kExitOk);
+  EXPECT_NE(text(other), first);  // fresh each time
+  EXPECT_EQ(lagrangeCommand({"keygen", dir_ + "/no/such/dir/run.key"}), kExitBadInput);
+}
+
+// compare's tables: nominal rows, then the sweep's under its key; a run that
+// never converged and numbers a failed run lacks are said, not invented.
+TEST_F(CommandLogic, CompareTablesSayWhatEachRunGave) {
+  ComparisonTables t;
+  t.scenario = "rigid_2dof";
+  t.dof = 2;
+  t.sweep_key = "controller.kp";
+  RunNumbers theorem1;
+  theorem1.type = "theorem1";
+  theorem1.status = "completed";
+  theorem1.convergence_time = 1.25;
+  theorem1.final_error = 0.125;  // binary fractions: the CSV prints 17 digits
+  theorem1.rms_last_second = 0.0625;
+  theorem1.max_torque = 80.0;
+  theorem1.total_variation = 120.0;
+  theorem1.energy = 3000.0;
+  RunNumbers never = theorem1;
+  never.type = "set_point";
+  never.convergence_time.reset();
+  RunNumbers failed;
+  failed.type = "theorem1";
+  failed.value = "[100, 8]";
+  failed.status = "failed (exit 1)";
+  t.runs = {theorem1, never, failed};
+
+  const std::string md = writeComparison(t, dir_);
+  EXPECT_EQ(md, text(dir_ + "/comparison.md"));
+  EXPECT_NE(md.find("# Comparison: rigid_2dof"), std::string::npos);
+  EXPECT_NE(md.find("| theorem1 | completed | 1.25 | 0.125 | 0.0625 | 80 | 120 | 3e+03 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| set_point | completed | not within the run |"), std::string::npos) << md;
+  const size_t sweep = md.find("## Sweep of controller.kp");
+  ASSERT_NE(sweep, std::string::npos) << md;
+  EXPECT_GT(md.find("| theorem1 | [100, 8] | failed (exit 1) | not within the run |  |  |  |  |  |"), sweep)
+      << md;
+
+  const std::string csv = text(dir_ + "/comparison.csv");
+  std::vector<std::string> lines;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u) << csv;
+  EXPECT_EQ(lines[0].rfind("controller,sweep_key,sweep_value,status,convergence_time,", 0), 0u);
+  EXPECT_EQ(lines[1], "theorem1,,\"\",completed,1.25,0.125,0.0625,80,120,3000") << csv;
+  EXPECT_EQ(lines[3], "theorem1,controller.kp,\"[100, 8]\",failed (exit 1),,,,,,") << csv;
+}
+
+}  // namespace
+}  // namespace lagrange::tools
