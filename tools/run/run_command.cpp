@@ -319,14 +319,14 @@ bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervi
   return restart;
 }
 
-// Starts logger, controller, actuator and plant on a fresh LCM URL, shows
-// progress, and watches them until all have exited; returns the exit code.
 // The files the launcher wrote for its processes to read.
 struct HandedFiles {
   std::string resolved;  ///< config.resolved.yaml: every process's --config
   std::string gains;     ///< gains.json: the controller's and the logger's --gains
 };
 
+// Starts logger, controller, actuator and plant on a fresh LCM URL, shows
+// progress, and watches them until all have exited; returns the exit code.
 int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, const std::string& out_dir,
                        const HandedFiles& handed) {
   const std::string& resolved = handed.resolved;
