@@ -1,7 +1,6 @@
 #include "controller/gain_report_json.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -18,11 +17,7 @@ constexpr int kFormat = 1;
 // A report is a few kB; anything far larger is not one.
 constexpr std::uintmax_t kMaxGainsBytes = 1u << 20;
 
-std::string fingerprint(const std::string& scenario_yaml) {
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(util::fnv1a64(scenario_yaml)));
-  return hex;
-}
+std::string fingerprint(const std::string& scenario_yaml) { return util::fnv1a64Hex(scenario_yaml); }
 
 // JSON has no infinity or NaN (nlohmann would write null); a margin or a
 // spectral radius can be either.

@@ -6,6 +6,8 @@
 /// logs fix.
 
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <string_view>
 
 namespace lagrange::util {
@@ -14,6 +16,13 @@ inline std::uint64_t fnv1a64(std::string_view bytes) {
   std::uint64_t h = 14695981039346656037ULL;
   for (const unsigned char c : bytes) h = (h ^ c) * 1099511628211ULL;
   return h;
+}
+
+/// fnv1a64 as 16 lower-case hex digits.
+inline std::string fnv1a64Hex(std::string_view bytes) {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(bytes)));
+  return hex;
 }
 
 }  // namespace lagrange::util

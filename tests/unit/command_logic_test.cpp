@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "runtime/key_file.hpp"
+#include "support/temp_dir.hpp"
 #include "tools/compare/compare_output.hpp"
 #include "tools/front_end.hpp"
 #include "tools/keygen/keygen.hpp"
@@ -22,14 +23,8 @@
 namespace lagrange::tools {
 namespace {
 
-class CommandLogic : public ::testing::Test {
+class CommandLogic : public lagrange::testing::TempDirTest {
  protected:
-  void SetUp() override {
-    char pattern[] = "/tmp/lagrange-commands-XXXXXX";
-    ASSERT_NE(mkdtemp(pattern), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   static int lagrangeCommand(std::vector<std::string> args) {
     args.insert(args.begin(), "lagrange");
     std::vector<char*> argv;
@@ -43,7 +38,6 @@ class CommandLogic : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-  std::string dir_;
 };
 
 // A key a host reads back, private to its owner; never written over.

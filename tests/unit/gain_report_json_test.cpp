@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "support/configs.hpp"
+#include "support/temp_dir.hpp"
 
 namespace lagrange::controller {
 namespace {
@@ -58,20 +59,13 @@ void expectSameReport(const GainReport& a, const GainReport& b) {
   EXPECT_EQ(describe(a), describe(b));
 }
 
-class GainsFile : public ::testing::Test {
+class GainsFile : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    char pattern[] = "/tmp/lagrange-gains-XXXXXX";
-    ASSERT_NE(mkdtemp(pattern), nullptr);
-    dir_ = pattern;
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string write(const std::string& name, const std::string& text) const {
     const std::string path = dir_ + "/" + name;
     std::ofstream(path) << text;
     return path;
   }
-  std::string dir_;
 };
 
 // Theorem 1 on the planar arm (k_c proven), and the cascaded controller with

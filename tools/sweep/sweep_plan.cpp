@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -15,6 +16,7 @@
 #include "model/reference.hpp"
 #include "tools/sweep/sweep_random.hpp"
 #include "util/error.hpp"
+#include "util/fnv1a.hpp"
 #include "util/number_text.hpp"
 
 namespace lagrange::tools {
@@ -71,11 +73,8 @@ double at(const AxisRange& r, double f) {
 
 std::string scenarioDigest(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bits
-  for (char c; in.get(c);) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return util::fnv1a64Hex(bytes);
 }
 
 namespace {
