@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "config/input_file.hpp"
-#include "config/scenario_keys.hpp"
+#include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
 #include "model/planar_chain.hpp"
@@ -44,7 +44,7 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
     }
     c.xml = text.text;
   }
-  u.finish(keys::kUrdf);
+  u.finish(keysUnder("robot.urdf"));
   try {
     s.urdf_model = model::UrdfArm::build(
         {c.xml, c.file.empty() ? "robot.urdf.xml" : c.file, c.base_link, c.tip_link, s.robot.gravity});
@@ -89,14 +89,14 @@ model::ChainParams readRobot(MapReader robot) {
       if (p.com < 0.0) link.fail("com", "expected a number >= 0 (distance joint to centre of mass)");
       p.mass = link.positive("mass");
       p.inertia = link.positive("inertia");
-      link.finish(keys::kLink);
+      link.finish(keysUnder("robot.links[i]"));
       params.links.push_back(p);
     }
   }
   params.gravity = robot.number("gravity", params.gravity);
   if (params.gravity < 0.0)
     robot.fail("gravity", "expected a number >= 0 [m/s^2], got " + std::to_string(params.gravity));
-  robot.finish(keys::kRobot);
+  robot.finish(keysUnder("robot"));
   return params;
 }
 
@@ -107,7 +107,7 @@ std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
   c.params.stiffness = f.vector("stiffness", n, true, true);
   c.params.rotor_inertia = f.vector("rotor_inertia", n, true, true);
   c.rate_sensor = f.boolean("rate_sensor", false);
-  f.finish(keys::kFlexible);
+  f.finish(keysUnder("robot.flexible"));
   return c;
 }
 
@@ -122,7 +122,7 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
         ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
     p.model = std::move(arm);
     p.horizon = duration + 1.0;
-    ref.finish(keys::kFreeMotionReference);
+    ref.finish(keysUnder("reference", "free_motion"));
     return p;
   }
   p.offset = ref.vector("offset", n, true, false);
@@ -137,7 +137,7 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
   } else if (ref.has("alpha")) {
     ref.fail("alpha", "only a smooth_sine reference has alpha");
   }
-  ref.finish(keys::kSineReference);
+  ref.finish(keysUnder("reference", "sine"));
   return p;
 }
 
@@ -172,7 +172,7 @@ void readInitialStateSection(MapReader& root, Scenario& s) {
   } else if (init.has("motor_q") || init.has("motor_qdot")) {
     init.fail(init.has("motor_q") ? "motor_q" : "motor_qdot", "only an arm with robot.flexible has motors");
   }
-  init.finish(keys::kInitialState);
+  init.finish(keysUnder("initial_state"));
 }
 
 // reference: a sine, a smooth sine or the arm's own free motion.
@@ -187,7 +187,7 @@ void readPlantSection(MapReader& root, Scenario& s) {
     s.plant.physics_step = plant.positive("physics_step", s.plant.physics_step);
     s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
     if (plant.has("max_rate")) s.plant.max_rate = plant.positive("max_rate");
-    plant.finish(keys::kPlant);
+    plant.finish(keysUnder("plant"));
     const double ratio = s.tickPeriod() / s.plant.physics_step;
     if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
       plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +

@@ -5,7 +5,7 @@
 /// starts; `lagrange run` carries the section along and ignores it.
 #include <yaml-cpp/yaml.h>
 
-#include "config/scenario_keys.hpp"
+#include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
@@ -33,9 +33,9 @@ void readCompareSection(MapReader& root, Scenario& s) {
     if (!values.IsSequence() || values.size() == 0)
       sweep.fail("values", "expected a list of at least one value for " + c.sweep_key);
     for (const YAML::Node& v : values) c.sweep_values.push_back(flowYaml(v));
-    sweep.finish(keys::kCompareSweep);
+    sweep.finish(keysUnder("compare.sweep"));
   }
-  r.finish(keys::kCompare);
+  r.finish(keysUnder("compare"));
   s.compare = c;
 }
 

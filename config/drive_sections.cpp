@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "config/controller_params.hpp"
-#include "config/scenario_keys.hpp"
+#include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
@@ -52,7 +52,7 @@ void readActuatorSection(MapReader& root, Scenario& s) {
         row.finish({"row"});
       }
     }
-    act.finish(keys::kActuator);
+    act.finish(keysUnder("actuator"));
   }
 }
 
@@ -140,7 +140,7 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
                             "' is not a program on PATH; expected the controller's program (a "
                             "name on PATH, or a path relative to the scenario file)");
   }
-  ctl.finish(keys::kExternalController);
+  ctl.finish(keysUnder("controller", "external"));
 }
 }  // namespace
 
@@ -217,7 +217,7 @@ void readControllerSection(MapReader& root, Scenario& s, const std::string& base
           start.qc = st.vector("initial_filter_state", n, true, false);
       }
       s.controller.stage_starts.push_back(start);
-      st.finish(keys::kStage);
+      st.finish(keysUnder("controller.stages[i]"));
     }
   } else if (ctl.has("stages")) {
     ctl.fail("stages", "only the cascaded and flexible controllers have stages");
@@ -234,7 +234,7 @@ void readControllerSection(MapReader& root, Scenario& s, const std::string& base
   } else {
     s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
   }
-  ctl.finish(keys::kPaperController);
+  ctl.finish(keysUnder("controller", "paper"));
 }
 
 }  // namespace lagrange::config::sections

@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// A section of the scenario file described once: each field names its key
-/// and how it is read (with its constraint) and written, so the reader, the
-/// writer of config.resolved.yaml and the list of known keys (unknown keys
-/// are errors; docs/configuration.md is checked against it by a test) all
-/// come from one description.
+/// A section of the scenario file read and written field by field: each
+/// field names its key and how it is read (with its constraint) and written,
+/// so the reader, the writer of config.resolved.yaml and the list of known
+/// keys come from one description (a test holds these keys to the key table,
+/// config/key_table.hpp, which documents them and holds their ranges).
 ///
 ///   const Fields<MetricsConfig> kMetricsFields = {
 ///       positive("tolerance", &MetricsConfig::tolerance), ...};
@@ -12,8 +12,8 @@
 ///   writeFields(out, s.metrics, kMetricsFields);
 ///
 /// Fields that depend on other sections (joint counts, the controller's
-/// type) keep their hand-written readers; their keys are listed beside them
-/// (config/scenario_keys.hpp).
+/// type) keep their hand-written readers, which take their known keys from
+/// the key table (keysUnder).
 
 #include <yaml-cpp/yaml.h>
 

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// The range of every numeric key of a scenario, in one table: MapReader
-/// checks each number it reads against it (with the key's line in the
-/// error), docs/configuration.md states it in the key's row (a test holds the
-/// two together). The ranges are physically generous, so that no real
+/// The range of every numeric key of a scenario (held in the key table,
+/// config/key_table.hpp): MapReader checks each number it reads against it
+/// (with the key's line in the error), docs/configuration.md states it in the
+/// key's row (generated from the same table). The ranges are physically generous, so that no real
 /// scenario is refused, and finite, so that nothing downstream overflows,
 /// divides by almost zero or loops for ever (a gain of 1e308 overflows the
 /// first product, a physics step of 1e-300 asks for 1e297 steps a sample).
@@ -32,7 +32,7 @@ std::string rangeKey(const std::string& key_path);
 /// The range of a key path (as MapReader names it), or nullptr for a key that is not a number.
 const KeyRange* rangeOf(const std::string& key_path);
 
-/// Every range, by its table key.
+/// Every range, by its key in the key table.
 const std::map<std::string, KeyRange>& keyRanges();
 
 /// "from 0.001 to 3600 s", "> 0 and at most 1e12", as errors and the docs say it.

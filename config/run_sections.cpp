@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "config/scenario_keys.hpp"
+#include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
@@ -105,7 +105,7 @@ double probability(MapReader& map, const char* key) {
 
 namespace {
 // One sensors.<quantity> map: counts_per_revolution (angles only), noise_sigma, delay.
-JointSensorConfig readJointSensor(MapReader& p, int n, bool angles, const keys::Keys& known) {
+JointSensorConfig readJointSensor(MapReader& p, int n, bool angles, const std::set<std::string>& known) {
   JointSensorConfig c;
   c.counts_per_revolution = Eigen::VectorXd::Zero(n);
   c.noise_sigma = Eigen::VectorXd::Zero(n);
@@ -144,19 +144,19 @@ void readSensorsSection(MapReader& root, Scenario& s) {
   c.position.noise_sigma = Eigen::VectorXd::Zero(n);
   if (r.has("position")) {
     MapReader p = r.map("position");
-    c.position = readJointSensor(p, n, true, keys::kPositionSensor);
+    c.position = readJointSensor(p, n, true, keysUnder("sensors.position"));
   }
   if (r.has("velocity")) {
     MapReader v = r.map("velocity");
-    c.velocity = readJointSensor(v, n, false, keys::kVelocitySensor);
+    c.velocity = readJointSensor(v, n, false, keysUnder("sensors.velocity"));
   }
   if (r.has("motor")) {
     if (!s.flexible)
       r.fail("motor", "a motor-angle sensor needs flexible joints (robot.flexible); this arm is rigid");
     MapReader m = r.map("motor");
-    c.motor = readJointSensor(m, n, true, keys::kPositionSensor);
+    c.motor = readJointSensor(m, n, true, keysUnder("sensors.motor"));
   }
-  r.finish(keys::kSensors);
+  r.finish(keysUnder("sensors"));
   s.sensors = c;
 }
 
@@ -170,14 +170,14 @@ void readFaultsSection(MapReader& root, Scenario& s) {
   s.faults.seed = static_cast<uint64_t>(seed);
   if (f.has("channels")) {
     MapReader channels = f.map("channels");
-    const std::set<std::string> known = {"all",         "PLANT_POSITION",  "PLANT_TRUTH",
-                                         "PLANT_MOTOR", "CONTROL_COMMAND", "ACTUATOR_STATE",
-                                         "STATUS",      "SCENARIO"};
+    const std::set<std::string> known = {"all",        "PLANT_POSITION",  "PLANT_TRUTH",    "PLANT_MOTOR",
+                                         "PLANT_RATE", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS",
+                                         "SCENARIO"};
     std::set<std::string> names;
     for (const std::string& name : channels.keys()) {
       if (known.count(name) == 0)
         channels.fail(name,
-                      "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, "
+                      "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, PLANT_RATE, "
                       "CONTROL_COMMAND, ACTUATOR_STATE, STATUS or SCENARIO");
       names.insert(name);
       MapReader c = channels.map(name);
@@ -190,7 +190,7 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       if (rule.delay < 0.0) c.fail("delay", "expected a time >= 0 [s]");
       rule.delay_jitter = c.number("delay_jitter", 0.0);
       if (rule.delay_jitter < 0.0) c.fail("delay_jitter", "expected a time >= 0 [s]");
-      c.finish(keys::kChannelFaults);
+      c.finish(keysUnder("faults.channels.NAME"));
       s.faults.channels[name] = rule;
     }
     channels.finish(names);
@@ -204,11 +204,11 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       names.insert(name);
       MapReader r = receivers.map(name);
       s.faults.receiver_drop[name] = probability(r, "drop");
-      r.finish(keys::kReceiverFaults);
+      r.finish(keysUnder("faults.receivers.PROCESS"));
     }
     receivers.finish(names);
   }
-  f.finish(keys::kFaults);
+  f.finish(keysUnder("faults"));
 }
 
 }  // namespace lagrange::config::sections

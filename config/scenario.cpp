@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "config/input_file.hpp"
-#include "config/scenario_keys.hpp"
+#include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
 #include "config/yaml_duplicates.hpp"
@@ -89,7 +89,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readSupervisionSection(root, s);
   readFaultsSection(root, s);
   readCompareSection(root, s);
-  root.finish(keys::kTop);
+  root.finish(keysUnder(""));
   checkWorkBounds(s);
   return s;
 }

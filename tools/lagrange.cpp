@@ -9,12 +9,14 @@
 ///   compare       run a scenario for several controllers and tabulate them
 ///   sweep         many in-process runs over axes of scenario keys (locally or on Slurm)
 ///   keygen        write a secret key for a run spread over hosts
+///   keys          every key a scenario file may hold
 ///   spy, view     watch a run: lcm-spy, or the arm in a web browser
 
 #include "tools/check_gains/check_gains.hpp"
 #include "tools/compare/compare.hpp"
 #include "tools/front_end.hpp"
 #include "tools/keygen/keygen.hpp"
+#include "tools/keys/keys.hpp"
 #include "tools/replay/replay.hpp"
 #include "tools/report/report.hpp"
 #include "tools/run/run_command.hpp"
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
   // Every subcommand, in the order --help lists them: a new one is one line here.
   return dispatch(argc, argv,
                   {addRunCommand, addCheckGainsCommand, addReplayCommand, addReportCommand, addCompareCommand,
-                   addSweepCommand, addSweepShardCommand, addKeygenCommand, addSpyCommand, addViewCommand},
+                   addSweepCommand, addSweepShardCommand, addKeygenCommand, addKeysCommand, addSpyCommand,
+                   addViewCommand},
                   front_end);
 }

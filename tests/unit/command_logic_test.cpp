@@ -1,6 +1,7 @@
 // The logic of subcommands that have no unit test of their own elsewhere,
 // run through the front end as a user's command line would: keygen's key
-// file, and compare's tables (tools/compare/compare_output.hpp).
+// file, compare's tables (tools/compare/compare_output.hpp), the key
+// reference of `lagrange keys` (tools/keys/key_listing.hpp).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -18,6 +19,8 @@
 #include "tools/compare/compare_output.hpp"
 #include "tools/front_end.hpp"
 #include "tools/keygen/keygen.hpp"
+#include "tools/keys/key_listing.hpp"
+#include "tools/keys/keys.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::tools {
@@ -30,7 +33,7 @@ class CommandLogic : public lagrange::testing::TempDirTest {
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
-    return dispatch(static_cast<int>(args.size()), argv.data(), {addKeygenCommand});
+    return dispatch(static_cast<int>(args.size()), argv.data(), {addKeygenCommand, addKeysCommand});
   }
   static std::string text(const std::string& path) {
     std::ifstream in(path);
@@ -103,6 +106,46 @@ TEST_F(CommandLogic, CompareTablesSayWhatEachRunGave) {
   EXPECT_EQ(lines[0].rfind("controller,sweep_key,sweep_value,status,convergence_time,", 0), 0u);
   EXPECT_EQ(lines[1], "theorem1,,\"\",completed,1.25,0.125,0.0625,80,120,3000") << csv;
   EXPECT_EQ(lines[3], "theorem1,controller.kp,\"[100, 8]\",failed (exit 1),,,,,,") << csv;
+}
+
+}  // namespace
+}  // namespace lagrange::tools
+
+namespace lagrange::tools {
+namespace {
+
+TEST_F(CommandLogic, KeysListsASectionsKeysWithTypeDefaultAndRange) {
+  const std::string plant = keyListing({"plant"});
+  EXPECT_NE(plant.find("plant.physics_step  (number > 0; default `1.0e-4`)\n"), std::string::npos) << plant;
+  EXPECT_NE(plant.find("Range: from 1e-7 to 1 s"), std::string::npos) << plant;
+  EXPECT_EQ(plant.find("actuator."), std::string::npos) << "only the section asked for:\n" << plant;
+  // A row describing its items states their ranges; every line fits the width.
+  const std::string links = keyListing({"robot.links"}, 60);
+  EXPECT_NE(links.find("`mass` from 1e-6 to 1e6"), std::string::npos) << links;
+  std::istringstream lines(links);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("    ", 0) == 0 && line.find(' ', 4) != std::string::npos) {
+      EXPECT_LE(line.size(), 60u) << line;  // a word longer than the width keeps its own line
+    }
+  }
+  // "controller.stages" is a key, not a prefix of "controller.stagesX".
+  const std::string stages = keyListing({"controller.stages"});
+  EXPECT_NE(stages.find("controller.stages[i].initial_zeta"), std::string::npos);
+  EXPECT_EQ(stages.find("controller.kp "), std::string::npos);
+}
+
+TEST_F(CommandLogic, KeysRefusesASectionNoKeyIsIn) {
+  try {
+    keyListing({"plant", "plants"});
+    FAIL() << "a section without keys was accepted";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("'plants'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("controller"), std::string::npos)
+        << "the sections are listed: " << e.what();
+  }
+  EXPECT_EQ(lagrangeCommand({"keys", "nonsense"}), 2);
+  EXPECT_EQ(lagrangeCommand({"keys", "--markdown", "plant"}), 2);
+  EXPECT_EQ(lagrangeCommand({"keys", "metrics"}), 0);
 }
 
 }  // namespace

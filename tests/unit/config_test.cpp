@@ -103,7 +103,24 @@ INSTANTIATE_TEST_SUITE_P(
                  "controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]", "actuator.initial_state=[[1, 2, 3]]"},
                 "actuator.initial_state[0].row: expected a list of 2 numbers"},
         BadCase{{"controller.stages=[{kp: 1, kd: 1, a: 1, b: 1}]"},
-                "only the cascaded and flexible controllers have stages"}));
+                "only the cascaded and flexible controllers have stages"},
+        // The known keys come from the key table, per variant of the section.
+        BadCase{{"reference.initial_q=[0, 0]"}, "reference.initial_q: unknown key"},
+        BadCase{{"controller={type: external, command: [true], stages: []}"},
+                "controller.stages: unknown key"},
+        BadCase{{"faults.channels.PLANT_RATES={drop: 0.1}"},
+                "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, PLANT_RATE,"}));
+
+// docs/configuration.md names PLANT_RATE among the channels faults can be
+// injected on; the reader once refused it.
+TEST(Scenario, FaultsOnTheRateChannelAreAccepted) {
+  const std::string base = readFile(kConfigs + "/rigid_2dof.yaml");
+  const Scenario s =
+      parseScenario(base, "rigid_2dof.yaml",
+                    {"sensors.velocity={noise_sigma: 0}", "faults.channels.PLANT_RATE={drop: 0.25}"});
+  ASSERT_EQ(s.faults.channels.count("PLANT_RATE"), 1u);
+  EXPECT_EQ(s.faults.channels.at("PLANT_RATE").drop, 0.25);
+}
 
 TEST(Scenario, MissingKeyIsNamed) {
   std::string text = readFile(kConfigs + "/rigid_2dof.yaml");

@@ -1,0 +1,433 @@
+/// @file
+/// The table of every scenario key (config/key_table.hpp).
+#include "config/key_table.hpp"
+
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace lagrange::config {
+
+namespace {
+
+KeyInfo row(std::string key, std::string type, std::string default_text, std::string meaning) {
+  return {std::move(key), std::move(type), std::move(default_text), std::move(meaning), std::nullopt, "", ""};
+}
+KeyInfo row(std::string key, std::string type, std::string default_text, std::string meaning,
+            KeyRange range) {
+  KeyInfo k = row(std::move(key), std::move(type), std::move(default_text), std::move(meaning));
+  k.range = std::move(range);
+  return k;
+}
+// A key of a list item or map entry, or a registered controller's gain,
+// described in the row of `described_in`.
+KeyInfo inside(std::string key, std::string described_in, KeyRange range) {
+  return {std::move(key), "", "", "", std::move(range), "", std::move(described_in)};
+}
+KeyInfo only(std::string variant, KeyInfo k) {
+  k.variant = std::move(variant);
+  return k;
+}
+
+std::vector<KeyInfo> makeTable() {
+  // Shared ranges. Angles may be multi-turn; rates and gains stay far below
+  // where their products (gain x error x rate) leave double's range.
+  const KeyRange kAngle{-1e6, 1e6, false, "rad", ""};
+  const KeyRange kRate{-1e4, 1e4, false, "rad/s", "about 95 000 rpm"};
+  const KeyRange kGain{0.0, 1e12, true, "",
+                       "gains beyond 1e12 overflow or swamp the physics; the paper's constructive "
+                       "gains for long chains (check-gains --suggest) reach 1e125 and are evaluated "
+                       "there, not run"};
+  const KeyRange kProbability{0.0, 1.0, false, "", ""};
+  const KeyRange kFaultDelay{0.0, 60.0, false, "s", "a datagram held longer is lost, not late"};
+  const KeyRange kNoise{0.0, 1e3, false, "", ""};
+  const KeyRange kCounts{0.0, 1e12, false, "", ""};
+  const KeyRange kSensorDelay{0.0, 1e5, false, "samples", "each sensor keeps that many readings"};
+  const KeyRange kSeed{0.0, 1e9, false, "", ""};
+  const KeyRange kLargeState{-1e15, 1e15, false, "", ""};  // filter and chain states
+  return {
+      row("name", "string", "required", "scenario name, shown in outputs"),
+      row("description", "string", "`\"\"`", "free text"),
+      row("duration", "number > 0", "required",
+          "simulated time [s]; must be a whole number of publish periods.",
+          {0.0, 1e9, true, "s", "the samples, physics steps, memory and log it asks for are bounded too"}),
+      row("mode", "string", "`lockstep`",
+          "`lockstep`: processes over LCM, sim time advances when every process has answered the tick "
+          "(deterministic, faster than real time); `realtime`: processes over LCM, each on its own "
+          "fixed-rate loop at `plant.publish_rate` (sim time = wall time); `inproc`: the same cores "
+          "called in one process, no LCM (bit-identical to lockstep). `lagrange run --mode` overrides "
+          "it"),
+      row("robot.preset", "string", "—",
+          "`pelican`: the 2-DOF arm of Kelly, Santibáñez and Loría (give exactly one of `preset`, "
+          "`links` or `urdf`)"),
+      row("robot.links", "list of maps", "—",
+          "base to tip, each `{length, com, mass, inertia}`: joint-to-joint length [m] > 0, "
+          "joint-to-centre-of-mass distance [m] ≥ 0, mass [kg] > 0, moment of inertia about the centre "
+          "of mass [kg m²] > 0."),
+      inside("robot.links[i].com", "robot.links", {0.0, 1e3, false, "m", ""}),
+      inside("robot.links[i].inertia", "robot.links", {1e-12, 1e6, false, "kg m^2", ""}),
+      inside("robot.links[i].length", "robot.links", {1e-4, 1e3, false, "m", ""}),
+      inside("robot.links[i].mass", "robot.links", {1e-6, 1e6, false, "kg", ""}),
+      row("robot.urdf.file", "string", "—",
+          "a serial arm from a URDF file instead of `preset` or `links` (give exactly one): the file, "
+          "relative to the scenario file's folder. The chain from `base_link` to `tip_link` is the "
+          "arm: revolute and continuous joints are its joints (in order, named as in the URDF), fixed "
+          "joints stay rigid, and every branch off the chain (the Panda's fingers) is held at its zero "
+          "position with its mass lumped into the link it hangs from. Gravity acts along the URDF "
+          "world's −z, base_link's frame is the world (a fixed base). URDF joint limits and `<dynamics "
+          "damping friction>` are not applied (the model is lossless, eq. 10): `lagrange run` lists "
+          "them at start. Refused before anything starts, with the file and the link or joint named: a "
+          "file that cannot be read or is not URDF (urdfdom's words quoted), an unknown link (the "
+          "known ones listed), a tip not below the base, a prismatic, planar or floating joint on the "
+          "chain, a negative mass, a mass of 0 with a non-zero tensor (0 with a zero tensor is a "
+          "massless frame, accepted), an inertia tensor that is not positive definite or whose "
+          "principal moments violate the triangle inequality, a joint that moves no mass. Shipped: "
+          "`robots/panda.urdf`, `robots/ur5_robot.urdf`, `robots/double_pendulum.urdf` "
+          "(robots/README.md)"),
+      row("robot.urdf.base_link", "string", "required with `urdf`", "the fixed link the chain starts from"),
+      row("robot.urdf.tip_link", "string", "required with `urdf`", "the last link of the chain"),
+      row("robot.urdf.xml", "string", "the file's text",
+          "the URDF document itself; when given it is used and `file` is not read. "
+          "`config.resolved.yaml` and the SCENARIO message carry it, so a run's log replays without "
+          "the file"),
+      row("robot.gravity", "number ≥ 0", "`9.81`", "g [m/s²], downwards in the plane of motion.",
+          {0.0, 1e3, false, "m/s^2", "about 100 g"}),
+      row("robot.flexible.stiffness", "vector or scalar > 0", "— (section optional)",
+          "K [N m/rad]: elastic joints (eq. 595), each joint driven through a torsional spring by a "
+          "base-mounted rotor.",
+          {0.0, 1e12, true, "N m/rad", ""}),
+      row("robot.flexible.rotor_inertia", "vector or scalar > 0", "required with `flexible`",
+          "J [kg m²], each rotor's inertia about its axis (reflected to the joint).",
+          {1e-12, 1e6, false, "kg m^2", ""}),
+      row("robot.flexible.rate_sensor", "`true` / `false`", "`false`",
+          "the motors have rate sensors: PLANT_MOTOR carries q2'"),
+      row("initial_state.q", "vector (list)", "required",
+          "initial joint angles [rad]; for a planar chain relative angles, joint 1 from the downward "
+          "vertical, counter-clockwise positive; for a URDF arm the URDF's joint angles, in chain "
+          "order (positive by the right-hand rule about each `<axis>`); any value (multi-turn).",
+          kAngle),
+      row("initial_state.qdot", "vector (list)", "zeros", "initial joint rates [rad/s].", kRate),
+      row("initial_state.motor_q", "vector (list)", "q + K⁻¹ g(q)",
+          "flexible joints only: initial motor angles q2 [rad]; the default twists each spring just "
+          "enough to hold the links at rest against gravity.",
+          kAngle),
+      row("initial_state.motor_qdot", "vector (list)", "`initial_state.qdot`",
+          "flexible joints only: initial motor rates [rad/s].", kRate),
+      row("reference.type", "string", "required",
+          "`sine`: q_d,i = b_i + c_i sin(w_i t + p_i); `smooth_sine`: the same times (1 − exp(−alpha_i "
+          "t³)); `free_motion`: the unforced motion D(q)q'' + C(q,q')q' + g(q) = 0 of the configured "
+          "robot (Assumption 2 of Theorems 2 and 3), integrated by RK4 with a 0.1 ms step over the run "
+          "and a second more (derivatives up to q_d'' only). Sinusoids are not free motions: the "
+          "cascaded controller then warns that the theorems' hypothesis does not hold"),
+      only("free_motion",
+           row("reference.initial_q", "vector (list)", "required",
+               "`free_motion`: the initial angles of the free motion [rad] (no other reference key applies).",
+               kAngle)),
+      only("free_motion", row("reference.initial_qdot", "vector (list)", "zeros",
+                              "`free_motion`: the initial rates of the free motion [rad/s].", kRate)),
+      only("sine", row("reference.offset", "vector or scalar", "required", "b [rad].", kAngle)),
+      only("sine",
+           row("reference.amplitude", "vector or scalar", "required",
+               "c [rad]; 0 on every joint makes q_d constant (= offset), the reference of the `set_point` "
+               "controller.",
+               kAngle)),
+      only("sine",
+           row("reference.frequency", "vector or scalar ≥ 0", "required", "w [rad/s].",
+               {0.0, 1e4, false, "rad/s", "1.6 kHz, above the Nyquist frequency of any arm's controller"})),
+      only("sine", row("reference.phase", "vector or scalar", "zeros", "p [rad].", kAngle)),
+      only("sine", row("reference.alpha", "vector or scalar > 0", "required for `smooth_sine`",
+                       "start-up rate [1/s³]; not allowed for `sine`.",
+                       {1e-6, 1e6, false, "1/s^3", "a start-up between 0.03 s and 300 s"})),
+      row("plant.physics_step", "number > 0", "`1.0e-4`",
+          "ODE step [s]; `1/publish_rate` must be a whole multiple of it.",
+          {1e-7, 1.0, false, "s",
+           "a step below 0.1 us only adds rounding; the steps a run asks for are bounded too"}),
+      row("plant.publish_rate", "number > 0", "`1000`",
+          "position samples per second [Hz]; one lockstep tick per sample, the controller runs at this "
+          "rate. Whether the sampled implementation is adequate at this rate is `check-gains`' "
+          "sampled-data check (docs/architecture.md, \"Sampled-data check\").",
+          {0.1, 1e5, false, "Hz", ""}),
+      row("plant.max_rate", "number > 0", "none",
+          "a limit on any body's angular rate [rad/s]: the plant stops the run when it is crossed "
+          "(exit 1, the limit named, the log kept). Unset, nothing but a failing simulation stops a "
+          "run: a non-finite state, or a body turning by more than π/2 per physics step (π/(2 "
+          "`physics_step`) rad/s, 62 832 rad/s at 2.5e-5 s), past which ODE cannot integrate the "
+          "motion. There is deliberately no default limit: the paper's results are global, and "
+          "converging runs from large errors pass through fast motion. ODE bleeds speed from fast "
+          "links long before that limit (about 14 % in 10 ms at 0.06 rad per step): fast motion wants "
+          "a small `physics_step`.",
+          {0.0, 1e9, true, "rad/s", ""}),
+      row("actuator.order", "integer 0–4", "`0`",
+          "m, the order of the actuator's integrator chain (eq. 600): 0, the torque passes through "
+          "(controller `theorem1`); m ≥ 1, u drives xi_m' and xi_1 is the torque (controller "
+          "`cascaded`). The chain is integrated exactly for u held over each period; the plant applies "
+          "xi_1 as it is at each actuator update (`actuator.rate`), held in between.",
+          {0.0, 4.0, false, "", ""}),
+      row("actuator.rate", "number > 0 [Hz]", "`plant.publish_rate`",
+          "how often the actuator updates the torque: a whole multiple S of `plant.publish_rate` whose "
+          "period is a whole multiple of `plant.physics_step`. The plant applies xi_1 at each update, "
+          "held until the next (S updates per period, carried in one ACTUATOR_STATE).",
+          {0.1, 1e6, false, "Hz", ""}),
+      row("actuator.initial_state", "list of m rows of n numbers (or one number per row)", "zeros",
+          "xi_1(0) … xi_m(0).", kLargeState),
+      row("actuator.saturation", "vector or scalar > 0", "none",
+          "per-joint torque limit [N m]; absent: no limit.", {0.0, 1e12, true, "N m", ""}),
+      row("controller.type", "string", "required",
+          "`theorem1`: eq. (90), for `actuator.order` 0; `cascaded`: eqs. (610a), (750), for "
+          "`actuator.order` ≥ 1 (its stage 0 takes `kp`, `kd`, `a`, `b`, `initial_filter_state` "
+          "below); `flexible`: the Corollary, eq. (830), for an arm with `robot.flexible` and "
+          "`actuator.order` 0 (the cascade with m = 2 on xi_1 = K q2, xi_2 = K q2'; stages below); "
+          "`pd_plus_differenced`: PD+ with the velocity replaced by the backward difference of the "
+          "positions, a baseline (docs/baselines.md; keys `kp`, `kd`, `actuator.order` 0); "
+          "`set_point`: Kelly's set-point controller, a baseline for a constant q_d (a `sine` "
+          "reference with amplitude 0; keys `kp`, `kd`, `a`, `b`); `nicosia_tomei`: PD+ on Nicosia and "
+          "Tomei's velocity observer, a baseline (keys `kp`, `kd`, `lp`, `ld`); `berghuis_nijmeijer`: "
+          "Berghuis and Nijmeijer's controller–observer, a baseline (keys `kp`, `kd`, `lambda`, `lp`, "
+          "`ld`); `pd_plus`: Paden and Panja's PD+ on the measured velocity, a baseline (keys `kp`, "
+          "`kd`; needs `sensors.velocity`); `slotine_li`: Slotine and Li's controller on the measured "
+          "velocity, a baseline (keys `lambda`, `kd`; needs `sensors.velocity`); `external`: a program "
+          "from outside the project in the controller's place, over LCM (keys `command`, "
+          "`working_directory`; [external_controllers.md](external_controllers.md)); or a type "
+          "registered by `controller::registerControllerKind` in programs built with it "
+          "(docs/architecture.md, \"Adding a controller\"): its own per-joint keys instead of the ones "
+          "below, `actuator.order` 0."),
+      only("registered", inside("controller.lambda", "controller.type", kGain)),
+      only("registered", inside("controller.ld", "controller.type", kGain)),
+      only("registered", inside("controller.lp", "controller.type", kGain)),
+      only("external",
+           row("controller.command", "list of strings", "required for `external`",
+               "the external controller's command line (argv, no shell): the launcher starts it in the "
+               "controller's place, supervises it (`supervision.restart` applies) and writes its output to "
+               "`controller.log`. The program is a name on PATH or a path, relative to the scenario file's "
+               "folder; a missing one is refused before anything starts. It finds the run in its "
+               "environment: `LAGRANGE_LCM_URL`, `LAGRANGE_RUN_ID`, `LAGRANGE_CONFIG` (the resolved "
+               "scenario), `LAGRANGE_JOINTS`, `LAGRANGE_MODE`")),
+      only("external", row("controller.working_directory", "path", "the scenario file's folder",
+                           "where the external controller starts (relative to the scenario file's folder)")),
+      only("paper",
+           row("controller.motor_rate", "`measured` or `filtered`", "required for `flexible`",
+               "where q2' comes from (the paper does not say): `measured` reads the rate sensors (needs "
+               "`robot.flexible.rate_sensor: true`), `filtered` estimates it as a s/(s + a) q2 (exact "
+               "discretisation, estimate 0 at t = 0)")),
+      only("paper",
+           row("controller.motor_rate_pole", "vector or scalar > 0", "`300`",
+               "a [1/s] of the `filtered` estimate; at 1 kHz, 300 converges on the shipped configs and 1000 "
+               "diverges (see `flexible_2dof_filtered_rate.yaml`).",
+               kGain)),
+      only("paper",
+           row("controller.kp", "vector or scalar > 0", "required", "proportional gain [N m/rad].", kGain)),
+      only("paper", row("controller.kd", "vector or scalar > 0", "required",
+                        "gain on the filter output θ [N m s/rad when b = a].", kGain)),
+      only("paper", row("controller.a", "vector or scalar > 0", "required", "filter pole [1/s].", kGain)),
+      only("paper", row("controller.b", "vector or scalar > 0", "required",
+                        "filter gain [1/s]; θ = b s/(s + a) q̃.", kGain)),
+      only("paper",
+           row("controller.initial_filter_state", "vector, scalar or `bumpless`", "zeros",
+               "qc(0); `bumpless` sets qc(0) = −b q̃(0) at the first sample, so θ(0) = 0.", kLargeState)),
+      only(
+          "paper",
+          row("controller.stages", "list of m maps (2 for `flexible`)", "required for `cascaded`, `flexible`",
+              "per stage i = 1..m, `{kp, kd, a, b}`, each a vector or scalar > 0: kp_i [1/s], kd_i, a_i "
+              "[1/s] (pole of the approximate differentiator of xi_i*), b_i; sigma_i = b_i kp_{i-1} "
+              "(sigma_1 = 0) is derived.")),
+      inside("controller.stages[i].a", "controller.stages", kGain),
+      inside("controller.stages[i].b", "controller.stages", kGain),
+      inside("controller.stages[i].kd", "controller.stages", kGain),
+      inside("controller.stages[i].kp", "controller.stages", kGain),
+      row("controller.stages[i].initial_filter_state", "vector, scalar or `bumpless`", "zeros",
+          "qc_i(0) of stage i, as stage 0's `initial_filter_state`: `bumpless` sets qc_i(0) = −b_i "
+          "xi_i*(0) − zeta_i(0) at the first sample, so theta_i(0) = 0. The default, zeros, gives "
+          "theta_i(0) = b_i xi_i*(0), a first command of kd_i b_i xi_i* more (hundreds of N m on the "
+          "shipped chain configs); kept as the default so that existing scenarios and logs replay "
+          "unchanged.",
+          kLargeState),
+      row("controller.stages[i].initial_zeta", "vector or scalar", "zeros", "zeta_i(0) of stage i.",
+          kLargeState),
+      row("metrics.tolerance", "number > 0", "`1.0e-3`", "tolerance on ‖q̃‖ [rad] for the convergence time.",
+          {0.0, 1e6, true, "rad", ""}),
+      row("metrics.convergence_deadline", "number > 0", "`5.0`",
+          "the scenario's stated metric: converged by this time [s] (`tracking.met`).",
+          {0.0, 1e9, true, "s", ""}),
+      row("metrics.xi_tolerance", "number > 0", "`1.0e-2`",
+          "cascaded controller: tolerance on every chain error ‖xi_i − xi_i*‖ [N m / s^(i−1)]; each "
+          "must also converge by the deadline for `tracking.met`.",
+          {0.0, 1e15, true, "", ""}),
+      row("lockstep.retransmit_timeout", "number > 0", "`0.05`",
+          "wall time [s] after which the plant re-sends a position nobody answered.",
+          {1e-3, 3600.0, false, "s",
+           "faster re-sends flood the bus and the log, where each is recorded, before an answer can come "
+           "back"}),
+      row("lockstep.stall_timeout", "number > 0", "`10`",
+          "wall time [s] the run may wait without progress: in lockstep for a tick's answer "
+          "(ACTUATOR_STATE, and so the controller's CONTROL_COMMAND) or for the logger; at the start — "
+          "every process reporting, the first tick answered, in either mode — three times as long "
+          "(processes load, check their gains, start a JVM), and so does a wait after the plant "
+          "receives SIGCONT (a restart by `supervision.restart`, or the plant resumed after a "
+          "SIGSTOP). Past it the plant stops the run (exit 1) naming whom it waited for, on which "
+          "channel, and what was seen instead, e.g. `plant: stalled at tick 0: no ACTUATOR_STATE "
+          "answered it in 30 s; awaited: the controller -- no valid CONTROL_COMMAND for tick 0 reached "
+          "the actuator (it accepted 0 CONTROL_COMMAND and rejected 214 (214 unauthenticated))`, "
+          "instead of waiting forever.",
+          {0.1, 86400.0, false, "s",
+           "shorter would stop runs that are only slow (a loaded machine, a sanitizer build); a day is past "
+           "any "
+           "run's pause"}),
+      row("lockstep.logger_window", "integer ≥ 1", "`20`",
+          "ticks the plant may run ahead of the logger (flow control, so the log misses nothing: what "
+          "is in flight must fit the logger's UDP receive buffer; the logger asks for 4 MB, which the "
+          "kernel caps at `net.core.rmem_max`, 208 kB on a stock Debian, where each small datagram "
+          "costs about 1 kB of it).",
+          {1.0, 1e4, false, "ticks", ""}),
+      row("realtime.max_torque_age", "integer ≥ 1", "`2`",
+          "realtime: a torque is fresh while the position it answers is at most this many periods old; "
+          "the plant normally applies the answer to the previous tick (age 1).",
+          {1.0, 1e6, false, "periods", ""}),
+      row("realtime.stale_torque", "string", "`hold`",
+          "realtime: what the plant does when no fresh torque is there: `hold` applies the newest "
+          "torque received (late, its final step held flat) while it is at most `hold_periods` periods "
+          "older than `max_torque_age` allows, then applies zero; `zero` applies zero at once. Both "
+          "are counted (`messages.stale.plant`). `hold` is the default because a scheduling hiccup of "
+          "a few ms on a shared machine would otherwise drop the arm under gravity"),
+      row("realtime.hold_periods", "integer ≥ 0", "`20`",
+          "realtime, policy `hold`: how many periods past `max_torque_age` a torque is still held (20 "
+          "periods: the limit robot interfaces such as Franka's allow before they stop).",
+          {0.0, 1e6, false, "periods", ""}),
+      row("realtime.priority", "integer 0–99", "`50`",
+          "realtime: SCHED_FIFO priority of the plant, controller and actuator (memory locked with "
+          "mlockall); 0 for the normal scheduler. Without root or CAP_SYS_NICE the processes warn and "
+          "run under the normal scheduler; `timing.loops.NAME.scheduler` says which.",
+          {0.0, 99.0, false, "", ""}),
+      row("realtime.max_input_age", "number > 0", "`0.005`",
+          "realtime: the controller never acts on a position older than this [s], the actuator never "
+          "on a command older than this; such inputs are skipped and counted.",
+          {1e-6, 3600.0, false, "s", ""}),
+      row("supervision.restart", "list of `controller`, `actuator`", "`[]`",
+          "processes the launcher restarts when they die (crash, signal): a fresh process with a fresh "
+          "state takes over mid-run. In realtime the plant's stale-torque policy holds the arm "
+          "meanwhile; a restarted Theorem 1 controller starts its filter afresh and brings the arm "
+          "back from wherever the gap left it. That it does is what the tests show for the shipped "
+          "configs; the paper's *global* result is about the continuous-time loop, and the sampled 1 "
+          "kHz loop is only covered locally, by the sampled-data check (`check-gains`; "
+          "docs/architecture.md), so a gap that throws the arm far enough can leave it outside what "
+          "the implementation recovers from. In lockstep the plant waits, re-sending its position, and "
+          "the actuator re-sends its last state (which a fresh cascaded controller needs) until the "
+          "new controller answers; the launcher sends the plant a SIGCONT when it restarts a process, "
+          "and the plant's wait then gets the start-up allowance (three times "
+          "`lockstep.stall_timeout`), since the fresh process loads and checks its gains first (a "
+          "SIGSTOP/SIGCONT of the plant gets the same). The plant (the simulated arm) and the logger "
+          "(the log) cannot be restarted"),
+      row("supervision.max_restarts", "integer ≥ 0", "`3`",
+          "restarts per process; its next death stops the run (exit 1, the process and how it died "
+          "named).",
+          {0.0, 1000.0, false, "", ""}),
+      row("faults.seed", "integer ≥ 0", "`1`",
+          "seed of the fault injection; each process draws its own stream from it and its name, the "
+          "same in every run with this seed.",
+          kSeed),
+      row("faults.channels.NAME", "map", "none",
+          "faults injected on the sending side of channel NAME (`PLANT_POSITION`, `PLANT_TRUTH`, "
+          "`PLANT_MOTOR`, `PLANT_RATE`, `CONTROL_COMMAND`, `ACTUATOR_STATE`, `STATUS`, `SCENARIO`, or "
+          "`all` for every channel without its own entry), each datagram independently: `drop`, "
+          "`duplicate` (sent twice), `reorder` (held back until the next datagram on the channel has "
+          "gone, at most 20 ms), `corrupt` (one byte flipped; caught by the message checksum or the "
+          "decoder, and then like a lost datagram) — probabilities 0–1, default 0 — and `delay` plus "
+          "uniform `delay_jitter` [s] ≥ 0, default 0. Counted in `summary.json` "
+          "(`messages.CHANNEL.injected`). Example: `--set 'faults.channels.all={drop: 0.05, duplicate: "
+          "0.05, reorder: 0.05}'`."),
+      inside("faults.channels.NAME.corrupt", "faults.channels.NAME", kProbability),
+      inside("faults.channels.NAME.delay", "faults.channels.NAME", kFaultDelay),
+      inside("faults.channels.NAME.delay_jitter", "faults.channels.NAME", kFaultDelay),
+      inside("faults.channels.NAME.drop", "faults.channels.NAME", kProbability),
+      inside("faults.channels.NAME.duplicate", "faults.channels.NAME", kProbability),
+      inside("faults.channels.NAME.reorder", "faults.channels.NAME", kProbability),
+      row("faults.receivers.PROCESS.drop", "probability 0–1", "none",
+          "a loss only PROCESS (`plant`, `controller`, `actuator`, `logger`) sees: each datagram that "
+          "reaches it, on any channel, is dropped before it is recorded or decoded — as a datagram "
+          "lost on the way to one host of a real network. The draw is a seeded hash of the datagram's "
+          "bytes (a re-sent copy draws again). Counted in `summary.json` "
+          "(`messages.CHANNEL.injected.lost_on_receive`). Example: `--set "
+          "'faults.receivers.logger={drop: 0.05}'`: in lockstep the log is still complete, since the "
+          "plant re-sends every tick the logger has not confirmed.",
+          kProbability),
+      row("sensors.seed", "integer ≥ 0", "1",
+          "seeds the sensor noise's draws: the same seed gives the same readings in lockstep, "
+          "realtime, in-process and replay. Without a `sensors` section PLANT_POSITION carries the "
+          "true angles.",
+          kSeed),
+      row("sensors.position.counts_per_revolution", "vector or scalar, whole numbers ≥ 0", "0",
+          "the joint encoder's resolution, N: PLANT_POSITION carries floor(angle / Δ) Δ, Δ = 2π / N "
+          "(the count below the angle, as an incremental encoder counts: half a count of bias on "
+          "average); 0: not quantised. PLANT_TRUTH keeps the true angles (plant/joint_sensor.hpp).",
+          kCounts),
+      row("sensors.position.noise_sigma", "vector or scalar ≥ 0", "0",
+          "standard deviation of a Gaussian noise added to each reading before quantisation [rad], one "
+          "draw per joint and tick.",
+          kNoise),
+      row("sensors.position.delay", "integer ≥ 0", "0",
+          "the reading of tick k is of the angle at tick k − delay (whole samples; before that, the "
+          "angle at tick 0).",
+          kSensorDelay),
+      row("sensors.velocity.noise_sigma", "vector or scalar ≥ 0", "0",
+          "a `sensors.velocity` section declares a velocity sensor (tachometer) on every joint: the "
+          "plant publishes its reading on PLANT_RATE, just before the PLANT_POSITION of the same tick. "
+          "Only with it may a controller that measures the velocity (`pd_plus`, `slotine_li`) run; the "
+          "paper's controllers and the observer-based baselines never receive it. `sensors: {velocity: "
+          "{}}` declares an exact one; its draws are its own (the position sensor's do not change when "
+          "it is added). This key: the standard deviation of a Gaussian noise added to each rate "
+          "reading [rad/s], one draw per joint and tick.",
+          kNoise),
+      row("sensors.velocity.delay", "integer ≥ 0", "0",
+          "the rate reading of tick k is of the rate at tick k − delay (whole samples).", kSensorDelay),
+      row("sensors.motor.counts_per_revolution", "vector or scalar, whole numbers ≥ 0", "0",
+          "a `sensors.motor` section (flexible joints only, `robot.flexible`) declares a sensor on the "
+          "motor angles q2, which PLANT_MOTOR then carries instead of the true ones; the motor rates "
+          "q2' (`robot.flexible.rate_sensor`) stay exact, and its draws are its own. This key: the "
+          "motor encoder's resolution, as `sensors.position.counts_per_revolution`.",
+          kCounts),
+      row("sensors.motor.noise_sigma", "vector or scalar ≥ 0", "0",
+          "noise on each motor-angle reading [rad], as `sensors.position.noise_sigma`.", kNoise),
+      row("sensors.motor.delay", "integer ≥ 0", "0", "the motor reading of tick k is of tick k − delay.",
+          kSensorDelay),
+      row("compare.controllers.TYPE", "map of TYPE's keys", "absent",
+          "`lagrange compare` only (docs/comparison.md; `lagrange run` carries it along and ignores "
+          "it): a controller to compare, TYPE its `controller.type`, the map its other `controller.*` "
+          "keys (e.g. `pd_plus: {kp: [150, 10], kd: [15, 1]}`); its run gets `controller = {type: "
+          "TYPE, …}`. An empty map for the scenario's own `controller.type` keeps the `controller` "
+          "section as it is. In file order; `--controllers` picks some"),
+      row("compare.sweep.key", "a dotted key", "absent",
+          "`lagrange compare` also runs every controller for each value of this key (e.g. "
+          "`sensors.position.counts_per_revolution`, `sensors.position.noise_sigma`, "
+          "`plant.publish_rate`) and plots the steady-state error against it; `--sweep` overrides"),
+      row("compare.sweep.values", "list", "required with `key`",
+          "the values, each as it would be written after `--set KEY=`")
+
+  };
+}
+
+}  // namespace
+
+const std::vector<KeyInfo>& keyTable() {
+  static const std::vector<KeyInfo> table = makeTable();
+  return table;
+}
+
+std::set<std::string> keysUnder(const std::string& section, const std::string& variant) {
+  const std::string prefix = section.empty() ? "" : section + ".";
+  std::map<std::string, std::string> variant_of;
+  for (const KeyInfo& k : keyTable()) variant_of[k.key] = k.variant;
+  std::set<std::string> keys;
+  for (const KeyInfo& k : keyTable()) {
+    if (k.key.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string rest = k.key.substr(prefix.size());
+    const std::string child = rest.substr(0, rest.find_first_of(".["));
+    // The child's own row decides ("controller.stages" is the paper
+    // controllers', and so is every key below it); a section that is no key
+    // of its own ("robot.urdf") goes by the key that put it here.
+    const auto own = variant_of.find(prefix + child);
+    const std::string& of = own != variant_of.end() ? own->second : k.variant;
+    if (of.empty() || of == variant) keys.insert(child);
+  }
+  return keys;
+}
+
+}  // namespace lagrange::config
