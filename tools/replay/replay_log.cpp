@@ -1,7 +1,9 @@
 #include "tools/replay/replay_log.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <set>
 
 #include "logs/log_reader.hpp"
@@ -125,7 +127,12 @@ std::string compare(const std::string& field, const std::vector<double>& recorde
 }
 
 std::string compare(const std::string& field, double recorded, double replayed) {
-  if (recorded == replayed) return "";
+  // Bit for bit, not ==: a NaN replayed as the same NaN matches, and -0
+  // replayed as +0 is a difference (== says the opposite of both).
+  std::uint64_t recorded_bits = 0, replayed_bits = 0;
+  std::memcpy(&recorded_bits, &recorded, sizeof recorded);
+  std::memcpy(&replayed_bits, &replayed, sizeof replayed);
+  if (recorded_bits == replayed_bits) return "";
   return field + ": recorded " + show(recorded) + ", replayed " + show(replayed);
 }
 

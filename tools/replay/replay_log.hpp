@@ -71,7 +71,8 @@ ReplayResult replayWith(const std::string& log_path, const std::vector<std::stri
 /// controller process sends), "" when every one matches bit for bit.
 std::string commandDifference(const lagrange::control_command_t& rec, const controller::Theorem1Output& out);
 
-/// "" when equal bit for bit, else "FIELD[i]: recorded X, replayed Y".
+/// "" when equal bit for bit (the same NaN matches, -0 and +0 differ), else
+/// "FIELD[i]: recorded X, replayed Y" with both exact (%.17g).
 std::string compare(const std::string& field, const std::vector<double>& recorded,
                     const Eigen::VectorXd& replayed);
 std::string compare(const std::string& field, double recorded, double replayed);

@@ -1,7 +1,6 @@
 #include "tools/run/run_command.hpp"
 
 #include <fcntl.h>
-#include <poll.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,17 +15,18 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <random>
-#include <sstream>
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_report_json.hpp"
-#include "logger/error_line.hpp"
 #include "logs/out_dir_lock.hpp"
 #include "runtime/key_file.hpp"
 #include "tools/command_error.hpp"
 #include "tools/report/report.hpp"
+#include "tools/run/launch_rules.hpp"
+#include "tools/run/progress_reader.hpp"
 #include "tools/run/run_key.hpp"
+#include "tools/run/run_outcome.hpp"
 #include "tools/spy/spy.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -129,42 +129,6 @@ void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
   util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
 }
 
-// Reads "sim_time tracking_error" lines from the logger's progress pipe.
-class ProgressReader {
- public:
-  explicit ProgressReader(int fd) : fd_(fd) {}
-  /// Waits up to timeout_ms for data; returns the newest complete line's values.
-  std::optional<std::pair<double, double>> wait(int timeout_ms) {
-    pollfd p{fd_, POLLIN, 0};
-    if (poll(&p, 1, timeout_ms) <= 0) return std::nullopt;
-    char buf[4096];
-    const ssize_t got = read(fd_, buf, sizeof buf);
-    if (got <= 0) return std::nullopt;
-    pending_.append(buf, static_cast<size_t>(got));
-    std::optional<std::pair<double, double>> newest;
-    for (size_t end; (end = pending_.find('\n')) != std::string::npos; pending_.erase(0, end + 1)) {
-      const std::string line = pending_.substr(0, end);
-      // The logger's last word when it stops on an error (logger/main.cpp):
-      // its own log may be on the disk that just filled up.
-      if (line.rfind(logger::kLoggerErrorPrefix, 0) == 0) {
-        logger_error_ = line.substr(std::strlen(logger::kLoggerErrorPrefix));
-        continue;
-      }
-      std::istringstream in(line);
-      double t = 0.0, error = 0.0;
-      if (in >> t >> error) newest = std::make_pair(t, error);
-    }
-    return newest;
-  }
-  /// Why the logger stopped, if it said so ("" otherwise).
-  const std::string& loggerError() const { return logger_error_; }
-
- private:
-  int fd_;
-  std::string pending_;
-  std::string logger_error_;
-};
-
 void printTail(const std::string& path, int lines) {
   std::ifstream in(path);
   std::vector<std::string> all;
@@ -182,26 +146,7 @@ void printResult(const std::string& out_dir) {
     std::cout << "summary.json could not be read in " << out_dir << "\n";
     return;
   }
-  const auto& t = j["tracking"];
-  std::printf("\nscenario %s: %s\n", j["scenario"].get<std::string>().c_str(),
-              j["status"].get<std::string>().c_str());
-  std::printf("  final tracking error  %.3e rad (tolerance %.1e)\n", t["final_error"].get<double>(),
-              t["tolerance"].get<double>());
-  if (t["convergence_time"].is_null())
-    std::printf("  convergence time      never (the error did not stay below the tolerance)\n");
-  else
-    std::printf("  convergence time      %.3f s (deadline %.3f s: %s)\n", t["convergence_time"].get<double>(),
-                t["convergence_deadline"].get<double>(), t["met"].get<bool>() ? "met" : "MISSED");
-  std::printf("  max |torque|          %.3f N m\n", j["torque"]["max_abs"].get<double>());
-  // A controller without a known stability condition has no verdict to print.
-  if (j["gains"].value("checked", true))
-    std::printf("  gain condition        %s (margin %.4g)\n",
-                j["gains"]["condition_holds"].get<bool>() ? "holds" : "VIOLATED",
-                j["gains"]["margin"].get<double>());
-  else
-    std::printf("  gain condition        not checked (%s)\n", j["gains"].value("why", "").c_str());
-  std::printf("  sim %.2f s in %.2f s wall (%.1fx real time)\n", j["timing"]["sim_time"].get<double>(),
-              j["timing"]["wall_time"].get<double>(), j["timing"]["realtime_factor"].get<double>());
+  std::cout << resultText(j) << std::flush;
   std::string files;
   for (const auto& entry : fs::directory_iterator(out_dir))
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
@@ -219,48 +164,10 @@ int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code
               << "; expected the logger's summary of this run\n";
     return kExitMetricMissed;
   }
-  const auto& t = j.at("tracking");
-  if (t.at("met").get<bool>()) return kExitOk;
-  const double deadline = t.at("convergence_deadline").get<double>();
-  auto when = [](const nlohmann::json& ct) {
-    return ct.is_null() ? std::string("never") : std::to_string(ct.get<double>()) + " s";
-  };
-  std::cerr << "lagrange run: --check: metric MISSED: ||q~|| below " << t.at("tolerance").get<double>()
-            << " rad by t = " << deadline << " s and staying there: converged "
-            << when(t.at("convergence_time")) << ", final error " << t.at("final_error").get<double>()
-            << " rad\n";
-  if (t.contains("chain"))
-    for (const auto& c : t.at("chain"))
-      if (c.at("convergence_time").is_null() || c.at("convergence_time").get<double>() > deadline)
-        std::cerr << "lagrange run: --check: metric MISSED: ||xit_" << c.at("stage").get<int>() << "|| below "
-                  << c.at("tolerance").get<double>() << " by t = " << deadline << " s: converged "
-                  << when(c.at("convergence_time")) << ", final error " << c.at("final_error").get<double>()
-                  << "\n";
+  const std::vector<std::string> missed = missedMetrics(j);
+  if (missed.empty()) return kExitOk;
+  for (const std::string& line : missed) std::cerr << "lagrange run: --check: " << line << "\n";
   return kExitMetricMissed;
-}
-
-bool runsHere(const RunOptions& opt, const std::string& process) {
-  return opt.processes.empty() ||
-         std::find(opt.processes.begin(), opt.processes.end(), process) != opt.processes.end();
-}
-
-// A run spread over hosts: each launcher starts its share, on a URL they all use.
-std::string checkProcesses(const RunOptions& opt) {
-  for (const auto& p : opt.processes)
-    if (std::find(kProcesses.begin(), kProcesses.end(), p) == kProcesses.end())
-      return "--processes: unknown process '" + p + "'; expected some of logger, controller, actuator, plant";
-  if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) return "";
-  if (opt.private_netns)
-    return "--processes starts part of a run here and the rest runs elsewhere, which a private network "
-           "namespace would cut off; add --no-netns";
-  if (opt.lcm_url.empty())
-    return "--processes: every host must use the same LCM URL; give it with --lcm-url (TTL 1 or more to "
-           "cross "
-           "hosts, e.g. udpm://239.255.76.67:7667?ttl=1)";
-  if (opt.key_file.empty())
-    return "--processes: every host must sign with the same secret key; make one with `lagrange keygen "
-           "FILE`, copy it to each host (mode 600) and give it with --key-file FILE";
-  return "";
 }
 
 // --report: CSV and plots of the log in OUT/report; a failed or diverged run
@@ -294,10 +201,7 @@ int64_t runIdFor(const RunOptions& opt, const std::string& url, const std::strin
     return static_cast<int64_t>(r >> 1) | 1;  // positive, never 0 ("any run")
   }
   std::ifstream in(resolved_path);
-  const std::string text = url + "\n" + std::string(std::istreambuf_iterator<char>(in), {});
-  uint64_t h = 1469598103934665603ULL;
-  for (const unsigned char ch : text) h = (h ^ ch) * 1099511628211ULL;
-  return static_cast<int64_t>(h >> 1) | 1;
+  return sharedRunId(url, std::string(std::istreambuf_iterator<char>(in), {}));
 }
 
 // CPU time of a process, summed over its restarts.
@@ -306,17 +210,6 @@ void addCpu(nlohmann::json& cpu, const wiring::ChildExit& e) {
   if (!c.is_object()) c = {{"user", 0.0}, {"system", 0.0}};
   c["user"] = c.value("user", 0.0) + e.cpu_user;
   c["system"] = c.value("system", 0.0) + e.cpu_system;
-}
-
-// A dead process is restarted when the scenario says so and it has restarts
-// left; every death is noted in `supervision` either way.
-bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervision,
-                const wiring::ChildExit& e) {
-  const int done = supervision["restarts"].value(e.name, 0);
-  const bool restart = policy.restarts(e.name) && done < policy.max_restarts;
-  supervision["deaths"].push_back({{"process", e.name}, {"how", e.describe()}, {"restarted", restart}});
-  if (restart) supervision["restarts"][e.name] = done + 1;
-  return restart;
 }
 
 // The files the launcher wrote for its processes to read.
@@ -404,9 +297,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
 
   int exit_code = kExitOk;
   nlohmann::json cpu = nlohmann::json::object();
-  nlohmann::json supervision = {{"restart", scenario.supervision.restart},
-                                {"restarts", nlohmann::json::object()},
-                                {"deaths", nlohmann::json::array()}};
+  nlohmann::json supervision = supervisionRecord(scenario.supervision);
   // After the plant has finished, the others get this long to follow (they
   // normally need milliseconds); then they are stopped, so that a lost final
   // STATUS can never hang a run.
@@ -437,7 +328,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       addCpu(cpu, e);
       if (e.name == "plant" && !e.failed()) plant_done = std::chrono::steady_clock::now();
       if (!e.failed()) continue;
-      if (!plant_done && mayRestart(scenario.supervision, supervision, e)) {
+      if (!plant_done && mayRestart(scenario.supervision, supervision, e.name, e.describe())) {
         progress.finish();
         std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
                   << "; restarting it (restart " << supervision["restarts"][e.name].get<int>()

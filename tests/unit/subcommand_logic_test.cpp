@@ -1,0 +1,138 @@
+// The logic of `lagrange spy`, `report` and `replay` that needs no run:
+// the endpoint file a run leaves for spy and view (tools/spy/spy.hpp), the
+// plots report draws from a run's CSV files (tools/report/plots.hpp), and
+// replay's bit-for-bit comparison (tools/replay/replay_log.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "support/temp_dir.hpp"
+#include "tools/replay/replay_log.hpp"
+#include "tools/report/plots.hpp"
+#include "tools/spy/spy.hpp"
+#include "util/error.hpp"
+
+namespace lagrange::tools {
+namespace {
+
+class SubcommandLogic : public lagrange::testing::TempDirTest {
+ protected:
+  void writeFile(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ + "/" + name) << text;
+  }
+  static bool has(const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  }
+};
+
+TEST_F(SubcommandLogic, SpyFindsTheRunItsEndpointFileNames) {
+  RunEndpoint written;
+  written.lcm_url = "udpm://239.255.76.67:7701?ttl=0";
+  written.run_id = 12345;
+  written.netns_pid = 4242;
+  written.launcher_pid = 4240;
+  writeEndpoint(dir_, written);
+  const RunEndpoint read = readEndpoint(dir_);
+  EXPECT_EQ(read.lcm_url, written.lcm_url);
+  EXPECT_EQ(read.run_id, 12345);
+  EXPECT_EQ(read.netns_pid, 4242);
+  EXPECT_EQ(read.launcher_pid, 4240);
+
+  // A run on the machine's network, written before launcher_pid existed.
+  writeFile("lcm.json", R"({"lcm_url": "udpm://239.255.76.67:7667", "netns_pid": null})");
+  const RunEndpoint old = readEndpoint(dir_);
+  EXPECT_FALSE(old.netns_pid.has_value());
+  EXPECT_FALSE(old.launcher_pid.has_value());
+  EXPECT_EQ(old.run_id, 0);
+}
+
+TEST_F(SubcommandLogic, SpyRefusesAMissingOrForeignEndpointFileNamingIt) {
+  try {
+    readEndpoint(dir_);
+    FAIL() << "a directory without lcm.json was accepted";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find(dir_ + "/lcm.json"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inproc runs have no LCM traffic"), std::string::npos) << e.what();
+  }
+  for (const char* text :
+       {"{not json", R"({"url": "udpm://x"})", R"({"lcm_url": 7, "netns_pid": null})", "\0\0"}) {
+    writeFile("lcm.json", text);
+    try {
+      readEndpoint(dir_);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const BadInput& e) {
+      EXPECT_NE(std::string(e.what()).find("is not what lagrange run writes"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {
+  writeFile("PLANT_TRUTH.csv", "utime,t,tick,q[0],q[1],qdot[0],qdot[1],tau[0],tau[1]\n1,0,0,0,0,0,0,0,0\n");
+  writeFile("CONTROL_COMMAND.csv",
+            "utime,t,tick,u[0],u[1],q_desired[0],q_desired[1],q_error[0],q_error[1],theta[0],theta[1],"
+            "filter_state[0],filter_state[1]\n");
+  PlotSpec spec = specFromCsv(dir_, "rigid \"2dof\"");
+  EXPECT_EQ(spec.dof, 2);
+  EXPECT_EQ(spec.chain_order, 0);
+  EXPECT_FALSE(spec.flexible);
+  spec.tolerance = 1e-3;
+  spec.joint_names = {"shoulder", "elbow"};
+  const PlotScript script = plotScript(spec);
+  for (const char* png : {"tracking_error.png", "joints.png", "torques.png", "filter_states.png"})
+    EXPECT_TRUE(has(script.pngs, png)) << png;
+  for (const char* png : {"chain_error.png", "actuator_states.png", "motors.png", "timing.png"})
+    EXPECT_FALSE(has(script.pngs, png)) << png << " drawn without its data";
+  ASSERT_EQ(script.sections.size(), script.pngs.size());
+  for (const std::string& section : script.sections)
+    EXPECT_EQ(section.rfind(kGnuplotPreamble, 0), 0u) << "each picture's script stands alone";
+  EXPECT_NE(script.text.find("metrics.tolerance = 0.001"), std::string::npos)
+      << "the tolerance line is drawn";
+  EXPECT_NE(script.text.find("elbow"), std::string::npos) << "joint names label the panels";
+  EXPECT_NE(script.text.find("rigid \\\"2dof\\\""), std::string::npos) << "a quote in the title is escaped";
+
+  // A chain's CONTROL_COMMAND has xi_error columns per stage: its stages are drawn.
+  writeFile("CONTROL_COMMAND.csv",
+            "utime,t,tick,u[0],u[1],q_error[0],q_error[1],xi_error[0][0],xi_error[0][1],xi_error[1][0],"
+            "xi_error[1][1]\n");
+  writeFile("ACTUATOR_STATE.csv", "utime,t,tick,xi[0][0],xi[0][1],xi[1][0],xi[1][1]\n");
+  const PlotSpec chain = specFromCsv(dir_, "chain");
+  EXPECT_EQ(chain.chain_order, 2);
+  EXPECT_TRUE(has(plotScript(chain).pngs, "chain_error.png"));
+}
+
+TEST(ReplayCompare, IsBitForBit) {
+  using replay_log::compare;
+  EXPECT_EQ(compare("u[0]", 0.1, 0.1), "");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(compare("u[0]", nan, nan), "") << "the same NaN replayed is no difference";
+  EXPECT_EQ(compare("u[0]", 0.0, -0.0), "u[0]: recorded 0, replayed -0");
+  const double next = std::nextafter(0.1, 1.0);
+  EXPECT_EQ(compare("theta[1]", 0.1, next),
+            "theta[1]: recorded 0.10000000000000001, replayed 0.10000000000000002");
+  Eigen::VectorXd replayed(2);
+  replayed << 1.0, 2.0;
+  EXPECT_EQ(compare("u", std::vector<double>{1.0, 2.0}, replayed), "");
+  EXPECT_EQ(compare("u", std::vector<double>{1.0, 3.0}, replayed), "u[1]: recorded 3, replayed 2");
+  EXPECT_EQ(compare("u", std::vector<double>{1.0}, replayed), "u: recorded 1 values, replayed 2");
+  EXPECT_EQ(replay_log::at(42, 0.042), "tick 42 (t = 0.042000 s): ");
+}
+
+TEST(ReplayCompare, AMissingInputIsNamedWithTheOutputItFeeds) {
+  const std::map<int64_t, int> positions = {{1, 10}, {2, 20}};
+  EXPECT_EQ(replay_log::input(positions, 2, "PLANT_POSITION", "CONTROL_COMMAND", 2), 20);
+  try {
+    replay_log::input(positions, 3, "PLANT_POSITION", "CONTROL_COMMAND", 3);
+    FAIL() << "a missing tick was found";
+  } catch (const ReplayError& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "the log lacks PLANT_POSITION tick 3, an input of CONTROL_COMMAND tick 3; outputs before it were "
+        "replayed");
+  }
+}
+
+}  // namespace
+}  // namespace lagrange::tools
