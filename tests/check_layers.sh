@@ -97,7 +97,15 @@ while IFS= read -r hit; do
   [[ -n $own ]] || continue  # in no layer: said above
   header=${rest#*\"}
   header=${header%%\"*}
-  [[ $header == */* ]] || continue  # a header next to the file ("rk4.hpp"): its own folder
+  if [[ $header != */* ]]; then
+    # A header next to the file ("rk4.hpp"): its own folder, so its own layer
+    # -- if it is there; found anywhere else it came through an include
+    # directory this check does not know.
+    [[ -f $(dirname "$f")/$header ]] && continue
+    echo "$f:$line: #include \"$header\" is not next to $f; expected its path from the repository root (layer/file.hpp)"
+    failures=$((failures + 1))
+    continue
+  fi
   place "$header"
   theirs=$layer
   [[ -n $theirs ]] || continue      # not a project header (a test's "support/...")
@@ -126,7 +134,7 @@ cmake_commands() {
     dir=$(dirname "${f#./}")
     # Commands are case-insensitive in CMake and may have blanks before "(".
     sed 's/#.*//' "$f" | tr '\r\n' '  ' |
-      { grep -ioE '(add_library|add_executable|target_link_libraries|lagrange_subcommand)[[:space:]]*\([^)]*\)' ||
+      { grep -ioE '(add_library|add_executable|target_link_libraries|target_include_directories|lagrange_subcommand)[[:space:]]*\([^)]*\)' ||
         true; } |
       sed -E "s/^([A-Za-z_]+)[[:space:]]*\(/\L\1(/; s|^|$dir\t|"
   done < <(find . \( -name 'build*' -o -name .git -o -name runs -o -name tests -o -name bench -o -name fuzz \) \
@@ -161,6 +169,12 @@ place_library() {
 }
 links=()
 links_checked=0
+include_dirs=0
+bad_include_dir() {
+  echo "$1/CMakeLists.txt: $2 adds the include directory $3; expected only the repository root" \
+    '(${PROJECT_SOURCE_DIR}), from which every include names its layer'
+  failures=$((failures + 1))
+}
 while IFS=$'\t' read -r dir command; do
   kind=${command%%(*}
   read -ra args <<<"${command#*(}"
@@ -190,6 +204,18 @@ while IFS=$'\t' read -r dir command; do
       links+=("$dir $name ${tool_links[*]}")
       ;;
     target_link_libraries) links+=("$dir ${args[*]}") ;;
+    target_include_directories)
+      # The repository root is the one include directory (and the generated
+      # message headers'): every include then names its header's layer.
+      for a in "${args[@]:1}"; do
+        case $a in
+          PUBLIC | PRIVATE | INTERFACE | SYSTEM | BEFORE | AFTER | '${PROJECT_SOURCE_DIR}') ;;
+          '${cpp_out}') [[ $dir == lcmtypes ]] || bad_include_dir "$dir" "${args[0]}" "$a" ;;
+          *) bad_include_dir "$dir" "${args[0]}" "$a" ;;
+        esac
+      done
+      include_dirs=$((include_dirs + 1))
+      ;;
   esac
 done < <(cmake_commands)
 for link in "${links[@]}"; do
@@ -210,7 +236,7 @@ for link in "${links[@]}"; do
     failures=$((failures + 1))
   done
 done
-if ((libraries < 20 || links_checked < 40)); then
+if ((libraries < 20 || links_checked < 40 || include_dirs < 3)); then
   echo "check_layers.sh: only $libraries libraries and $links_checked links between them found in" \
     "CMakeLists.txt files; expected the project's" >&2
   exit 1
@@ -220,4 +246,4 @@ if ((failures > 0)); then
   echo "$failures include(s) or link(s) point up the layers, or files or libraries are in none" >&2
   exit 1
 fi
-echo "layers: $checked files, every include points down; $libraries libraries, $links_checked links, every one points down"
+echo "layers: $checked files, every include points down; $libraries libraries, $links_checked links, every one points down; $include_dirs include directories, each the root"

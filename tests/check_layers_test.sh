@@ -1,8 +1,10 @@
 #!/bin/bash
 # Proves that tests/check_layers.sh can fail: on a copy of the sources, an
 # include planted up the layers, a file in no layer, a transport header in
-# config other than the fault rule, a CMake link up the layers and a library
-# in two layers are each named and fail the check; the copy as it is passes.
+# config other than the fault rule, a CMake link up the layers, a library in
+# two layers, an include directory other than the repository root and a bare
+# include of a header from another folder are each named and fail the check;
+# the copy as it is passes.
 # Then docs/architecture.md must show the rules the check enforces (its
 # --rules table, verbatim).
 # Usage: tests/check_layers_test.sh SOURCE_DIR
@@ -56,6 +58,15 @@ cp "$work/tree/transport/CMakeLists.txt" "$work/transport.cmake"
 echo 'add_library(lagrange_mixed lcm_node.cpp ${PROJECT_SOURCE_DIR}/tools/front_end.cpp)' >>"$work/tree/transport/CMakeLists.txt"
 expect_failure "a library in two layers" 'transport/CMakeLists\.txt: library lagrange_mixed mixes layers \(transport process\)'
 cp "$work/transport.cmake" "$work/tree/transport/CMakeLists.txt"
+
+# Include directories: one that would let a file include a header of
+# another folder by its bare name, and such an include.
+echo 'target_include_directories(lagrange_model PUBLIC ${PROJECT_SOURCE_DIR}/controller)' >>"$work/tree/model/CMakeLists.txt"
+expect_failure "an include directory below the root" 'model/CMakeLists\.txt: lagrange_model adds the include directory \$\{PROJECT_SOURCE_DIR\}/controller'
+cp "$work/model.cmake" "$work/tree/model/CMakeLists.txt"
+echo '#include "theorem1.hpp"' >>"$work/tree/model/bounds.cpp"
+expect_failure "a bare include from another folder" 'model/bounds\.cpp:[0-9]+: #include "theorem1\.hpp" is not next to model/bounds\.cpp'
+cp "$work/bounds.cpp" "$work/tree/model/bounds.cpp"
 
 bash "$check" "$work/tree" >/dev/null || fail "the restored copy does not pass"
 
