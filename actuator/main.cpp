@@ -19,7 +19,7 @@ namespace {
 int DoMain(int argc, char** argv) {
   return runtime::runProcess(
       "actuator", "Actuator dynamics between controller and plant (order m = 0: pass-through).", argc, argv,
-      nullptr, nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
+      {}, nullptr, [](const config::Scenario& s, transport::LcmNode& node) {
         actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation,
                                       s.actuator.initial_state);
         const std::function<lagrange::actuator_state_t(const lagrange::control_command_t&)> compute =

@@ -35,14 +35,10 @@ int DoMain(int argc, char** argv) {
       "Position-feedback tracking controller over LCM: the scenario's controller.type (Theorem 1, eq. 90; "
       "cascaded, eq. 750; flexible, eq. 830; or a registered one).",
       argc, argv,
-      [&](CLI::App& app) {
-        app.add_flag(
-            "--strict", strict,
-            "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
-        app.add_option("--gains", gains_path,
-                       "The launcher's gain report of this scenario (OUT/gains.json), instead of checking "
-                       "the gains again");
-      },
+      {{"--strict", &strict,
+        "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated"},
+       {"--gains", &gains_path,
+        "The launcher's gain report of this scenario (OUT/gains.json), instead of checking the gains again"}},
       // The launcher prints the sampled-data check; here it would only delay the first tick.
       [&](const config::Scenario& s) {
         controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);

@@ -28,19 +28,15 @@ int DoMain(int argc, char** argv) {
   controller::GainReport gains;
   return runtime::runProcess(
       "logger", "Records every LCM channel to run.lcm and writes summary.json.", argc, argv,
-      [&](CLI::App& app) {
-        app.add_option("-o,--out", options.out_dir, "Directory for run.lcm and summary.json")
-            ->capture_default_str();
-        app.add_option("--finish-grace", options.finish_grace,
-                       "Seconds to wait for the other processes' final STATUS after the plant finished")
-            ->capture_default_str();
-        app.add_option("--progress-fd", options.progress_fd,
-                       "File descriptor to write progress lines to (\"SIM_TIME ERROR\" every 100 ms); "
-                       "the launcher uses it for its progress display");
-        app.add_option("--gains", gains_path,
-                       "The launcher's gain report of this scenario (OUT/gains.json) for summary.json, "
-                       "instead of checking the gains again");
-      },
+      {{"-o,--out", &options.out_dir, "Directory for run.lcm and summary.json", true},
+       {"--finish-grace", &options.finish_grace,
+        "Seconds to wait for the other processes' final STATUS after the plant finished", true},
+       {"--progress-fd", &options.progress_fd,
+        "File descriptor to write progress lines to (\"SIM_TIME ERROR\" every 100 ms); the launcher uses it "
+        "for its progress display"},
+       {"--gains", &gains_path,
+        "The launcher's gain report of this scenario (OUT/gains.json) for summary.json, instead of checking "
+        "the gains again"}},
       // The gain report goes into summary.json; read (or computed) here,
       // under the normal scheduler (runtime/process.hpp).
       [&](const config::Scenario& s) {

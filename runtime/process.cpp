@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -33,7 +34,7 @@ std::string withReceiveBuffer(const std::string& url, int bytes) {
 }
 
 int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
-               const std::function<void(CLI::App&)>& add_options, const ProcessPrepare& prepare,
+               const std::vector<ProcessOption>& options, const ProcessPrepare& prepare,
                const ProcessBody& body, int receive_buffer_bytes) {
   CLI::App app{description, "lagrange-" + name};
   std::string config_path;
@@ -51,7 +52,17 @@ int runProcess(const std::string& name, const std::string& description, int argc
   app.add_option("--key-file", key_file,
                  "The run's secret key (64 hex digits, mode 600): every message is signed with it and "
                  "must carry its MAC (without: neither signed nor checked)");
-  if (add_options) add_options(app);
+  for (const ProcessOption& o : options) {
+    CLI::Option* option = std::visit(
+        [&](auto* target) -> CLI::Option* {
+          if constexpr (std::is_same_v<decltype(target), bool*>)
+            return app.add_flag(o.names, *target, o.help);
+          else
+            return app.add_option(o.names, *target, o.help);
+        },
+        o.target);
+    if (o.show_default) option->capture_default_str();
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,10 +5,11 @@
 /// (a user error prints what was wrong and what was expected, then exits 2;
 /// a runtime failure exits 1). Process mains stay thin by building on it.
 
-#include <CLI/CLI.hpp>
 #include <functional>
 #include <map>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "config/scenario.hpp"
 #include "runtime/status_reporter.hpp"
@@ -43,14 +44,26 @@ using ProcessBody = std::function<int(const config::Scenario&, transport::LcmNod
 /// actuator's loop at the start of a realtime Panda run, before this hook).
 using ProcessPrepare = std::function<void(const config::Scenario&)>;
 
-/// Parses the common options (plus those `add_options` adds), installs the
+/// An option of one process beyond the common ones: "--name VALUE" into a
+/// string, a number or a whole number, or a flag into a bool. (Declared here
+/// rather than on CLI11's App, so that CLI11, header-only in Debian 12 and
+/// about ten seconds of compile time in every file that uses it, is compiled
+/// once, in process.cpp, rather than in every process main.)
+struct ProcessOption {
+  std::string names;                                        ///< CLI11's: "-o,--out", "--strict"
+  std::variant<std::string*, double*, int*, bool*> target;  ///< bool: a flag
+  std::string help;
+  bool show_default = false;  ///< --help shows the value `target` holds before parsing
+};
+
+/// Parses the common options (plus `options`), installs the
 /// signal handlers, loads the scenario, runs `prepare` (may be empty),
 /// connects LCM and runs `body`,
 /// translating exceptions into messages and exit codes. A positive
 /// receive_buffer_bytes asks the kernel for that UDP receive buffer
 /// (LCM's recv_buf_size; capped by net.core.rmem_max, and LCM warns then).
 int runProcess(const std::string& name, const std::string& description, int argc, char** argv,
-               const std::function<void(CLI::App&)>& add_options, const ProcessPrepare& prepare,
+               const std::vector<ProcessOption>& options, const ProcessPrepare& prepare,
                const ProcessBody& body, int receive_buffer_bytes = 0);
 
 /// The LCM URL with recv_buf_size=bytes added (udpm URLs without one only).

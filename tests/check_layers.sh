@@ -196,8 +196,8 @@ while IFS=$'\t' read -r dir command; do
       sources=() tool_links=() part=""
       for a in "${args[@]:1}"; do
         case $a in
-          SOURCES | LINKS) part=$a ;;
-          *) [[ $part == SOURCES ]] && sources+=("$a") || tool_links+=("$a") ;;
+          SOURCES | CLI | LINKS) part=$a ;;
+          *) [[ $part == LINKS ]] && tool_links+=("$a") || sources+=("$a") ;;  # CLI files: its command line
         esac
       done
       place_library "$name" "$dir" "${sources[@]}"

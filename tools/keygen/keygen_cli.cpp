@@ -1,12 +1,11 @@
 /// @file
 /// `lagrange keygen` (tools/keygen/keygen.hpp).
-#include "tools/keygen/keygen.hpp"
-
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
 
 #include "runtime/key_file.hpp"
+#include "tools/keygen/keygen.hpp"
 #include "transport/message_auth.hpp"
 #include "util/error.hpp"
 

@@ -1,7 +1,5 @@
 /// @file
 /// `lagrange keys` (tools/keys/keys.hpp).
-#include "tools/keys/keys.hpp"
-
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
@@ -10,6 +8,7 @@
 
 #include "config/key_table.hpp"
 #include "tools/keys/key_listing.hpp"
+#include "tools/keys/keys.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::tools {

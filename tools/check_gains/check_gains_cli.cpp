@@ -1,0 +1,38 @@
+/// @file
+/// `lagrange check-gains`: its command line (tools/check_gains/check_gains.hpp).
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tools/check_gains/check_gains.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+struct CheckGainsOptions {
+  std::string config_path;
+  std::vector<std::string> overrides;
+  bool suggest = false;
+};
+}  // namespace
+
+Subcommand addCheckGainsCommand(CLI::App& app) {
+  auto o = std::make_shared<CheckGainsOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "check-gains",
+      "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; "
+      "eta and eq. 632 for m = 1; Theorem 3 and Proposition 1 "
+      "for m >= 2) and whether the sampled implementation at the configured rate is adequate, "
+      "without running it; exit 1 if a condition is violated or the "
+      "sampled loop is unstable");
+  cmd->add_option("config", o->config_path, "Scenario YAML file")->required();
+  cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
+  cmd->add_flag("--suggest", o->suggest,
+                "Also propose gains that satisfy the conditions (eq. 11; lego/632a, 794, 795 for chains) "
+                "and check them; exit 0 if the suggestion passes");
+  return {cmd,
+          [o](const Invocation&) { return checkGainsCommand(o->config_path, o->overrides, o->suggest); }};
+}
+
+}  // namespace lagrange::tools
