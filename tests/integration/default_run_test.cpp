@@ -179,7 +179,8 @@ TEST_F(DefaultRun, LockstepRunsAreDeterministic) {
 TEST_F(DefaultRun, RealtimeConvergesLikeLockstepAndReportsTiming) {
   ASSERT_EQ(result_.exit_code, 0) << result_.output;
   const std::string dir = freshDir("realtime");
-  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "-q --mode realtime");
+  // 3 s of wall time (the lockstep run converges at 0.9 s), not the config's 10.
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "-q --mode realtime --set duration=3");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir), lockstep = readSummary(dir_);
   EXPECT_EQ(j["mode"], "realtime");
@@ -190,7 +191,7 @@ TEST_F(DefaultRun, RealtimeConvergesLikeLockstepAndReportsTiming) {
   EXPECT_NEAR(t_rt, t_ls, 0.10 * t_ls);
   for (const char* p : {"plant", "controller", "actuator"}) {
     const auto& loop = j["timing"]["loops"][p];
-    EXPECT_GT(loop["cycles"].get<long long>(), 9000) << p;
+    EXPECT_GT(loop["cycles"].get<long long>(), 2700) << p;
     for (const char* key : {"achieved_rate", "deadline_misses", "longest_miss_run", "on_time_fraction"})
       EXPECT_TRUE(loop.contains(key)) << p << " " << key;
     EXPECT_LE(loop["jitter"]["p50"].get<double>(), loop["jitter"]["max"].get<double>());

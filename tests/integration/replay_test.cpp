@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iterator>
 #include <lcm/lcm-cpp.hpp>
+#include <map>
 #include <regex>
+#include <stdexcept>
 
 #include "support/configs.hpp"
 #include "support/launch.hpp"
@@ -15,29 +17,29 @@
 namespace lagrange::testing {
 namespace {
 
-// One short recording per wiring, shared by the tests below. A recording that
-// fails fails every test (in SetUp): GoogleTest skips a suite whose
-// SetUpTestSuite failed, and ctest counts a skipped test as no failure.
+// Short recordings the tests below replay: chain_m2 and
+// flexible_2dof_filtered_rate in lockstep, chain_m1 in realtime. Each is made
+// the first time a test asks for it: ctest runs every test in a process of
+// its own, so a test records only what it replays (and only the test that
+// replays the realtime log has to run alone, tests/CMakeLists.txt). A
+// recording that fails throws, which fails the test asking for it, naming why.
 class Recorded : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    auto record = [](const std::string& config, const std::string& extra) {
-      const std::string dir = freshDir("replay-" + config);
-      const RunResult r = runScenario(kConfigs + "/" + config + ".yaml", dir, "-q --set duration=1 " + extra);
-      if (r.exit_code != 0)
-        recording_errors_ += config + " " + extra + ": exit " + std::to_string(r.exit_code) + "\n" + r.output;
-      return dir + "/run.lcm";
-    };
-    chain_ = record("chain_m2", "");
-    flexible_ = record("flexible_2dof_filtered_rate", "");
-    realtime_ = record("chain_m1", "--mode realtime");
+  static const std::string& recording(const std::string& config, const std::string& extra) {
+    static std::map<std::string, std::string> made;  // "config extra" -> log
+    const std::string key = config + " " + extra;
+    if (const auto it = made.find(key); it != made.end()) return it->second;
+    const std::string dir = freshDir("replay-" + config);
+    const RunResult r = runScenario(kConfigs + "/" + config + ".yaml", dir, "-q --set duration=1 " + extra);
+    if (r.exit_code != 0)
+      throw std::runtime_error("recording " + key + " failed: exit " + std::to_string(r.exit_code) + "\n" +
+                               r.output);
+    return made[key] = dir + "/run.lcm";
   }
-  void SetUp() override {
-    ASSERT_TRUE(recording_errors_.empty()) << "a recording failed: " << recording_errors_;
-  }
-  static std::string chain_, flexible_, realtime_, recording_errors_;
+  static const std::string& chainLog() { return recording("chain_m2", ""); }
+  static const std::string& flexibleLog() { return recording("flexible_2dof_filtered_rate", ""); }
+  static const std::string& realtimeLog() { return recording("chain_m1", "--mode realtime"); }
 };
-std::string Recorded::chain_, Recorded::flexible_, Recorded::realtime_, Recorded::recording_errors_;
 
 // Offset of the first event (LCM sync word 0xEDA1DA01) at or after `from`, so
 // the damage below lands at the same place in every recording: where events
@@ -53,7 +55,7 @@ std::uintmax_t eventStartAtOrAfter(const std::string& log, std::uintmax_t from) 
 }
 
 TEST_F(Recorded, LockstepAndRealtimeLogsReplayExactly) {
-  for (const std::string& log : {chain_, flexible_, realtime_})
+  for (const std::string& log : {chainLog(), flexibleLog(), realtimeLog()})
     for (const std::string component : {"controller", "actuator", "plant"}) {
       const RunResult r = lagrange("replay " + quote(log) + " --component " + component);
       EXPECT_EQ(r.exit_code, 0) << log << ": " << r.output;
@@ -65,7 +67,7 @@ TEST_F(Recorded, LockstepAndRealtimeLogsReplayExactly) {
 // clips the first torque step that exceeds it.
 TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {
   const RunResult r =
-      lagrange("replay " + quote(chain_) + " --component actuator --set actuator.saturation=5");
+      lagrange("replay " + quote(chainLog()) + " --component actuator --set actuator.saturation=5");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("ACTUATOR_STATE.tau_applied[0]"), std::string::npos) << r.output;
 }
@@ -74,24 +76,25 @@ TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {
 // change. kp0 enters u at once (tick 0); the filter pole a0 first matters at
 // tick 2 (bumpless start: qc(1) = -b q~(0) whatever a0 is).
 TEST_F(Recorded, APerturbedGainDivergesAtTheRightTick) {
-  const RunResult kp = lagrange("replay " + quote(chain_) + " --set controller.kp=[150.001,10]");
+  const RunResult kp = lagrange("replay " + quote(chainLog()) + " --set controller.kp=[150.001,10]");
   EXPECT_EQ(kp.exit_code, 1) << kp.output;
   EXPECT_NE(kp.output.find("at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[0]: recorded"), std::string::npos)
       << kp.output;
-  const RunResult pole = lagrange("replay " + quote(chain_) + " --set controller.a=[50.001,50]");
+  const RunResult pole = lagrange("replay " + quote(chainLog()) + " --set controller.a=[50.001,50]");
   EXPECT_EQ(pole.exit_code, 1) << pole.output;
   EXPECT_NE(pole.output.find("at tick 2 (t = 0.002000 s): CONTROL_COMMAND."), std::string::npos)
       << pole.output;
-  const RunResult stage = lagrange("replay " + quote(flexible_) + " --set controller.motor_rate_pole=301");
+  const RunResult stage =
+      lagrange("replay " + quote(flexibleLog()) + " --set controller.motor_rate_pole=301");
   EXPECT_EQ(stage.exit_code, 1) << stage.output;
   EXPECT_NE(stage.output.find("DIVERGED"), std::string::npos) << stage.output;
 }
 
 TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
   const std::string cut = freshDir("truncated") + ".lcm";
-  const auto size = std::filesystem::file_size(chain_);
-  std::filesystem::copy_file(chain_, cut);
-  std::filesystem::resize_file(cut, eventStartAtOrAfter(chain_, size / 2) + 7);  // mid-header
+  const auto size = std::filesystem::file_size(chainLog());
+  std::filesystem::copy_file(chainLog(), cut);
+  std::filesystem::resize_file(cut, eventStartAtOrAfter(chainLog(), size / 2) + 7);  // mid-header
   const RunResult r = lagrange("replay " + quote(cut));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("reproduced all"), std::string::npos) << r.output;
@@ -104,10 +107,10 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
 
   // Garbage in the middle: the reader skips to the next event and says how much it lost.
   const std::string corrupt = freshDir("corrupt") + ".lcm";
-  std::filesystem::copy_file(chain_, corrupt);
+  std::filesystem::copy_file(chainLog(), corrupt);
   {
     std::fstream f(corrupt, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(static_cast<std::streamoff>(eventStartAtOrAfter(chain_, size / 3)));
+    f.seekp(static_cast<std::streamoff>(eventStartAtOrAfter(chainLog(), size / 3)));
     const std::string junk(300, '\x5a');
     f.write(junk.data(), static_cast<std::streamsize>(junk.size()));
   }
@@ -139,8 +142,8 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
 // lagrange report: a CSV per channel, one row per tick, values exact.
 TEST_F(Recorded, ReportWritesOneCsvPerChannelWithEveryTick) {
   const std::string out = freshDir("csv");
-  const RunResult r =
-      lagrange("report " + quote(std::filesystem::path(chain_).parent_path().string()) + " -o " + quote(out));
+  const RunResult r = lagrange("report " + quote(std::filesystem::path(chainLog()).parent_path().string()) +
+                               " -o " + quote(out));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream truth(out + "/PLANT_TRUTH.csv");
   std::string header, first;

@@ -124,7 +124,9 @@ TEST(SampledDataCheck, SeesTheRealtimeWiringsDelay) {
   EXPECT_GT(diverged["tracking"]["max_error"].get<double>(), 4.0) << diverged["tracking"].dump();
 
   const std::string ur5_out = freshDir("ur5-realtime");
-  const RunResult ur5 = runScenario(kConfigs + "/ur5_theorem1.yaml", ur5_out, "-q --mode realtime");
+  // 6 s: past its 5 s deadline, so that `met` says it converged and stayed.
+  const RunResult ur5 =
+      runScenario(kConfigs + "/ur5_theorem1.yaml", ur5_out, "-q --mode realtime --set duration=6");
   ASSERT_EQ(ur5.exit_code, 0) << ur5.output;
   const auto converged = readSummary(ur5_out);
   EXPECT_EQ(converged["gains"]["sampled_data"]["verdict"], "adequate");
