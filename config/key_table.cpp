@@ -2,8 +2,8 @@
 /// The table of every scenario key (config/key_table.hpp).
 #include "config/key_table.hpp"
 
+#include <iterator>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 
 namespace lagrange::config {
@@ -29,22 +29,25 @@ KeyInfo only(std::string variant, KeyInfo k) {
   return k;
 }
 
-std::vector<KeyInfo> makeTable() {
-  // Shared ranges. Angles may be multi-turn; rates and gains stay far below
-  // where their products (gain x error x rate) leave double's range.
-  const KeyRange kAngle{-1e6, 1e6, false, "rad", ""};
-  const KeyRange kRate{-1e4, 1e4, false, "rad/s", "about 95 000 rpm"};
-  const KeyRange kGain{0.0, 1e12, true, "",
-                       "gains beyond 1e12 overflow or swamp the physics; the paper's constructive "
-                       "gains for long chains (check-gains --suggest) reach 1e125 and are evaluated "
-                       "there, not run"};
-  const KeyRange kProbability{0.0, 1.0, false, "", ""};
-  const KeyRange kFaultDelay{0.0, 60.0, false, "s", "a datagram held longer is lost, not late"};
-  const KeyRange kNoise{0.0, 1e3, false, "", ""};
-  const KeyRange kCounts{0.0, 1e12, false, "", ""};
-  const KeyRange kSensorDelay{0.0, 1e5, false, "samples", "each sensor keeps that many readings"};
-  const KeyRange kSeed{0.0, 1e9, false, "", ""};
-  const KeyRange kLargeState{-1e15, 1e15, false, "", ""};  // filter and chain states
+// Ranges several keys share. Angles may be multi-turn; rates and gains stay
+// far below where their products (gain x error x rate) leave double's range.
+KeyRange angle() { return {-1e6, 1e6, false, "rad", ""}; }
+KeyRange rate() { return {-1e4, 1e4, false, "rad/s", "about 95 000 rpm"}; }
+KeyRange gain() {
+  return {0.0, 1e12, true, "",
+          "gains beyond 1e12 overflow or swamp the physics; the paper's constructive gains for long chains "
+          "(check-gains --suggest) reach 1e125 and are evaluated there, not run"};
+}
+KeyRange probability() { return {0.0, 1.0, false, "", ""}; }
+KeyRange faultDelay() { return {0.0, 60.0, false, "s", "a datagram held longer is lost, not late"}; }
+KeyRange noise() { return {0.0, 1e3, false, "", ""}; }
+KeyRange counts() { return {0.0, 1e12, false, "", ""}; }
+KeyRange sensorDelay() { return {0.0, 1e5, false, "samples", "each sensor keeps that many readings"}; }
+KeyRange seed() { return {0.0, 1e9, false, "", ""}; }
+KeyRange largeState() { return {-1e15, 1e15, false, "", ""}; }  // filter and chain states
+
+// What the run is: its name, length and wiring.
+std::vector<KeyInfo> runKeys() {
   return {
       row("name", "string", "required", "scenario name, shown in outputs"),
       row("description", "string", "`\"\"`", "free text"),
@@ -57,6 +60,12 @@ std::vector<KeyInfo> makeTable() {
           "fixed-rate loop at `plant.publish_rate` (sim time = wall time); `inproc`: the same cores "
           "called in one process, no LCM (bit-identical to lockstep). `lagrange run --mode` overrides "
           "it"),
+  };
+}
+
+// The arm and where it starts.
+std::vector<KeyInfo> armKeys() {
+  return {
       row("robot.preset", "string", "—",
           "`pelican`: the 2-DOF arm of Kelly, Santibáñez and Loría (give exactly one of `preset`, "
           "`links` or `urdf`)"),
@@ -105,14 +114,20 @@ std::vector<KeyInfo> makeTable() {
           "initial joint angles [rad]; for a planar chain relative angles, joint 1 from the downward "
           "vertical, counter-clockwise positive; for a URDF arm the URDF's joint angles, in chain "
           "order (positive by the right-hand rule about each `<axis>`); any value (multi-turn).",
-          kAngle),
-      row("initial_state.qdot", "vector (list)", "zeros", "initial joint rates [rad/s].", kRate),
+          angle()),
+      row("initial_state.qdot", "vector (list)", "zeros", "initial joint rates [rad/s].", rate()),
       row("initial_state.motor_q", "vector (list)", "q + K⁻¹ g(q)",
           "flexible joints only: initial motor angles q2 [rad]; the default twists each spring just "
           "enough to hold the links at rest against gravity.",
-          kAngle),
+          angle()),
       row("initial_state.motor_qdot", "vector (list)", "`initial_state.qdot`",
-          "flexible joints only: initial motor rates [rad/s].", kRate),
+          "flexible joints only: initial motor rates [rad/s].", rate()),
+  };
+}
+
+// What the arm tracks.
+std::vector<KeyInfo> referenceKeys() {
+  return {
       row("reference.type", "string", "required",
           "`sine`: q_d,i = b_i + c_i sin(w_i t + p_i); `smooth_sine`: the same times (1 − exp(−alpha_i "
           "t³)); `free_motion`: the unforced motion D(q)q'' + C(q,q')q' + g(q) = 0 of the configured "
@@ -122,22 +137,28 @@ std::vector<KeyInfo> makeTable() {
       only("free_motion",
            row("reference.initial_q", "vector (list)", "required",
                "`free_motion`: the initial angles of the free motion [rad] (no other reference key applies).",
-               kAngle)),
+               angle())),
       only("free_motion", row("reference.initial_qdot", "vector (list)", "zeros",
-                              "`free_motion`: the initial rates of the free motion [rad/s].", kRate)),
-      only("sine", row("reference.offset", "vector or scalar", "required", "b [rad].", kAngle)),
+                              "`free_motion`: the initial rates of the free motion [rad/s].", rate())),
+      only("sine", row("reference.offset", "vector or scalar", "required", "b [rad].", angle())),
       only("sine",
            row("reference.amplitude", "vector or scalar", "required",
                "c [rad]; 0 on every joint makes q_d constant (= offset), the reference of the `set_point` "
                "controller.",
-               kAngle)),
+               angle())),
       only("sine",
            row("reference.frequency", "vector or scalar ≥ 0", "required", "w [rad/s].",
                {0.0, 1e4, false, "rad/s", "1.6 kHz, above the Nyquist frequency of any arm's controller"})),
-      only("sine", row("reference.phase", "vector or scalar", "zeros", "p [rad].", kAngle)),
+      only("sine", row("reference.phase", "vector or scalar", "zeros", "p [rad].", angle())),
       only("sine", row("reference.alpha", "vector or scalar > 0", "required for `smooth_sine`",
                        "start-up rate [1/s³]; not allowed for `sine`.",
                        {1e-6, 1e6, false, "1/s^3", "a start-up between 0.03 s and 300 s"})),
+  };
+}
+
+// The simulation and the actuator chain.
+std::vector<KeyInfo> plantAndActuatorKeys() {
+  return {
       row("plant.physics_step", "number > 0", "`1.0e-4`",
           "ODE step [s]; `1/publish_rate` must be a whole multiple of it.",
           {1e-7, 1.0, false, "s",
@@ -169,9 +190,15 @@ std::vector<KeyInfo> makeTable() {
           "held until the next (S updates per period, carried in one ACTUATOR_STATE).",
           {0.1, 1e6, false, "Hz", ""}),
       row("actuator.initial_state", "list of m rows of n numbers (or one number per row)", "zeros",
-          "xi_1(0) … xi_m(0).", kLargeState),
+          "xi_1(0) … xi_m(0).", largeState()),
       row("actuator.saturation", "vector or scalar > 0", "none",
           "per-joint torque limit [N m]; absent: no limit.", {0.0, 1e12, true, "N m", ""}),
+  };
+}
+
+// The controller: the paper's, the baselines' gains, an external one.
+std::vector<KeyInfo> controllerKeys() {
+  return {
       row("controller.type", "string", "required",
           "`theorem1`: eq. (90), for `actuator.order` 0; `cascaded`: eqs. (610a), (750), for "
           "`actuator.order` ≥ 1 (its stage 0 takes `kp`, `kd`, `a`, `b`, `initial_filter_state` "
@@ -191,9 +218,9 @@ std::vector<KeyInfo> makeTable() {
           "registered by `controller::registerControllerKind` in programs built with it "
           "(docs/architecture.md, \"Adding a controller\"): its own per-joint keys instead of the ones "
           "below, `actuator.order` 0."),
-      only("registered", inside("controller.lambda", "controller.type", kGain)),
-      only("registered", inside("controller.ld", "controller.type", kGain)),
-      only("registered", inside("controller.lp", "controller.type", kGain)),
+      only("registered", inside("controller.lambda", "controller.type", gain())),
+      only("registered", inside("controller.ld", "controller.type", gain())),
+      only("registered", inside("controller.lp", "controller.type", gain())),
       only("external",
            row("controller.command", "list of strings", "required for `external`",
                "the external controller's command line (argv, no shell): the launcher starts it in the "
@@ -213,36 +240,42 @@ std::vector<KeyInfo> makeTable() {
            row("controller.motor_rate_pole", "vector or scalar > 0", "`300`",
                "a [1/s] of the `filtered` estimate; at 1 kHz, 300 converges on the shipped configs and 1000 "
                "diverges (see `flexible_2dof_filtered_rate.yaml`).",
-               kGain)),
+               gain())),
       only("paper",
-           row("controller.kp", "vector or scalar > 0", "required", "proportional gain [N m/rad].", kGain)),
+           row("controller.kp", "vector or scalar > 0", "required", "proportional gain [N m/rad].", gain())),
       only("paper", row("controller.kd", "vector or scalar > 0", "required",
-                        "gain on the filter output θ [N m s/rad when b = a].", kGain)),
-      only("paper", row("controller.a", "vector or scalar > 0", "required", "filter pole [1/s].", kGain)),
+                        "gain on the filter output θ [N m s/rad when b = a].", gain())),
+      only("paper", row("controller.a", "vector or scalar > 0", "required", "filter pole [1/s].", gain())),
       only("paper", row("controller.b", "vector or scalar > 0", "required",
-                        "filter gain [1/s]; θ = b s/(s + a) q̃.", kGain)),
+                        "filter gain [1/s]; θ = b s/(s + a) q̃.", gain())),
       only("paper",
            row("controller.initial_filter_state", "vector, scalar or `bumpless`", "zeros",
-               "qc(0); `bumpless` sets qc(0) = −b q̃(0) at the first sample, so θ(0) = 0.", kLargeState)),
+               "qc(0); `bumpless` sets qc(0) = −b q̃(0) at the first sample, so θ(0) = 0.", largeState())),
       only(
           "paper",
           row("controller.stages", "list of m maps (2 for `flexible`)", "required for `cascaded`, `flexible`",
               "per stage i = 1..m, `{kp, kd, a, b}`, each a vector or scalar > 0: kp_i [1/s], kd_i, a_i "
               "[1/s] (pole of the approximate differentiator of xi_i*), b_i; sigma_i = b_i kp_{i-1} "
               "(sigma_1 = 0) is derived.")),
-      inside("controller.stages[i].a", "controller.stages", kGain),
-      inside("controller.stages[i].b", "controller.stages", kGain),
-      inside("controller.stages[i].kd", "controller.stages", kGain),
-      inside("controller.stages[i].kp", "controller.stages", kGain),
+      inside("controller.stages[i].a", "controller.stages", gain()),
+      inside("controller.stages[i].b", "controller.stages", gain()),
+      inside("controller.stages[i].kd", "controller.stages", gain()),
+      inside("controller.stages[i].kp", "controller.stages", gain()),
       row("controller.stages[i].initial_filter_state", "vector, scalar or `bumpless`", "zeros",
           "qc_i(0) of stage i, as stage 0's `initial_filter_state`: `bumpless` sets qc_i(0) = −b_i "
           "xi_i*(0) − zeta_i(0) at the first sample, so theta_i(0) = 0. The default, zeros, gives "
           "theta_i(0) = b_i xi_i*(0), a first command of kd_i b_i xi_i* more (hundreds of N m on the "
           "shipped chain configs); kept as the default so that existing scenarios and logs replay "
           "unchanged.",
-          kLargeState),
+          largeState()),
       row("controller.stages[i].initial_zeta", "vector or scalar", "zeros", "zeta_i(0) of stage i.",
-          kLargeState),
+          largeState()),
+  };
+}
+
+// How the run is judged and carried out.
+std::vector<KeyInfo> judgementKeys() {
+  return {
       row("metrics.tolerance", "number > 0", "`1.0e-3`", "tolerance on ‖q̃‖ [rad] for the convergence time.",
           {0.0, 1e6, true, "rad", ""}),
       row("metrics.convergence_deadline", "number > 0", "`5.0`",
@@ -270,8 +303,7 @@ std::vector<KeyInfo> makeTable() {
           "instead of waiting forever.",
           {0.1, 86400.0, false, "s",
            "shorter would stop runs that are only slow (a loaded machine, a sanitizer build); a day is past "
-           "any "
-           "run's pause"}),
+           "any run's pause"}),
       row("lockstep.logger_window", "integer ≥ 1", "`20`",
           "ticks the plant may run ahead of the logger (flow control, so the log misses nothing: what "
           "is in flight must fit the logger's UDP receive buffer; the logger asks for 4 MB, which the "
@@ -320,10 +352,16 @@ std::vector<KeyInfo> makeTable() {
           "restarts per process; its next death stops the run (exit 1, the process and how it died "
           "named).",
           {0.0, 1000.0, false, "", ""}),
+  };
+}
+
+// What the wiring and the sensors do to the signals.
+std::vector<KeyInfo> faultAndSensorKeys() {
+  return {
       row("faults.seed", "integer ≥ 0", "`1`",
           "seed of the fault injection; each process draws its own stream from it and its name, the "
           "same in every run with this seed.",
-          kSeed),
+          seed()),
       row("faults.channels.NAME", "map", "none",
           "faults injected on the sending side of channel NAME (`PLANT_POSITION`, `PLANT_TRUTH`, "
           "`PLANT_MOTOR`, `PLANT_RATE`, `CONTROL_COMMAND`, `ACTUATOR_STATE`, `STATUS`, `SCENARIO`, or "
@@ -334,12 +372,12 @@ std::vector<KeyInfo> makeTable() {
           "uniform `delay_jitter` [s] ≥ 0, default 0. Counted in `summary.json` "
           "(`messages.CHANNEL.injected`). Example: `--set 'faults.channels.all={drop: 0.05, duplicate: "
           "0.05, reorder: 0.05}'`."),
-      inside("faults.channels.NAME.corrupt", "faults.channels.NAME", kProbability),
-      inside("faults.channels.NAME.delay", "faults.channels.NAME", kFaultDelay),
-      inside("faults.channels.NAME.delay_jitter", "faults.channels.NAME", kFaultDelay),
-      inside("faults.channels.NAME.drop", "faults.channels.NAME", kProbability),
-      inside("faults.channels.NAME.duplicate", "faults.channels.NAME", kProbability),
-      inside("faults.channels.NAME.reorder", "faults.channels.NAME", kProbability),
+      inside("faults.channels.NAME.corrupt", "faults.channels.NAME", probability()),
+      inside("faults.channels.NAME.delay", "faults.channels.NAME", faultDelay()),
+      inside("faults.channels.NAME.delay_jitter", "faults.channels.NAME", faultDelay()),
+      inside("faults.channels.NAME.drop", "faults.channels.NAME", probability()),
+      inside("faults.channels.NAME.duplicate", "faults.channels.NAME", probability()),
+      inside("faults.channels.NAME.reorder", "faults.channels.NAME", probability()),
       row("faults.receivers.PROCESS.drop", "probability 0–1", "none",
           "a loss only PROCESS (`plant`, `controller`, `actuator`, `logger`) sees: each datagram that "
           "reaches it, on any channel, is dropped before it is recorded or decoded — as a datagram "
@@ -348,25 +386,25 @@ std::vector<KeyInfo> makeTable() {
           "(`messages.CHANNEL.injected.lost_on_receive`). Example: `--set "
           "'faults.receivers.logger={drop: 0.05}'`: in lockstep the log is still complete, since the "
           "plant re-sends every tick the logger has not confirmed.",
-          kProbability),
+          probability()),
       row("sensors.seed", "integer ≥ 0", "1",
           "seeds the sensor noise's draws: the same seed gives the same readings in lockstep, "
           "realtime, in-process and replay. Without a `sensors` section PLANT_POSITION carries the "
           "true angles.",
-          kSeed),
+          seed()),
       row("sensors.position.counts_per_revolution", "vector or scalar, whole numbers ≥ 0", "0",
           "the joint encoder's resolution, N: PLANT_POSITION carries floor(angle / Δ) Δ, Δ = 2π / N "
           "(the count below the angle, as an incremental encoder counts: half a count of bias on "
           "average); 0: not quantised. PLANT_TRUTH keeps the true angles (plant/joint_sensor.hpp).",
-          kCounts),
+          counts()),
       row("sensors.position.noise_sigma", "vector or scalar ≥ 0", "0",
           "standard deviation of a Gaussian noise added to each reading before quantisation [rad], one "
           "draw per joint and tick.",
-          kNoise),
+          noise()),
       row("sensors.position.delay", "integer ≥ 0", "0",
           "the reading of tick k is of the angle at tick k − delay (whole samples; before that, the "
           "angle at tick 0).",
-          kSensorDelay),
+          sensorDelay()),
       row("sensors.velocity.noise_sigma", "vector or scalar ≥ 0", "0",
           "a `sensors.velocity` section declares a velocity sensor (tachometer) on every joint: the "
           "plant publishes its reading on PLANT_RATE, just before the PLANT_POSITION of the same tick. "
@@ -375,19 +413,25 @@ std::vector<KeyInfo> makeTable() {
           "{}}` declares an exact one; its draws are its own (the position sensor's do not change when "
           "it is added). This key: the standard deviation of a Gaussian noise added to each rate "
           "reading [rad/s], one draw per joint and tick.",
-          kNoise),
+          noise()),
       row("sensors.velocity.delay", "integer ≥ 0", "0",
-          "the rate reading of tick k is of the rate at tick k − delay (whole samples).", kSensorDelay),
+          "the rate reading of tick k is of the rate at tick k − delay (whole samples).", sensorDelay()),
       row("sensors.motor.counts_per_revolution", "vector or scalar, whole numbers ≥ 0", "0",
           "a `sensors.motor` section (flexible joints only, `robot.flexible`) declares a sensor on the "
           "motor angles q2, which PLANT_MOTOR then carries instead of the true ones; the motor rates "
           "q2' (`robot.flexible.rate_sensor`) stay exact, and its draws are its own. This key: the "
           "motor encoder's resolution, as `sensors.position.counts_per_revolution`.",
-          kCounts),
+          counts()),
       row("sensors.motor.noise_sigma", "vector or scalar ≥ 0", "0",
-          "noise on each motor-angle reading [rad], as `sensors.position.noise_sigma`.", kNoise),
+          "noise on each motor-angle reading [rad], as `sensors.position.noise_sigma`.", noise()),
       row("sensors.motor.delay", "integer ≥ 0", "0", "the motor reading of tick k is of tick k − delay.",
-          kSensorDelay),
+          sensorDelay()),
+  };
+}
+
+// What `lagrange compare` runs.
+std::vector<KeyInfo> compareKeys() {
+  return {
       row("compare.controllers.TYPE", "map of TYPE's keys", "absent",
           "`lagrange compare` only (docs/comparison.md; `lagrange run` carries it along and ignores "
           "it): a controller to compare, TYPE its `controller.type`, the map its other `controller.*` "
@@ -399,9 +443,19 @@ std::vector<KeyInfo> makeTable() {
           "`sensors.position.counts_per_revolution`, `sensors.position.noise_sigma`, "
           "`plant.publish_rate`) and plots the steady-state error against it; `--sweep` overrides"),
       row("compare.sweep.values", "list", "required with `key`",
-          "the values, each as it would be written after `--set KEY=`")
-
+          "the values, each as it would be written after `--set KEY=`"),
   };
+}
+
+// The sections in the order of docs/configuration.md.
+std::vector<KeyInfo> makeTable() {
+  std::vector<KeyInfo> table;
+  for (std::vector<KeyInfo> (*section)() : {runKeys, armKeys, referenceKeys, plantAndActuatorKeys,
+                                            controllerKeys, judgementKeys, faultAndSensorKeys, compareKeys}) {
+    std::vector<KeyInfo> keys = section();
+    table.insert(table.end(), std::make_move_iterator(keys.begin()), std::make_move_iterator(keys.end()));
+  }
+  return table;
 }
 
 }  // namespace
@@ -427,6 +481,10 @@ std::set<std::string> keysUnder(const std::string& section, const std::string& v
     const std::string& of = own != variant_of.end() ? own->second : k.variant;
     if (of.empty() || of == variant) keys.insert(child);
   }
+  // A reader asking for a section the table lacks would refuse every key
+  // with an empty list: a programming error, said at once.
+  if (keys.empty())
+    throw std::logic_error("config::keysUnder: no key of the key table is under '" + section + "'");
   return keys;
 }
 

@@ -4,8 +4,8 @@
 /// range and meaning. From this one table come the known-key lists the
 /// section readers reject unknown keys with (keysUnder), the range every
 /// number read is checked against (config/key_ranges.hpp: rangeOf), the key
-/// reference `lagrange keys` prints and docs/configuration.md's table (a
-/// test fails when the file differs from keyReferenceMarkdown()).
+/// reference `lagrange keys` prints and docs/configuration.md's table
+/// (config/key_reference.hpp; a test fails when the file differs).
 ///
 /// A key is named as the docs name it: list items as [i]
 /// ("robot.links[i].mass"), map entries by a capital placeholder
@@ -30,7 +30,10 @@ struct KeyInfo {
   std::optional<KeyRange> range;  ///< every number has one
   /// "" for a key every scenario may hold; else the variant of its section
   /// it belongs to: "sine" / "free_motion" (reference.type), "paper" /
-  /// "external" / "registered" (controller.type).
+  /// "external" (controller.type). "registered" marks the baselines' own
+  /// gains (lp, ld, lambda), here only for their ranges and docs: a
+  /// registered controller's keys come from its registration
+  /// (config/controller_params.hpp), not from keysUnder.
   std::string variant;
   /// The row that describes it when that is another key's (the items of
   /// robot.links in robot.links'); "" for its own row.
@@ -43,15 +46,7 @@ const std::vector<KeyInfo>& keyTable();
 /// The keys directly below `section` ("plant" -> physics_step, publish_rate,
 /// max_rate; "" -> the top-level keys; "robot.links[i]" -> length, com, ...)
 /// that hold in `variant`: those of no variant and those of `variant`.
+/// @throws std::logic_error when no key is under `section` (a reader's typo).
 std::set<std::string> keysUnder(const std::string& section, const std::string& variant = "");
-
-/// " Range: from 0 to 1 s (why)." for a key whose row states only its own
-/// range, " Ranges: `a`, `b` ...; `c` ..." for a row describing several keys
-/// (robot.links' items); "" for a key without a number.
-std::string rangeSentence(const KeyInfo& row);
-
-/// docs/configuration.md's table of keys: one row per key with a type, the
-/// ranges of the keys it describes appended to its meaning.
-std::string keyReferenceMarkdown();
 
 }  // namespace lagrange::config

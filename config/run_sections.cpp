@@ -2,6 +2,7 @@
 /// How the run is judged and carried out: metrics, lockstep, realtime,
 /// supervision, faults, sensors (config/scenario_sections.hpp).
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -170,15 +171,19 @@ void readFaultsSection(MapReader& root, Scenario& s) {
   s.faults.seed = static_cast<uint64_t>(seed);
   if (f.has("channels")) {
     MapReader channels = f.map("channels");
-    const std::set<std::string> known = {"all",        "PLANT_POSITION",  "PLANT_TRUTH",    "PLANT_MOTOR",
-                                         "PLANT_RATE", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS",
-                                         "SCENARIO"};
+    // The channels of transport/channels.hpp a fault can be injected on (config
+    // sits below transport), and "all".
+    const std::vector<std::string> known = {"all",        "PLANT_POSITION",  "PLANT_TRUTH",    "PLANT_MOTOR",
+                                            "PLANT_RATE", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS",
+                                            "SCENARIO"};
     std::set<std::string> names;
     for (const std::string& name : channels.keys()) {
-      if (known.count(name) == 0)
-        channels.fail(name,
-                      "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, PLANT_RATE, "
-                      "CONTROL_COMMAND, ACTUATOR_STATE, STATUS or SCENARIO");
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        std::string list;
+        for (size_t i = 0; i < known.size(); ++i)
+          list += (i == 0 ? "" : i + 1 == known.size() ? " or " : ", ") + known[i];
+        channels.fail(name, "unknown channel; expected " + list);
+      }
       names.insert(name);
       MapReader c = channels.map(name);
       ChannelFaults rule;

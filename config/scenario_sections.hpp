@@ -19,7 +19,7 @@ void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot an
 void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 
 // What drives it (drive_sections.cpp).
-void readActuatorSection(MapReader& root, Scenario& s);    ///< after plant
+void readActuatorSection(MapReader& root, Scenario& s);  ///< after plant
 /// `base_dir`: where a relative controller.command (type external) is looked for.
 void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir);  ///< after actuator
 

@@ -1,8 +1,10 @@
 #include "config/yaml_reader.hpp"
 
 #include <cmath>
+#include <map>
 
 #include "config/key_ranges.hpp"
+#include "config/key_table.hpp"
 #include "config/scenario.hpp"
 
 namespace lagrange::config {
@@ -167,6 +169,24 @@ MapReader MapReader::map(const std::string& key) {
   return MapReader(node_[key], keyPath(key));
 }
 
+namespace {
+// "; initial_q is a key of reference.type free_motion only" for a key the key
+// table has in another variant of its section (config/key_table.hpp), "" otherwise.
+std::string variantHint(const std::string& key, const std::string& key_path) {
+  static const std::map<std::string, std::string> kVariants = {
+      {"sine", "reference.type sine and smooth_sine"},
+      {"free_motion", "reference.type free_motion"},
+      {"paper", "the paper's controllers (controller.type theorem1, cascaded, flexible)"},
+      {"external", "controller.type external"},
+      {"registered", "the baselines that declare it (docs/baselines.md)"}};
+  const std::string table_key = rangeKey(key_path);
+  for (const KeyInfo& k : keyTable())
+    if (k.key == table_key && !k.variant.empty())
+      return "; " + key + " is a key of " + kVariants.at(k.variant) + " only";
+  return "";
+}
+}  // namespace
+
 void MapReader::finish(const std::set<std::string>& known) const {
   if (!out_of_range_.empty()) fail(out_of_range_.front().first, out_of_range_.front().second);
   for (const auto& entry : node_) {
@@ -175,7 +195,7 @@ void MapReader::finish(const std::set<std::string>& known) const {
       std::string list;
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
       throw ConfigError("config: " + keyPath(key) + ": unknown key" + lineOf(entry.first) +
-                        "; expected one of: " + list);
+                        "; expected one of: " + list + variantHint(key, keyPath(key)));
     }
   }
 }

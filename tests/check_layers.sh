@@ -134,7 +134,7 @@ cmake_commands() {
     dir=$(dirname "${f#./}")
     # Commands are case-insensitive in CMake and may have blanks before "(".
     sed 's/#.*//' "$f" | tr '\r\n' '  ' |
-      { grep -ioE '(add_library|add_executable|target_link_libraries|target_include_directories|lagrange_subcommand)[[:space:]]*\([^)]*\)' ||
+      { grep -ioE '(add_library|add_executable|target_link_libraries|target_include_directories|include_directories|lagrange_subcommand)[[:space:]]*\([^)]*\)' ||
         true; } |
       sed -E "s/^([A-Za-z_]+)[[:space:]]*\(/\L\1(/; s|^|$dir\t|"
   done < <(find . \( -name 'build*' -o -name .git -o -name runs -o -name tests -o -name bench -o -name fuzz \) \
@@ -204,14 +204,16 @@ while IFS=$'\t' read -r dir command; do
       links+=("$dir $name ${tool_links[*]}")
       ;;
     target_link_libraries) links+=("$dir ${args[*]}") ;;
-    target_include_directories)
+    target_include_directories | include_directories)
       # The repository root is the one include directory (and the generated
       # message headers'): every include then names its header's layer.
-      for a in "${args[@]:1}"; do
+      first=1  # a target's name; include_directories names directories only
+      [[ $kind == include_directories ]] && first=0
+      for a in "${args[@]:$first}"; do
         case $a in
           PUBLIC | PRIVATE | INTERFACE | SYSTEM | BEFORE | AFTER | '${PROJECT_SOURCE_DIR}') ;;
           '${cpp_out}') [[ $dir == lcmtypes ]] || bad_include_dir "$dir" "${args[0]}" "$a" ;;
-          *) bad_include_dir "$dir" "${args[0]}" "$a" ;;
+          *) bad_include_dir "$dir" "$([[ $first == 1 ]] && echo "${args[0]}" || echo "include_directories")" "$a" ;;
         esac
       done
       include_dirs=$((include_dirs + 1))

@@ -64,6 +64,9 @@ cp "$work/transport.cmake" "$work/tree/transport/CMakeLists.txt"
 echo 'target_include_directories(lagrange_model PUBLIC ${PROJECT_SOURCE_DIR}/controller)' >>"$work/tree/model/CMakeLists.txt"
 expect_failure "an include directory below the root" 'model/CMakeLists\.txt: lagrange_model adds the include directory \$\{PROJECT_SOURCE_DIR\}/controller'
 cp "$work/model.cmake" "$work/tree/model/CMakeLists.txt"
+echo 'include_directories(${PROJECT_SOURCE_DIR}/model)' >>"$work/tree/transport/CMakeLists.txt"
+expect_failure "a directory-wide include directory" 'transport/CMakeLists\.txt: include_directories adds the include directory \$\{PROJECT_SOURCE_DIR\}/model'
+cp "$work/transport.cmake" "$work/tree/transport/CMakeLists.txt"
 echo '#include "theorem1.hpp"' >>"$work/tree/model/bounds.cpp"
 expect_failure "a bare include from another folder" 'model/bounds\.cpp:[0-9]+: #include "theorem1\.hpp" is not next to model/bounds\.cpp'
 cp "$work/bounds.cpp" "$work/tree/model/bounds.cpp"

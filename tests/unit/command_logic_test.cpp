@@ -108,13 +108,7 @@ TEST_F(CommandLogic, CompareTablesSayWhatEachRunGave) {
   EXPECT_EQ(lines[3], "theorem1,controller.kp,\"[100, 8]\",failed (exit 1),,,,,,") << csv;
 }
 
-}  // namespace
-}  // namespace lagrange::tools
-
-namespace lagrange::tools {
-namespace {
-
-TEST_F(CommandLogic, KeysListsASectionsKeysWithTypeDefaultAndRange) {
+TEST(KeyListing, ListsASectionsKeysWithTypeDefaultAndRange) {
   const std::string plant = keyListing({"plant"});
   EXPECT_NE(plant.find("plant.physics_step  (number > 0; default `1.0e-4`)\n"), std::string::npos) << plant;
   EXPECT_NE(plant.find("Range: from 1e-7 to 1 s"), std::string::npos) << plant;
@@ -128,13 +122,17 @@ TEST_F(CommandLogic, KeysListsASectionsKeysWithTypeDefaultAndRange) {
       EXPECT_LE(line.size(), 60u) << line;  // a word longer than the width keeps its own line
     }
   }
-  // "controller.stages" is a key, not a prefix of "controller.stagesX".
+  // A section ends at a dot or a bracket: "controller.k" is no prefix of controller.kp.
   const std::string stages = keyListing({"controller.stages"});
   EXPECT_NE(stages.find("controller.stages[i].initial_zeta"), std::string::npos);
   EXPECT_EQ(stages.find("controller.kp "), std::string::npos);
+  EXPECT_THROW(keyListing({"controller.k"}), BadInput);
+  // A key described in another key's row gives that row.
+  const std::string mass = keyListing({"robot.links[i].mass"});
+  EXPECT_EQ(mass.rfind("robot.links  (list of maps", 0), 0u) << mass;
 }
 
-TEST_F(CommandLogic, KeysRefusesASectionNoKeyIsIn) {
+TEST_F(CommandLogic, KeysRefusesASectionNoKeyIsIn) {  // through the front end: exit 2
   try {
     keyListing({"plant", "plants"});
     FAIL() << "a section without keys was accepted";

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "config/key_reference.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 

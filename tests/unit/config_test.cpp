@@ -106,8 +106,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "only the cascaded and flexible controllers have stages"},
         // The known keys come from the key table, per variant of the section.
         BadCase{{"reference.initial_q=[0, 0]"}, "reference.initial_q: unknown key"},
+        BadCase{{"reference.initial_q=[0, 0]"}, "; initial_q is a key of reference.type free_motion only"},
         BadCase{{"controller={type: external, command: [true], stages: []}"},
                 "controller.stages: unknown key"},
+        BadCase{
+            {"controller={type: external, command: [true], kp: 1}"},
+            "; kp is a key of the paper's controllers (controller.type theorem1, cascaded, flexible) only"},
+        BadCase{{"controller.lp=3"}, "; lp is a key of the baselines that declare it"},
         BadCase{{"faults.channels.PLANT_RATES={drop: 0.1}"},
                 "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, PLANT_RATE,"}));
 

@@ -78,10 +78,10 @@ TEST(InputAssembly, MeasuredRatesPairWithThePositionOfTheirOwnTickInBothWirings)
   Needs needs;
   needs.joint_rates = true;
   InputAssembly assembly(needs, Eigen::MatrixXd(), Eigen::MatrixXd());
-  EXPECT_FALSE(assembly.forTick(0, 0.0, q).has_value());    // lockstep: PLANT_RATE 0 not here
-  EXPECT_FALSE(assembly.newest(0, 0.0, q).has_value());     // realtime: not answered either
-  assembly.rateSample(1, Eigen::Vector3d(7, 8, 9));         // the next tick's rate
-  EXPECT_FALSE(assembly.newest(0, 0.0, q).has_value());     // ... is not tick 0's
+  EXPECT_FALSE(assembly.forTick(0, 0.0, q).has_value());  // lockstep: PLANT_RATE 0 not here
+  EXPECT_FALSE(assembly.newest(0, 0.0, q).has_value());   // realtime: not answered either
+  assembly.rateSample(1, Eigen::Vector3d(7, 8, 9));       // the next tick's rate
+  EXPECT_FALSE(assembly.newest(0, 0.0, q).has_value());   // ... is not tick 0's
   assembly.rateSample(0, Eigen::Vector3d(1, 2, 3));
   const auto lockstep = assembly.forTick(0, 0.0, q);
   ASSERT_TRUE(lockstep.has_value());

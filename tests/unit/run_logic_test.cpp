@@ -98,6 +98,8 @@ TEST(RunLogic, APartialLaunchNeedsTheNetworkTheUrlAndTheKey) {
 TEST(RunLogic, HostsOfOneRunAgreeOnItsIdentity) {
   const int64_t id = sharedRunId("udpm://239.255.76.67:7667?ttl=1", "name: a\n");
   EXPECT_EQ(id, sharedRunId("udpm://239.255.76.67:7667?ttl=1", "name: a\n"));
+  // Pinned: hosts running different versions of this project must still agree.
+  EXPECT_EQ(id, 2843483059056066161LL);
   EXPECT_GT(id, 0);
   EXPECT_EQ(id & 1, 1) << "never 0, which means any run";
   EXPECT_NE(id, sharedRunId("udpm://239.255.76.67:7668?ttl=1", "name: a\n"));

@@ -4,10 +4,13 @@
 // replay's bit-for-bit comparison (tools/replay/replay_log.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "support/temp_dir.hpp"
 #include "tools/replay/replay_log.hpp"
@@ -57,8 +60,10 @@ TEST_F(SubcommandLogic, SpyRefusesAMissingOrForeignEndpointFileNamingIt) {
     EXPECT_NE(std::string(e.what()).find(dir_ + "/lcm.json"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("inproc runs have no LCM traffic"), std::string::npos) << e.what();
   }
-  for (const char* text :
-       {"{not json", R"({"url": "udpm://x"})", R"({"lcm_url": 7, "netns_pid": null})", "\0\0"}) {
+  // Binary junk too: a NUL is no JSON (a std::string, so that it is not the empty string).
+  for (const std::string& text :
+       {std::string("{not json"), std::string(R"({"url": "udpm://x"})"),
+        std::string(R"({"lcm_url": 7, "netns_pid": null})"), std::string("\0\0", 2)}) {
     writeFile("lcm.json", text);
     try {
       readEndpoint(dir_);

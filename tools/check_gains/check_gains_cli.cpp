@@ -10,7 +10,7 @@
 namespace lagrange::tools {
 
 namespace {
-struct CheckGainsOptions {
+struct CheckGainsCommandLine {
   std::string config_path;
   std::vector<std::string> overrides;
   bool suggest = false;
@@ -18,7 +18,7 @@ struct CheckGainsOptions {
 }  // namespace
 
 Subcommand addCheckGainsCommand(CLI::App& app) {
-  auto o = std::make_shared<CheckGainsOptions>();
+  auto o = std::make_shared<CheckGainsCommandLine>();
   CLI::App* cmd = app.add_subcommand(
       "check-gains",
       "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; "

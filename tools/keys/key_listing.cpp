@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "config/key_reference.hpp"
 #include "config/key_table.hpp"
 #include "util/error.hpp"
 
@@ -45,6 +46,10 @@ std::string keyListing(const std::vector<std::string>& sections, int width) {
     if (!k.described_in.empty()) continue;
     bool wanted = sections.empty();
     for (const std::string& section : sections) wanted = wanted || inSection(k.key, section);
+    // A key described in this row (robot.links[i].mass in robot.links') selects the row.
+    for (const config::KeyInfo& inner : config::keyTable())
+      if (inner.described_in == k.key)
+        for (const std::string& section : sections) wanted = wanted || inSection(inner.key, section);
     if (!wanted) continue;
     out += k.key + "  (" + k.type + "; default " + k.default_text + ")\n";
     out += wrapped(k.meaning + config::rangeSentence(k), "    ", width);

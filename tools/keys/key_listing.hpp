@@ -8,7 +8,8 @@
 namespace lagrange::tools {
 
 /// The keys in `sections` (a key is in "controller" when it is "controller"
-/// or starts with "controller." or "controller["; all keys when empty), each
+/// or starts with "controller." or "controller["; all keys when empty; a key
+/// described in another key's row, robot.links[i].mass, gives that row), each
 /// as
 ///   plant.physics_step  (number > 0; default `1.0e-4`)
 ///       ODE step [s]; ... Range: from 1e-7 to 1 s (...).

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "config/key_table.hpp"
+#include "config/key_reference.hpp"
 #include "tools/keys/key_listing.hpp"
 #include "tools/keys/keys.hpp"
 #include "util/error.hpp"
@@ -14,14 +14,14 @@
 namespace lagrange::tools {
 
 namespace {
-struct KeysOptions {
+struct KeysCommandLine {
   std::vector<std::string> sections;
   bool markdown = false;
 };
 }  // namespace
 
 Subcommand addKeysCommand(CLI::App& app) {
-  auto options = std::make_shared<KeysOptions>();
+  auto options = std::make_shared<KeysCommandLine>();
   CLI::App* cmd = app.add_subcommand(
       "keys",
       "Every key a scenario file may hold: its type, default, range and meaning (docs/configuration.md)");

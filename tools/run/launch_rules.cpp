@@ -20,8 +20,7 @@ std::string checkProcesses(const RunOptions& opt) {
            "namespace would cut off; add --no-netns";
   if (opt.lcm_url.empty())
     return "--processes: every host must use the same LCM URL; give it with --lcm-url (TTL 1 or more to "
-           "cross "
-           "hosts, e.g. udpm://239.255.76.67:7667?ttl=1)";
+           "cross hosts, e.g. udpm://239.255.76.67:7667?ttl=1)";
   if (opt.key_file.empty())
     return "--processes: every host must sign with the same secret key; make one with `lagrange keygen "
            "FILE`, copy it to each host (mode 600) and give it with --key-file FILE";

@@ -36,7 +36,7 @@ nlohmann::json supervisionRecord(const config::SupervisionConfig& policy);
 /// A dead process is restarted when the scenario's supervision names it and
 /// it has restarts left. Every death is noted in `supervision` either way
 /// ("deaths": process, how, restarted; "restarts": per process) in
-/// `supervision`, a supervisionRecord.
+/// `supervision`, made by supervisionRecord.
 bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervision,
                 const std::string& process, const std::string& how_it_died);
 

@@ -152,6 +152,7 @@ void printResult(const std::string& out_dir) {
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
   std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
 }
+
 // --check: a completed run that missed its stated metric exits kExitMetricMissed,
 // naming each metric it missed with its value, so CI can guard a controller.
 int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code) {

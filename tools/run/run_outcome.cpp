@@ -10,12 +10,15 @@ namespace {
 // printf into a string (the block's columns are printf's).
 std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char* fmt, ...) {
-  char buf[512];
-  va_list args;
+  va_list args, again;
   va_start(args, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_copy(again, args);
+  const int length = std::vsnprintf(nullptr, 0, fmt, args);  // a scenario's name has no bound
   va_end(args);
-  return buf;
+  std::string text(length > 0 ? static_cast<size_t>(length) : 0, '\0');
+  std::vsnprintf(text.data(), text.size() + 1, fmt, again);
+  va_end(again);
+  return text;
 }
 
 std::string when(const nlohmann::json& convergence_time) {

@@ -1,11 +1,11 @@
 /// @file
 /// docs/configuration.md's table of keys, rendered from the key table
-/// (config/key_table.hpp).
+/// (config/key_reference.hpp).
+#include "config/key_reference.hpp"
+
 #include <map>
 #include <utility>
 #include <vector>
-
-#include "config/key_table.hpp"
 
 namespace lagrange::config {
 
