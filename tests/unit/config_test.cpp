@@ -111,7 +111,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "controller.stages: unknown key"},
         BadCase{
             {"controller={type: external, command: [true], kp: 1}"},
-            "; kp is a key of the paper's controllers (controller.type theorem1, cascaded, flexible) only"},
+            "; kp is a key of the paper's controllers (controller.type theorem1, cascaded, flexible) and of "
+            "the baselines that declare it"},
         BadCase{{"controller.lp=3"}, "; lp is a key of the baselines that declare it"},
         BadCase{{"faults.channels.PLANT_RATES={drop: 0.1}"},
                 "unknown channel; expected all, PLANT_POSITION, PLANT_TRUTH, PLANT_MOTOR, PLANT_RATE,"}));
