@@ -11,6 +11,7 @@
 /// re-sending after a timeout) is answered with the cached command, so the
 /// filter never steps twice on one sample.
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "controller/controller_lcm.hpp"
@@ -42,12 +43,12 @@ int DoMain(int argc, char** argv) {
       // The launcher prints the sampled-data check; here it would only delay the first tick.
       [&](const config::Scenario& s) {
         controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);
-        if (!handed.note.empty()) spdlog::warn("{}", handed.note);
+        if (!handed.note.empty()) spdlog::warn(fmt::format("{}", handed.note));
         gains = std::move(handed.report);
       },
       [&](const config::Scenario& s, transport::LcmNode& node) {
         if (!gains.holds() && strict) {
-          spdlog::error("{} (refusing to start: --strict)", controller::describe(gains));
+          spdlog::error(fmt::format("{} (refusing to start: --strict)", controller::describe(gains)));
           return 3;
         }
         const char* const running = gains.holds() ? "" : " (running anyway; --strict makes this an error)";

@@ -1,6 +1,5 @@
 #include "controller/sampled_data.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -13,6 +12,7 @@
 #include "controller/theorem1.hpp"
 #include "model/definiteness.hpp"
 #include "model/flexible_joint.hpp"
+#include "model/spectra.hpp"
 
 namespace lagrange::controller {
 
@@ -189,8 +189,7 @@ class LoopMap {
     double fastest = 50.0;  // [rad/s]: well above a rigid arm's own pendulum frequencies
     if (flexible_) {
       const Eigen::VectorXd& k = s_.flexible->params.stiffness;
-      const double d_min =
-          control_model_->inertia(u.q).selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
+      const double d_min = model::symmetricEigenvalues(control_model_->inertia(u.q)).minCoeff();
       for (int i = 0; i < n_; ++i)
         fastest = std::max(fastest, std::sqrt(k(i) / s_.flexible->params.rotor_inertia(i) + k(i) / d_min));
     }

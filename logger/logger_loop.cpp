@@ -1,5 +1,6 @@
 #include "logger/logger_loop.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -163,7 +164,8 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   // from the log -- log.missing_samples -- but the run still completed.)
   facts.status = metrics.newestTick() >= s.lastTick() ? "completed" : "interrupted";
   if (facts.status == "completed" && !end.allReported(runtime::State::kFinished))
-    spdlog::warn("not every process reported 'finished' within {} s of the plant", options.finish_grace);
+    spdlog::warn(
+        fmt::format("not every process reported 'finished' within {} s of the plant", options.finish_grace));
   report(runtime::stopRequested() ? runtime::State::kInterrupted : runtime::State::kFinished);
   writeProgress(options.progress_fd, metrics);  // the final sample, for the launcher's last progress line
   log.close();  // throws naming run.lcm if its last bytes could not be written
@@ -184,7 +186,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const auto summary = makeSummary(s, metrics.summary(), gains, facts);
   const std::string summary_path = (std::filesystem::path(options.out_dir) / "summary.json").string();
   util::writeOutputFile(summary_path, summary.dump(2) + "\n");  // throws naming the file and the error
-  spdlog::info("wrote {} events to {} and {}", facts.log_events, log_path, summary_path);
+  spdlog::info(fmt::format("wrote {} events to {} and {}", facts.log_events, log_path, summary_path));
   return 0;
 }
 

@@ -10,6 +10,7 @@
 /// The first event of the log is the resolved scenario on channel SCENARIO,
 /// so a log describes itself.
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "controller/gain_report_json.hpp"
@@ -41,7 +42,7 @@ int DoMain(int argc, char** argv) {
       // under the normal scheduler (runtime/process.hpp).
       [&](const config::Scenario& s) {
         controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);
-        if (!handed.note.empty()) spdlog::warn("{}", handed.note);
+        if (!handed.note.empty()) spdlog::warn(fmt::format("{}", handed.note));
         gains = std::move(handed.report);
         if (handed.sampled) gains.sampled = *handed.sampled;  // else the logger checks it at the end
       },

@@ -1,12 +1,13 @@
 #include "model/bounds.hpp"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <utility>
 #include <vector>
+
+#include "model/spectra.hpp"
 
 namespace lagrange::model {
 
@@ -15,7 +16,7 @@ double coriolisGain(const RobotModel& model, const Eigen::VectorXd& q) {
   const std::vector<Eigen::MatrixXd> ck = model.coriolisPerVelocity(q);
   Eigen::MatrixXd row(n, n * n);
   for (int k = 0; k < n; ++k) row.block(0, k * n, n, n) = ck[k];
-  return Eigen::JacobiSVD<Eigen::MatrixXd>(row).singularValues()(0);
+  return largestSingularValue(row);
 }
 
 std::optional<double> coriolisBound(const RobotModel& model) {
@@ -29,11 +30,10 @@ std::optional<double> coriolisBound(const RobotModel& model) {
   for (size_t p = 0; p < terms.size(); ++p) {
     Eigen::MatrixXd row(n, n * n);
     for (int k = 0; k < n; ++k) row.block(0, k * n, n, n) = terms[p].per_velocity[k];
-    triangle += Eigen::JacobiSVD<Eigen::MatrixXd>(row).singularValues()(0);
+    triangle += largestSingularValue(row);
     all.block(0, static_cast<Eigen::Index>(p) * n * n, n, n * n) = row;
   }
-  const double cauchy_schwarz = std::sqrt(static_cast<double>(terms.size())) *
-                                Eigen::JacobiSVD<Eigen::MatrixXd>(all).singularValues()(0);
+  const double cauchy_schwarz = std::sqrt(static_cast<double>(terms.size())) * largestSingularValue(all);
   return std::min(triangle, cauchy_schwarz);
 }
 

@@ -5,6 +5,8 @@
 #include <random>
 #include <vector>
 
+#include "model/spectra.hpp"
+
 namespace lagrange::model {
 
 namespace {
@@ -86,9 +88,7 @@ EtaEstimate estimateEta(const RobotModel& arm, const Reference& reference, const
   const double t_last = t_max + dt;  // the sampled t run up to it; dhdt needs t - dt >= 0
   // Both ratios rest on dh/dq at (t, q) (2 n inverse-dynamics calls): the
   // sampling below computes it once for the two.
-  auto eta2_from = [&](const Eigen::MatrixXd& jacobian) {
-    return (jacobian - damping).jacobiSvd().singularValues()(0);
-  };
+  auto eta2_from = [&](const Eigen::MatrixXd& jacobian) { return largestSingularValue(jacobian - damping); };
   auto eta1_from = [&](const Eigen::MatrixXd& jacobian, double t, const Eigen::VectorXd& q) {
     const ReferenceSample r = reference.evaluate(t, 1);
     const Eigen::VectorXd dhdt = (h(arm, reference, t + dt, q) - h(arm, reference, t - dt, q)) / (2 * dt);

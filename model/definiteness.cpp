@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "model/spectra.hpp"
+
 namespace lagrange::model {
 
 double scaledMinEigenvalue(const Eigen::MatrixXd& symmetric, const Eigen::MatrixXd& scale) {
@@ -13,9 +15,7 @@ double scaledMinEigenvalue(const Eigen::MatrixXd& symmetric, const Eigen::Matrix
     d(i) = s > 0.0 ? 1.0 / std::sqrt(s) : 1.0;
   }
   const Eigen::MatrixXd scaled = d.asDiagonal() * symmetric * d.asDiagonal();
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (scaled + scaled.transpose()))
-      .eigenvalues()
-      .minCoeff();
+  return symmetricEigenvalues(0.5 * (scaled + scaled.transpose())).minCoeff();
 }
 
 Eigen::VectorXcd balancedEigenvalues(const Eigen::MatrixXd& a) {

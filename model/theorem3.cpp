@@ -1,10 +1,10 @@
 #include "model/theorem3.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <stdexcept>
 
 #include "model/definiteness.hpp"
+#include "model/spectra.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::model {
@@ -134,8 +134,7 @@ std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const 
     const Eigen::MatrixXd q = Eigen::MatrixXd::Identity(2 * m, 2 * m);
     try {
       const Eigen::MatrixXd p = solveLyapunov(a, q);
-      if (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(p).eigenvalues().minCoeff() > 0.0)
-        best = std::max(best, condition786(p, q, b, e));
+      if (symmetricEigenvalues(p).minCoeff() > 0.0) best = std::max(best, condition786(p, q, b, e));
     } catch (const lagrange::RuntimeFault&) {
       unsolved = !identity_works;
     }

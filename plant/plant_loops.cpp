@@ -1,5 +1,6 @@
 #include "plant/plant_loops.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -134,11 +135,13 @@ int runLockstep(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     resendForLogger();
   }
   if (!protocol.allConfirmed())
-    spdlog::warn("the logger confirmed every message up to tick {} of {}", protocol.loggerTick(), last_tick);
+    spdlog::warn(fmt::format("the logger confirmed every message up to tick {} of {}", protocol.loggerTick(),
+                             last_tick));
   const long long retransmits = protocol.retransmits(), log_resends = protocol.logResends();
   if (retransmits > 0 || log_resends > 0)
-    spdlog::info("re-sent {} position samples nobody answered, and {} ticks the logger had not confirmed",
-                 retransmits, log_resends);
+    spdlog::info(
+        fmt::format("re-sent {} position samples nobody answered, and {} ticks the logger had not confirmed",
+                    retransmits, log_resends));
   // Three times: the others end on it, and a datagram can be lost.
   for (int copy = 0; copy < 3; ++copy)
     status.publish(
@@ -263,7 +266,8 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
     status.publish(State::kInterrupted, used_tick, static_cast<double>(used_tick) * s.tickPeriod());
     return 0;
   }
-  if (held + zeroed > 0) spdlog::warn("stale torque: held {} periods, zeroed {} periods", held, zeroed);
+  if (held + zeroed > 0)
+    spdlog::warn(fmt::format("stale torque: held {} periods, zeroed {} periods", held, zeroed));
   status.publish(State::kFinished, last_tick, static_cast<double>(last_tick) * s.tickPeriod(), std::nan(""),
                  "torque_held=" + std::to_string(held) + " torque_zeroed=" + std::to_string(zeroed));
   return 0;

@@ -1,5 +1,6 @@
 #include "runtime/process.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -82,10 +83,10 @@ int runProcess(const std::string& name, const std::string& description, int argc
     if (scenario.mode == config::Mode::kRealtime &&
         transport::enterRealtimeScheduling(scenario.realtime.priority) == "other" &&
         scenario.realtime.priority > 0)
-      spdlog::warn(
+      spdlog::warn(fmt::format(
           "SCHED_FIFO priority {} is not allowed here (needs root or CAP_SYS_NICE); running under "
           "the normal scheduler",
-          scenario.realtime.priority);
+          scenario.realtime.priority));
     // Read before anything starts: a bad key file is bad input (exit 2).
     const std::optional<transport::MessageKey> key =
         key_file.empty() ? std::nullopt : std::optional(readKeyFile(key_file));
@@ -103,20 +104,21 @@ int runProcess(const std::string& name, const std::string& description, int argc
     };
     if (!scenario.faults.channels.empty()) {
       node.injectFaults(scenario.faults.channels, seed_for(scenario.faults.seed));
-      spdlog::info("fault injection on: seed {}", scenario.faults.seed);
+      spdlog::info(fmt::format("fault injection on: seed {}", scenario.faults.seed));
     }
     if (const auto it = scenario.faults.receiver_drop.find(name); it != scenario.faults.receiver_drop.end()) {
       node.loseOnReceive(it->second, seed_for(scenario.faults.seed ^ 0x7265636569766572ULL));  // "receiver"
-      spdlog::info("{} loses {} of the datagrams it receives (faults.receivers)", name, it->second);
+      spdlog::info(
+          fmt::format("{} loses {} of the datagrams it receives (faults.receivers)", name, it->second));
     }
     return body(scenario, node);
   } catch (const std::exception& e) {
     // Bad input names its key or file itself; a fault is told with the process's name.
     const ExitCode code = exitCodeOf(e);
     if (code == kExitBadInput)
-      spdlog::error("{}", e.what());
+      spdlog::error(fmt::format("{}", e.what()));
     else
-      spdlog::error("{}: {}", name, e.what());
+      spdlog::error(fmt::format("{}: {}", name, e.what()));
     return code;
   }
 }

@@ -1,5 +1,6 @@
 #include "transport/lcm_node.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -81,8 +82,9 @@ void LcmNode::reject(const std::string& channel, RejectReason why, const std::st
   const std::string kind =
       std::to_string(static_cast<int>(why)) + (why == RejectReason::kInvalid ? detail : "");
   if (reported_.insert(channel + "\n" + kind).second)
-    spdlog::warn("{}: rejected a message on {}: {} (further ones of this kind are counted, not logged)",
-                 process_name_, channel, detail);
+    spdlog::warn(
+        fmt::format("{}: rejected a message on {}: {} (further ones of this kind are counted, not logged)",
+                    process_name_, channel, detail));
 }
 
 void LcmNode::injectFaults(const std::map<std::string, FaultRule>& rules, uint64_t seed) {
@@ -162,7 +164,7 @@ bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h, Ord
 
 void LcmNode::noteError(const std::string& channel, const std::string& what) {
   if (reported_.insert(channel + "\n" + what).second)
-    spdlog::error("{}: {} on {}", process_name_, what, channel);
+    spdlog::error(fmt::format("{}: {} on {}", process_name_, what, channel));
 }
 
 std::vector<lagrange::channel_stats_t> LcmNode::channelStats() const {

@@ -8,6 +8,7 @@
 #include "model/bounds.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
+#include "model/spectra.hpp"
 
 namespace lagrange::model {
 namespace {
@@ -80,7 +81,7 @@ TEST(Bounds, KcDominatesRandomCoriolisRatios) {
         q(i) = 10 * nd(rng);
         y(i) = nd(rng);
       }
-      const double ratio = chain.coriolis(q, y).jacobiSvd().singularValues()(0) / y.norm();
+      const double ratio = lagrange::model::largestSingularValue(chain.coriolis(q, y)) / y.norm();
       sampled = std::max(sampled, ratio);
     }
     EXPECT_GE(kc, sampled);
@@ -155,7 +156,7 @@ TEST(Bounds, KcBoundsAHeavyTippedEightLinkChainWhereTheSampledValueDidNot) {
   for (int s = 0; s < 2000; ++s) {
     Eigen::VectorXd y(n);
     for (int i = 0; i < n; ++i) q(i) = 5 * nd(rng), y(i) = nd(rng);
-    EXPECT_LE(chain.coriolis(q, y).jacobiSvd().singularValues()(0), kc * y.norm());
+    EXPECT_LE(lagrange::model::largestSingularValue(chain.coriolis(q, y)), kc * y.norm());
   }
 }
 
