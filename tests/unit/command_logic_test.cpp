@@ -113,13 +113,35 @@ TEST(KeyListing, ListsASectionsKeysWithTypeDefaultAndRange) {
   EXPECT_NE(plant.find("plant.physics_step  (number > 0; default `1.0e-4`)\n"), std::string::npos) << plant;
   EXPECT_NE(plant.find("Range: from 1e-7 to 1 s"), std::string::npos) << plant;
   EXPECT_EQ(plant.find("actuator."), std::string::npos) << "only the section asked for:\n" << plant;
-  // A row describing its items states their ranges; every line fits the width.
-  const std::string links = keyListing({"robot.links"}, 60);
-  EXPECT_NE(links.find("`mass` from 1e-6 to 1e6"), std::string::npos) << links;
-  std::istringstream lines(links);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind("    ", 0) == 0 && line.find(' ', 4) != std::string::npos) {
-      EXPECT_LE(line.size(), 60u) << line;  // a word longer than the width keeps its own line
+  // A row describing its items states their ranges; every line fits the width
+  // in columns (characters, not UTF-8 bytes: "≥" and "²" are one column each),
+  // and is as full as it can be: the next line's first word would not fit.
+  const auto columns = [](const std::string& text) {
+    size_t n = 0;
+    for (const char c : text) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    return n;
+  };
+  for (const int width : {40, 50, 60, 72}) {
+    const std::string links = keyListing({"robot.links"}, width);
+    std::istringstream all_words(links);
+    std::string words;
+    for (std::string word; all_words >> word;) words += word + " ";
+    EXPECT_NE(words.find("`mass` from 1e-6 to 1e6"), std::string::npos) << links;
+    EXPECT_NE(links.find("≥"), std::string::npos) << links;
+    std::vector<std::string> text;
+    std::istringstream lines(links);
+    for (std::string line; std::getline(lines, line);)
+      if (line.rfind("    ", 0) == 0) text.push_back(line);
+    for (size_t i = 0; i < text.size(); ++i) {
+      if (text[i].find(' ', 4) != std::string::npos) {  // a word longer than the width keeps its own line
+        EXPECT_LE(columns(text[i]), static_cast<size_t>(width)) << text[i];
+      }
+      if (i + 1 < text.size()) {
+        const std::string next_word = text[i + 1].substr(4, text[i + 1].find(' ', 4) - 4);
+        EXPECT_GT(columns(text[i]) + 1 + columns(next_word), static_cast<size_t>(width))
+            << "width " << width << ": '" << next_word << "' fits on\n"
+            << text[i];
+      }
     }
   }
   // A section ends at a dot or a bracket: "controller.k" is no prefix of controller.kp.
