@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -114,6 +116,12 @@ TEST(ReplayCompare, IsBitForBit) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(compare("u[0]", nan, nan), "") << "the same NaN replayed is no difference";
   EXPECT_EQ(compare("u[0]", 0.0, -0.0), "u[0]: recorded 0, replayed -0");
+  // NaNs that differ only in payload print alike; their bits are shown.
+  const std::uint64_t other_nan_bits = 0x7ff8000000000001ull;
+  double other_nan = 0.0;
+  std::memcpy(&other_nan, &other_nan_bits, sizeof other_nan);
+  EXPECT_EQ(compare("u[0]", nan, other_nan),
+            "u[0]: recorded nan (bits 0x7ff8000000000000), replayed nan (bits 0x7ff8000000000001)");
   const double next = std::nextafter(0.1, 1.0);
   EXPECT_EQ(compare("theta[1]", 0.1, next),
             "theta[1]: recorded 0.10000000000000001, replayed 0.10000000000000002");

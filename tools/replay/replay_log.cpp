@@ -133,7 +133,14 @@ std::string compare(const std::string& field, double recorded, double replayed) 
   std::memcpy(&recorded_bits, &recorded, sizeof recorded);
   std::memcpy(&replayed_bits, &replayed, sizeof replayed);
   if (recorded_bits == replayed_bits) return "";
-  return field + ": recorded " + show(recorded) + ", replayed " + show(replayed);
+  const std::string a = show(recorded), b = show(replayed);
+  if (a != b) return field + ": recorded " + a + ", replayed " + b;
+  // Two NaNs of different payloads (or signs) print alike: their bits say how they differ.
+  char bits[96];
+  std::snprintf(bits, sizeof bits, " (bits 0x%016llx), replayed %s (bits 0x%016llx)",
+                static_cast<unsigned long long>(recorded_bits), b.c_str(),
+                static_cast<unsigned long long>(replayed_bits));
+  return field + ": recorded " + a + bits;
 }
 
 std::string at(int64_t tick, double t) {
