@@ -13,6 +13,81 @@
 
 namespace lagrange::config::sections {
 
+using namespace field;
+
+// robot.links[i]: one link of a planar chain.
+const Fields<model::LinkParams>& linkFields() {
+  static const Fields<model::LinkParams> fields = {
+      positive("length", &model::LinkParams::length, Presence::kRequired),
+      nonNegative("com", &model::LinkParams::com, "expected a number >= 0 (distance joint to centre of mass)",
+                  Presence::kRequired),
+      positive("mass", &model::LinkParams::mass, Presence::kRequired),
+      positive("inertia", &model::LinkParams::inertia, Presence::kRequired),
+  };
+  return fields;
+}
+
+// plant: the physics step, the sample rate and a limit on the arm's rates.
+const Fields<PlantConfig>& plantFields() {
+  static const Fields<PlantConfig> fields = {
+      positive("physics_step", &PlantConfig::physics_step),
+      positive("publish_rate", &PlantConfig::publish_rate),
+      optionalPositive("max_rate", &PlantConfig::max_rate),
+  };
+  return fields;
+}
+
+namespace {
+using Reference = model::ReferenceParams;
+
+void nonNegativeFrequencies(MapReader& m, const std::string& key, const Eigen::VectorXd& v) {
+  if ((v.array() < 0.0).any())
+    m.fail(key, "expected numbers >= 0 [rad/s], got a negative one (" + std::to_string(v.minCoeff()) + ")");
+}
+
+// A sine's keys, "type" first so that it is written first; alpha is
+// smooth_sine's, and named as such when a plain sine has it.
+Fields<Reference> sineFields(bool smooth) {
+  Fields<Reference> fields = {
+      choice("type", &Reference::type, model::kReferenceTypeNames, "reference type"),
+      jointVector("offset", &Reference::offset, VectorRule().required()),
+      jointVector("amplitude", &Reference::amplitude, VectorRule().required()),
+      jointVector("frequency", &Reference::frequency,
+                  VectorRule().required().checkedBy(nonNegativeFrequencies)),
+      jointVector("phase", &Reference::phase),
+  };
+  if (smooth)
+    fields.push_back(jointVector("alpha", &Reference::alpha, VectorRule().required().positiveOnly()));
+  else
+    fields.push_back({"alpha",
+                      [](MapReader& m, Reference&) {
+                        if (m.has("alpha")) m.fail("alpha", "only a smooth_sine reference has alpha");
+                      },
+                      [](YAML::Emitter&, const Reference&) {}});
+  return fields;
+}
+}  // namespace
+
+// reference: the keys of each type.
+const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type) {
+  static const Fields<Reference> sine = sineFields(false), smooth_sine = sineFields(true);
+  // The unforced motion of the arm itself (Assumption 2), from this state.
+  static const Fields<Reference> free_motion = {
+      choice("type", &Reference::type, model::kReferenceTypeNames, "reference type"),
+      jointVector("initial_q", &Reference::initial_q, VectorRule().required().listOnly()),
+      jointVector("initial_qdot", &Reference::initial_qdot, VectorRule().listOnly()),
+  };
+  switch (type) {
+    case model::ReferenceType::kSine:
+      return sine;
+    case model::ReferenceType::kSmoothSine:
+      return smooth_sine;
+    case model::ReferenceType::kFreeMotion:
+      break;
+  }
+  return free_motion;
+}
+
 namespace {
 
 // robot.urdf: the document (inline, or from a file relative to the scenario's
@@ -82,14 +157,9 @@ model::ChainParams readRobot(MapReader robot) {
                               std::to_string(kMaxJoints) +
                               " are allowed (the gain check's cost grows as n^6)");
     for (size_t i = 0; i < links.size(); ++i) {
-      MapReader link(links[i], robot.keyPath("links") + "[" + std::to_string(i) + "]");
       model::LinkParams p;
-      p.length = link.positive("length");
-      p.com = link.number("com");
-      if (p.com < 0.0) link.fail("com", "expected a number >= 0 (distance joint to centre of mass)");
-      p.mass = link.positive("mass");
-      p.inertia = link.positive("inertia");
-      link.finish(keysUnder("robot.links[i]"));
+      readFields(MapReader(links[i], robot.keyPath("links") + "[" + std::to_string(i) + "]"), p,
+                 linkFields());
       params.links.push_back(p);
     }
   }
@@ -116,28 +186,15 @@ model::ReferenceParams readReference(MapReader ref, model::RobotModelPtr arm, do
   model::ReferenceParams p;
   p.type = ref.choice("type", model::kReferenceTypeNames, "reference type");
   if (p.type == model::ReferenceType::kFreeMotion) {
-    // The unforced motion of this very arm (Assumption 2), over the run and a second more.
-    p.initial_q = ref.vector("initial_q", n, false, false);
-    p.initial_qdot =
-        ref.has("initial_qdot") ? ref.vector("initial_qdot", n, false, false) : Eigen::VectorXd::Zero(n);
+    p.initial_q = p.initial_qdot = Eigen::VectorXd::Zero(n);
+    readFields(ref, p, referenceFields(p.type));
     p.model = std::move(arm);
-    p.horizon = duration + 1.0;
-    ref.finish(keysUnder("reference", "free_motion"));
+    p.horizon = duration + 1.0;  // the run and a second more
     return p;
   }
-  p.offset = ref.vector("offset", n, true, false);
-  p.amplitude = ref.vector("amplitude", n, true, false);
-  p.frequency = ref.vector("frequency", n, true, false);
-  if ((p.frequency.array() < 0.0).any())
-    ref.fail("frequency", "expected numbers >= 0 [rad/s], got a negative one (" +
-                              std::to_string(p.frequency.minCoeff()) + ")");
-  p.phase = ref.has("phase") ? ref.vector("phase", n, true, false) : Eigen::VectorXd::Zero(n);
-  if (p.type == model::ReferenceType::kSmoothSine) {
-    p.alpha = ref.vector("alpha", n, true, true);
-  } else if (ref.has("alpha")) {
-    ref.fail("alpha", "only a smooth_sine reference has alpha");
-  }
-  ref.finish(keysUnder("reference", "sine"));
+  p.offset = p.amplitude = p.frequency = p.phase = Eigen::VectorXd::Zero(n);
+  if (p.type == model::ReferenceType::kSmoothSine) p.alpha = Eigen::VectorXd::Zero(n);
+  readFields(ref, p, referenceFields(p.type));
   return p;
 }
 
@@ -184,10 +241,7 @@ void readReferenceSection(MapReader& root, Scenario& s) {
 void readPlantSection(MapReader& root, Scenario& s) {
   if (root.has("plant")) {
     MapReader plant = root.map("plant");
-    s.plant.physics_step = plant.positive("physics_step", s.plant.physics_step);
-    s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
-    if (plant.has("max_rate")) s.plant.max_rate = plant.positive("max_rate");
-    plant.finish(keysUnder("plant"));
+    readFields(plant, s.plant, plantFields());
     const double ratio = s.tickPeriod() / s.plant.physics_step;
     if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
       plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +

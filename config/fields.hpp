@@ -17,7 +17,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Dense>
 #include <functional>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -63,11 +65,29 @@ std::function<void(YAML::Emitter&, const T&)> plainWriter(const std::string& key
       [key, member](YAML::Emitter& out, const T& t) { out << YAML::Key << key << YAML::Value << t.*member; };
 }
 
+/// Whether a field may be left out (its member's value is then the default).
+enum class Presence { kOptional, kRequired };
+
 /// A number > 0.
 template <class T>
-Field<T> positive(const std::string& key, double T::*member) {
-  return {key, [key, member](MapReader& m, T& t) { t.*member = m.positive(key, t.*member); },
+Field<T> positive(const std::string& key, double T::*member, Presence presence = Presence::kOptional) {
+  return {key,
+          [key, member, presence](MapReader& m, T& t) {
+            t.*member = presence == Presence::kRequired ? m.positive(key) : m.positive(key, t.*member);
+          },
           plainWriter(key, member)};
+}
+
+/// A number > 0 or, left out, none (and then not written either).
+template <class T>
+Field<T> optionalPositive(const std::string& key, std::optional<double> T::*member) {
+  return {key,
+          [key, member](MapReader& m, T& t) {
+            if (m.has(key)) t.*member = m.positive(key);
+          },
+          [key, member](YAML::Emitter& out, const T& t) {
+            if (t.*member) out << YAML::Key << key << YAML::Value << *(t.*member);
+          }};
 }
 
 /// A whole number in [min, max]; `expected` says so in the error.
@@ -79,6 +99,90 @@ Field<T> integer(const std::string& key, int T::*member, int min, int max, const
             if (t.*member < min || t.*member > max) m.fail(key, expected);
           },
           plainWriter(key, member)};
+}
+
+/// A number in [0, 1].
+template <class T>
+Field<T> probability(const std::string& key, double T::*member) {
+  return {key,
+          [key, member](MapReader& m, T& t) {
+            t.*member = m.number(key, t.*member);
+            if (t.*member < 0.0 || t.*member > 1.0) m.fail(key, "expected a probability from 0 to 1");
+          },
+          plainWriter(key, member)};
+}
+
+/// A number >= 0; `expected` says so in the error ("expected a time >= 0 [s]").
+template <class T>
+Field<T> nonNegative(const std::string& key, double T::*member, const std::string& expected,
+                     Presence presence = Presence::kOptional) {
+  return {key,
+          [=](MapReader& m, T& t) {
+            t.*member = presence == Presence::kRequired ? m.number(key) : m.number(key, t.*member);
+            if (t.*member < 0.0) m.fail(key, expected);
+          },
+          plainWriter(key, member)};
+}
+
+/// A whole number >= min; the error is `expected`, then the number read.
+template <class T>
+Field<T> wholeAtLeast(const std::string& key, int T::*member, int min, const std::string& expected) {
+  return {key,
+          [=](MapReader& m, T& t) {
+            t.*member = m.integer(key, t.*member);
+            if (t.*member < min) m.fail(key, expected + ", got " + std::to_string(t.*member));
+          },
+          plainWriter(key, member)};
+}
+
+/// Emits "key: [v0, v1, ...]" on one line.
+inline void writeVector(YAML::Emitter& out, const std::string& key, const Eigen::VectorXd& v) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (Eigen::Index i = 0; i < v.size(); ++i) out << v(i);
+  out << YAML::EndSeq;
+}
+
+/// Fails through map.fail(key, ...) when a vector just read is out of its
+/// domain ("expected numbers >= 0 [rad/s], got -1").
+using VectorCheck = std::function<void(MapReader&, const std::string&, const Eigen::VectorXd&)>;
+
+/// How a per-joint vector is read: VectorRule().required().positiveOnly().
+struct VectorRule {
+  Presence presence = Presence::kOptional;
+  bool one_number_for_all = true;  ///< a single number stands for every joint
+  bool positive_only = false;
+  VectorCheck check;
+
+  VectorRule& required() {
+    presence = Presence::kRequired;
+    return *this;
+  }
+  VectorRule& listOnly() {
+    one_number_for_all = false;
+    return *this;
+  }
+  VectorRule& positiveOnly() {
+    positive_only = true;
+    return *this;
+  }
+  VectorRule& checkedBy(VectorCheck c) {
+    check = std::move(c);
+    return *this;
+  }
+};
+
+/// A per-joint vector of as many numbers as the member's default holds (the
+/// section's reader sizes the defaults to the arm's joints first).
+template <class T>
+Field<T> jointVector(const std::string& key, Eigen::VectorXd T::*member, VectorRule rule = VectorRule()) {
+  return {key,
+          [key, member, rule](MapReader& m, T& t) {
+            if (rule.presence == Presence::kOptional && !m.has(key)) return;
+            t.*member = m.vector(key, static_cast<int>((t.*member).size()), rule.one_number_for_all,
+                                 rule.positive_only);
+            if (rule.check) rule.check(m, key, t.*member);
+          },
+          [key, member](YAML::Emitter& out, const T& t) { writeVector(out, key, t.*member); }};
 }
 
 /// One of an enum's names; `what` names the kind of choice in the error.

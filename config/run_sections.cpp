@@ -97,36 +97,68 @@ std::string shortNumber(double x) {
   return out.str();
 }
 
-double probability(MapReader& map, const char* key) {
-  const double p = map.number(key, 0.0);
-  if (p < 0.0 || p > 1.0) map.fail(key, "expected a probability from 0 to 1");
-  return p;
+void wholeCountsOrZero(MapReader& m, const std::string& key, const Eigen::VectorXd& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (v(i) < 0.0 || v(i) != std::floor(v(i)))
+      m.fail(key, "expected whole numbers >= 0 (0: not quantised), got " + shortNumber(v(i)));
+}
+
+auto standardDeviations(const std::string& unit) {
+  return [unit](MapReader& m, const std::string& key, const Eigen::VectorXd& v) {
+    if ((v.array() < 0.0).any())
+      m.fail(key, "expected standard deviations >= 0 [" + unit + "], got " + shortNumber(v.minCoeff()));
+  };
 }
 }  // namespace
 
+// sensors.position and sensors.motor: angles, quantised, noisy and late.
+const Fields<JointSensorConfig>& angleSensorFields() {
+  static const Fields<JointSensorConfig> fields = {
+      jointVector("counts_per_revolution", &JointSensorConfig::counts_per_revolution,
+                  VectorRule().checkedBy(wholeCountsOrZero)),
+      jointVector("noise_sigma", &JointSensorConfig::noise_sigma,
+                  VectorRule().checkedBy(standardDeviations("rad"))),
+      wholeAtLeast("delay", &JointSensorConfig::delay, 0, "expected a whole number of samples >= 0"),
+  };
+  return fields;
+}
+
+// sensors.velocity: rates, noisy and late.
+const Fields<JointSensorConfig>& rateSensorFields() {
+  static const Fields<JointSensorConfig> fields = {
+      jointVector("noise_sigma", &JointSensorConfig::noise_sigma,
+                  VectorRule().checkedBy(standardDeviations("rad/s"))),
+      wholeAtLeast("delay", &JointSensorConfig::delay, 0, "expected a whole number of samples >= 0"),
+  };
+  return fields;
+}
+
+// faults.channels.NAME: what may happen to a datagram on one channel.
+const Fields<ChannelFaults>& channelFaultFields() {
+  static const Fields<ChannelFaults> fields = {
+      probability("drop", &ChannelFaults::drop),
+      probability("duplicate", &ChannelFaults::duplicate),
+      probability("reorder", &ChannelFaults::reorder),
+      probability("corrupt", &ChannelFaults::corrupt),
+      nonNegative("delay", &ChannelFaults::delay, "expected a time >= 0 [s]"),
+      nonNegative("delay_jitter", &ChannelFaults::delay_jitter, "expected a time >= 0 [s]"),
+  };
+  return fields;
+}
+
+// faults.receivers.PROCESS: the share of datagrams a process loses on receipt.
+const Fields<ReceiverFaults>& receiverFaultFields() {
+  static const Fields<ReceiverFaults> fields = {probability("drop", &ReceiverFaults::drop)};
+  return fields;
+}
+
 namespace {
-// One sensors.<quantity> map: counts_per_revolution (angles only), noise_sigma, delay.
-JointSensorConfig readJointSensor(MapReader& p, int n, bool angles, const std::set<std::string>& known) {
+// One sensors.<quantity> map, its vectors one entry per joint.
+JointSensorConfig readJointSensor(MapReader p, int n, const Fields<JointSensorConfig>& fields) {
   JointSensorConfig c;
   c.counts_per_revolution = Eigen::VectorXd::Zero(n);
   c.noise_sigma = Eigen::VectorXd::Zero(n);
-  if (angles && p.has("counts_per_revolution")) {
-    c.counts_per_revolution = p.vector("counts_per_revolution", n, true, false);
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (c.counts_per_revolution(i) < 0.0 ||
-          c.counts_per_revolution(i) != std::floor(c.counts_per_revolution(i)))
-        p.fail("counts_per_revolution", "expected whole numbers >= 0 (0: not quantised), got " +
-                                            shortNumber(c.counts_per_revolution(i)));
-  }
-  if (p.has("noise_sigma")) {
-    c.noise_sigma = p.vector("noise_sigma", n, true, false);
-    if ((c.noise_sigma.array() < 0.0).any())
-      p.fail("noise_sigma", std::string("expected standard deviations >= 0 [") + (angles ? "rad" : "rad/s") +
-                                "], got " + shortNumber(c.noise_sigma.minCoeff()));
-  }
-  c.delay = p.integer("delay", 0);
-  if (c.delay < 0) p.fail("delay", "expected a whole number of samples >= 0, got " + std::to_string(c.delay));
-  p.finish(known);
+  readFields(p, c, fields);
   return c;
 }
 }  // namespace
@@ -143,19 +175,12 @@ void readSensorsSection(MapReader& root, Scenario& s) {
   const int n = s.dof();
   c.position.counts_per_revolution = Eigen::VectorXd::Zero(n);
   c.position.noise_sigma = Eigen::VectorXd::Zero(n);
-  if (r.has("position")) {
-    MapReader p = r.map("position");
-    c.position = readJointSensor(p, n, true, keysUnder("sensors.position"));
-  }
-  if (r.has("velocity")) {
-    MapReader v = r.map("velocity");
-    c.velocity = readJointSensor(v, n, false, keysUnder("sensors.velocity"));
-  }
+  if (r.has("position")) c.position = readJointSensor(r.map("position"), n, angleSensorFields());
+  if (r.has("velocity")) c.velocity = readJointSensor(r.map("velocity"), n, rateSensorFields());
   if (r.has("motor")) {
     if (!s.flexible)
       r.fail("motor", "a motor-angle sensor needs flexible joints (robot.flexible); this arm is rigid");
-    MapReader m = r.map("motor");
-    c.motor = readJointSensor(m, n, true, keysUnder("sensors.motor"));
+    c.motor = readJointSensor(r.map("motor"), n, angleSensorFields());
   }
   r.finish(keysUnder("sensors"));
   s.sensors = c;
@@ -185,17 +210,8 @@ void readFaultsSection(MapReader& root, Scenario& s) {
         channels.fail(name, "unknown channel; expected " + list);
       }
       names.insert(name);
-      MapReader c = channels.map(name);
       ChannelFaults rule;
-      rule.drop = probability(c, "drop");
-      rule.duplicate = probability(c, "duplicate");
-      rule.reorder = probability(c, "reorder");
-      rule.corrupt = probability(c, "corrupt");
-      rule.delay = c.number("delay", 0.0);
-      if (rule.delay < 0.0) c.fail("delay", "expected a time >= 0 [s]");
-      rule.delay_jitter = c.number("delay_jitter", 0.0);
-      if (rule.delay_jitter < 0.0) c.fail("delay_jitter", "expected a time >= 0 [s]");
-      c.finish(keysUnder("faults.channels.NAME"));
+      readFields(channels.map(name), rule, channelFaultFields());
       s.faults.channels[name] = rule;
     }
     channels.finish(names);
@@ -207,9 +223,9 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       if (name != "plant" && name != "controller" && name != "actuator" && name != "logger")
         receivers.fail(name, "unknown process; expected plant, controller, actuator or logger");
       names.insert(name);
-      MapReader r = receivers.map(name);
-      s.faults.receiver_drop[name] = probability(r, "drop");
-      r.finish(keysUnder("faults.receivers.PROCESS"));
+      ReceiverFaults r;
+      readFields(receivers.map(name), r, receiverFaultFields());
+      s.faults.receiver_drop[name] = r.drop;
     }
     receivers.finish(names);
   }

@@ -18,6 +18,10 @@ void readInitialStateSection(MapReader& root, Scenario& s);  ///< after robot
 void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot and duration
 void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 
+const Fields<model::LinkParams>& linkFields();  ///< robot.links[i]
+const Fields<PlantConfig>& plantFields();
+const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type);
+
 // What drives it (drive_sections.cpp).
 void readActuatorSection(MapReader& root, Scenario& s);  ///< after plant
 /// `base_dir`: where a relative controller.command (type external) is looked for.
@@ -29,6 +33,15 @@ const Fields<MetricsConfig>& metricsFields();
 const Fields<LockstepConfig>& lockstepFields();
 const Fields<RealtimeConfig>& realtimeFields();
 const Fields<SupervisionConfig>& supervisionFields();
+/// sensors.position and sensors.motor; sensors.velocity (no counts_per_revolution).
+const Fields<JointSensorConfig>& angleSensorFields();
+const Fields<JointSensorConfig>& rateSensorFields();
+const Fields<ChannelFaults>& channelFaultFields();  ///< faults.channels.NAME
+/// faults.receivers.PROCESS (Scenario keeps only the number, faults.receiver_drop).
+struct ReceiverFaults {
+  double drop = 0.0;
+};
+const Fields<ReceiverFaults>& receiverFaultFields();
 void readMetricsSection(MapReader& root, Scenario& s);
 void readLockstepSection(MapReader& root, Scenario& s);
 void readRealtimeSection(MapReader& root, Scenario& s);

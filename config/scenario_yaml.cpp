@@ -11,23 +11,19 @@
 namespace lagrange::config {
 
 namespace {
-void emitVector(YAML::Emitter& out, const char* key, const Eigen::VectorXd& v) {
-  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
-  for (int i = 0; i < v.size(); ++i) out << v(i);
-  out << YAML::EndSeq;
-}
+using field::writeVector;
 
 // The keys of the paper's controllers (theorem1, cascaded, flexible).
 void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
   if (c.motor_rate)
     out << YAML::Key << "motor_rate" << YAML::Value << util::nameOf(kMotorRateNames, *c.motor_rate);
-  if (c.motor_rate_pole.size() > 0) emitVector(out, "motor_rate_pole", c.motor_rate_pole);
-  emitVector(out, "kp", c.gains.kp);
-  emitVector(out, "kd", c.gains.kd);
-  emitVector(out, "a", c.gains.a);
-  emitVector(out, "b", c.gains.b);
+  if (c.motor_rate_pole.size() > 0) writeVector(out, "motor_rate_pole", c.motor_rate_pole);
+  writeVector(out, "kp", c.gains.kp);
+  writeVector(out, "kd", c.gains.kd);
+  writeVector(out, "a", c.gains.a);
+  writeVector(out, "b", c.gains.b);
   if (c.initial_filter_state)
-    emitVector(out, "initial_filter_state", *c.initial_filter_state);
+    writeVector(out, "initial_filter_state", *c.initial_filter_state);
   else
     out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
   if (!c.stages.empty()) {
@@ -35,17 +31,17 @@ void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
     for (size_t i = 0; i < c.stages.size(); ++i) {
       const auto& st = c.stages[i];
       out << YAML::BeginMap;
-      emitVector(out, "kp", st.kp);
-      emitVector(out, "kd", st.kd);
-      emitVector(out, "a", st.a);
-      emitVector(out, "b", st.b);
+      writeVector(out, "kp", st.kp);
+      writeVector(out, "kd", st.kd);
+      writeVector(out, "a", st.a);
+      writeVector(out, "b", st.b);
       if (i < c.stage_starts.size()) {
         const controller::StageStart& start = c.stage_starts[i];
         if (start.bumpless)
           out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
         else if (start.qc.size() != 0)
-          emitVector(out, "initial_filter_state", start.qc);
-        if (start.zeta.size() != 0) emitVector(out, "initial_zeta", start.zeta);
+          writeVector(out, "initial_filter_state", start.qc);
+        if (start.zeta.size() != 0) writeVector(out, "initial_zeta", start.zeta);
       }
       out << YAML::EndMap;
     }
@@ -75,53 +71,41 @@ std::string toYaml(const Scenario& s) {
   } else {
     out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
     for (const auto& l : s.robot.links) {
-      out << YAML::Flow << YAML::BeginMap << YAML::Key << "length" << YAML::Value << l.length << YAML::Key
-          << "com" << YAML::Value << l.com << YAML::Key << "mass" << YAML::Value << l.mass << YAML::Key
-          << "inertia" << YAML::Value << l.inertia << YAML::EndMap;
+      out << YAML::Flow << YAML::BeginMap;
+      writeFields(out, l, sections::linkFields());
+      out << YAML::EndMap;
     }
     out << YAML::EndSeq;
   }
   if (s.flexible) {
     out << YAML::Key << "flexible" << YAML::Value << YAML::BeginMap;
-    emitVector(out, "stiffness", s.flexible->params.stiffness);
-    emitVector(out, "rotor_inertia", s.flexible->params.rotor_inertia);
+    writeVector(out, "stiffness", s.flexible->params.stiffness);
+    writeVector(out, "rotor_inertia", s.flexible->params.rotor_inertia);
     out << YAML::Key << "rate_sensor" << YAML::Value << s.flexible->rate_sensor << YAML::EndMap;
   }
   out << YAML::EndMap;
 
   out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginMap;
-  emitVector(out, "q", s.initial_state.q);
-  emitVector(out, "qdot", s.initial_state.qdot);
+  writeVector(out, "q", s.initial_state.q);
+  writeVector(out, "qdot", s.initial_state.qdot);
   if (s.flexible) {
-    emitVector(out, "motor_q", s.initial_state.motor_q);
-    emitVector(out, "motor_qdot", s.initial_state.motor_qdot);
+    writeVector(out, "motor_q", s.initial_state.motor_q);
+    writeVector(out, "motor_qdot", s.initial_state.motor_qdot);
   }
   out << YAML::EndMap;
 
   out << YAML::Key << "reference" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "type" << YAML::Value << model::toString(s.reference.type);
-  if (s.reference.type == model::ReferenceType::kFreeMotion) {
-    emitVector(out, "initial_q", s.reference.initial_q);
-    emitVector(out, "initial_qdot", s.reference.initial_qdot);
-  } else {
-    emitVector(out, "offset", s.reference.offset);
-    emitVector(out, "amplitude", s.reference.amplitude);
-    emitVector(out, "frequency", s.reference.frequency);
-    emitVector(out, "phase", s.reference.phase);
-  }
-  if (s.reference.type == model::ReferenceType::kSmoothSine) emitVector(out, "alpha", s.reference.alpha);
+  writeFields(out, s.reference, sections::referenceFields(s.reference.type));
   out << YAML::EndMap;
 
   out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "physics_step" << YAML::Value << s.plant.physics_step;
-  out << YAML::Key << "publish_rate" << YAML::Value << s.plant.publish_rate;
-  if (s.plant.max_rate) out << YAML::Key << "max_rate" << YAML::Value << *s.plant.max_rate;
+  writeFields(out, s.plant, sections::plantFields());
   out << YAML::EndMap;
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "order" << YAML::Value << s.actuator.order;
   out << YAML::Key << "rate" << YAML::Value << s.actuator.rate;
-  if (s.actuator.saturation) emitVector(out, "saturation", *s.actuator.saturation);
+  if (s.actuator.saturation) writeVector(out, "saturation", *s.actuator.saturation);
   if (s.actuator.order > 0) {
     out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginSeq;
     for (int i = 0; i < s.actuator.order; ++i) {
@@ -135,7 +119,7 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << s.controller.type;
-  for (const auto& [key, value] : s.controller.params) emitVector(out, key.c_str(), value);
+  for (const auto& [key, value] : s.controller.params) writeVector(out, key, value);
   if (s.controller.type == "external") {
     out << YAML::Key << "command" << YAML::Value << YAML::Flow << s.controller.command;
     out << YAML::Key << "working_directory" << YAML::Value << s.controller.working_directory;
@@ -157,36 +141,32 @@ std::string toYaml(const Scenario& s) {
   out << YAML::Key << "faults" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "seed" << YAML::Value << s.faults.seed;
   out << YAML::Key << "channels" << YAML::Value << YAML::BeginMap;
-  for (const auto& [name, r] : s.faults.channels) {
+  for (const auto& [name, rule] : s.faults.channels) {
     out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap;
-    out << YAML::Key << "drop" << YAML::Value << r.drop << YAML::Key << "duplicate" << YAML::Value
-        << r.duplicate;
-    out << YAML::Key << "reorder" << YAML::Value << r.reorder << YAML::Key << "corrupt" << YAML::Value
-        << r.corrupt;
-    out << YAML::Key << "delay" << YAML::Value << r.delay << YAML::Key << "delay_jitter" << YAML::Value
-        << r.delay_jitter;
+    writeFields(out, rule, sections::channelFaultFields());
     out << YAML::EndMap;
   }
   out << YAML::EndMap;
   out << YAML::Key << "receivers" << YAML::Value << YAML::BeginMap;
-  for (const auto& [name, drop] : s.faults.receiver_drop)
-    out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "drop"
-        << YAML::Value << drop << YAML::EndMap;
+  for (const auto& [name, drop] : s.faults.receiver_drop) {
+    out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap;
+    writeFields(out, sections::ReceiverFaults{drop}, sections::receiverFaultFields());
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
   out << YAML::EndMap;
 
   if (s.sensors) {
     out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "seed" << YAML::Value << s.sensors->seed;
-    const auto sensor = [&](const char* name, const JointSensorConfig& c, bool angles) {
+    const auto sensor = [&](const char* name, const JointSensorConfig& c, const auto& fields) {
       out << YAML::Key << name << YAML::Value << YAML::BeginMap;
-      if (angles) emitVector(out, "counts_per_revolution", c.counts_per_revolution);
-      emitVector(out, "noise_sigma", c.noise_sigma);
-      out << YAML::Key << "delay" << YAML::Value << c.delay << YAML::EndMap;
+      writeFields(out, c, fields);
+      out << YAML::EndMap;
     };
-    sensor("position", s.sensors->position, true);
-    if (s.sensors->velocity) sensor("velocity", *s.sensors->velocity, false);
-    if (s.sensors->motor) sensor("motor", *s.sensors->motor, true);
+    sensor("position", s.sensors->position, sections::angleSensorFields());
+    if (s.sensors->velocity) sensor("velocity", *s.sensors->velocity, sections::rateSensorFields());
+    if (s.sensors->motor) sensor("motor", *s.sensors->motor, sections::angleSensorFields());
     out << YAML::EndMap;
   }
 

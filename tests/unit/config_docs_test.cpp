@@ -110,6 +110,18 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::lockstepFields()), keysUnder("lockstep"));
   EXPECT_EQ(keysOf(sections::realtimeFields()), keysUnder("realtime"));
   EXPECT_EQ(keysOf(sections::supervisionFields()), keysUnder("supervision"));
+  EXPECT_EQ(keysOf(sections::linkFields()), keysUnder("robot.links[i]"));
+  EXPECT_EQ(keysOf(sections::plantFields()), keysUnder("plant"));
+  EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));
+  EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSmoothSine)),
+            keysUnder("reference", "sine"));
+  EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kFreeMotion)),
+            keysUnder("reference", "free_motion"));
+  EXPECT_EQ(keysOf(sections::angleSensorFields()), keysUnder("sensors.position"));
+  EXPECT_EQ(keysOf(sections::angleSensorFields()), keysUnder("sensors.motor"));
+  EXPECT_EQ(keysOf(sections::rateSensorFields()), keysUnder("sensors.velocity"));
+  EXPECT_EQ(keysOf(sections::channelFaultFields()), keysUnder("faults.channels.NAME"));
+  EXPECT_EQ(keysOf(sections::receiverFaultFields()), keysUnder("faults.receivers.PROCESS"));
 }
 
 }  // namespace
