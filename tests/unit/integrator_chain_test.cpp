@@ -91,8 +91,7 @@ INSTANTIATE_TEST_SUITE_P(Orders, ChainOrder, ::testing::Values(0, 1, 2, 3, 4));
 INSTANTIATE_TEST_SUITE_P(Orders, NonTrivialChainOrder, ::testing::Values(1, 2, 3, 4));
 
 TEST(IntegratorChain, AppliesXi1HeldOverThePeriodAndClipsOnlyTheTorque) {
-  Eigen::MatrixXd xi0(2, 1);
-  xi0 << 5.0, 100.0;  // xi_1 = 5 N m, rising at 100 N m/s
+  const Eigen::MatrixXd xi0{{5.0}, {100.0}};  // xi_1 = 5 N m, rising at 100 N m/s
   IntegratorChain chain(1, 2, Eigen::VectorXd::Constant(1, 6.0), xi0);
   const ActuatorOutput first = chain.step(Eigen::VectorXd::Zero(1), 0.02);
   ASSERT_EQ(first.tau.rows(), 1);
