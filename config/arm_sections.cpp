@@ -27,6 +27,20 @@ const Fields<model::LinkParams>& linkFields() {
   return fields;
 }
 
+// robot.flexible: elastic joints, their springs and rotors.
+const Fields<FlexibleConfig>& flexibleFields() {
+  static const Fields<FlexibleConfig> fields = {
+      jointVector<FlexibleConfig>(
+          "stiffness", [](auto& c) -> auto& { return c.params.stiffness; },
+          VectorRule().required().positiveOnly()),
+      jointVector<FlexibleConfig>(
+          "rotor_inertia", [](auto& c) -> auto& { return c.params.rotor_inertia; },
+          VectorRule().required().positiveOnly()),
+      boolean("rate_sensor", &FlexibleConfig::rate_sensor),
+  };
+  return fields;
+}
+
 // plant: the physics step, the sample rate and a limit on the arm's rates.
 const Fields<PlantConfig>& plantFields() {
   static const Fields<PlantConfig> fields = {
@@ -172,12 +186,9 @@ model::ChainParams readRobot(MapReader robot) {
 
 std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
   if (!robot.has("flexible")) return std::nullopt;
-  MapReader f = robot.map("flexible");
   FlexibleConfig c;
-  c.params.stiffness = f.vector("stiffness", n, true, true);
-  c.params.rotor_inertia = f.vector("rotor_inertia", n, true, true);
-  c.rate_sensor = f.boolean("rate_sensor", false);
-  f.finish(keysUnder("robot.flexible"));
+  c.params.stiffness = c.params.rotor_inertia = Eigen::VectorXd::Zero(n);
+  readFields(robot.map("flexible"), c, flexibleFields());
   return c;
 }
 

@@ -52,6 +52,13 @@ void readFields(MapReader map, T& value, const Fields<T>& fields) {
   map.finish(keysOf(fields));
 }
 
+/// Reads every field present and leaves the map open: for the top level,
+/// whose other keys are sections with readers of their own.
+template <class T>
+void readFieldsAmongOthers(MapReader& map, T& value, const Fields<T>& fields) {
+  for (const Field<T>& f : fields) f.read(map, value);
+}
+
 template <class T>
 void writeFields(YAML::Emitter& out, const T& value, const Fields<T>& fields) {
   for (const Field<T>& f : fields) f.write(out, value);
@@ -75,6 +82,23 @@ Field<T> positive(const std::string& key, double T::*member, Presence presence =
           [key, member, presence](MapReader& m, T& t) {
             t.*member = presence == Presence::kRequired ? m.positive(key) : m.positive(key, t.*member);
           },
+          plainWriter(key, member)};
+}
+
+/// A string.
+template <class T>
+Field<T> text(const std::string& key, std::string T::*member, Presence presence = Presence::kOptional) {
+  return {key,
+          [key, member, presence](MapReader& m, T& t) {
+            t.*member = presence == Presence::kRequired ? m.text(key) : m.text(key, t.*member);
+          },
+          plainWriter(key, member)};
+}
+
+/// true or false.
+template <class T>
+Field<T> boolean(const std::string& key, bool T::*member) {
+  return {key, [key, member](MapReader& m, T& t) { t.*member = m.boolean(key, t.*member); },
           plainWriter(key, member)};
 }
 
@@ -172,17 +196,23 @@ struct VectorRule {
 };
 
 /// A per-joint vector of as many numbers as the member's default holds (the
-/// section's reader sizes the defaults to the arm's joints first).
-template <class T>
-Field<T> jointVector(const std::string& key, Eigen::VectorXd T::*member, VectorRule rule = VectorRule()) {
+/// section's reader sizes the defaults to the arm's joints first). `member`
+/// is a pointer to a member of T, or a generic lambda returning a reference
+/// to one further down ([](auto& c) -> auto& { return c.params.stiffness; }).
+template <class T, class Member>
+Field<T> jointVector(const std::string& key, Member member, VectorRule rule = VectorRule()) {
   return {key,
           [key, member, rule](MapReader& m, T& t) {
             if (rule.presence == Presence::kOptional && !m.has(key)) return;
-            t.*member = m.vector(key, static_cast<int>((t.*member).size()), rule.one_number_for_all,
-                                 rule.positive_only);
-            if (rule.check) rule.check(m, key, t.*member);
+            Eigen::VectorXd& v = std::invoke(member, t);
+            v = m.vector(key, static_cast<int>(v.size()), rule.one_number_for_all, rule.positive_only);
+            if (rule.check) rule.check(m, key, v);
           },
-          [key, member](YAML::Emitter& out, const T& t) { writeVector(out, key, t.*member); }};
+          [key, member](YAML::Emitter& out, const T& t) { writeVector(out, key, std::invoke(member, t)); }};
+}
+template <class T>
+Field<T> jointVector(const std::string& key, Eigen::VectorXd T::*member, VectorRule rule = VectorRule()) {
+  return jointVector<T, Eigen::VectorXd T::*>(key, member, std::move(rule));
 }
 
 /// One of an enum's names; `what` names the kind of choice in the error.

@@ -36,6 +36,19 @@ model::RobotModelPtr Scenario::controlModel() const {
 
 long long Scenario::lastTick() const { return std::llround(duration * plant.publish_rate); }
 
+namespace sections {
+const Fields<Scenario>& headerFields() {
+  using namespace field;
+  static const Fields<Scenario> fields = {
+      text("name", &Scenario::name, Presence::kRequired),
+      text("description", &Scenario::description),
+      positive("duration", &Scenario::duration, Presence::kRequired),
+      choice("mode", &Scenario::mode, kModeNames, "mode"),
+  };
+  return fields;
+}
+}  // namespace sections
+
 namespace {
 
 // --set a.b.c=value: value is YAML ("[1, 2]", "0.5", "smooth_sine").
@@ -70,12 +83,8 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
 
 Scenario readScenario(MapReader root, const std::string& source) {
   Scenario s;
-  s.name = root.text("name");
-  s.description = root.text("description", "");
-  s.duration = root.positive("duration");
-  s.mode = root.choice("mode", kModeNames, "mode", s.mode);
-
   using namespace sections;
+  readFieldsAmongOthers(root, s, headerFields());
   readRobotSection(root, s, std::filesystem::path(source).parent_path().string());
   readSensorsSection(root, s);  // before the controller, which may need a velocity sensor
   readInitialStateSection(root, s);

@@ -18,7 +18,10 @@ void readInitialStateSection(MapReader& root, Scenario& s);  ///< after robot
 void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot and duration
 void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 
-const Fields<model::LinkParams>& linkFields();  ///< robot.links[i]
+/// name, description, duration, mode: the top level's own keys.
+const Fields<Scenario>& headerFields();
+const Fields<model::LinkParams>& linkFields();   ///< robot.links[i]
+const Fields<FlexibleConfig>& flexibleFields();  ///< robot.flexible
 const Fields<PlantConfig>& plantFields();
 const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type);
 

@@ -54,10 +54,7 @@ std::string toYaml(const Scenario& s) {
   YAML::Emitter out;
   out.SetDoublePrecision(17);
   out << YAML::BeginMap;
-  out << YAML::Key << "name" << YAML::Value << s.name;
-  out << YAML::Key << "description" << YAML::Value << s.description;
-  out << YAML::Key << "duration" << YAML::Value << s.duration;
-  out << YAML::Key << "mode" << YAML::Value << toString(s.mode);
+  writeFields(out, s, sections::headerFields());
 
   out << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;
@@ -79,9 +76,8 @@ std::string toYaml(const Scenario& s) {
   }
   if (s.flexible) {
     out << YAML::Key << "flexible" << YAML::Value << YAML::BeginMap;
-    writeVector(out, "stiffness", s.flexible->params.stiffness);
-    writeVector(out, "rotor_inertia", s.flexible->params.rotor_inertia);
-    out << YAML::Key << "rate_sensor" << YAML::Value << s.flexible->rate_sensor << YAML::EndMap;
+    writeFields(out, *s.flexible, sections::flexibleFields());
+    out << YAML::EndMap;
   }
   out << YAML::EndMap;
 

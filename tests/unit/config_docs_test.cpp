@@ -111,6 +111,9 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::realtimeFields()), keysUnder("realtime"));
   EXPECT_EQ(keysOf(sections::supervisionFields()), keysUnder("supervision"));
   EXPECT_EQ(keysOf(sections::linkFields()), keysUnder("robot.links[i]"));
+  EXPECT_EQ(keysOf(sections::flexibleFields()), keysUnder("robot.flexible"));
+  for (const std::string& key : keysOf(sections::headerFields()))  // the rest are sections
+    EXPECT_EQ(keysUnder("").count(key), 1u) << key;
   EXPECT_EQ(keysOf(sections::plantFields()), keysUnder("plant"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSmoothSine)),
