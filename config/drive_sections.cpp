@@ -15,6 +15,39 @@
 
 namespace lagrange::config::sections {
 
+namespace {
+// kp, kd, a, b: one positive number per joint (or one for all), for stage 0
+// and for each stage of a cascade alike.
+template <class Gains>
+Fields<Gains> gainFields() {
+  using namespace field;
+  return {
+      jointVector("kp", &Gains::kp, VectorRule().required().positiveOnly()),
+      jointVector("kd", &Gains::kd, VectorRule().required().positiveOnly()),
+      jointVector("a", &Gains::a, VectorRule().required().positiveOnly()),
+      jointVector("b", &Gains::b, VectorRule().required().positiveOnly()),
+  };
+}
+
+// Gains of n joints, read from `map` among its other keys.
+template <class Gains>
+Gains readGains(MapReader& map, int n, const Fields<Gains>& fields) {
+  Gains g;
+  g.kp = g.kd = g.a = g.b = Eigen::VectorXd::Zero(n);
+  readFieldsAmongOthers(map, g, fields);
+  return g;
+}
+}  // namespace
+
+const Fields<controller::Theorem1Gains>& paperGainFields() {
+  static const Fields<controller::Theorem1Gains> fields = gainFields<controller::Theorem1Gains>();
+  return fields;
+}
+const Fields<controller::StageGains>& stageGainFields() {
+  static const Fields<controller::StageGains> fields = gainFields<controller::StageGains>();
+  return fields;
+}
+
 // actuator: the integrator chain between controller and joints, and its rate.
 void readActuatorSection(MapReader& root, Scenario& s) {
   const int n = s.dof();
@@ -203,8 +236,7 @@ void readControllerSection(MapReader& root, Scenario& s, const std::string& base
                                   : " stages (one per integrator, actuator.order), each {kp, kd, a, b}"));
     for (size_t i = 0; i < stages.size(); ++i) {
       MapReader st(stages[i], ctl.keyPath("stages") + "[" + std::to_string(i) + "]");
-      s.controller.stages.push_back({st.vector("kp", n, true, true), st.vector("kd", n, true, true),
-                                     st.vector("a", n, true, true), st.vector("b", n, true, true)});
+      s.controller.stages.push_back(readGains(st, n, stageGainFields()));
       controller::StageStart start;
       start.qc = Eigen::VectorXd::Zero(n);
       start.zeta =
@@ -222,10 +254,7 @@ void readControllerSection(MapReader& root, Scenario& s, const std::string& base
   } else if (ctl.has("stages")) {
     ctl.fail("stages", "only the cascaded and flexible controllers have stages");
   }
-  s.controller.gains.kp = ctl.vector("kp", n, true, true);
-  s.controller.gains.kd = ctl.vector("kd", n, true, true);
-  s.controller.gains.a = ctl.vector("a", n, true, true);
-  s.controller.gains.b = ctl.vector("b", n, true, true);
+  s.controller.gains = readGains(ctl, n, paperGainFields());
   if (!ctl.has("initial_filter_state")) {
     s.controller.initial_filter_state = Eigen::VectorXd::Zero(n);
   } else if (ctl.child("initial_filter_state").IsScalar() &&

@@ -18,10 +18,7 @@ void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
   if (c.motor_rate)
     out << YAML::Key << "motor_rate" << YAML::Value << util::nameOf(kMotorRateNames, *c.motor_rate);
   if (c.motor_rate_pole.size() > 0) writeVector(out, "motor_rate_pole", c.motor_rate_pole);
-  writeVector(out, "kp", c.gains.kp);
-  writeVector(out, "kd", c.gains.kd);
-  writeVector(out, "a", c.gains.a);
-  writeVector(out, "b", c.gains.b);
+  writeFields(out, c.gains, sections::paperGainFields());
   if (c.initial_filter_state)
     writeVector(out, "initial_filter_state", *c.initial_filter_state);
   else
@@ -31,10 +28,7 @@ void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
     for (size_t i = 0; i < c.stages.size(); ++i) {
       const auto& st = c.stages[i];
       out << YAML::BeginMap;
-      writeVector(out, "kp", st.kp);
-      writeVector(out, "kd", st.kd);
-      writeVector(out, "a", st.a);
-      writeVector(out, "b", st.b);
+      writeFields(out, st, sections::stageGainFields());
       if (i < c.stage_starts.size()) {
         const controller::StageStart& start = c.stage_starts[i];
         if (start.bumpless)

@@ -114,6 +114,10 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::flexibleFields()), keysUnder("robot.flexible"));
   for (const std::string& key : keysOf(sections::headerFields()))  // the rest are sections
     EXPECT_EQ(keysUnder("").count(key), 1u) << key;
+  for (const std::string& key : keysOf(sections::paperGainFields()))  // the rest: stages, filter start
+    EXPECT_EQ(keysUnder("controller", "paper").count(key), 1u) << key;
+  for (const std::string& key : keysOf(sections::stageGainFields()))
+    EXPECT_EQ(keysUnder("controller.stages[i]").count(key), 1u) << key;
   EXPECT_EQ(keysOf(sections::plantFields()), keysUnder("plant"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSmoothSine)),
