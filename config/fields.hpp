@@ -18,6 +18,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <set>
@@ -81,6 +82,18 @@ Field<T> positive(const std::string& key, double T::*member, Presence presence =
   return {key,
           [key, member, presence](MapReader& m, T& t) {
             t.*member = presence == Presence::kRequired ? m.positive(key) : m.positive(key, t.*member);
+          },
+          plainWriter(key, member)};
+}
+
+/// A whole number >= 0 that seeds random draws.
+template <class T>
+Field<T> seed(const std::string& key, uint64_t T::*member) {
+  return {key,
+          [key, member](MapReader& m, T& t) {
+            const int value = m.integer(key, static_cast<int>(t.*member));
+            if (value < 0) m.fail(key, "expected a whole number >= 0");
+            t.*member = static_cast<uint64_t>(value);
           },
           plainWriter(key, member)};
 }

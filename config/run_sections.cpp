@@ -111,6 +111,16 @@ auto standardDeviations(const std::string& unit) {
 }
 }  // namespace
 
+// sensors and faults: their own keys beside the maps of sensors and channels.
+const Fields<SensorsConfig>& sensorsFields() {
+  static const Fields<SensorsConfig> fields = {seed("seed", &SensorsConfig::seed)};
+  return fields;
+}
+const Fields<FaultsConfig>& faultsFields() {
+  static const Fields<FaultsConfig> fields = {seed("seed", &FaultsConfig::seed)};
+  return fields;
+}
+
 // sensors.position and sensors.motor: angles, quantised, noisy and late.
 const Fields<JointSensorConfig>& angleSensorFields() {
   static const Fields<JointSensorConfig> fields = {
@@ -169,9 +179,7 @@ void readSensorsSection(MapReader& root, Scenario& s) {
   if (!root.has("sensors")) return;
   MapReader r = root.map("sensors");
   SensorsConfig c;
-  const int seed = r.integer("seed", 1);
-  if (seed < 0) r.fail("seed", "expected a whole number >= 0");
-  c.seed = static_cast<uint64_t>(seed);
+  readFieldsAmongOthers(r, c, sensorsFields());
   const int n = s.dof();
   c.position.counts_per_revolution = Eigen::VectorXd::Zero(n);
   c.position.noise_sigma = Eigen::VectorXd::Zero(n);
@@ -191,9 +199,7 @@ void readSensorsSection(MapReader& root, Scenario& s) {
 void readFaultsSection(MapReader& root, Scenario& s) {
   if (!root.has("faults")) return;
   MapReader f = root.map("faults");
-  const int seed = f.integer("seed", static_cast<int>(s.faults.seed));
-  if (seed < 0) f.fail("seed", "expected a whole number >= 0");
-  s.faults.seed = static_cast<uint64_t>(seed);
+  readFieldsAmongOthers(f, s.faults, faultsFields());
   if (f.has("channels")) {
     MapReader channels = f.map("channels");
     // The channels of transport/channels.hpp a fault can be injected on (config

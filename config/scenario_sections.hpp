@@ -39,6 +39,8 @@ const Fields<MetricsConfig>& metricsFields();
 const Fields<LockstepConfig>& lockstepFields();
 const Fields<RealtimeConfig>& realtimeFields();
 const Fields<SupervisionConfig>& supervisionFields();
+const Fields<SensorsConfig>& sensorsFields();  ///< sensors' own keys (seed), beside its sensors
+const Fields<FaultsConfig>& faultsFields();    ///< faults' own keys (seed), beside channels, receivers
 /// sensors.position and sensors.motor; sensors.velocity (no counts_per_revolution).
 const Fields<JointSensorConfig>& angleSensorFields();
 const Fields<JointSensorConfig>& rateSensorFields();

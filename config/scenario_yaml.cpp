@@ -129,7 +129,7 @@ std::string toYaml(const Scenario& s) {
   section("supervision", s.supervision, sections::supervisionFields());
 
   out << YAML::Key << "faults" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "seed" << YAML::Value << s.faults.seed;
+  writeFields(out, s.faults, sections::faultsFields());
   out << YAML::Key << "channels" << YAML::Value << YAML::BeginMap;
   for (const auto& [name, rule] : s.faults.channels) {
     out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginMap;
@@ -148,7 +148,7 @@ std::string toYaml(const Scenario& s) {
 
   if (s.sensors) {
     out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "seed" << YAML::Value << s.sensors->seed;
+    writeFields(out, *s.sensors, sections::sensorsFields());
     const auto sensor = [&](const char* name, const JointSensorConfig& c, const auto& fields) {
       out << YAML::Key << name << YAML::Value << YAML::BeginMap;
       writeFields(out, c, fields);

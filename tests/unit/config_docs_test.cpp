@@ -114,6 +114,9 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::flexibleFields()), keysUnder("robot.flexible"));
   for (const std::string& key : keysOf(sections::headerFields()))  // the rest are sections
     EXPECT_EQ(keysUnder("").count(key), 1u) << key;
+  for (const auto& [section, keys] : {std::pair{std::string("sensors"), keysOf(sections::sensorsFields())},
+                                      std::pair{std::string("faults"), keysOf(sections::faultsFields())}})
+    for (const std::string& key : keys) EXPECT_EQ(keysUnder(section).count(key), 1u) << section << "." << key;
   for (const std::string& key : keysOf(sections::paperGainFields()))  // the rest: stages, filter start
     EXPECT_EQ(keysUnder("controller", "paper").count(key), 1u) << key;
   for (const std::string& key : keysOf(sections::stageGainFields()))
