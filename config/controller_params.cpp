@@ -1,43 +1,43 @@
 #include "config/controller_params.hpp"
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 
 namespace lagrange::config {
 
 namespace {
-// The paper's three, and a controller from outside the project (external).
-const std::vector<std::string> kBuiltinTypes = {"theorem1", "cascaded", "flexible", "external"};
+// A controller from outside the project: known to config itself, listed
+// after the paper's three (registered at 0..2) and before the rest.
+constexpr const char* kExternal = "external";
+constexpr int kExternalListing = 30;
 
 // A function-local static: registrations run during static initialisation,
 // in any order across translation units.
-std::map<std::string, std::vector<ControllerParam>>& registered() {
-  static std::map<std::string, std::vector<ControllerParam>> types;
-  return types;
-}
-
-std::map<std::string, ControllerTraits>& traitsByType() {
-  static std::map<std::string, ControllerTraits> types;
+std::map<std::string, ControllerRegistration>& registered() {
+  static std::map<std::string, ControllerRegistration> types;
   return types;
 }
 }  // namespace
 
-void registerControllerParams(const std::string& type, std::vector<ControllerParam> params,
-                              ControllerTraits traits) {
-  for (const auto& t : controllerTypes())
-    if (t == type) throw std::logic_error("controller type '" + type + "' is registered twice");
-  registered()[type] = std::move(params);
-  traitsByType()[type] = traits;
+void registerControllerSection(ControllerRegistration registration) {
+  const std::string type = registration.type;
+  if (type == kExternal || registered().count(type) != 0)
+    throw std::logic_error("controller type '" + type + "' is registered twice");
+  if (static_cast<bool>(registration.section.read) != static_cast<bool>(registration.section.write))
+    throw std::logic_error("controller type '" + type +
+                           "' registers a section reader without a writer, or the converse");
+  registered().emplace(type, std::move(registration));
+}
+
+const ControllerRegistration* controllerRegistration(const std::string& type) {
+  const auto it = registered().find(type);
+  return it == registered().end() ? nullptr : &it->second;
 }
 
 ControllerTraits controllerTraits(const std::string& type) {
-  const auto it = traitsByType().find(type);
-  return it == traitsByType().end() ? ControllerTraits{} : it->second;
-}
-
-const std::vector<ControllerParam>* registeredControllerParams(const std::string& type) {
-  const auto it = registered().find(type);
-  return it == registered().end() ? nullptr : &it->second;
+  const ControllerRegistration* r = controllerRegistration(type);
+  return r ? r->traits : ControllerTraits{};
 }
 
 std::string controllerTypeList() {
@@ -49,8 +49,11 @@ std::string controllerTypeList() {
 }
 
 std::vector<std::string> controllerTypes() {
-  std::vector<std::string> types = kBuiltinTypes;
-  for (const auto& [type, params] : registered()) types.push_back(type);
+  std::vector<std::pair<int, std::string>> listed = {{kExternalListing, kExternal}};
+  for (const auto& [type, registration] : registered()) listed.emplace_back(registration.listing, type);
+  std::sort(listed.begin(), listed.end());
+  std::vector<std::string> types;
+  for (const auto& entry : listed) types.push_back(entry.second);
   return types;
 }
 

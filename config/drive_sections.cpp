@@ -1,6 +1,7 @@
 /// @file
 /// What drives the arm: actuator (integrator chain, rate, saturation) and
-/// controller (Theorem 1, cascaded, flexible) (config/scenario_sections.hpp).
+/// controller -- its type, and the section its registration reads
+/// (config/controller_params.hpp) (config/scenario_sections.hpp).
 
 #include <unistd.h>
 
@@ -14,39 +15,6 @@
 #include "config/scenario_sections.hpp"
 
 namespace lagrange::config::sections {
-
-namespace {
-// kp, kd, a, b: one positive number per joint (or one for all), for stage 0
-// and for each stage of a cascade alike.
-template <class Gains>
-Fields<Gains> gainFields() {
-  using namespace field;
-  return {
-      jointVector("kp", &Gains::kp, VectorRule().required().positiveOnly()),
-      jointVector("kd", &Gains::kd, VectorRule().required().positiveOnly()),
-      jointVector("a", &Gains::a, VectorRule().required().positiveOnly()),
-      jointVector("b", &Gains::b, VectorRule().required().positiveOnly()),
-  };
-}
-
-// Gains of n joints, read from `map` among its other keys.
-template <class Gains>
-Gains readGains(MapReader& map, int n, const Fields<Gains>& fields) {
-  Gains g;
-  g.kp = g.kd = g.a = g.b = Eigen::VectorXd::Zero(n);
-  readFieldsAmongOthers(map, g, fields);
-  return g;
-}
-}  // namespace
-
-const Fields<controller::Theorem1Gains>& paperGainFields() {
-  static const Fields<controller::Theorem1Gains> fields = gainFields<controller::Theorem1Gains>();
-  return fields;
-}
-const Fields<controller::StageGains>& stageGainFields() {
-  static const Fields<controller::StageGains> fields = gainFields<controller::StageGains>();
-  return fields;
-}
 
 // actuator: the integrator chain between controller and joints, and its rate.
 void readActuatorSection(MapReader& root, Scenario& s) {
@@ -177,93 +145,31 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
 }
 }  // namespace
 
-// controller: its type, gains, filter start, stages and motor rate source.
+// controller: its type, then the section its registration reads (or, for
+// external, the command that takes the controller's place).
 void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir) {
-  const int n = s.dof();
   MapReader ctl = root.map("controller");
   s.controller.type = ctl.text("type");
   if (s.controller.type == "external") return readExternalController(ctl, s, base_dir);
-  const std::vector<ControllerParam>* registered = registeredControllerParams(s.controller.type);
-  if (!s.controller.isPaperType() && registered == nullptr)
+  const ControllerRegistration* registration = controllerRegistration(s.controller.type);
+  if (registration == nullptr)
     ctl.fail("type",
              "unknown controller type '" + s.controller.type + "'; expected: " + controllerTypeList());
-  if (s.flexible && s.controller.type != "flexible")
-    ctl.fail("type",
-             "robot.flexible has elastic joints, which only the flexible controller (eq. 830) "
-             "drives; expected: type flexible");
-  if (registered) return readRegisteredController(ctl, s, *registered);
-  if (s.controller.type == "flexible") {
-    if (!s.flexible)
-      ctl.fail("type",
-               "the flexible controller needs an arm with elastic joints; expected a robot.flexible "
-               "section (stiffness, rotor_inertia)");
-    if (s.actuator.order != 0)
-      ctl.fail("type",
-               "the flexible controller commands the motor torque itself; expected actuator.order 0, got " +
-                   std::to_string(s.actuator.order));
-    if (!ctl.has("motor_rate"))
-      ctl.fail("motor_rate",
-               "missing; the paper does not say where q2' comes from: expected measured (the "
-               "motor's rate sensor, robot.flexible.rate_sensor: true) or filtered (a dirty "
-               "derivative of q2)");
-    s.controller.motor_rate = ctl.choice("motor_rate", kMotorRateNames, "choice");
-    if (s.controller.motor_rate == MotorRate::kMeasured && !s.flexible->rate_sensor)
-      ctl.fail("motor_rate",
-               "measured needs a motor rate sensor; expected robot.flexible.rate_sensor: true, "
-               "or motor_rate: filtered");
-    if (s.controller.motor_rate == MotorRate::kFiltered)
-      s.controller.motor_rate_pole = ctl.has("motor_rate_pole") ? ctl.vector("motor_rate_pole", n, true, true)
-                                                                : Eigen::VectorXd::Constant(n, 300.0);
-    else if (ctl.has("motor_rate_pole"))
-      ctl.fail("motor_rate_pole", "only motor_rate: filtered has a filter pole");
-  } else if (ctl.has("motor_rate") || ctl.has("motor_rate_pole")) {
-    ctl.fail(ctl.has("motor_rate") ? "motor_rate" : "motor_rate_pole", "only the flexible controller has it");
-  }
-  if (s.controller.type == "theorem1" && s.actuator.order != 0)
-    ctl.fail("type",
-             "the theorem1 controller drives torque directly (actuator.order 0), but actuator.order is " +
-                 std::to_string(s.actuator.order) + "; expected: type cascaded for an integrator chain");
-  if (s.controller.type == "cascaded" || s.controller.type == "flexible") {
-    if (s.controller.type == "cascaded" && s.actuator.order < 1)
-      ctl.fail("type",
-               "the cascaded controller needs an integrator chain; expected actuator.order from 1 to 4");
-    const int count = s.controller.type == "flexible" ? 2 : s.actuator.order;
-    YAML::Node stages = ctl.child("stages");
-    if (!stages.IsSequence() || static_cast<int>(stages.size()) != count)
-      ctl.fail("stages", "expected a list of " + std::to_string(count) +
-                             (s.controller.type == "flexible"
-                                  ? " stages (xi_1 = K q2, xi_2 = K q2': m = 2), each {kp, kd, a, b}"
-                                  : " stages (one per integrator, actuator.order), each {kp, kd, a, b}"));
-    for (size_t i = 0; i < stages.size(); ++i) {
-      MapReader st(stages[i], ctl.keyPath("stages") + "[" + std::to_string(i) + "]");
-      s.controller.stages.push_back(readGains(st, n, stageGainFields()));
-      controller::StageStart start;
-      start.qc = Eigen::VectorXd::Zero(n);
-      start.zeta =
-          st.has("initial_zeta") ? st.vector("initial_zeta", n, true, false) : Eigen::VectorXd::Zero(n);
-      if (st.has("initial_filter_state")) {
-        if (st.child("initial_filter_state").IsScalar() &&
-            st.child("initial_filter_state").Scalar() == "bumpless")
-          start.bumpless = true;
-        else
-          start.qc = st.vector("initial_filter_state", n, true, false);
+  if (s.flexible && registration->traits.elastic_joints_title.empty()) {
+    std::string titles, types;
+    for (const std::string& type : controllerTypes())
+      if (const std::string title = controllerTraits(type).elastic_joints_title; !title.empty()) {
+        titles += (titles.empty() ? "" : " or ") + title;
+        types += (types.empty() ? "" : " or ") + type;
       }
-      s.controller.stage_starts.push_back(start);
-      st.finish(keysUnder("controller.stages[i]"));
-    }
-  } else if (ctl.has("stages")) {
-    ctl.fail("stages", "only the cascaded and flexible controllers have stages");
+    ctl.fail("type",
+             "robot.flexible has elastic joints, which only " + titles + " drives; expected: type " + types);
   }
-  s.controller.gains = readGains(ctl, n, paperGainFields());
-  if (!ctl.has("initial_filter_state")) {
-    s.controller.initial_filter_state = Eigen::VectorXd::Zero(n);
-  } else if (ctl.child("initial_filter_state").IsScalar() &&
-             ctl.child("initial_filter_state").Scalar() == "bumpless") {
-    s.controller.initial_filter_state.reset();
-  } else {
-    s.controller.initial_filter_state = ctl.vector("initial_filter_state", n, true, false);
+  if (registration->section.read) {
+    s.controller.settings = registration->section.read(ctl, s);
+    return;
   }
-  ctl.finish(keysUnder("controller", "paper"));
+  readRegisteredController(ctl, s, registration->params);
 }
 
 }  // namespace lagrange::config::sections

@@ -8,7 +8,7 @@
 
 namespace lagrange::config {
 
-namespace {
+namespace keyrow {
 
 KeyInfo row(std::string key, std::string type, std::string default_text, std::string meaning) {
   return {std::move(key), std::move(type), std::move(default_text), std::move(meaning), std::nullopt, "", ""};
@@ -38,13 +38,18 @@ KeyRange gain() {
           "gains beyond 1e12 overflow or swamp the physics; the paper's constructive gains for long chains "
           "(check-gains --suggest) reach 1e125 and are evaluated there, not run"};
 }
+KeyRange largeState() { return {-1e15, 1e15, false, "", ""}; }  // filter and chain states
+}  // namespace keyrow
+
+namespace {
+using namespace keyrow;
+
 KeyRange probability() { return {0.0, 1.0, false, "", ""}; }
 KeyRange faultDelay() { return {0.0, 60.0, false, "s", "a datagram held longer is lost, not late"}; }
 KeyRange noise() { return {0.0, 1e3, false, "", ""}; }
 KeyRange counts() { return {0.0, 1e12, false, "", ""}; }
 KeyRange sensorDelay() { return {0.0, 1e5, false, "samples", "each sensor keeps that many readings"}; }
 KeyRange seed() { return {0.0, 1e9, false, "", ""}; }
-KeyRange largeState() { return {-1e15, 1e15, false, "", ""}; }  // filter and chain states
 
 // What the run is: its name, length and wiring.
 std::vector<KeyInfo> runKeys() {
@@ -231,45 +236,6 @@ std::vector<KeyInfo> controllerKeys() {
                "scenario), `LAGRANGE_JOINTS`, `LAGRANGE_MODE`")),
       only("external", row("controller.working_directory", "path", "the scenario file's folder",
                            "where the external controller starts (relative to the scenario file's folder)")),
-      only("paper",
-           row("controller.motor_rate", "`measured` or `filtered`", "required for `flexible`",
-               "where q2' comes from (the paper does not say): `measured` reads the rate sensors (needs "
-               "`robot.flexible.rate_sensor: true`), `filtered` estimates it as a s/(s + a) q2 (exact "
-               "discretisation, estimate 0 at t = 0)")),
-      only("paper",
-           row("controller.motor_rate_pole", "vector or scalar > 0", "`300`",
-               "a [1/s] of the `filtered` estimate; at 1 kHz, 300 converges on the shipped configs and 1000 "
-               "diverges (see `flexible_2dof_filtered_rate.yaml`).",
-               gain())),
-      only("paper",
-           row("controller.kp", "vector or scalar > 0", "required", "proportional gain [N m/rad].", gain())),
-      only("paper", row("controller.kd", "vector or scalar > 0", "required",
-                        "gain on the filter output θ [N m s/rad when b = a].", gain())),
-      only("paper", row("controller.a", "vector or scalar > 0", "required", "filter pole [1/s].", gain())),
-      only("paper", row("controller.b", "vector or scalar > 0", "required",
-                        "filter gain [1/s]; θ = b s/(s + a) q̃.", gain())),
-      only("paper",
-           row("controller.initial_filter_state", "vector, scalar or `bumpless`", "zeros",
-               "qc(0); `bumpless` sets qc(0) = −b q̃(0) at the first sample, so θ(0) = 0.", largeState())),
-      only(
-          "paper",
-          row("controller.stages", "list of m maps (2 for `flexible`)", "required for `cascaded`, `flexible`",
-              "per stage i = 1..m, `{kp, kd, a, b}`, each a vector or scalar > 0: kp_i [1/s], kd_i, a_i "
-              "[1/s] (pole of the approximate differentiator of xi_i*), b_i; sigma_i = b_i kp_{i-1} "
-              "(sigma_1 = 0) is derived.")),
-      inside("controller.stages[i].a", "controller.stages", gain()),
-      inside("controller.stages[i].b", "controller.stages", gain()),
-      inside("controller.stages[i].kd", "controller.stages", gain()),
-      inside("controller.stages[i].kp", "controller.stages", gain()),
-      row("controller.stages[i].initial_filter_state", "vector, scalar or `bumpless`", "zeros",
-          "qc_i(0) of stage i, as stage 0's `initial_filter_state`: `bumpless` sets qc_i(0) = −b_i "
-          "xi_i*(0) − zeta_i(0) at the first sample, so theta_i(0) = 0. The default, zeros, gives "
-          "theta_i(0) = b_i xi_i*(0), a first command of kd_i b_i xi_i* more (hundreds of N m on the "
-          "shipped chain configs); kept as the default so that existing scenarios and logs replay "
-          "unchanged.",
-          largeState()),
-      row("controller.stages[i].initial_zeta", "vector or scalar", "zeros", "zeta_i(0) of stage i.",
-          largeState()),
   };
 }
 
@@ -447,18 +413,56 @@ std::vector<KeyInfo> compareKeys() {
   };
 }
 
+// The rows registered by the files that own their keys (registerKeyRows).
+std::vector<KeyInfo>& registeredRows() {
+  static std::vector<KeyInfo> rows;
+  return rows;
+}
+// What each variant of a section is, for messages: "a key of <this>".
+std::map<std::string, std::string>& variantDescriptions() {
+  static std::map<std::string, std::string> descriptions = {
+      {"sine", "reference.type sine and smooth_sine only"},
+      {"free_motion", "reference.type free_motion only"},
+      {"external", "controller.type external only"},
+      {"registered", "the baselines that declare it (docs/baselines.md)"}};
+  return descriptions;
+}
+bool& tableBuilt() {
+  static bool built = false;
+  return built;
+}
+
+std::vector<KeyInfo> registeredControllerKeys() { return registeredRows(); }
+
 // The sections in the order of docs/configuration.md.
 std::vector<KeyInfo> makeTable() {
   std::vector<KeyInfo> table;
-  for (std::vector<KeyInfo> (*section)() : {runKeys, armKeys, referenceKeys, plantAndActuatorKeys,
-                                            controllerKeys, judgementKeys, faultAndSensorKeys, compareKeys}) {
+  for (std::vector<KeyInfo> (*section)() :
+       {runKeys, armKeys, referenceKeys, plantAndActuatorKeys, controllerKeys, registeredControllerKeys,
+        judgementKeys, faultAndSensorKeys, compareKeys}) {
     std::vector<KeyInfo> keys = section();
     table.insert(table.end(), std::make_move_iterator(keys.begin()), std::make_move_iterator(keys.end()));
   }
+  tableBuilt() = true;
   return table;
 }
 
 }  // namespace
+
+void registerKeyRows(const std::string& variant, const std::string& description, std::vector<KeyInfo> rows) {
+  if (tableBuilt())
+    throw std::logic_error("config::registerKeyRows: called after the key table was first read");
+  if (!variantDescriptions().emplace(variant, description).second)
+    throw std::logic_error("config::registerKeyRows: variant '" + variant + "' is registered twice");
+  registeredRows().insert(registeredRows().end(), rows.begin(), rows.end());
+}
+
+const std::string& variantDescription(const std::string& variant) {
+  const auto it = variantDescriptions().find(variant);
+  if (it == variantDescriptions().end())
+    throw std::logic_error("config::variantDescription: no variant '" + variant + "'");
+  return it->second;
+}
 
 const std::vector<KeyInfo>& keyTable() {
   static const std::vector<KeyInfo> table = makeTable();

@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <any>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -14,7 +15,6 @@
 #include <utility>
 #include <vector>
 
-#include "controller/paper_gains.hpp"
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
 #include "model/reference.hpp"
@@ -73,13 +73,6 @@ struct ActuatorConfig {
   Eigen::MatrixXd initial_state;              ///< m x n: xi_1(0) .. xi_m(0)
 };
 
-/// Where the flexible controller's q2' comes from (controller.motor_rate):
-/// the motor's rate sensor, or a dirty derivative a s / (s + a) of q2 with
-/// a = motor_rate_pole.
-enum class MotorRate { kMeasured, kFiltered };
-inline constexpr util::EnumName<MotorRate> kMotorRateNames[] = {{MotorRate::kMeasured, "measured"},
-                                                                {MotorRate::kFiltered, "filtered"}};
-
 /// What the realtime plant does without a fresh torque (realtime.stale_torque):
 /// hold the newest one for hold_periods more, or apply zero at once.
 enum class StaleTorque { kHold, kZero };
@@ -87,30 +80,20 @@ inline constexpr util::EnumName<StaleTorque> kStaleTorqueNames[] = {{StaleTorque
                                                                     {StaleTorque::kHold, "hold"}};
 
 struct ControllerConfig {
-  /// "theorem1" (m = 0), "cascaded" (m >= 1), "flexible" (the Corollary, eq. 830),
-  /// or a type registered by controller::registerControllerKind
+  /// A type registered by its own file (config/controller_params.hpp: the
+  /// paper's theorem1, cascaded and flexible, the baselines, a user's), or
+  /// "external"
   std::string type = "theorem1";
-  /// A registered type's per-joint parameters, by key (config/controller_params.hpp);
-  /// empty for the paper's types.
+  /// A registered type's per-joint parameters, by key; empty for the others.
   std::map<std::string, Eigen::VectorXd> params;
-  /// "flexible": where q2' comes from (unset for the other types).
-  std::optional<MotorRate> motor_rate;
-  Eigen::VectorXd motor_rate_pole;             ///< [1/s], "filtered" only
-  controller::Theorem1Gains gains;             ///< stage 0 (kp0, kd0, a0, b0 for "cascaded")
-  std::vector<controller::StageGains> stages;  ///< "cascaded": stages 1..m
-  /// qc(0); empty means "bumpless": qc(0) = -b q~(0), so theta(0) = 0.
-  std::optional<Eigen::VectorXd> initial_filter_state;
-  /// Per stage i = 1..m, how its filter starts (stages[i].initial_filter_state,
-  /// stages[i].initial_zeta); default: qc_i(0) = zeta_i(0) = 0.
-  std::vector<controller::StageStart> stage_starts;
+  /// What a type with a section of its own read (ControllerSectionCodec);
+  /// empty for the others. Its owner casts it (the paper's controllers:
+  /// controller/paper_section.hpp).
+  std::any settings;
   /// "external": the controller's command line (argv; argv[0] absolute when
   /// given as a path) and the directory it starts in (docs/external_controllers.md).
   std::vector<std::string> command;
   std::string working_directory;
-
-  /// One of the paper's controllers (theorem1, cascaded, flexible): the ones
-  /// whose gains, stages and filter start are the fields above.
-  bool isPaperType() const { return type == "theorem1" || type == "cascaded" || type == "flexible"; }
 };
 
 struct MetricsConfig {

@@ -27,9 +27,6 @@ const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type)
 
 // What drives it (drive_sections.cpp).
 void readActuatorSection(MapReader& root, Scenario& s);  ///< after plant
-/// The paper controllers' gains: controller.kp, kd, a, b; controller.stages[i] the same.
-const Fields<controller::Theorem1Gains>& paperGainFields();
-const Fields<controller::StageGains>& stageGainFields();
 /// `base_dir`: where a relative controller.command (type external) is looked for.
 void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir);  ///< after actuator
 

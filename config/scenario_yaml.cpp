@@ -12,36 +12,6 @@ namespace lagrange::config {
 
 namespace {
 using field::writeVector;
-
-// The keys of the paper's controllers (theorem1, cascaded, flexible).
-void emitPaperController(YAML::Emitter& out, const ControllerConfig& c) {
-  if (c.motor_rate)
-    out << YAML::Key << "motor_rate" << YAML::Value << util::nameOf(kMotorRateNames, *c.motor_rate);
-  if (c.motor_rate_pole.size() > 0) writeVector(out, "motor_rate_pole", c.motor_rate_pole);
-  writeFields(out, c.gains, sections::paperGainFields());
-  if (c.initial_filter_state)
-    writeVector(out, "initial_filter_state", *c.initial_filter_state);
-  else
-    out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
-  if (!c.stages.empty()) {
-    out << YAML::Key << "stages" << YAML::Value << YAML::BeginSeq;
-    for (size_t i = 0; i < c.stages.size(); ++i) {
-      const auto& st = c.stages[i];
-      out << YAML::BeginMap;
-      writeFields(out, st, sections::stageGainFields());
-      if (i < c.stage_starts.size()) {
-        const controller::StageStart& start = c.stage_starts[i];
-        if (start.bumpless)
-          out << YAML::Key << "initial_filter_state" << YAML::Value << "bumpless";
-        else if (start.qc.size() != 0)
-          writeVector(out, "initial_filter_state", start.qc);
-        if (start.zeta.size() != 0) writeVector(out, "initial_zeta", start.zeta);
-      }
-      out << YAML::EndMap;
-    }
-    out << YAML::EndSeq;
-  }
-}
 }  // namespace
 
 std::string toYaml(const Scenario& s) {
@@ -113,8 +83,9 @@ std::string toYaml(const Scenario& s) {
   if (s.controller.type == "external") {
     out << YAML::Key << "command" << YAML::Value << YAML::Flow << s.controller.command;
     out << YAML::Key << "working_directory" << YAML::Value << s.controller.working_directory;
-  } else if (registeredControllerParams(s.controller.type) == nullptr) {
-    emitPaperController(out, s.controller);
+  } else if (const ControllerRegistration* registration = controllerRegistration(s.controller.type);
+             registration && registration->section.write) {
+    registration->section.write(out, s);
   }
   out << YAML::EndMap;
 

@@ -173,20 +173,10 @@ namespace {
 // "; initial_q is a key of reference.type free_motion only" for a key the key
 // table has in another variant of its section (config/key_table.hpp), "" otherwise.
 std::string variantHint(const std::string& key, const std::string& key_path) {
-  // The paper's gains (kp, kd, a, b) are also gains of baselines that declare
-  // them (docs/baselines.md): the hint does not say "only" for those.
-  static const std::map<std::string, std::string> kVariants = {
-      {"sine", "reference.type sine and smooth_sine only"},
-      {"free_motion", "reference.type free_motion only"},
-      {"paper",
-       "the paper's controllers (controller.type theorem1, cascaded, flexible) and of the baselines that "
-       "declare it (docs/baselines.md)"},
-      {"external", "controller.type external only"},
-      {"registered", "the baselines that declare it (docs/baselines.md)"}};
   const std::string table_key = rangeKey(key_path);
   for (const KeyInfo& k : keyTable())
     if (k.key == table_key && !k.variant.empty())
-      return "; " + key + " is a key of " + kVariants.at(k.variant);
+      return "; " + key + " is a key of " + variantDescription(k.variant);
   return "";
 }
 }  // namespace

@@ -85,7 +85,8 @@ const bool kPdPlusRegistered = registerControllerKind(velocityKind(
     "pd_plus",
     {{"kp", true, "stiffness Kp [N m / rad]"}, {"kd", true, "damping Kd on q' - q_d' [N m s / rad]"}},
     [](const config::Scenario& s) {
-      return std::make_unique<WithVelocity<PdPlus>>(s, s.controller.params.at("kp"), s.controller.params.at("kd"));
+      return std::make_unique<WithVelocity<PdPlus>>(s, s.controller.params.at("kp"),
+                                                    s.controller.params.at("kd"));
     },
     "pd_plus: Paden and Panja (Int. J. Control 1988) prove global (asymptotic) tracking for every positive "
     "Kp, Kd, with the velocity measured and the model exact, so there is no further condition to check; the "

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "controller/paper_section.hpp"
 #include "model/bounds.hpp"
 #include "model/chain_conditions.hpp"
 #include "model/proposition1.hpp"
@@ -22,9 +23,10 @@ config::Scenario suggestGains(const config::Scenario& in) {
   const std::optional<double> proven_kc = model::coriolisBound(*arm);
   const double kc = proven_kc ? *proven_kc : model::coriolisLargestFound(*arm);
   const double kdelta = model::referenceBound(reference);
-  Theorem1Gains& g0 = s.controller.gains;
+  PaperSettings& c = paperSettings(s);
+  Theorem1Gains& g0 = c.gains;
   const int n = s.dof();
-  const int m = static_cast<int>(s.controller.stages.size());
+  const int m = static_cast<int>(c.stages.size());
   if (m == 0) {
     // eq. (11): (kd_min / 2)(b_min / a_max) > k_c k_delta.
     const double kd = 1.1 * 2.0 * kc * kdelta * g0.a.maxCoeff() / g0.b.minCoeff();
@@ -75,9 +77,9 @@ config::Scenario suggestGains(const config::Scenario& in) {
   };
   for (int i = 2; i <= m; ++i)
     while (!meets(build(i), 0.5 + 0.1 * (m - i)) && factors[i - 1] < 1e12) factors[i - 1] *= 2.0;
-  s.controller.stages = build(m);
+  c.stages = build(m);
   for (int i = 1; i <= m; ++i) {
-    const StageGains& g = s.controller.stages[i - 1];
+    const StageGains& g = c.stages[i - 1];
     if (!(g.kp.allFinite() && g.kd.allFinite() && g.a.allFinite()))
       throw std::range_error(
           "Proposition 1's constructive gains for m = " + std::to_string(m) + " overflow " +

@@ -4,6 +4,7 @@
 
 #include "controller/cascaded.hpp"
 #include "controller/flexible.hpp"
+#include "controller/paper_section.hpp"
 #include "controller/theorem1.hpp"
 
 namespace lagrange::controller {
@@ -17,6 +18,7 @@ class PaperController : public Controller {
  protected:
   explicit PaperController(const config::Scenario& s)
       : s_(s), model_(s.controlModel()), reference_(s.reference) {}
+  const PaperSettings& settings() const { return paperSettings(s_); }
   const config::Scenario s_;
   const model::RobotModelPtr model_;
   const model::Reference reference_;
@@ -35,7 +37,7 @@ class Theorem1 final : public PaperController {
   Needs needs() const override { return {}; }
   ControllerCommand step(const ControllerInputs& in) override { return core_->step(in.t, in.q); }
   void reset() override {
-    core_.emplace(*model_, reference_, s_.controller.gains, s_.controller.initial_filter_state);
+    core_.emplace(*model_, reference_, settings().gains, settings().initial_filter_state);
   }
 
  private:
@@ -51,8 +53,8 @@ class Cascaded final : public PaperController {
     return withCascade(out, out.cascade.u);
   }
   void reset() override {
-    core_.emplace(*model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
-                  s_.controller.initial_filter_state, s_.controller.stage_starts);
+    core_.emplace(*model_, reference_, CascadedGains{settings().gains, settings().stages},
+                  settings().initial_filter_state, settings().stage_starts);
   }
 
  private:
@@ -62,18 +64,17 @@ class Cascaded final : public PaperController {
 class Flexible final : public PaperController {
  public:
   explicit Flexible(const config::Scenario& s) : PaperController(s) { reset(); }
-  Needs needs() const override { return {0, true, s_.controller.motor_rate == config::MotorRate::kMeasured}; }
+  Needs needs() const override { return {0, true, settings().motor_rate == MotorRate::kMeasured}; }
   ControllerCommand step(const ControllerInputs& in) override {
     const FlexibleController::Output out = core_->step(in.t, in.q, in.motor_q, in.motor_qdot);
     return withCascade(out.cascade, out.tau);
   }
   void reset() override {
-    core_.emplace(*model_, reference_, CascadedGains{s_.controller.gains, s_.controller.stages},
-                  s_.controller.initial_filter_state, s_.flexible->params,
-                  s_.controller.motor_rate == config::MotorRate::kFiltered
-                      ? std::optional(s_.controller.motor_rate_pole)
-                      : std::nullopt,
-                  s_.controller.stage_starts);
+    core_.emplace(*model_, reference_, CascadedGains{settings().gains, settings().stages},
+                  settings().initial_filter_state, s_.flexible->params,
+                  settings().motor_rate == MotorRate::kFiltered ? std::optional(settings().motor_rate_pole)
+                                                                : std::nullopt,
+                  settings().stage_starts);
   }
 
  private:
@@ -81,14 +82,35 @@ class Flexible final : public PaperController {
 };
 
 template <class C>
-ControllerKind paperKind(const char* type) {
-  return {type, {}, [](const config::Scenario& s) { return std::make_unique<C>(s); }, checkPaperGains};
+ControllerKind paperKind(const char* type, int listing) {
+  ControllerKind kind;
+  kind.type = type;
+  kind.make = [](const config::Scenario& s) { return std::make_unique<C>(s); };
+  kind.report = checkPaperGains;
+  kind.section = paperSectionCodec();
+  kind.listing = listing;
+  return kind;
 }
 
 }  // namespace
 
 std::vector<ControllerKind> paperControllerKinds() {
-  return {paperKind<Theorem1>("theorem1"), paperKind<Cascaded>("cascaded"), paperKind<Flexible>("flexible")};
+  ControllerKind flexible = paperKind<Flexible>("flexible", 2);
+  flexible.elastic_joints_title = "the flexible controller (eq. 830)";
+  return {paperKind<Theorem1>("theorem1", 0), paperKind<Cascaded>("cascaded", 1), flexible};
 }
+
+namespace {
+// The one registration of the three, and of their section's keys.
+const bool registered = [] {
+  config::registerKeyRows(
+      "paper",
+      "the paper's controllers (controller.type theorem1, cascaded, flexible) and of the baselines that "
+      "declare it (docs/baselines.md)",
+      paperKeyRows());
+  for (ControllerKind& kind : paperControllerKinds()) registerControllerKind(std::move(kind));
+  return true;
+}();
+}  // namespace
 
 }  // namespace lagrange::controller

@@ -11,7 +11,8 @@
 
 namespace lagrange::controller {
 
-/// Their registry entries (registry.cpp seeds the registry with them).
+/// Their registry entries, registered from paper_controllers.cpp's static
+/// initialiser (with their section's key rows); the tests look at them.
 std::vector<ControllerKind> paperControllerKinds();
 
 }  // namespace lagrange::controller

@@ -1,10 +1,10 @@
 #include "controller/pd_plus_differenced.hpp"
 
-#include "controller/velocity_feedback.hpp"
-
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include "controller/velocity_feedback.hpp"
 
 namespace lagrange::controller {
 

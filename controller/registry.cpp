@@ -3,8 +3,6 @@
 #include <map>
 #include <stdexcept>
 
-#include "controller/paper_controllers.hpp"
-
 namespace lagrange::controller {
 
 namespace {
@@ -27,14 +25,13 @@ ControllerKind externalKind() {
   return kind;
 }
 
-// A function-local static, seeded with the paper's controllers at first use,
-// so registrations from other files' static initialisers find it ready.
+// A function-local static, so that registrations from other files' static
+// initialisers find it ready.
 std::map<std::string, ControllerKind>& kinds() {
   static std::map<std::string, ControllerKind> all = [] {
-    std::map<std::string, ControllerKind> paper;
-    for (ControllerKind& k : paperControllerKinds()) paper.emplace(k.type, std::move(k));
-    paper.emplace("external", externalKind());
-    return paper;
+    std::map<std::string, ControllerKind> builtin;
+    builtin.emplace("external", externalKind());
+    return builtin;
   }();
   return all;
 }
@@ -50,7 +47,11 @@ const ControllerKind& kindOf(const std::string& type) {
 bool registerControllerKind(ControllerKind kind) {
   if (kinds().count(kind.type) != 0)
     throw std::logic_error("controller type '" + kind.type + "' is registered twice");
-  config::registerControllerParams(kind.type, kind.keys, {kind.set_point, kind.measures_velocity});
+  config::registerControllerSection({kind.type,
+                                     kind.keys,
+                                     {kind.set_point, kind.measures_velocity, kind.elastic_joints_title},
+                                     kind.section,
+                                     kind.listing});
   const std::string type = kind.type;
   kinds().emplace(type, std::move(kind));
   return true;

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// The controllers a scenario can name in controller.type, each registered
-/// once. The paper's three (theorem1, cascaded, flexible) are registered
-/// here; a new controller registers itself in its own file with one
-/// definition:
+/// once, in its own file, with one definition -- the paper's three
+/// (theorem1, cascaded, flexible) in paper_controllers.cpp, the baselines in
+/// baselines.cpp, a new controller likewise:
 ///
 ///     const bool registered = lagrange::controller::registerControllerKind({
 ///         "my_pd", {{"kp", true, "stiffness [N m/rad]"}}, [](const config::Scenario& s) { ... }});
@@ -41,6 +41,11 @@ struct ControllerKind {
   /// It reads measured joint rates (Needs::joint_rates): the config refuses
   /// a scenario without a velocity sensor.
   bool measures_velocity = false;
+  /// A section of its own instead of `keys` (config/controller_params.hpp),
+  /// and how it is named when it drives elastic joints; the paper's use them.
+  config::ControllerSectionCodec section = {};
+  std::string elastic_joints_title = {};
+  int listing = 100;  ///< where messages and docs list it: lower first, then by name
 };
 
 /// Registers a controller. Returns true, so that a file can register from

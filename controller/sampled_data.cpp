@@ -9,6 +9,7 @@
 #include "actuator/integrator_chain.hpp"
 #include "controller/cascaded.hpp"
 #include "controller/flexible.hpp"
+#include "controller/paper_section.hpp"
 #include "controller/theorem1.hpp"
 #include "model/definiteness.hpp"
 #include "model/flexible_joint.hpp"
@@ -34,9 +35,9 @@ class LoopMap {
         reference_(s.reference),
         n_(s.dof()),
         order_(s.actuator.order),
-        stages_(static_cast<int>(s.controller.stages.size())),
+        stages_(static_cast<int>(paperSettings(s).stages.size())),
         flexible_(s.controller.type == "flexible"),
-        filtered_rate_(flexible_ && s.controller.motor_rate == config::MotorRate::kFiltered),
+        filtered_rate_(flexible_ && paperSettings(s).motor_rate == MotorRate::kFiltered),
         delayed_(one_period_delay),
         steps_(s.torqueStepsPerTick()) {
     if (flexible_) flexible_plant_.emplace(arm_, s.flexible->params);
@@ -60,11 +61,11 @@ class LoopMap {
     u.v = r.qd();
     if (delayed_) u.pending.rowwise() = h.transpose();  // the drive at the feedforward
     if (order_ > 0) u.xi.row(0) = h.transpose();
-    if (stages_ > 0) u.cascade.qc.row(0) = -(s_.controller.stages[0].b.cwiseProduct(h)).transpose();
+    if (stages_ > 0) u.cascade.qc.row(0) = -(paperSettings(s_).stages[0].b.cwiseProduct(h)).transpose();
     if (flexible_) {
       u.q2 = h.cwiseQuotient(s_.flexible->params.stiffness);  // K q2 = xi_1* (830c)
       u.v2 = r.qd();
-      if (filtered_rate_) u.rate = u.v2 - s_.controller.motor_rate_pole.cwiseProduct(u.q2);
+      if (filtered_rate_) u.rate = u.v2 - paperSettings(s_).motor_rate_pole.cwiseProduct(u.q2);
     }
     return pack(u);
   }
@@ -72,7 +73,7 @@ class LoopMap {
   // x at t_k -> x at t_k + period, the torque in `torque_steps` steps.
   Eigen::VectorXd step(const Eigen::VectorXd& x, double t, double period, int torque_steps) const {
     Unpacked u = unpack(x);
-    const CascadedGains gains{s_.controller.gains, s_.controller.stages};
+    const CascadedGains gains{paperSettings(s_).gains, paperSettings(s_).stages};
     std::vector<StageStart> starts;
     for (int i = 0; i < stages_; ++i)
       starts.push_back({false, u.cascade.qc.row(i).transpose(), u.cascade.zeta.row(i).transpose()});
@@ -80,7 +81,7 @@ class LoopMap {
     Unpacked next = u;
     if (flexible_) {
       FlexibleController ctl(*control_model_, reference_, gains, u.qc0, s_.flexible->params,
-                             filtered_rate_ ? std::optional(s_.controller.motor_rate_pole) : std::nullopt,
+                             filtered_rate_ ? std::optional(paperSettings(s_).motor_rate_pole) : std::nullopt,
                              starts, filtered_rate_ ? std::optional(u.rate) : std::nullopt);
       const Eigen::VectorXd tau = ctl.step(t, u.q, u.q2, u.v2).tau;
       drivePlant(next, drive.step(tau, period, torque_steps).tau, period);
@@ -97,7 +98,7 @@ class LoopMap {
       next.qc0 = ctl.stage0().filterState();
       next.cascade = ctl.state();
     } else {
-      Theorem1Controller ctl(*control_model_, reference_, s_.controller.gains, u.qc0);
+      Theorem1Controller ctl(*control_model_, reference_, paperSettings(s_).gains, u.qc0);
       const Eigen::VectorXd command = ctl.step(t, u.q).u;
       drivePlant(next, drive.step(command, period, torque_steps).tau, period);
       ctl.step(t + period, next.q);

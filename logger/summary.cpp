@@ -1,5 +1,7 @@
 #include "logger/summary.hpp"
 
+#include "controller/paper_section.hpp"
+
 namespace lagrange::logger {
 
 namespace {
@@ -71,12 +73,12 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   for (const auto& [key, v] : s.controller.params)  // a registered type's keys
     j["controller"][key] = std::vector<double>(v.data(), v.data() + v.size());
   if (s.controller.type == "flexible") {
-    if (s.controller.motor_rate)
-      j["controller"]["motor_rate"] = util::nameOf(config::kMotorRateNames, *s.controller.motor_rate);
-    if (s.controller.motor_rate == config::MotorRate::kFiltered)
+    const controller::PaperSettings& c = controller::paperSettings(s);
+    if (c.motor_rate)
+      j["controller"]["motor_rate"] = util::nameOf(controller::kMotorRateNames, *c.motor_rate);
+    if (c.motor_rate == controller::MotorRate::kFiltered)
       j["controller"]["motor_rate_pole"] =
-          std::vector<double>(s.controller.motor_rate_pole.data(),
-                              s.controller.motor_rate_pole.data() + s.controller.motor_rate_pole.size());
+          std::vector<double>(c.motor_rate_pole.data(), c.motor_rate_pole.data() + c.motor_rate_pole.size());
   }
   j["status"] = f.status;
   j["tracking"] = {

@@ -17,7 +17,7 @@ util       : (nothing)
 model      : util
 transport  : util messages
 core       : util model
-config     : util model core transport/fault_rule.hpp
+config     : util model transport/fault_rule.hpp
 scenario   : util model core config
 lcm        : util model core config scenario transport messages
 runtime    : util model config transport messages
@@ -42,7 +42,7 @@ place() {
     transport/*) layer=transport ;;
     */main.cpp) layer=process ;;
     */*_lcm.hpp | */*_lcm.cpp) layer=lcm ;;
-    controller/gain_report.* | controller/gain_report_json.* | controller/registry.* | controller/paper_controllers.* | \
+    controller/gain_report.* | controller/gain_report_json.* | controller/registry.* | controller/paper_controllers.* | controller/paper_section.* | \
       controller/gain_suggestion.* | controller/sampled_data.* | controller/baselines.*) layer=scenario ;;
     controller/*) layer=core ;;
     actuator/*) layer=core ;;

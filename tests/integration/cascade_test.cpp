@@ -18,6 +18,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/cascaded.hpp"
+#include "controller/paper_section.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
@@ -41,7 +42,7 @@ namespace fs = std::filesystem;
 std::vector<Eigen::VectorXd> continuousChainM1(const config::Scenario& s) {
   const model::PlanarChain chain(s.robot);
   const model::Reference reference(s.reference);
-  const controller::CascadedGains g{s.controller.gains, s.controller.stages};
+  const controller::CascadedGains g{controller::paperSettings(s).gains, controller::paperSettings(s).stages};
   const controller::Theorem1Controller law(chain, reference, g.stage0, std::nullopt);
   const int n = s.dof();
   auto theta0Of = [&](double t, const Eigen::VectorXd& x) {
@@ -64,7 +65,7 @@ std::vector<Eigen::VectorXd> continuousChainM1(const config::Scenario& s) {
   Eigen::VectorXd x(6 * n);
   const Eigen::VectorXd qt0 = s.initial_state.q - reference.evaluate(0.0, 0).q();
   x << s.initial_state.q, s.initial_state.qdot,
-      s.controller.initial_filter_state.value_or(-g.stage0.b.cwiseProduct(qt0)),
+      controller::paperSettings(s).initial_filter_state.value_or(-g.stage0.b.cwiseProduct(qt0)),
       s.actuator.initial_state.row(0).transpose(), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n);
   std::vector<Eigen::VectorXd> q;
   const int per_tick = static_cast<int>(std::lround(s.tickPeriod() / 1e-4));

@@ -21,6 +21,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/cascaded.hpp"
+#include "controller/paper_section.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
@@ -96,7 +97,8 @@ TEST_F(DefaultRun, MatchesRk4OfTheAnalyticModelUnderTheSampledController) {
   const config::Scenario s = config::loadScenario(dir_ + "/config.resolved.yaml");
   const model::PlanarChain chain(s.robot);
   const model::Reference reference(s.reference);
-  controller::Theorem1Controller ctl(chain, reference, s.controller.gains, s.controller.initial_filter_state);
+  controller::Theorem1Controller ctl(chain, reference, controller::paperSettings(s).gains,
+                                     controller::paperSettings(s).initial_filter_state);
   const auto truth = readTruth(dir_ + "/run.lcm");
   const int n = s.dof();
   Eigen::VectorXd x(2 * n);
@@ -126,13 +128,13 @@ TEST_F(DefaultRun, ConvergenceTimeMatchesTheContinuousClosedLoop) {
   const config::Scenario s = config::loadScenario(dir_ + "/config.resolved.yaml");
   const model::PlanarChain chain(s.robot);
   const model::Reference reference(s.reference);
-  const auto& g = s.controller.gains;
+  const auto& g = controller::paperSettings(s).gains;
   const int n = s.dof();
   // State [q; q'; qc], qc(0) bumpless as in the run.
   Eigen::VectorXd x(3 * n);
   const Eigen::VectorXd qt0 = s.initial_state.q - reference.evaluate(0.0).q();
   x << s.initial_state.q, s.initial_state.qdot,
-      s.controller.initial_filter_state.value_or(-g.b.cwiseProduct(qt0));
+      controller::paperSettings(s).initial_filter_state.value_or(-g.b.cwiseProduct(qt0));
   auto f = [&](double t, const Eigen::VectorXd& st) {
     const model::ReferenceSample r = reference.evaluate(t);
     const Eigen::VectorXd q = st.head(n), v = st.segment(n, n), qc = st.tail(n);

@@ -17,6 +17,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/cascaded.hpp"
+#include "controller/paper_section.hpp"
 #include "controller/theorem1.hpp"
 #include "lagrange/actuator_state_t.hpp"
 #include "lagrange/control_command_t.hpp"
@@ -52,8 +53,8 @@ void expectItsStatedMetric(const std::string& name, const std::string& dir) {
     const bool free_motion = scenario.reference.type == model::ReferenceType::kFreeMotion;
     if (!free_motion)
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("not a free motion"), std::string::npos);
-    else if (scenario.controller.motor_rate ==
-             config::MotorRate::kFiltered)  // outside the Corollary, and said
+    else if (controller::paperSettings(scenario).motor_rate ==
+             controller::MotorRate::kFiltered)  // outside the Corollary, and said
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("Corollary assumes"), std::string::npos);
     else
       EXPECT_FALSE(j["gains"].contains("warnings"));
@@ -61,7 +62,7 @@ void expectItsStatedMetric(const std::string& name, const std::string& dir) {
   if (scenario.flexible) {  // the motor side is recorded, and said how q2' was had
     EXPECT_EQ(j["messages"]["PLANT_MOTOR"]["published"], j["messages"]["PLANT_POSITION"]["published"]);
     EXPECT_EQ(j["controller"]["motor_rate"].get<std::string>(),
-              util::nameOf(config::kMotorRateNames, *scenario.controller.motor_rate));
+              util::nameOf(controller::kMotorRateNames, *controller::paperSettings(scenario).motor_rate));
   }
   const auto truth = readTruth(dir + "/run.lcm");
   for (const auto& sample : truth) ASSERT_TRUE(sample.q.allFinite() && sample.qdot.allFinite());

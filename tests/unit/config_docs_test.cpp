@@ -13,6 +13,7 @@
 #include "config/key_reference.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
+#include "controller/paper_section.hpp"
 
 namespace lagrange::config {
 namespace {
@@ -117,9 +118,9 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   for (const auto& [section, keys] : {std::pair{std::string("sensors"), keysOf(sections::sensorsFields())},
                                       std::pair{std::string("faults"), keysOf(sections::faultsFields())}})
     for (const std::string& key : keys) EXPECT_EQ(keysUnder(section).count(key), 1u) << section << "." << key;
-  for (const std::string& key : keysOf(sections::paperGainFields()))  // the rest: stages, filter start
+  for (const std::string& key : keysOf(controller::paperGainFields()))  // the rest: stages, filter start
     EXPECT_EQ(keysUnder("controller", "paper").count(key), 1u) << key;
-  for (const std::string& key : keysOf(sections::stageGainFields()))
+  for (const std::string& key : keysOf(controller::stageGainFields()))
     EXPECT_EQ(keysUnder("controller.stages[i]").count(key), 1u) << key;
   EXPECT_EQ(keysOf(sections::plantFields()), keysUnder("plant"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));

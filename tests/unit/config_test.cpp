@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "config/scenario.hpp"
+#include "controller/paper_section.hpp"
 #include "model/joint_springs.hpp"
 #include "support/scenario_text.hpp"
 
@@ -25,7 +26,7 @@ TEST(Scenario, EveryShippedConfigLoadsAndRoundTrips) {
     const Scenario s = loadScenario(entry.path().string());
     const Scenario again = parseScenario(toYaml(s), "resolved");
     EXPECT_EQ(toYaml(again), toYaml(s)) << entry.path();
-    EXPECT_EQ(again.controller.gains.kp, s.controller.gains.kp);
+    EXPECT_EQ(controller::paperSettings(again).gains.kp, controller::paperSettings(s).gains.kp);
     EXPECT_EQ(again.initial_state.q, s.initial_state.q);
     EXPECT_EQ(again.reference.offset, s.reference.offset);  // bit-exact doubles
   }
@@ -36,8 +37,9 @@ TEST(Scenario, DefaultsAndOverrides) {
   const std::string base = readFile(kConfigs + "/rigid_2dof.yaml");
   const Scenario s =
       parseScenario(base, "rigid_2dof.yaml", {"controller.kp=[50, 7]", "duration=2", "controller.a=300"});
-  EXPECT_EQ(s.controller.gains.kp, Eigen::Vector2d(50, 7));
-  EXPECT_EQ(s.controller.gains.a, Eigen::Vector2d(300, 300));  // a scalar applies to every joint
+  EXPECT_EQ(controller::paperSettings(s).gains.kp, Eigen::Vector2d(50, 7));
+  EXPECT_EQ(controller::paperSettings(s).gains.a,
+            Eigen::Vector2d(300, 300));  // a scalar applies to every joint
   EXPECT_EQ(s.duration, 2.0);
   EXPECT_EQ(s.lastTick(), 2000);
   EXPECT_EQ(s.substepsPerTick(), 40);                   // 1 ms ticks of 25 us physics steps

@@ -1,11 +1,18 @@
 // The controller seam's contract for the paper's controllers: what each
 // declares it needs, that reset() returns it to its configured start, and
-// that the registry refuses what it does not know.
+// that the registry refuses what it does not know. And the seam config
+// knows controllers through: a test-only type with a section of its own.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
+#include "config/key_table.hpp"
 #include "config/scenario.hpp"
+#include "config/yaml_reader.hpp"
+#include "controller/paper_section.hpp"
 #include "controller/registry.hpp"
 
 namespace lagrange::controller {
@@ -67,6 +74,80 @@ TEST(ControllerRegistry, RefusesAnUnknownTypeAndATypeTakenTwice) {
   s.controller.type = "no_such_controller";
   EXPECT_THROW(makeController(s), std::logic_error);
   EXPECT_THROW(registerControllerKind({"theorem1", {}, {}, {}}), std::logic_error);
+}
+
+// A type only this file knows, whose section is its own: a gain and a label
+// (a text, which per-joint parameters cannot hold). No core: it is never run.
+struct SectionedSettings {
+  double gain = 0.0;
+  std::string label;
+};
+
+ControllerKind sectionedKind() {
+  ControllerKind kind;
+  kind.type = "test_sectioned";
+  kind.make = [](const config::Scenario&) -> std::unique_ptr<Controller> { return nullptr; };
+  kind.section.read = [](config::MapReader& ctl, const config::Scenario&) -> std::any {
+    SectionedSettings settings{ctl.positive("gain"), ctl.text("label", "none")};
+    ctl.finish({"type", "gain", "label"});
+    return settings;
+  };
+  kind.section.write = [](YAML::Emitter& out, const config::Scenario& s) {
+    const auto& settings = std::any_cast<const SectionedSettings&>(s.controller.settings);
+    out << YAML::Key << "gain" << YAML::Value << settings.gain;
+    out << YAML::Key << "label" << YAML::Value << settings.label;
+  };
+  kind.listing = 1000;  // after every shipped type
+  return kind;
+}
+const bool sectioned_registered = registerControllerKind(sectionedKind());
+
+std::string shippedText(const std::string& name) {
+  std::ifstream in(std::string(LAGRANGE_SOURCE_DIR) + "/configs/" + name + ".yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(ControllerSection, ATestOnlyTypeReadsAndWritesItsOwnSection) {
+  ASSERT_TRUE(sectioned_registered);
+  const config::Scenario s =
+      config::parseScenario(shippedText("rigid_2dof"), "rigid_2dof.yaml",
+                            {"controller={type: test_sectioned, gain: 2.5, label: ramp}"});
+  const auto& settings = std::any_cast<const SectionedSettings&>(s.controller.settings);
+  EXPECT_EQ(settings.gain, 2.5);
+  EXPECT_EQ(settings.label, "ramp");
+  EXPECT_TRUE(s.controller.params.empty());
+  // config.resolved.yaml carries it, and reads back the same.
+  const config::Scenario again = config::parseScenario(config::toYaml(s), "resolved", {});
+  EXPECT_EQ(std::any_cast<const SectionedSettings&>(again.controller.settings).label, "ramp");
+  EXPECT_EQ(config::toYaml(again), config::toYaml(s));
+  // Its reader's checks are the config's: a wrong value or key names itself.
+  try {
+    config::parseScenario(shippedText("rigid_2dof"), "rigid_2dof.yaml",
+                          {"controller={type: test_sectioned, gain: -1}"});
+    ADD_FAILURE() << "a negative gain was accepted";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("controller.gain"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(config::parseScenario(shippedText("rigid_2dof"), "rigid_2dof.yaml",
+                                     {"controller={type: test_sectioned, gain: 1, kp: 3}"}),
+               config::ConfigError);
+  // Listed where it asked to be: last.
+  EXPECT_EQ(config::controllerTypes().back(), "test_sectioned");
+  // The paper's own settings are not its: asking for them is a programming error.
+  EXPECT_THROW(paperSettings(s), std::logic_error);
+}
+
+TEST(ControllerSection, ARegistrationThatCannotHoldIsRefused) {
+  ControllerKind half = sectionedKind();
+  half.type = "test_half_section";
+  half.section.write = nullptr;  // a reader without a writer would lose the section in config.resolved.yaml
+  EXPECT_THROW(registerControllerKind(half), std::logic_error);
+  // Key rows arrive from static initialisers, before the table is first read; later, they would be missing
+  // from the known keys already handed out.
+  (void)config::keyTable();
+  EXPECT_THROW(config::registerKeyRows("test_late", "a late variant", {}), std::logic_error);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "config/scenario.hpp"
+#include "controller/paper_section.hpp"
 #include "model/reference.hpp"
 #include "transport/messages.hpp"
 #include "transport/process_state.hpp"
@@ -30,7 +31,7 @@ void expectRoundTrip(const util::EnumName<E> (&table)[N]) {
 
 TEST(EnumNames, EveryTableReadsBackWhatItWrites) {
   expectRoundTrip(config::kModeNames);
-  expectRoundTrip(config::kMotorRateNames);
+  expectRoundTrip(controller::kMotorRateNames);
   expectRoundTrip(config::kStaleTorqueNames);
   expectRoundTrip(model::kReferenceTypeNames);
   expectRoundTrip(transport::kProcessStateNames);
@@ -39,7 +40,8 @@ TEST(EnumNames, EveryTableReadsBackWhatItWrites) {
 TEST(EnumNames, EveryEnumeratorHasAName) {
   // The last enumerator of each enum: a table that misses one fails here.
   EXPECT_EQ(std::size(config::kModeNames), static_cast<size_t>(config::Mode::kInproc) + 1);
-  EXPECT_EQ(std::size(config::kMotorRateNames), static_cast<size_t>(config::MotorRate::kFiltered) + 1);
+  EXPECT_EQ(std::size(controller::kMotorRateNames),
+            static_cast<size_t>(controller::MotorRate::kFiltered) + 1);
   EXPECT_EQ(std::size(config::kStaleTorqueNames), static_cast<size_t>(config::StaleTorque::kZero) + 1);
   EXPECT_EQ(std::size(model::kReferenceTypeNames),
             static_cast<size_t>(model::ReferenceType::kFreeMotion) + 1);

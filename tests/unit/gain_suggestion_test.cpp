@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "controller/gain_report.hpp"
+#include "controller/paper_section.hpp"
 #include "support/configs.hpp"
 
 namespace lagrange::controller {
@@ -18,7 +19,8 @@ TEST(GainSuggestion, RepairsAViolatedEquation11) {
   ASSERT_FALSE(checkGains(s).holds());
   const config::Scenario fixed = suggestGains(s);
   EXPECT_TRUE(checkGains(fixed).holds());
-  EXPECT_EQ(fixed.controller.gains.kp, s.controller.gains.kp);  // only what the condition needs changes
+  EXPECT_EQ(controller::paperSettings(fixed).gains.kp,
+            controller::paperSettings(s).gains.kp);  // only what the condition needs changes
 }
 
 TEST(GainSuggestion, MeetsTheorem2ForOneIntegrator) {
@@ -29,7 +31,7 @@ TEST(GainSuggestion, MeetsTheorem2ForOneIntegrator) {
   for (const auto& c : r.chain) EXPECT_TRUE(c.holds) << c.name << ": " << c.lhs << " > " << c.rhs;
   // (794a): kp1 = kd1.
   const config::Scenario g = suggestGains(s);
-  EXPECT_EQ(g.controller.stages[0].kp, g.controller.stages[0].kd);
+  EXPECT_EQ(controller::paperSettings(g).stages[0].kp, controller::paperSettings(g).stages[0].kd);
   EXPECT_NE(controllerYaml(g).find("stages:"), std::string::npos);
 }
 
@@ -39,7 +41,7 @@ TEST(GainSuggestion, MeetsTheorem2ForOneIntegrator) {
 config::Scenario withOrder(int m) {
   config::Scenario s = config::loadScenario(kConfigs + "/chain_m3.yaml");
   s.actuator.order = m;
-  s.controller.stages.resize(m, s.controller.stages.back());
+  controller::paperSettings(s).stages.resize(m, controller::paperSettings(s).stages.back());
   return s;
 }
 
@@ -50,7 +52,7 @@ TEST(GainSuggestion, MeetsTheorem3AndProposition1ForTwoAndThreeIntegrators) {
     EXPECT_FALSE(before.holds());
     EXPECT_FALSE(before.propositionHolds());
     const config::Scenario g = suggestGains(s);
-    ASSERT_EQ(g.controller.stages.size(), static_cast<size_t>(m));
+    ASSERT_EQ(controller::paperSettings(g).stages.size(), static_cast<size_t>(m));
     const GainReport r = checkGains(g);
     ASSERT_EQ(r.chain.size(), 3u);
     for (const auto& c : r.chain)
@@ -58,7 +60,7 @@ TEST(GainSuggestion, MeetsTheorem3AndProposition1ForTwoAndThreeIntegrators) {
     ASSERT_EQ(r.proposition.size(), 9u);  // (632a-c), (794a-b), (795a-c), the matrix
     for (const auto& c : r.proposition)
       EXPECT_TRUE(c.holds) << "m = " << m << ", " << c.name << ": " << c.lhs << " > " << c.rhs;
-    EXPECT_GT(g.controller.stages.back().kp(0), 1e30);
+    EXPECT_GT(controller::paperSettings(g).stages.back().kp(0), 1e30);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "controller/paper_section.hpp"
 #include "model/reference.hpp"
 #include "wiring/inproc_runner.hpp"
 
@@ -18,10 +19,11 @@ double initialStateNorm(const config::Scenario& s, const model::ReferenceSample&
   const Eigen::VectorXd error = s.initial_state.q - r0.q();
   const double e = error.norm(), e_rate = (s.initial_state.qdot - r0.qd()).norm();
   double sq = e * e + e_rate * e_rate;
-  if (s.controller.isPaperType())
-    sq += (s.controller.initial_filter_state ? *s.controller.initial_filter_state
-                                             : Eigen::VectorXd(-s.controller.gains.b.cwiseProduct(error)))
+  if (controller::isPaperType(s.controller.type)) {
+    const controller::PaperSettings& c = controller::paperSettings(s);
+    sq += (c.initial_filter_state ? *c.initial_filter_state : Eigen::VectorXd(-c.gains.b.cwiseProduct(error)))
               .squaredNorm();
+  }
   return std::sqrt(sq);
 }
 
@@ -49,8 +51,11 @@ const controller::GainReport& SweepRunner::gainsOf(const config::Scenario& s) {
   key.initial_state.qdot.setZero();
   key.initial_state.motor_q.setZero();
   key.initial_state.motor_qdot.setZero();
-  key.controller.initial_filter_state.reset();
-  key.controller.stage_starts.clear();
+  if (controller::isPaperType(key.controller.type)) {
+    controller::PaperSettings& c = controller::paperSettings(key);
+    c.initial_filter_state.reset();
+    c.stage_starts.clear();
+  }
   key.actuator.initial_state.setZero();
   const std::string text = config::toYaml(key);
   auto found = gains_.find(text);
