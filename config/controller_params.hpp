@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "config/joint_vector_key.hpp"
+
 namespace YAML {
 class Emitter;
 }
@@ -26,11 +28,7 @@ struct Scenario;
 
 /// One key of controller.*: a per-joint vector (a list of n numbers, or one
 /// number for every joint).
-struct ControllerParam {
-  std::string key;
-  bool positive = false;  ///< every entry > 0
-  std::string doc;        ///< what it is, with its unit (error messages, docs)
-};
+using ControllerParam = JointVectorKey;
 
 /// What the reader demands of a scenario for a registered type.
 struct ControllerTraits {

@@ -356,7 +356,9 @@ std::vector<KeyInfo> faultAndSensorKeys() {
       row("sensors.seed", "integer ≥ 0", "1",
           "seeds the sensor noise's draws: the same seed gives the same readings in lockstep, "
           "realtime, in-process and replay. Without a `sensors` section PLANT_POSITION carries the "
-          "true angles.",
+          "true angles. A sensor model registered by `plant::registerSensorModel` in programs built "
+          "with it (docs/architecture.md, \"Adding a sensor model\") adds its own per-joint keys to "
+          "every sensor's section below.",
           seed()),
       row("sensors.position.counts_per_revolution", "vector or scalar, whole numbers ≥ 0", "0",
           "the joint encoder's resolution, N: PLANT_POSITION carries floor(angle / Δ) Δ, Δ = 2π / N "

@@ -10,6 +10,7 @@
 
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
+#include "config/sensor_models.hpp"
 
 namespace lagrange::config::sections {
 
@@ -121,6 +122,36 @@ const Fields<FaultsConfig>& faultsFields() {
   return fields;
 }
 
+namespace {
+// A registered sensor model's key (config/sensor_models.hpp): a per-joint
+// vector kept in model_params, sized like the sensor's own vectors.
+Field<JointSensorConfig> modelKey(const JointVectorKey& k) {
+  return {k.key,
+          [k](MapReader& m, JointSensorConfig& c) {
+            if (m.has(k.key))
+              c.model_params[k.key] =
+                  m.vector(k.key, static_cast<int>(c.noise_sigma.size()), true, k.positive);
+          },
+          [k](YAML::Emitter& out, const JointSensorConfig& c) {
+            if (const auto it = c.model_params.find(k.key); it != c.model_params.end())
+              writeVector(out, k.key, it->second);
+          }};
+}
+
+// A sensor's own fields, then every registered model's keys.
+Fields<JointSensorConfig> withModelKeys(Fields<JointSensorConfig> fields) {
+  const std::set<std::string> own = keysOf(fields);
+  for (const SensorModelKeys& model : sensorModelKeys())
+    for (const JointVectorKey& k : model.keys) {
+      if (own.count(k.key) != 0)
+        throw std::logic_error("sensor model '" + model.model + "' registers key '" + k.key +
+                               "', which a joint sensor has of its own");
+      fields.push_back(modelKey(k));
+    }
+  return fields;
+}
+}  // namespace
+
 // sensors.position and sensors.motor: angles, quantised, noisy and late.
 const Fields<JointSensorConfig>& angleSensorFields() {
   static const Fields<JointSensorConfig> fields = {
@@ -140,6 +171,15 @@ const Fields<JointSensorConfig>& rateSensorFields() {
                   VectorRule().checkedBy(standardDeviations("rad/s"))),
       wholeAtLeast("delay", &JointSensorConfig::delay, 0, "expected a whole number of samples >= 0"),
   };
+  return fields;
+}
+
+const Fields<JointSensorConfig>& angleSensorSection() {
+  static const Fields<JointSensorConfig> fields = withModelKeys(angleSensorFields());
+  return fields;
+}
+const Fields<JointSensorConfig>& rateSensorSection() {
+  static const Fields<JointSensorConfig> fields = withModelKeys(rateSensorFields());
   return fields;
 }
 
@@ -169,6 +209,15 @@ JointSensorConfig readJointSensor(MapReader p, int n, const Fields<JointSensorCo
   c.counts_per_revolution = Eigen::VectorXd::Zero(n);
   c.noise_sigma = Eigen::VectorXd::Zero(n);
   readFields(p, c, fields);
+  // A sensor model acts with all its keys, or not at all.
+  for (const SensorModelKeys& model : sensorModelKeys()) {
+    std::vector<std::string> given, missing;
+    for (const JointVectorKey& k : model.keys)
+      (c.model_params.count(k.key) ? given : missing).push_back(k.key);
+    if (!given.empty() && !missing.empty())
+      p.fail(missing.front(), "missing; sensor model " + model.model + " takes its keys together, and " +
+                                  given.front() + " is given");
+  }
   return c;
 }
 }  // namespace
@@ -183,12 +232,12 @@ void readSensorsSection(MapReader& root, Scenario& s) {
   const int n = s.dof();
   c.position.counts_per_revolution = Eigen::VectorXd::Zero(n);
   c.position.noise_sigma = Eigen::VectorXd::Zero(n);
-  if (r.has("position")) c.position = readJointSensor(r.map("position"), n, angleSensorFields());
-  if (r.has("velocity")) c.velocity = readJointSensor(r.map("velocity"), n, rateSensorFields());
+  if (r.has("position")) c.position = readJointSensor(r.map("position"), n, angleSensorSection());
+  if (r.has("velocity")) c.velocity = readJointSensor(r.map("velocity"), n, rateSensorSection());
   if (r.has("motor")) {
     if (!s.flexible)
       r.fail("motor", "a motor-angle sensor needs flexible joints (robot.flexible); this arm is rigid");
-    c.motor = readJointSensor(r.map("motor"), n, angleSensorFields());
+    c.motor = readJointSensor(r.map("motor"), n, angleSensorSection());
   }
   r.finish(keysUnder("sensors"));
   s.sensors = c;

@@ -143,6 +143,9 @@ struct JointSensorConfig {
   Eigen::VectorXd counts_per_revolution;  ///< per joint; 0: not quantised (angles only)
   Eigen::VectorXd noise_sigma;            ///< per joint [rad, or rad/s for rates]; 0: no noise
   int delay = 0;                          ///< whole samples
+  /// The keys of registered sensor models (config/sensor_models.hpp) this
+  /// sensor's section gives, by key; empty: none acts on it.
+  std::map<std::string, Eigen::VectorXd> model_params;
 };
 
 /// The sensors in the plant's measurement path (sensors.*): PLANT_POSITION

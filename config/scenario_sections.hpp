@@ -41,6 +41,10 @@ const Fields<FaultsConfig>& faultsFields();    ///< faults' own keys (seed), bes
 /// sensors.position and sensors.motor; sensors.velocity (no counts_per_revolution).
 const Fields<JointSensorConfig>& angleSensorFields();
 const Fields<JointSensorConfig>& rateSensorFields();
+/// The same, each followed by the registered sensor models' keys
+/// (config/sensor_models.hpp): what a sensor's section is read and written with.
+const Fields<JointSensorConfig>& angleSensorSection();
+const Fields<JointSensorConfig>& rateSensorSection();
 const Fields<ChannelFaults>& channelFaultFields();  ///< faults.channels.NAME
 /// faults.receivers.PROCESS (Scenario keeps only the number, faults.receiver_drop).
 struct ReceiverFaults {

@@ -125,9 +125,9 @@ std::string toYaml(const Scenario& s) {
       writeFields(out, c, fields);
       out << YAML::EndMap;
     };
-    sensor("position", s.sensors->position, sections::angleSensorFields());
-    if (s.sensors->velocity) sensor("velocity", *s.sensors->velocity, sections::rateSensorFields());
-    if (s.sensors->motor) sensor("motor", *s.sensors->motor, sections::angleSensorFields());
+    sensor("position", s.sensors->position, sections::angleSensorSection());
+    if (s.sensors->velocity) sensor("velocity", *s.sensors->velocity, sections::rateSensorSection());
+    if (s.sensors->motor) sensor("motor", *s.sensors->motor, sections::angleSensorSection());
     out << YAML::EndMap;
   }
 

@@ -38,8 +38,8 @@ GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {
   r.kc = proven_kc ? *proven_kc : r.kc_found;
   r.kdelta = model::referenceBound(reference);
   r.kdelta_exact = reference.boundIsExact();
-  const PaperSettings& c = paperSettings(s);
-  const Theorem1Gains& g0 = c.gains;
+  const PaperSettings& paper = paperSettings(s);
+  const Theorem1Gains& g0 = paper.gains;
   r.condition = model::theorem1Condition(g0.kd, g0.a, g0.b, r.kc, r.kdelta);
   if (s.controller.type == "cascaded" || s.controller.type == "flexible") {
     // Only free_motion solves D(q_d) q_d'' + C(q_d, q_d') q_d' + g(q_d) = 0
@@ -50,19 +50,19 @@ GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {
           ") is not a free motion of the " + (s.flexible ? "arm with its springs (eq. 608)" : "arm") +
           ": Assumption 2, a hypothesis of Theorems 2 and 3" + (s.flexible ? " and the Corollary" : "") +
           ", does not hold, so their guarantee does not apply to this run");
-    if (s.controller.type == "flexible" && c.motor_rate == MotorRate::kFiltered)
+    if (s.controller.type == "flexible" && paper.motor_rate == MotorRate::kFiltered)
       r.warnings.push_back(
           "motor_rate: filtered estimates q2' by a dirty derivative; the Corollary assumes xi_2 = K q2' "
           "is measured, so its guarantee does not cover this controller");
     r.eta = model::estimateEta(*arm, reference, g0.kp, g0.kd, g0.a, g0.b);
-    if (c.stages.size() == 1) {
-      const StageGains& g1 = c.stages.at(0);
+    if (paper.stages.size() == 1) {
+      const StageGains& g1 = paper.stages.at(0);
       r.chain = model::theorem2Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, g1.kp, g1.a, g1.b);
     } else {
       std::vector<model::StageVectors> stages;
-      for (const auto& st : c.stages) stages.push_back({st.kp, st.kd, st.a, st.b});
+      for (const auto& st : paper.stages) stages.push_back({st.kp, st.kd, st.a, st.b});
       r.chain = model::theorem3Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, stages);
-      const StageGains& g1 = c.stages.at(0);
+      const StageGains& g1 = paper.stages.at(0);
       r.proposition = model::theorem2Conditions(r.kc, r.kdelta, *r.eta, g0.kd, g0.a, g0.b, g1.kp, g1.a, g1.b);
       for (auto& c : model::proposition1Conditions(*r.eta, stages)) r.proposition.push_back(std::move(c));
     }

@@ -23,10 +23,10 @@ config::Scenario suggestGains(const config::Scenario& in) {
   const std::optional<double> proven_kc = model::coriolisBound(*arm);
   const double kc = proven_kc ? *proven_kc : model::coriolisLargestFound(*arm);
   const double kdelta = model::referenceBound(reference);
-  PaperSettings& c = paperSettings(s);
-  Theorem1Gains& g0 = c.gains;
+  PaperSettings& paper = paperSettings(s);
+  Theorem1Gains& g0 = paper.gains;
   const int n = s.dof();
-  const int m = static_cast<int>(c.stages.size());
+  const int m = static_cast<int>(paper.stages.size());
   if (m == 0) {
     // eq. (11): (kd_min / 2)(b_min / a_max) > k_c k_delta.
     const double kd = 1.1 * 2.0 * kc * kdelta * g0.a.maxCoeff() / g0.b.minCoeff();
@@ -77,9 +77,9 @@ config::Scenario suggestGains(const config::Scenario& in) {
   };
   for (int i = 2; i <= m; ++i)
     while (!meets(build(i), 0.5 + 0.1 * (m - i)) && factors[i - 1] < 1e12) factors[i - 1] *= 2.0;
-  c.stages = build(m);
+  paper.stages = build(m);
   for (int i = 1; i <= m; ++i) {
-    const StageGains& g = c.stages[i - 1];
+    const StageGains& g = paper.stages[i - 1];
     if (!(g.kp.allFinite() && g.kd.allFinite() && g.a.allFinite()))
       throw std::range_error(
           "Proposition 1's constructive gains for m = " + std::to_string(m) + " overflow " +

@@ -8,7 +8,7 @@
 namespace lagrange::plant {
 
 JointSensor::JointSensor(int joints)
-    : JointSensor(joints, {Eigen::VectorXd::Zero(joints), Eigen::VectorXd::Zero(joints), 0, 1}) {}
+    : JointSensor(joints, {Eigen::VectorXd::Zero(joints), Eigen::VectorXd::Zero(joints), 0, 1, {}}) {}
 
 JointSensor::JointSensor(int joints, JointSensorParams params)
     : params_(std::move(params)), rng_(params_.seed) {
@@ -18,7 +18,7 @@ JointSensor::JointSensor(int joints, JointSensorParams params)
                                   std::to_string(joints) + " finite entries >= 0");
   if (params_.delay < 0) throw std::invalid_argument("JointSensor: the delay must be >= 0 samples");
   ideal_ = params_.delay == 0 && (params_.counts_per_revolution.array() == 0.0).all() &&
-           (params_.noise_sigma.array() == 0.0).all();
+           (params_.noise_sigma.array() == 0.0).all() && params_.effects.empty();
 }
 
 Eigen::VectorXd JointSensor::measure(const Eigen::VectorXd& q_true) {
@@ -28,6 +28,12 @@ Eigen::VectorXd JointSensor::measure(const Eigen::VectorXd& q_true) {
   history_.push_back(q_true);
   history_.pop_front();
   Eigen::VectorXd q = history_.front();
+  for (const std::unique_ptr<SensorEffect>& effect : params_.effects) {
+    q = effect->apply(q);
+    if (q.size() != q_true.size())
+      throw std::logic_error("JointSensor: a sensor effect returned " + std::to_string(q.size()) +
+                             " values for " + std::to_string(q_true.size()) + " joints");
+  }
   for (Eigen::Index i = 0; i < q.size(); ++i) {
     // One draw per joint with noise, every tick: the sequence does not depend on the angles.
     if (params_.noise_sigma(i) > 0.0) q(i) += params_.noise_sigma(i) * normal_(rng_);

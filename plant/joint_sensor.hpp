@@ -6,6 +6,8 @@
 /// PLANT_TRUTH). Per joint, in this order:
 ///   delay:        the reading of tick k is of the value at tick k - d (whole
 ///                 samples; before tick d, the value at tick 0);
+///   effects:      what registered sensor models do to the value
+///                 (plant/sensor_models.hpp), each in turn;
 ///   noise:        plus a Gaussian draw of standard deviation sigma [rad, rad/s];
 ///   quantisation: an encoder of N counts per revolution reports
 ///                 floor(angle / delta) delta, delta = 2 pi / N -- the count
@@ -19,15 +21,28 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <random>
+#include <vector>
 
 namespace lagrange::plant {
+
+/// What a sensor model does to one sensor's value, tick by tick
+/// (plant/sensor_models.hpp makes them from the scenario).
+class SensorEffect {
+ public:
+  virtual ~SensorEffect() = default;
+  /// The value read instead of `value` (one entry per joint). Called once
+  /// per tick, in tick order; the same calls give the same results.
+  virtual Eigen::VectorXd apply(const Eigen::VectorXd& value) = 0;
+};
 
 struct JointSensorParams {
   Eigen::VectorXd counts_per_revolution;  ///< per joint; 0: not quantised
   Eigen::VectorXd noise_sigma;            ///< per joint [rad]; 0: no noise
   int delay = 0;                          ///< whole samples
   uint64_t seed = 1;
+  std::vector<std::unique_ptr<SensorEffect>> effects;  ///< in order; none: the built-in steps only
 };
 
 class JointSensor {

@@ -1,6 +1,7 @@
 #include "plant/scenario_plant.hpp"
 
 #include "plant/planar_chain_world.hpp"
+#include "plant/sensor_models.hpp"
 #include "plant/urdf_arm_world.hpp"
 
 namespace lagrange::plant {
@@ -17,8 +18,9 @@ namespace {
 // golden-ratio constant (SplitMix64's increment), so adding a sensor never
 // changes another's draws, and the joint-angle sensor's are those of seed.
 JointSensor sensorOf(int joints, const config::JointSensorConfig& c, uint64_t seed, uint64_t stream) {
-  return JointSensor(joints, {c.counts_per_revolution, c.noise_sigma, c.delay,
-                              seed + stream * 0x9E3779B97F4A7C15ULL});
+  const uint64_t own = seed + stream * 0x9E3779B97F4A7C15ULL;
+  return JointSensor(joints,
+                     {c.counts_per_revolution, c.noise_sigma, c.delay, own, sensorEffects(c, joints, own)});
 }
 }  // namespace
 
@@ -32,8 +34,9 @@ ScenarioSensors sensorsFor(const config::Scenario& s) {
   return out;
 }
 
-PlantSample measureTick(const config::Scenario& s, ScenarioSensors& sensors, const PlantSim& sim, int64_t tick,
-                        double sim_time, const Eigen::VectorXd& tau_applied, TorqueInput input) {
+PlantSample measureTick(const config::Scenario& s, ScenarioSensors& sensors, const PlantSim& sim,
+                        int64_t tick, double sim_time, const Eigen::VectorXd& tau_applied,
+                        TorqueInput input) {
   const PlantState st = sim.state();
   const PlantEnergy e = sim.energy();
   PlantSample out = plantSample(tick, sim_time, st.q, st.qdot, tau_applied, e.kinetic, e.potential, input,

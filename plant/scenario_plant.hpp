@@ -30,7 +30,7 @@ ScenarioSensors sensorsFor(const config::Scenario& s);
 /// rates when declared. Each sensor reads once: call it once per tick, in tick
 /// order. The plant process, the in-process runner and plant replay all
 /// measure through here, so every wiring publishes the same doubles.
-PlantSample measureTick(const config::Scenario& s, ScenarioSensors& sensors, const PlantSim& sim, int64_t tick,
-                        double sim_time, const Eigen::VectorXd& tau_applied, TorqueInput input);
+PlantSample measureTick(const config::Scenario& s, ScenarioSensors& sensors, const PlantSim& sim,
+                        int64_t tick, double sim_time, const Eigen::VectorXd& tau_applied, TorqueInput input);
 
 }  // namespace lagrange::plant

@@ -19,7 +19,7 @@ TEST(JointSensor, AnIdealSensorReturnsTheTrueAnglesBitForBit) {
 }
 
 TEST(JointSensor, AnEncoderReportsTheCountBelowTheAngle) {
-  JointSensor sensor(2, {Eigen::Vector2d(4096, 0), Eigen::Vector2d::Zero(), 0, 1});
+  JointSensor sensor(2, {Eigen::Vector2d(4096, 0), Eigen::Vector2d::Zero(), 0, 1, {}});
   const double step = 2 * M_PI / 4096;
   for (const double angle : {0.3, -0.3, 7.1, -12.9, 3 * step}) {
     const Eigen::VectorXd m = sensor.measure(Eigen::Vector2d(angle, angle));
@@ -31,7 +31,7 @@ TEST(JointSensor, AnEncoderReportsTheCountBelowTheAngle) {
 }
 
 TEST(JointSensor, TheDelayLineReturnsTheAngleOfDTicksBefore) {
-  JointSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), 2, 1});
+  JointSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), 2, 1, {}});
   std::vector<double> read;
   for (int k = 0; k < 6; ++k) read.push_back(sensor.measure(Eigen::VectorXd::Constant(1, k))(0));
   EXPECT_EQ(read, (std::vector<double>{0, 0, 0, 1, 2, 3}));  // tick 0's angle held until tick d
@@ -40,7 +40,7 @@ TEST(JointSensor, TheDelayLineReturnsTheAngleOfDTicksBefore) {
 TEST(JointSensor, NoiseHasItsSigmaAndTheSeedFixesTheDraws) {
   const double sigma = 1e-3;
   auto draws = [&](uint64_t seed) {
-    JointSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, sigma), 0, seed});
+    JointSensor sensor(1, {Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, sigma), 0, seed, {}});
     std::vector<double> out;
     for (int k = 0; k < 20000; ++k) out.push_back(sensor.measure(Eigen::VectorXd::Constant(1, 0.5))(0) - 0.5);
     return out;
@@ -55,13 +55,13 @@ TEST(JointSensor, NoiseHasItsSigmaAndTheSeedFixesTheDraws) {
 }
 
 TEST(JointSensor, BadParametersAreRefused) {
-  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d(-1, 0), Eigen::Vector2d::Zero(), 0, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d(-1, 0), Eigen::Vector2d::Zero(), 0, 1, {}}),
                std::invalid_argument);
-  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d(0, -1), 0, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d(0, -1), 0, 1, {}}),
                std::invalid_argument);
-  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), -1, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), -1, 1, {}}),
                std::invalid_argument);
-  EXPECT_THROW(JointSensor(2, {Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), 0, 1}),
+  EXPECT_THROW(JointSensor(2, {Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), 0, 1, {}}),
                std::invalid_argument);
 }
 
