@@ -4,9 +4,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "config/input_file.hpp"
 #include "config/key_table.hpp"
+#include "config/robot_kinds.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
 #include "model/planar_chain.hpp"
@@ -148,16 +150,31 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
   s.urdf = c;
 }
 
+// The registered kind's key the section gives ("" for none).
+std::string registeredKindKey(const MapReader& robot) {
+  for (const std::string& key : robotKindKeys())
+    if (robot.has(key)) return key;
+  return "";
+}
+
 model::ChainParams readRobot(MapReader robot) {
   model::ChainParams params;
   const bool has_preset = robot.has("preset");
   const bool has_links = robot.has("links");
   const bool has_urdf = robot.has("urdf");
-  if (int(has_preset) + int(has_links) + int(has_urdf) != 1)
-    robot.fail("links", "give exactly one of robot.preset (pelican), robot.links or robot.urdf");
-  if (has_urdf) {
-    // The chain is read by readUrdf; here only what it shares with the planar chain.
-    robot.child("urdf");
+  int registered = 0;
+  std::string registered_list;
+  for (const std::string& key : robotKindKeys()) {
+    registered += robot.has(key) ? 1 : 0;
+    registered_list += (registered_list.empty() ? "robot." : ", robot.") + key;
+  }
+  if (int(has_preset) + int(has_links) + int(has_urdf) + registered != 1)
+    robot.fail(
+        "links",
+        "give exactly one of robot.preset (pelican), robot.links or robot.urdf" +
+            (registered_list.empty() ? "" : " (or a kind built into this program: " + registered_list + ")"));
+  if (has_urdf || registered != 0) {
+    // The arm is read by readUrdf or its kind; here only what it shares with the planar chain.
   } else if (has_preset) {
     const std::string preset = robot.text("preset");
     if (preset != "pelican") robot.fail("preset", "unknown preset '" + preset + "'; expected: pelican");
@@ -180,8 +197,27 @@ model::ChainParams readRobot(MapReader robot) {
   params.gravity = robot.number("gravity", params.gravity);
   if (params.gravity < 0.0)
     robot.fail("gravity", "expected a number >= 0 [m/s^2], got " + std::to_string(params.gravity));
-  robot.finish(keysUnder("robot"));
+  std::set<std::string> known = keysUnder("robot");
+  for (const std::string& key : robotKindKeys()) known.insert(key);
+  robot.finish(known);
   return params;
+}
+
+// robot.<key> of a registered kind: its settings, and its arm built at once,
+// so that every problem is named before anything runs.
+void readRegisteredRobot(MapReader robot, const std::string& key, Scenario& s) {
+  const RobotKindSection& kind = *robotKindSection(key);
+  MapReader section = robot.map(key);
+  RegisteredRobot r{key, kind.read(section), nullptr};
+  try {
+    r.model = kind.model(r.settings, s.robot.gravity);
+  } catch (const lagrange::BadInput& e) {
+    robot.fail(key, e.what());
+  }
+  if (r.model->dof() > kMaxJoints)
+    robot.fail(key, "an arm of " + std::to_string(r.model->dof()) + " joints; at most " +
+                        std::to_string(kMaxJoints) + " are allowed (the gain check's cost grows as n^6)");
+  s.registered_robot = std::move(r);
 }
 
 std::optional<FlexibleConfig> readFlexible(MapReader robot, int n) {
@@ -218,6 +254,8 @@ void readRobotSection(MapReader& root, Scenario& s, const std::string& base_dir)
     readUrdf(root.map("robot"), s, base_dir);
     s.robot.links.clear();
   }
+  if (const std::string key = registeredKindKey(root.map("robot")); !key.empty())
+    readRegisteredRobot(root.map("robot"), key, s);
   s.flexible = readFlexible(root.map("robot"), s.dof());
 }
 

@@ -25,6 +25,7 @@ int Scenario::torqueStepsPerTick() const {
 }
 
 model::RobotModelPtr Scenario::robotModel() const {
+  if (registered_robot) return registered_robot->model;
   if (urdf_model) return urdf_model;
   return std::make_shared<const model::PlanarChain>(robot);
 }

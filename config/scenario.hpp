@@ -45,6 +45,13 @@ struct FlexibleConfig {
   bool rate_sensor = false;      ///< the plant publishes q2' on PLANT_MOTOR
 };
 
+/// robot.<key> of a robot kind registered outside config (config/robot_kinds.hpp).
+struct RegisteredRobot {
+  std::string key;             ///< which kind
+  std::any settings;           ///< what its section read
+  model::RobotModelPtr model;  ///< its arm, built once when the scenario is read
+};
+
 /// robot.urdf: the serial chain of a URDF arm (model/urdf_arm.hpp).
 struct UrdfRobotConfig {
   std::string file;  ///< where the document was read from, as written ("" when given inline)
@@ -195,6 +202,8 @@ struct Scenario {
   std::optional<UrdfRobotConfig> urdf;  ///< robot.urdf: a URDF arm instead of robot.links
   /// The URDF arm, built once when the scenario is read (robotModel() returns it).
   std::shared_ptr<const model::UrdfArm> urdf_model;
+  /// robot.<key> of a registered kind instead of robot.links or robot.urdf.
+  std::optional<RegisteredRobot> registered_robot;
   std::optional<FlexibleConfig> flexible;  ///< robot.flexible
   InitialState initial_state;
   model::ReferenceParams reference;
@@ -210,7 +219,10 @@ struct Scenario {
   std::optional<CompareConfig> compare;  ///< lagrange compare's section; lagrange run ignores it
 
   bool velocitySensor() const { return sensors && sensors->velocity; }
-  int dof() const { return urdf_model ? urdf_model->dof() : static_cast<int>(robot.links.size()); }
+  int dof() const {
+    if (registered_robot) return registered_robot->model->dof();
+    return urdf_model ? urdf_model->dof() : static_cast<int>(robot.links.size());
+  }
   double tickPeriod() const { return 1.0 / plant.publish_rate; }
   int substepsPerTick() const;
   /// Actuator output updates per plant period: actuator.rate / plant.publish_rate.

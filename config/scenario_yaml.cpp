@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "config/controller_params.hpp"
+#include "config/robot_kinds.hpp"
 #include "config/scenario.hpp"
 #include "config/scenario_sections.hpp"
 
@@ -22,7 +23,10 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "robot" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "gravity" << YAML::Value << s.robot.gravity;
-  if (s.urdf) {
+  if (s.registered_robot) {
+    out << YAML::Key << s.registered_robot->key << YAML::Value;
+    robotKindSection(s.registered_robot->key)->write(out, s.registered_robot->settings);
+  } else if (s.urdf) {
     out << YAML::Key << "urdf" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "file" << YAML::Value << s.urdf->file;
     out << YAML::Key << "base_link" << YAML::Value << s.urdf->base_link;

@@ -1,14 +1,13 @@
 #include "plant/scenario_plant.hpp"
 
-#include "plant/planar_chain_world.hpp"
+#include "plant/robot_kinds.hpp"
 #include "plant/sensor_models.hpp"
-#include "plant/urdf_arm_world.hpp"
 
 namespace lagrange::plant {
 
 PlantSim plantFor(const config::Scenario& s) {
   return PlantSim(
-      s.urdf_model ? urdfArmWorld(s.urdf_model) : planarChainWorld(s.robot),
+      armBuilderFor(s),
       {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
       s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt, s.plant.max_rate);
 }

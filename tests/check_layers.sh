@@ -46,7 +46,7 @@ place() {
       controller/gain_suggestion.* | controller/sampled_data.* | controller/baselines.*) layer=scenario ;;
     controller/*) layer=core ;;
     actuator/*) layer=core ;;
-    plant/scenario_plant.* | plant/sensor_models.*) layer=lcm ;;  # the plant a scenario describes, with its messages' translation
+    plant/scenario_plant.* | plant/sensor_models.* | plant/robot_kinds.*) layer=lcm ;;  # the plant a scenario describes, with its messages' translation
     plant/plant_loops.* | plant/stall_diagnosis.*) layer=process ;;
     plant/*) layer=core ;;
     config/*) layer=config ;;

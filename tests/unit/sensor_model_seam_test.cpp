@@ -29,7 +29,7 @@ class ScaleAndOffset final : public SensorEffect {
   const Eigen::VectorXd scale_, offset_;
 };
 
-const bool registered = registerSensorModel(
+const bool calibration_registered = registerSensorModel(
     {"test_calibration",
      {{"test_scale", true, "gain of the sensor [1]"}, {"test_offset", false, "offset [rad, or rad/s]"}},
      [](const SensorModelParams& p, int, uint64_t) {
@@ -44,7 +44,7 @@ config::Scenario rigid(const std::vector<std::string>& overrides) {
 }
 
 TEST(SensorModelSeam, ATestOnlyModelIsReadWrittenAndApplied) {
-  ASSERT_TRUE(registered);
+  ASSERT_TRUE(calibration_registered);
   const config::Scenario s =
       rigid({"sensors={position: {test_scale: [2, 1], test_offset: [0.1, -0.2]}, "
              "velocity: {noise_sigma: 0}}"});

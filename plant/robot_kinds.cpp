@@ -1,0 +1,39 @@
+#include "plant/robot_kinds.hpp"
+
+#include <map>
+#include <stdexcept>
+
+#include "plant/planar_chain_world.hpp"
+#include "plant/urdf_arm_world.hpp"
+
+namespace lagrange::plant {
+
+namespace {
+// A function-local static: registrations run during static initialisation.
+std::map<std::string, std::function<ArmBuilder(const std::any&, double)>>& worlds() {
+  static std::map<std::string, std::function<ArmBuilder(const std::any&, double)>> all;
+  return all;
+}
+}  // namespace
+
+bool registerRobotKind(RobotKind kind) {
+  if (!kind.world)
+    throw std::logic_error("plant::registerRobotKind: robot." + kind.section.key + " has no world builder");
+  const std::string key = kind.section.key;
+  config::registerRobotKindSection(std::move(kind.section));  // refuses a key taken
+  worlds().emplace(key, std::move(kind.world));
+  return true;
+}
+
+ArmBuilder armBuilderFor(const config::Scenario& s) {
+  if (s.registered_robot) {
+    const auto it = worlds().find(s.registered_robot->key);
+    if (it == worlds().end())
+      throw std::logic_error("plant::armBuilderFor: robot." + s.registered_robot->key +
+                             " was read by config but has no world builder in this program");
+    return it->second(s.registered_robot->settings, s.robot.gravity);
+  }
+  return s.urdf_model ? urdfArmWorld(s.urdf_model) : planarChainWorld(s.robot);
+}
+
+}  // namespace lagrange::plant
