@@ -223,9 +223,6 @@ std::vector<KeyInfo> controllerKeys() {
           "registered by `controller::registerControllerKind` in programs built with it "
           "(docs/architecture.md, \"Adding a controller\"): its own per-joint keys instead of the ones "
           "below, `actuator.order` 0."),
-      only("registered", inside("controller.lambda", "controller.type", gain())),
-      only("registered", inside("controller.ld", "controller.type", gain())),
-      only("registered", inside("controller.lp", "controller.type", gain())),
       only("external",
            row("controller.command", "list of strings", "required for `external`",
                "the external controller's command line (argv, no shell): the launcher starts it in the "
@@ -415,9 +412,10 @@ std::vector<KeyInfo> compareKeys() {
   };
 }
 
-// The rows registered by the files that own their keys (registerKeyRows).
-std::vector<KeyInfo>& registeredRows() {
-  static std::vector<KeyInfo> rows;
+// The rows registered by the files that own their keys (registerKeyRows),
+// by the variant they were registered as.
+std::map<std::string, std::vector<KeyInfo>>& registeredRows() {
+  static std::map<std::string, std::vector<KeyInfo>> rows;
   return rows;
 }
 // What each variant of a section is, for messages: "a key of <this>".
@@ -425,8 +423,7 @@ std::map<std::string, std::string>& variantDescriptions() {
   static std::map<std::string, std::string> descriptions = {
       {"sine", "reference.type sine and smooth_sine only"},
       {"free_motion", "reference.type free_motion only"},
-      {"external", "controller.type external only"},
-      {"registered", "the baselines that declare it (docs/baselines.md)"}};
+      {"external", "controller.type external only"}};
   return descriptions;
 }
 bool& tableBuilt() {
@@ -434,7 +431,14 @@ bool& tableBuilt() {
   return built;
 }
 
-std::vector<KeyInfo> registeredControllerKeys() { return registeredRows(); }
+// By the variant registered, so that the order does not hang on the order
+// of static initialisers across files.
+std::vector<KeyInfo> registeredControllerKeys() {
+  std::vector<KeyInfo> rows;
+  for (const auto& [variant, of_variant] : registeredRows())
+    rows.insert(rows.end(), of_variant.begin(), of_variant.end());
+  return rows;
+}
 
 // The sections in the order of docs/configuration.md.
 std::vector<KeyInfo> makeTable() {
@@ -456,7 +460,7 @@ void registerKeyRows(const std::string& variant, const std::string& description,
     throw std::logic_error("config::registerKeyRows: called after the key table was first read");
   if (!variantDescriptions().emplace(variant, description).second)
     throw std::logic_error("config::registerKeyRows: variant '" + variant + "' is registered twice");
-  registeredRows().insert(registeredRows().end(), rows.begin(), rows.end());
+  registeredRows()[variant] = std::move(rows);
 }
 
 const std::string& variantDescription(const std::string& variant) {

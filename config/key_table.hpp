@@ -29,10 +29,12 @@ struct KeyInfo {
   std::string meaning;            ///< Markdown, without the range (added from `range`)
   std::optional<KeyRange> range;  ///< every number has one
   /// "" for a key every scenario may hold; else the variant of its section
-  /// it belongs to: "sine" / "free_motion" (reference.type), "paper" (the
-  /// rows controller/paper_section.cpp registers) / "external" (controller.type). "registered" marks the
-  /// baselines' own gains (lp, ld, lambda), here only for their ranges and docs: a registered controller's
-  /// keys come from its registration (config/controller_params.hpp), not from keysUnder.
+  /// it belongs to: "sine" / "free_motion" (reference.type), "external"
+  /// (controller.type), or one a file outside config registers with its rows
+  /// (registerKeyRows): "paper" (controller/paper_section.cpp), "registered"
+  /// (controller/baselines.cpp: the baselines' own gains lp, ld, lambda, here
+  /// only for their ranges and docs -- a registered controller's keys come
+  /// from its registration, config/controller_params.hpp, not from keysUnder).
   std::string variant;
   /// The row that describes it when that is another key's (the items of
   /// robot.links in robot.links'); "" for its own row.

@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "config/key_table.hpp"
 #include "controller/berghuis_nijmeijer.hpp"
 #include "controller/nicosia_tomei.hpp"
 #include "controller/pd_plus_differenced.hpp"
@@ -171,6 +172,17 @@ const bool kBerghuisNijmeijerRegistered = registerControllerKind(
          "berghuis_nijmeijer: Berghuis and Nijmeijer (IEEE TRA 1993) prove semiglobal exponential tracking, "
          "the region of attraction growing with the gains; their conditions are not evaluated here, and the "
          "sampled implementation is not assessed")});
+
+// The baselines' gains that are no paper controller's (kp, kd, a, b are, and
+// their rows hold them): their ranges and the hint an unknown-key message gives.
+const bool kBaselineKeysRegistered = [] {
+  using namespace config::keyrow;
+  config::registerKeyRows("registered", "the baselines that declare it (docs/baselines.md)",
+                          {only("registered", inside("controller.lambda", "controller.type", gain())),
+                           only("registered", inside("controller.ld", "controller.type", gain())),
+                           only("registered", inside("controller.lp", "controller.type", gain()))});
+  return true;
+}();
 
 }  // namespace
 }  // namespace lagrange::controller
