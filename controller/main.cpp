@@ -6,23 +6,16 @@
 ///     -> validate -> controller::InputAssembly -> Controller::step -> CONTROL_COMMAND
 ///
 /// Besides PLANT_POSITION and STATUS it reads only what its needs() declare
-/// (controller::subscribeDeclaredInputs).
-/// Lockstep: one command per position tick; a repeated tick (the plant
-/// re-sending after a timeout) is answered with the cached command, so the
-/// filter never steps twice on one sample.
+/// (controller::subscribeDeclaredInputs); its loop is controller_loop.hpp's.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "controller/controller_lcm.hpp"
+#include "controller/controller_loop.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_report_json.hpp"
 #include "controller/registry.hpp"
 #include "runtime/process.hpp"
-#include "runtime/realtime_responder.hpp"
-#include "runtime/tick_responder.hpp"
-#include "transport/channels.hpp"
-#include "transport/messages.hpp"
 
 namespace lagrange {
 namespace {
@@ -56,37 +49,7 @@ int DoMain(int argc, char** argv) {
                     controller::describe(gains), running);
 
         const std::unique_ptr<controller::Controller> ctl = controller::makeController(s);
-        const controller::Needs needs = ctl->needs();
-        // The measurements besides q that it declared, assembled per tick
-        // (lockstep) or newest (realtime) by controller::InputAssembly.
-        controller::InputAssembly assembly = controller::makeInputAssembly(s, needs);
-        controller::subscribeDeclaredInputs(
-            node, needs, {s.dof(), s.torqueStepsPerTick(), s.flexible && s.flexible->rate_sensor}, assembly);
-        auto command = [&](const lagrange::plant_position_t& m,
-                           const std::optional<controller::AssembledInputs>& in)
-            -> std::optional<lagrange::control_command_t> {
-          if (!in) return std::nullopt;
-          return controller::commandMessage(ctl->step(in->inputs), m.header.tick, m.header.sim_time,
-                                            in->ticks);
-        };
-        if (s.mode == config::Mode::kRealtime) {
-          // A quarter period after the plant: its position has arrived.
-          return runtime::serveRealtime<lagrange::plant_position_t, lagrange::control_command_t>(
-              node, transport::kPlantPosition, transport::kControlCommand, s.dof(),
-              {s.tickPeriod(), 0.25, s.realtime.max_input_age}, [&](const lagrange::plant_position_t& m) {
-                return command(m, assembly.newest(m.header.tick, m.header.sim_time, transport::toEigen(m.q)));
-              });
-        }
-        // Lockstep: position k is answered only with the measurements of tick k;
-        // until they are here it stays silent and the plant re-sends.
-        runtime::Progress progress;
-        runtime::respondPerTick<lagrange::plant_position_t, lagrange::control_command_t>(
-            node, transport::kPlantPosition, transport::kControlCommand, s.dof(), progress,
-            s.lockstep.logger_window + 2,  // the plant re-sends at most the unconfirmed window
-            [&](const lagrange::plant_position_t& m) -> std::optional<lagrange::control_command_t> {
-              return command(m, assembly.forTick(m.header.tick, m.header.sim_time, transport::toEigen(m.q)));
-            });
-        return runtime::serveUntilPlantFinished(node, progress);
+        return controller::serveController(s, node, *ctl);
       });
 }
 

@@ -44,6 +44,7 @@ place() {
     */*_lcm.hpp | */*_lcm.cpp) layer=lcm ;;
     controller/gain_report.* | controller/gain_report_json.* | controller/registry.* | controller/paper_controllers.* | controller/paper_section.* | \
       controller/gain_suggestion.* | controller/sampled_data.* | controller/baselines.*) layer=scenario ;;
+    controller/controller_loop.*) layer=process ;;  # the controller process's loop, as plant_loops
     controller/*) layer=core ;;
     actuator/*) layer=core ;;
     plant/scenario_plant.* | plant/sensor_models.* | plant/robot_kinds.*) layer=lcm ;;  # the plant a scenario describes, with its messages' translation
