@@ -29,6 +29,23 @@ const Fields<model::LinkParams>& linkFields() {
   return fields;
 }
 
+// initial_state: every arm's joints, a list of n numbers each.
+const Fields<InitialState>& initialStateFields() {
+  static const Fields<InitialState> fields = {
+      jointVector("q", &InitialState::q, VectorRule().required().listOnly()),
+      jointVector("qdot", &InitialState::qdot, VectorRule().listOnly()),
+  };
+  return fields;
+}
+// initial_state: the motors of an arm with robot.flexible.
+const Fields<InitialState>& motorStateFields() {
+  static const Fields<InitialState> fields = {
+      jointVector("motor_q", &InitialState::motor_q, VectorRule().listOnly()),
+      jointVector("motor_qdot", &InitialState::motor_qdot, VectorRule().listOnly()),
+  };
+  return fields;
+}
+
 // robot.flexible: elastic joints, their springs and rotors.
 const Fields<FlexibleConfig>& flexibleFields() {
   static const Fields<FlexibleConfig> fields = {
@@ -263,22 +280,20 @@ void readRobotSection(MapReader& root, Scenario& s, const std::string& base_dir)
 void readInitialStateSection(MapReader& root, Scenario& s) {
   const int n = s.dof();
   MapReader init = root.map("initial_state");
-  s.initial_state.q = init.vector("q", n, false, false);
-  s.initial_state.qdot = init.has("qdot") ? init.vector("qdot", n, false, false) : Eigen::VectorXd::Zero(n);
+  InitialState& state = s.initial_state;
+  state.q = state.qdot = Eigen::VectorXd::Zero(n);
+  readFieldsAmongOthers(init, state, initialStateFields());
   if (s.flexible) {
     // Default: each spring's twist K^-1 g(q) holds the links at rest against gravity.
-    s.initial_state.motor_q =
-        init.has("motor_q")
-            ? init.vector("motor_q", n, false, false)
-            : Eigen::VectorXd(
-                  s.initial_state.q +
-                  s.robotModel()->gravity(s.initial_state.q).cwiseQuotient(s.flexible->params.stiffness));
-    s.initial_state.motor_qdot =
-        init.has("motor_qdot") ? init.vector("motor_qdot", n, false, false) : s.initial_state.qdot;
+    state.motor_q = state.q + s.robotModel()->gravity(state.q).cwiseQuotient(s.flexible->params.stiffness);
+    state.motor_qdot = state.qdot;
+    readFieldsAmongOthers(init, state, motorStateFields());
   } else if (init.has("motor_q") || init.has("motor_qdot")) {
     init.fail(init.has("motor_q") ? "motor_q" : "motor_qdot", "only an arm with robot.flexible has motors");
   }
-  init.finish(keysUnder("initial_state"));
+  std::set<std::string> known = keysOf(initialStateFields());
+  for (const std::string& key : keysOf(motorStateFields())) known.insert(key);
+  init.finish(known);
 }
 
 // reference: a sine, a smooth sine or the arm's own free motion.

@@ -16,14 +16,71 @@
 
 namespace lagrange::config::sections {
 
+namespace {
+// actuator.initial_state: xi_1(0) .. xi_m(0), m = order rows of n numbers
+// (initial_state's size says both when this is read).
+void readChainState(MapReader& act, ActuatorConfig& a) {
+  if (!act.has("initial_state")) return;
+  const int m = static_cast<int>(a.initial_state.rows()), n = static_cast<int>(a.initial_state.cols());
+  YAML::Node rows = act.child("initial_state");
+  if (!rows.IsSequence() || static_cast<int>(rows.size()) != m)
+    act.fail("initial_state", "expected a list of " + std::to_string(m) +
+                                  " rows (xi_1 .. xi_m), each a list of " + std::to_string(n) + " numbers");
+  for (int i = 0; i < m; ++i) {
+    YAML::Node wrapper;
+    wrapper["row"] = rows[i];
+    MapReader row(wrapper, act.keyPath("initial_state") + "[" + std::to_string(i) + "]");
+    a.initial_state.row(i) = row.vector("row", n, true, false).transpose();
+    row.finish({"row"});
+  }
+}
+}  // namespace
+
+// actuator.order and rate: the chain and its clock, checked against the
+// plant's before the rest is read (its sizes follow from the order).
+const Fields<ActuatorConfig>& actuatorChainFields() {
+  using namespace field;
+  static const Fields<ActuatorConfig> fields = {
+      {"order", [](MapReader& m, ActuatorConfig& a) { a.order = m.integer("order", a.order); },
+       plainWriter("order", &ActuatorConfig::order)},
+      positive("rate", &ActuatorConfig::rate),
+  };
+  return fields;
+}
+
+// actuator.saturation and initial_state: per joint, and per integrator.
+const Fields<ActuatorConfig>& actuatorDriveFields() {
+  using field::writeVector;
+  static const Fields<ActuatorConfig> fields = {
+      {"saturation",
+       [](MapReader& m, ActuatorConfig& a) {
+         a.saturation = m.optionalVector("saturation", static_cast<int>(a.initial_state.cols()), true, true);
+       },
+       [](YAML::Emitter& out, const ActuatorConfig& a) {
+         if (a.saturation) writeVector(out, "saturation", *a.saturation);
+       }},
+      {"initial_state", readChainState,
+       [](YAML::Emitter& out, const ActuatorConfig& a) {
+         if (a.order == 0) return;
+         out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginSeq;
+         for (int i = 0; i < a.order; ++i) {
+           out << YAML::Flow << YAML::BeginSeq;
+           for (int j = 0; j < a.initial_state.cols(); ++j) out << a.initial_state(i, j);
+           out << YAML::EndSeq;
+         }
+         out << YAML::EndSeq;
+       }},
+  };
+  return fields;
+}
+
 // actuator: the integrator chain between controller and joints, and its rate.
 void readActuatorSection(MapReader& root, Scenario& s) {
   const int n = s.dof();
   s.actuator.rate = s.plant.publish_rate;
   if (root.has("actuator")) {
     MapReader act = root.map("actuator");
-    s.actuator.order = act.integer("order", 0);
-    s.actuator.rate = act.positive("rate", s.plant.publish_rate);
+    readFieldsAmongOthers(act, s.actuator, actuatorChainFields());
     const double steps = s.actuator.rate / s.plant.publish_rate;
     const double per_step = static_cast<double>(s.substepsPerTick()) / std::round(steps);
     if (steps < 1.0 - 1e-9 || std::abs(steps - std::round(steps)) > 1e-6 * steps)
@@ -37,23 +94,11 @@ void readActuatorSection(MapReader& root, Scenario& s) {
     if (s.actuator.order < 0 || s.actuator.order > 4)
       act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to 4, got " +
                             std::to_string(s.actuator.order));
-    s.actuator.saturation = act.optionalVector("saturation", n, true, true);
     s.actuator.initial_state = Eigen::MatrixXd::Zero(s.actuator.order, n);
-    if (act.has("initial_state")) {
-      YAML::Node rows = act.child("initial_state");
-      if (!rows.IsSequence() || static_cast<int>(rows.size()) != s.actuator.order)
-        act.fail("initial_state", "expected a list of " + std::to_string(s.actuator.order) +
-                                      " rows (xi_1 .. xi_m), each a list of " + std::to_string(n) +
-                                      " numbers");
-      for (int i = 0; i < s.actuator.order; ++i) {
-        YAML::Node wrapper;
-        wrapper["row"] = rows[i];
-        MapReader row(wrapper, act.keyPath("initial_state") + "[" + std::to_string(i) + "]");
-        s.actuator.initial_state.row(i) = row.vector("row", n, true, false).transpose();
-        row.finish({"row"});
-      }
-    }
-    act.finish(keysUnder("actuator"));
+    readFieldsAmongOthers(act, s.actuator, actuatorDriveFields());
+    std::set<std::string> known = keysOf(actuatorChainFields());
+    for (const std::string& key : keysOf(actuatorDriveFields())) known.insert(key);
+    act.finish(known);
   }
 }
 

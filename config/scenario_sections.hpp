@@ -20,13 +20,18 @@ void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 
 /// name, description, duration, mode: the top level's own keys.
 const Fields<Scenario>& headerFields();
-const Fields<model::LinkParams>& linkFields();   ///< robot.links[i]
-const Fields<FlexibleConfig>& flexibleFields();  ///< robot.flexible
+const Fields<model::LinkParams>& linkFields();     ///< robot.links[i]
+const Fields<FlexibleConfig>& flexibleFields();    ///< robot.flexible
+const Fields<InitialState>& initialStateFields();  ///< initial_state: q, qdot
+const Fields<InitialState>& motorStateFields();    ///< initial_state: motor_q, motor_qdot (robot.flexible)
 const Fields<PlantConfig>& plantFields();
 const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type);
 
 // What drives it (drive_sections.cpp).
 void readActuatorSection(MapReader& root, Scenario& s);  ///< after plant
+/// actuator.order, rate (read and checked first); saturation, initial_state.
+const Fields<ActuatorConfig>& actuatorChainFields();
+const Fields<ActuatorConfig>& actuatorDriveFields();
 /// `base_dir`: where a relative controller.command (type external) is looked for.
 void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir);  ///< after actuator
 

@@ -50,12 +50,8 @@ std::string toYaml(const Scenario& s) {
   out << YAML::EndMap;
 
   out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginMap;
-  writeVector(out, "q", s.initial_state.q);
-  writeVector(out, "qdot", s.initial_state.qdot);
-  if (s.flexible) {
-    writeVector(out, "motor_q", s.initial_state.motor_q);
-    writeVector(out, "motor_qdot", s.initial_state.motor_qdot);
-  }
+  writeFields(out, s.initial_state, sections::initialStateFields());
+  if (s.flexible) writeFields(out, s.initial_state, sections::motorStateFields());
   out << YAML::EndMap;
 
   out << YAML::Key << "reference" << YAML::Value << YAML::BeginMap;
@@ -67,18 +63,8 @@ std::string toYaml(const Scenario& s) {
   out << YAML::EndMap;
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "order" << YAML::Value << s.actuator.order;
-  out << YAML::Key << "rate" << YAML::Value << s.actuator.rate;
-  if (s.actuator.saturation) writeVector(out, "saturation", *s.actuator.saturation);
-  if (s.actuator.order > 0) {
-    out << YAML::Key << "initial_state" << YAML::Value << YAML::BeginSeq;
-    for (int i = 0; i < s.actuator.order; ++i) {
-      out << YAML::Flow << YAML::BeginSeq;
-      for (int j = 0; j < s.actuator.initial_state.cols(); ++j) out << s.actuator.initial_state(i, j);
-      out << YAML::EndSeq;
-    }
-    out << YAML::EndSeq;
-  }
+  writeFields(out, s.actuator, sections::actuatorChainFields());
+  writeFields(out, s.actuator, sections::actuatorDriveFields());
   out << YAML::EndMap;
 
   out << YAML::Key << "controller" << YAML::Value << YAML::BeginMap;

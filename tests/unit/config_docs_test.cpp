@@ -113,6 +113,12 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::supervisionFields()), keysUnder("supervision"));
   EXPECT_EQ(keysOf(sections::linkFields()), keysUnder("robot.links[i]"));
   EXPECT_EQ(keysOf(sections::flexibleFields()), keysUnder("robot.flexible"));
+  std::set<std::string> initial_state = keysOf(sections::initialStateFields());
+  for (const std::string& key : keysOf(sections::motorStateFields())) initial_state.insert(key);
+  EXPECT_EQ(initial_state, keysUnder("initial_state"));
+  std::set<std::string> actuator = keysOf(sections::actuatorChainFields());
+  for (const std::string& key : keysOf(sections::actuatorDriveFields())) actuator.insert(key);
+  EXPECT_EQ(actuator, keysUnder("actuator"));
   for (const std::string& key : keysOf(sections::headerFields()))  // the rest are sections
     EXPECT_EQ(keysUnder("").count(key), 1u) << key;
   for (const auto& [section, keys] : {std::pair{std::string("sensors"), keysOf(sections::sensorsFields())},
