@@ -46,6 +46,21 @@ const Fields<InitialState>& motorStateFields() {
   return fields;
 }
 
+// robot.urdf: where the document is, or the document itself, and the chain
+// in it. In the order config.resolved.yaml writes them.
+const Fields<UrdfRobotConfig>& urdfFields() {
+  static const Fields<UrdfRobotConfig> fields = {
+      text("file", &UrdfRobotConfig::file),
+      text("base_link", &UrdfRobotConfig::base_link, Presence::kRequired),
+      text("tip_link", &UrdfRobotConfig::tip_link, Presence::kRequired),
+      {"xml", [](MapReader& m, UrdfRobotConfig& c) { c.xml = m.text("xml", c.xml); },
+       [](YAML::Emitter& out, const UrdfRobotConfig& c) {
+         out << YAML::Key << "xml" << YAML::Value << YAML::DoubleQuoted << c.xml;
+       }},
+  };
+  return fields;
+}
+
 // robot.flexible: elastic joints, their springs and rotors.
 const Fields<FlexibleConfig>& flexibleFields() {
   static const Fields<FlexibleConfig> fields = {
@@ -129,14 +144,12 @@ namespace {
 void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
   MapReader u = robot.map("urdf");
   UrdfRobotConfig c;
-  c.base_link = u.text("base_link");
-  c.tip_link = u.text("tip_link");
-  c.file = u.text("file", "");
-  if (u.has("xml")) {
-    c.xml = u.text("xml");
-  } else if (c.file.empty()) {
+  readFieldsAmongOthers(u, c, urdfFields());
+  // Given inline (a resolved scenario's), the document is used as it is and
+  // the file not read again.
+  if (!u.has("xml") && c.file.empty()) {
     u.fail("file", "missing; expected the URDF file of the arm (or its text as robot.urdf.xml)");
-  } else {
+  } else if (!u.has("xml")) {
     const std::filesystem::path path = std::filesystem::path(c.file).is_relative()
                                            ? std::filesystem::path(base_dir) / c.file
                                            : std::filesystem::path(c.file);
@@ -152,7 +165,7 @@ void readUrdf(MapReader robot, Scenario& s, const std::string& base_dir) {
     }
     c.xml = text.text;
   }
-  u.finish(keysUnder("robot.urdf"));
+  u.finish(keysOf(urdfFields()));
   try {
     s.urdf_model = model::UrdfArm::build(
         {c.xml, c.file.empty() ? "robot.urdf.xml" : c.file, c.base_link, c.tip_link, s.robot.gravity});

@@ -22,6 +22,7 @@ void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
 const Fields<Scenario>& headerFields();
 const Fields<model::LinkParams>& linkFields();     ///< robot.links[i]
 const Fields<FlexibleConfig>& flexibleFields();    ///< robot.flexible
+const Fields<UrdfRobotConfig>& urdfFields();       ///< robot.urdf (the document is read by its reader)
 const Fields<InitialState>& initialStateFields();  ///< initial_state: q, qdot
 const Fields<InitialState>& motorStateFields();    ///< initial_state: motor_q, motor_qdot (robot.flexible)
 const Fields<PlantConfig>& plantFields();

@@ -28,10 +28,7 @@ std::string toYaml(const Scenario& s) {
     robotKindSection(s.registered_robot->key)->write(out, s.registered_robot->settings);
   } else if (s.urdf) {
     out << YAML::Key << "urdf" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "file" << YAML::Value << s.urdf->file;
-    out << YAML::Key << "base_link" << YAML::Value << s.urdf->base_link;
-    out << YAML::Key << "tip_link" << YAML::Value << s.urdf->tip_link;
-    out << YAML::Key << "xml" << YAML::Value << YAML::DoubleQuoted << s.urdf->xml;
+    writeFields(out, *s.urdf, sections::urdfFields());
     out << YAML::EndMap;
   } else {
     out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;

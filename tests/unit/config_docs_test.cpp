@@ -113,6 +113,7 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::supervisionFields()), keysUnder("supervision"));
   EXPECT_EQ(keysOf(sections::linkFields()), keysUnder("robot.links[i]"));
   EXPECT_EQ(keysOf(sections::flexibleFields()), keysUnder("robot.flexible"));
+  EXPECT_EQ(keysOf(sections::urdfFields()), keysUnder("robot.urdf"));
   std::set<std::string> initial_state = keysOf(sections::initialStateFields());
   for (const std::string& key : keysOf(sections::motorStateFields())) initial_state.insert(key);
   EXPECT_EQ(initial_state, keysUnder("initial_state"));
