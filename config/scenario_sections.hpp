@@ -66,5 +66,7 @@ void readSensorsSection(MapReader& root, Scenario& s);
 
 // What `lagrange compare` runs (compare_section.cpp).
 void readCompareSection(MapReader& root, Scenario& s);
+const Fields<CompareConfig>& compareFields();       ///< compare: controllers, sweep
+const Fields<CompareConfig>& compareSweepFields();  ///< compare.sweep: key, values
 
 }  // namespace lagrange::config::sections

@@ -120,17 +120,7 @@ std::string toYaml(const Scenario& s) {
 
   if (s.compare) {
     out << YAML::Key << "compare" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "controllers" << YAML::Value << YAML::BeginMap;
-    for (const auto& [type, keys] : s.compare->controllers)
-      out << YAML::Key << type << YAML::Value << YAML::Flow << YAML::Load(keys);
-    out << YAML::EndMap;
-    if (!s.compare->sweep_key.empty()) {
-      out << YAML::Key << "sweep" << YAML::Value << YAML::BeginMap;
-      out << YAML::Key << "key" << YAML::Value << s.compare->sweep_key;
-      out << YAML::Key << "values" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-      for (const std::string& v : s.compare->sweep_values) out << YAML::Load(v);
-      out << YAML::EndSeq << YAML::EndMap;
-    }
+    writeFields(out, *s.compare, sections::compareFields());
     out << YAML::EndMap;
   }
 

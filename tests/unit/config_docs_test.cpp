@@ -114,6 +114,8 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::linkFields()), keysUnder("robot.links[i]"));
   EXPECT_EQ(keysOf(sections::flexibleFields()), keysUnder("robot.flexible"));
   EXPECT_EQ(keysOf(sections::urdfFields()), keysUnder("robot.urdf"));
+  EXPECT_EQ(keysOf(sections::compareFields()), keysUnder("compare"));
+  EXPECT_EQ(keysOf(sections::compareSweepFields()), keysUnder("compare.sweep"));
   std::set<std::string> initial_state = keysOf(sections::initialStateFields());
   for (const std::string& key : keysOf(sections::motorStateFields())) initial_state.insert(key);
   EXPECT_EQ(initial_state, keysUnder("initial_state"));
