@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -12,6 +14,7 @@
 
 #include "config/key_reference.hpp"
 #include "config/key_table.hpp"
+#include "config/scenario.hpp"
 #include "config/scenario_sections.hpp"
 #include "controller/paper_section.hpp"
 
@@ -106,6 +109,74 @@ TEST(ConfigDocs, KnownKeysComeFromTheTable) {
 
 // The sections read field by field (config/fields.hpp) take their keys from
 // their fields: the table documents exactly those.
+// The value a default cell names: a number ("0", "`1000`"), or a word or
+// list in backticks ("`hold`", "`[]`", "`\"\"`" for the empty text); none
+// for a cell that describes rather than names one ("required", "zeros",
+// "`plant.publish_rate`", "absent").
+std::optional<std::string> namedDefault(std::string cell) {
+  const bool quoted = cell.size() >= 2 && cell.front() == '`' && cell.back() == '`';
+  if (quoted) cell = cell.substr(1, cell.size() - 2);
+  char* end = nullptr;
+  std::strtod(cell.c_str(), &end);
+  if (!cell.empty() && *end == '\0') return cell;
+  if (!quoted || cell.find_first_of(". ") != std::string::npos) return std::nullopt;
+  return cell == "\"\"" ? std::string() : cell;
+}
+
+// The default of a key as the reader applies it: every scalar and every
+// entry of a list the resolved scenario holds for it.
+std::vector<std::string> resolvedValues(const YAML::Node& resolved, const std::string& key) {
+  YAML::Node node = YAML::Clone(resolved);
+  std::stringstream parts(key);
+  for (std::string part; std::getline(parts, part, '.');) {
+    if (!node.IsMap() || !node[part]) return {};
+    node = node[part];
+  }
+  if (node.IsScalar()) return {node.Scalar()};
+  std::vector<std::string> values;
+  if (node.IsSequence())
+    for (const YAML::Node& entry : node)
+      if (entry.IsScalar()) values.push_back(entry.Scalar());
+  return values;
+}
+
+bool sameValue(const std::string& documented, const std::string& resolved) {
+  char* end_a = nullptr;
+  char* end_b = nullptr;
+  const double a = std::strtod(documented.c_str(), &end_a), b = std::strtod(resolved.c_str(), &end_b);
+  if (!documented.empty() && !resolved.empty() && *end_a == '\0' && *end_b == '\0') return a == b;
+  return documented == resolved;
+}
+
+// A default the table documents is the one the reader applies: a scenario
+// with only the required keys (and the optional sections present, empty)
+// resolves every documented default to the value the table names.
+TEST(ConfigDocs, DocumentedDefaultsAreTheReadersDefaults) {
+  const Scenario s = parseScenario(
+      "name: minimal\nduration: 1\nrobot: {preset: pelican}\ninitial_state: {q: [0, 0]}\n"
+      "reference: {type: sine, offset: 0, amplitude: 0, frequency: 0}\ncontroller: {type: theorem1, kp: 1, "
+      "kd: 1, a: 1, b: 1}\n"
+      "sensors: {velocity: {}}\nfaults: {}\n",
+      "minimal.yaml");
+  const YAML::Node resolved = YAML::Load(toYaml(s));
+  int compared = 0;
+  for (const KeyInfo& k : keyTable()) {
+    const std::optional<std::string> named = namedDefault(k.default_text);
+    if (!named || k.key.find_first_of("[A") != std::string::npos) continue;
+    const std::string& documented = *named;
+    const std::vector<std::string> values = resolvedValues(resolved, k.key);
+    if (documented == "[]") {
+      EXPECT_TRUE(values.empty()) << k.key;
+      continue;
+    }
+    for (const std::string& value : values)
+      EXPECT_TRUE(sameValue(documented, value))
+          << k.key << ": the table documents " << k.default_text << ", the reader applies " << value;
+    compared += values.empty() ? 0 : 1;
+  }
+  EXPECT_GE(compared, 25) << "fewer defaults compared than the 25 of today: the scenario above lacks sections";
+}
+
 TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   EXPECT_EQ(keysOf(sections::metricsFields()), keysUnder("metrics"));
   EXPECT_EQ(keysOf(sections::lockstepFields()), keysUnder("lockstep"));
