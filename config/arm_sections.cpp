@@ -244,6 +244,7 @@ void readRegisteredRobot(MapReader robot, const std::string& key, Scenario& s) {
   } catch (const lagrange::BadInput& e) {
     robot.fail(key, e.what());
   }
+  if (!r.model) throw std::logic_error("robot kind '" + key + "' built no model from its section");
   if (r.model->dof() > kMaxJoints)
     robot.fail(key, "an arm of " + std::to_string(r.model->dof()) + " joints; at most " +
                         std::to_string(kMaxJoints) + " are allowed (the gain check's cost grows as n^6)");

@@ -138,16 +138,11 @@ Field<JointSensorConfig> modelKey(const JointVectorKey& k) {
           }};
 }
 
-// A sensor's own fields, then every registered model's keys.
+// A sensor's own fields, then every registered model's keys (none of which
+// is a sensor's own: registerSensorModelKeys refuses those).
 Fields<JointSensorConfig> withModelKeys(Fields<JointSensorConfig> fields) {
-  const std::set<std::string> own = keysOf(fields);
   for (const SensorModelKeys& model : sensorModelKeys())
-    for (const JointVectorKey& k : model.keys) {
-      if (own.count(k.key) != 0)
-        throw std::logic_error("sensor model '" + model.model + "' registers key '" + k.key +
-                               "', which a joint sensor has of its own");
-      fields.push_back(modelKey(k));
-    }
+    for (const JointVectorKey& k : model.keys) fields.push_back(modelKey(k));
   return fields;
 }
 }  // namespace

@@ -4,6 +4,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "config/scenario_sections.hpp"
+
 namespace lagrange::config {
 
 namespace {
@@ -23,7 +25,9 @@ void registerSensorModelKeys(SensorModelKeys model) {
   const std::string what = "config::registerSensorModelKeys: sensor model '" + model.model + "'";
   if (closed()) throw std::logic_error(what + " registered after the sensors' keys were first read");
   if (model.keys.empty()) throw std::logic_error(what + " has no key");
-  std::set<std::string> taken;  // a sensor's own keys: checked where its fields are (run_sections.cpp)
+  // A sensor's own keys, and every other model's.
+  std::set<std::string> taken = keysOf(sections::angleSensorFields());
+  for (const std::string& key : keysOf(sections::rateSensorFields())) taken.insert(key);
   for (const SensorModelKeys& m : models()) {
     if (m.model == model.model) throw std::logic_error(what + " is registered twice");
     for (const JointVectorKey& k : m.keys) taken.insert(k.key);

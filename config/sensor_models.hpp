@@ -20,9 +20,9 @@ struct SensorModelKeys {
 };
 
 /// From a static initialiser (plant::registerSensorModel does it).
-/// @throws std::logic_error for a model without keys, a name or key another
-///         model took, or a registration after the sensors' keys were first
-///         read (a key a sensor has of its own is refused at that first read).
+/// @throws std::logic_error for a model without keys, a name taken, a key
+///         a joint sensor has of its own or another model took, or a
+///         registration after the sensors' keys were first read.
 void registerSensorModelKeys(SensorModelKeys model);
 
 /// Every registered model, by name; reading it closes the registrations.

@@ -2,7 +2,7 @@
 /// The field's baseline controllers (docs/baselines.md), registered through
 /// the controller seam (controller/registry.hpp) like any controller from
 /// outside the paper: each programme that reads scenarios links this object
-/// (controller/CMakeLists.txt, lagrange_baselines), so every process of a
+/// (controller/CMakeLists.txt, lagrange_controller_kinds), so every process of a
 /// run knows the types.
 #include <functional>
 #include <memory>

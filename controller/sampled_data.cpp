@@ -361,6 +361,16 @@ SampledDataCheck check(const config::Scenario& s) {
 }  // namespace
 
 SampledDataCheck checkSampledData(const config::Scenario& s) {
+  if (!isPaperType(s.controller.type)) {
+    SampledDataCheck c;
+    c.rate = s.plant.publish_rate;
+    c.verdict = "not assessed";
+    c.why =
+        "the sampled-data check linearises the paper's controllers (theorem1, cascaded, flexible); "
+        "controller.type " +
+        s.controller.type + " is not one of them";
+    return c;
+  }
   try {
     return check(s);
   } catch (const std::exception& e) {  // e.g. gains so large that a mode outruns double precision in time

@@ -95,8 +95,17 @@ TEST(RobotKindSeam, ItsSectionIsCheckedAndItsKeyIsItsOwn) {
   }
   EXPECT_THROW(config::parseScenario(kScenario, "pendulum.yaml", {"robot.test_pendulum.colour=red"}),
                config::ConfigError);
-  RobotKind taken{{"urdf", nullptr, nullptr, nullptr}, nullptr};
-  EXPECT_THROW(registerRobotKind(taken), std::logic_error);
+  // A kind whose every function is there, on a key config reads itself.
+  RobotKind taken{{"urdf", [](config::MapReader&) -> std::any { return 0; },
+                   [](const std::any&, double) -> model::RobotModelPtr { return nullptr; },
+                   [](YAML::Emitter&, const std::any&) {}},
+                  [](const std::any&, double) { return ArmBuilder{}; }};
+  try {
+    registerRobotKind(taken);
+    ADD_FAILURE() << "robot.urdf was registered a second time";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("robot.urdf is taken"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -91,7 +91,8 @@ TEST(SensorModelSeam, ItsKeysAreCheckedLikeASensorsOwn) {
   EXPECT_THROW(rigid({"sensors={position: {test_scale: [1, 1, 1], test_offset: 0}}"}), config::ConfigError);
   EXPECT_THROW(rigid({"sensors={position: {test_scale: [1, -1], test_offset: 0}}"}), config::ConfigError);
   // Registrations close once a sensor's keys were read: a late one would be
-  // missing from what was read before.
+  // missing from what was read before. (A key a sensor has of its own, as
+  // delay, is refused at registration too; registration is closed by now.)
   EXPECT_THROW(registerSensorModel({"test_late",
                                     {{"test_late", false, ""}},
                                     [](const SensorModelParams&, int, uint64_t) { return nullptr; }}),
