@@ -21,14 +21,16 @@ namespace {
 
 // The closed loop's one-period map, its state packed in one vector:
 // [q, q', (q2, q2'), xi (m x n, cascaded), qc0, cascade qc + zeta (s x n), (rate filter),
-//  (pending torque: steps x n)].
+//  (pending torque: steps x n), (past angles: d x n)].
+// With a joint-angle sensor d samples late (sensors.position.delay) the
+// controller reads q(t_{k-d}): the map keeps the last d angles, newest first.
 // With `one_period_delay` (the realtime wiring: the plant steps over
 // [t_k, t_{k+1}] with the newest torque it has at t_k, which answered q(t_{k-1}))
 // the drive's output waits one period in the pending rows; without it (lockstep,
 // in-process) the torque computed from q(t_k) acts over [t_k, t_{k+1}].
 class LoopMap {
  public:
-  LoopMap(const config::Scenario& s, bool one_period_delay)
+  LoopMap(const config::Scenario& s, bool one_period_delay, bool sensor_delay)
       : s_(s),
         control_model_(s.controlModel()),
         arm_(s.robotModel()),
@@ -39,6 +41,7 @@ class LoopMap {
         flexible_(s.controller.type == "flexible"),
         filtered_rate_(flexible_ && paperSettings(s).motor_rate == MotorRate::kFiltered),
         delayed_(one_period_delay),
+        seen_(sensor_delay && s.sensors ? s.sensors->position.delay : 0),
         steps_(s.torqueStepsPerTick()) {
     if (flexible_) flexible_plant_.emplace(arm_, s.flexible->params);
   }
@@ -48,8 +51,8 @@ class LoopMap {
   // not minimal: (qc_i + d, zeta_i - d) is a neutral mode no output sees. The
   // map keeps the sum in qc_i and zeta_i at zero.
   int size() const {
-    return n_ *
-           ((flexible_ ? 4 : 2) + order_ + 1 + stages_ + (filtered_rate_ ? 1 : 0) + (delayed_ ? steps_ : 0));
+    return n_ * ((flexible_ ? 4 : 2) + order_ + 1 + stages_ + (filtered_rate_ ? 1 : 0) +
+                 (delayed_ ? steps_ : 0) + seen_);
   }
 
   // The reference's state at t with every filter at rest and the drive at the feedforward.
@@ -60,6 +63,7 @@ class LoopMap {
     u.q = r.q();
     u.v = r.qd();
     if (delayed_) u.pending.rowwise() = h.transpose();  // the drive at the feedforward
+    u.seen.rowwise() = r.q().transpose();               // the past readings, at the reference's angle
     if (order_ > 0) u.xi.row(0) = h.transpose();
     if (stages_ > 0) u.cascade.qc.row(0) = -(paperSettings(s_).stages[0].b.cwiseProduct(h)).transpose();
     if (flexible_) {
@@ -79,29 +83,39 @@ class LoopMap {
       starts.push_back({false, u.cascade.qc.row(i).transpose(), u.cascade.zeta.row(i).transpose()});
     actuator::IntegratorChain drive(n_, order_, std::nullopt, u.xi);
     Unpacked next = u;
+    // The angles the controller reads at t_k and (once the plant has moved)
+    // at t_k + period: q itself, or the reading d samples late.
+    if (seen_ > 0) {
+      next.seen.bottomRows(seen_ - 1) = u.seen.topRows(seen_ - 1);
+      next.seen.row(0) = u.q.transpose();
+    }
+    const Eigen::VectorXd read_now = seen_ > 0 ? Eigen::VectorXd(u.seen.row(seen_ - 1).transpose()) : u.q;
+    auto readNext = [&] {
+      return seen_ > 0 ? Eigen::VectorXd(next.seen.row(seen_ - 1).transpose()) : next.q;
+    };
     if (flexible_) {
       FlexibleController ctl(*control_model_, reference_, gains, u.qc0, s_.flexible->params,
                              filtered_rate_ ? std::optional(paperSettings(s_).motor_rate_pole) : std::nullopt,
                              starts, filtered_rate_ ? std::optional(u.rate) : std::nullopt);
-      const Eigen::VectorXd tau = ctl.step(t, u.q, u.q2, u.v2).tau;
+      const Eigen::VectorXd tau = ctl.step(t, read_now, u.q2, u.v2).tau;
       drivePlant(next, drive.step(tau, period, torque_steps).tau, period);
-      ctl.step(t + period, next.q, next.q2, next.v2);  // advances the filters over the period
+      ctl.step(t + period, readNext(), next.q2, next.v2);  // advances the filters over the period
       next.qc0 = ctl.cascade().stage0().filterState();
       next.cascade = ctl.cascade().state();
       if (filtered_rate_) next.rate = ctl.rateFilter()->state();
     } else if (stages_ > 0) {
       CascadedController ctl(*control_model_, reference_, gains, u.qc0, starts);
-      const Eigen::VectorXd command = ctl.step(t, u.q, u.xi).cascade.u;
+      const Eigen::VectorXd command = ctl.step(t, read_now, u.xi).cascade.u;
       drivePlant(next, drive.step(command, period, torque_steps).tau, period);
       next.xi = drive.state();
-      ctl.step(t + period, next.q, next.xi);
+      ctl.step(t + period, readNext(), next.xi);
       next.qc0 = ctl.stage0().filterState();
       next.cascade = ctl.state();
     } else {
       Theorem1Controller ctl(*control_model_, reference_, paperSettings(s_).gains, u.qc0);
-      const Eigen::VectorXd command = ctl.step(t, u.q).u;
+      const Eigen::VectorXd command = ctl.step(t, read_now).u;
       drivePlant(next, drive.step(command, period, torque_steps).tau, period);
-      ctl.step(t + period, next.q);
+      ctl.step(t + period, readNext());
       next.qc0 = ctl.filterState();
     }
     return pack(next);
@@ -123,7 +137,7 @@ class LoopMap {
  private:
   struct Unpacked {
     Eigen::VectorXd q, v, q2, v2, qc0, rate;
-    Eigen::MatrixXd xi, pending;
+    Eigen::MatrixXd xi, pending, seen;
     CascadeState cascade;
   };
 
@@ -134,6 +148,7 @@ class LoopMap {
     if (filtered_rate_) u.rate = Eigen::VectorXd::Zero(n_);
     u.xi = Eigen::MatrixXd::Zero(order_, n_);
     u.pending = Eigen::MatrixXd::Zero(delayed_ ? steps_ : 0, n_);
+    u.seen = Eigen::MatrixXd::Zero(seen_, n_);
     u.cascade.qc = u.cascade.zeta = Eigen::MatrixXd::Zero(stages_, n_);
     return u;
   }
@@ -154,6 +169,7 @@ class LoopMap {
     putRows(u.cascade.qc + u.cascade.zeta);
     if (filtered_rate_) put(u.rate);
     putRows(u.pending);
+    putRows(u.seen);
     return x;
   }
 
@@ -171,6 +187,7 @@ class LoopMap {
     takeRows(u.cascade.qc);
     if (filtered_rate_) take(u.rate);
     takeRows(u.pending);
+    takeRows(u.seen);
     return u;
   }
 
@@ -238,6 +255,7 @@ class LoopMap {
   std::optional<model::FlexibleChain> flexible_plant_;
   int n_, order_, stages_;
   bool flexible_, filtered_rate_, delayed_;
+  int seen_;  ///< d: samples the joint-angle reading lags
   int steps_;
 };
 
@@ -281,9 +299,25 @@ SampledDataCheck check(const config::Scenario& s) {
   SampledDataCheck c;
   c.rate = s.plant.publish_rate;
   c.one_period_delay = s.mode == config::Mode::kRealtime;
-  const LoopMap loop(s, c.one_period_delay);
+  // The map holds the joint-angle sensor's delay; a late motor-angle sensor
+  // it does not model, and a long delay would make it too large to linearise
+  // in seconds. Either way it says so rather than judge a loop it is not.
+  if (s.sensors && s.sensors->motor && s.sensors->motor->delay > 0) {
+    c.verdict = "not assessed";
+    c.why = "the linearised map does not model the motor-angle sensor's delay (sensors.motor.delay " +
+            std::to_string(s.sensors->motor->delay) + ")";
+    return c;
+  }
+  if (s.sensors && s.sensors->position.delay > SampledDataCheck::kMaxSensorDelay) {
+    c.verdict = "not assessed";
+    c.why = "a joint-angle sensor " + std::to_string(s.sensors->position.delay) +
+            " samples late is beyond the linearised map (at most " +
+            std::to_string(SampledDataCheck::kMaxSensorDelay) + " samples)";
+    return c;
+  }
+  const LoopMap loop(s, c.one_period_delay, true);
   // The continuous loop is the limit of either wiring as T -> 0: from the map without the delay.
-  const LoopMap undelayed(s, false);
+  const LoopMap undelayed(s, false, false);
   const int steps = s.torqueStepsPerTick();
   std::vector<double> instants;
   std::vector<Eigen::VectorXd> points;

@@ -30,11 +30,17 @@
 ///    delay: the plant steps over [t_k, t_{k+1}] with the torque that answered
 ///    q(t_{k-1}), so the drive's output waits a period in the map's state.
 ///    Lockstep and in-process runs apply the torque answering q(t_k) at once.
+///  - A joint-angle sensor d samples late (sensors.position.delay, d <=
+///    kMaxSensorDelay) is modelled too: the map keeps the last d angles and
+///    the controller reads q(t_{k-d}). The continuous loop it is compared with
+///    has no delay (d samples vanish as T -> 0). A late motor-angle sensor, or
+///    a longer delay, is "not assessed", with why.
 /// Limits (it is an estimate, and says so): it is local (small errors: the
 /// global question is the theorems'), frozen in time (exact for a set point,
 /// an approximation for references slow next to the loop), ignores actuator
-/// saturation, the realtime wiring's late and lost messages and ODE's
-/// integration error, and samples kInstants instants, not every t.
+/// saturation, the sensors' noise and quantisation, the realtime wiring's
+/// late and lost messages and ODE's integration error, and samples kInstants
+/// instants, not every t.
 
 #include <optional>
 #include <string>
@@ -46,6 +52,8 @@ namespace lagrange::controller {
 struct SampledDataCheck {
   static constexpr int kInstants = 8;
   static constexpr double kAdequateFraction = 0.5;
+  /// The longest joint-angle sensor delay the map models [samples].
+  static constexpr int kMaxSensorDelay = 10;
 
   double rate = 0.0;                      ///< the controller rate examined [Hz] (plant.publish_rate)
   double spectral_radius = 0.0;           ///< rho: largest over the instants

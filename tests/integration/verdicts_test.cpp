@@ -1,7 +1,7 @@
 // Verdicts the tool prints, each confirmed by running what it claims:
 // the sampled-data check (approves one case, warns on another, both run at
 // the configured rate and at a much higher one; sees the realtime wiring's
-// delay), `lagrange run --check`, and
+// delay and a late joint-angle sensor), `lagrange run --check`, and
 // the plant stopping only a failing simulation or at the user's limit.
 #include <gtest/gtest.h>
 
@@ -61,6 +61,26 @@ TEST(SampledDataCheck, WarnsOnRigid5linkAt1kHzAndTheRunsConfirmIt) {
               sufficient["tracking"]["final_error"].get<double>(), rate);
   EXPECT_TRUE(sufficient["tracking"]["met"].get<bool>());
   EXPECT_EQ(sufficient["gains"]["sampled_data"]["verdict"], "adequate");
+}
+
+// A joint-angle sensor one sample late: the Panda's Theorem 1 gains, which the
+// check approves at 1 kHz without it, do not survive it. The check must not
+// call that loop adequate (it once did: the map ignored the delay); the run
+// confirms the loop does not track.
+TEST(SampledDataCheck, SeesTheJointSensorsDelay) {
+  const std::string late = " --set 'sensors={position: {delay: 1}}'";
+  const RunResult check = lagrange("check-gains " + quote(kConfigs + "/panda_theorem1.yaml") + late);
+  EXPECT_EQ(check.output.find("sampled-data check at 1000 Hz: ADEQUATE"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("sampled-data check at 1000 Hz: UNSTABLE"), std::string::npos) << check.output;
+  const auto run = runInproc("panda_theorem1.yaml", "sdpanda1", late);
+  EXPECT_EQ(run["gains"]["sampled_data"]["verdict"], "unstable");
+  EXPECT_GT(run["gains"]["sampled_data"]["spectral_radius"].get<double>(), 1.0);
+  EXPECT_FALSE(run["tracking"]["met"].get<bool>());
+  EXPECT_GT(run["tracking"]["final_error"].get<double>(), 0.1);
+  // Without the delay the same gains are approved, and the run tracks.
+  const RunResult on_time = lagrange("check-gains " + quote(kConfigs + "/panda_theorem1.yaml"));
+  EXPECT_NE(on_time.output.find("sampled-data check at 1000 Hz: ADEQUATE"), std::string::npos)
+      << on_time.output;
 }
 
 // A URDF arm behind m = 1..4 integrators gets every check a planar chain
