@@ -32,14 +32,15 @@ class LoopMap {
  public:
   LoopMap(const config::Scenario& s, bool one_period_delay, bool sensor_delay)
       : s_(s),
+        paper_(paperSettings(s)),
         control_model_(s.controlModel()),
         arm_(s.robotModel()),
         reference_(s.reference),
         n_(s.dof()),
         order_(s.actuator.order),
-        stages_(static_cast<int>(paperSettings(s).stages.size())),
+        stages_(static_cast<int>(paper_.stages.size())),
         flexible_(s.controller.type == "flexible"),
-        filtered_rate_(flexible_ && paperSettings(s).motor_rate == MotorRate::kFiltered),
+        filtered_rate_(flexible_ && paper_.motor_rate == MotorRate::kFiltered),
         delayed_(one_period_delay),
         seen_(sensor_delay && s.sensors ? s.sensors->position.delay : 0),
         steps_(s.torqueStepsPerTick()) {
@@ -65,11 +66,11 @@ class LoopMap {
     if (delayed_) u.pending.rowwise() = h.transpose();  // the drive at the feedforward
     u.seen.rowwise() = r.q().transpose();               // the past readings, at the reference's angle
     if (order_ > 0) u.xi.row(0) = h.transpose();
-    if (stages_ > 0) u.cascade.qc.row(0) = -(paperSettings(s_).stages[0].b.cwiseProduct(h)).transpose();
+    if (stages_ > 0) u.cascade.qc.row(0) = -(paper_.stages[0].b.cwiseProduct(h)).transpose();
     if (flexible_) {
       u.q2 = h.cwiseQuotient(s_.flexible->params.stiffness);  // K q2 = xi_1* (830c)
       u.v2 = r.qd();
-      if (filtered_rate_) u.rate = u.v2 - paperSettings(s_).motor_rate_pole.cwiseProduct(u.q2);
+      if (filtered_rate_) u.rate = u.v2 - paper_.motor_rate_pole.cwiseProduct(u.q2);
     }
     return pack(u);
   }
@@ -77,7 +78,7 @@ class LoopMap {
   // x at t_k -> x at t_k + period, the torque in `torque_steps` steps.
   Eigen::VectorXd step(const Eigen::VectorXd& x, double t, double period, int torque_steps) const {
     Unpacked u = unpack(x);
-    const CascadedGains gains{paperSettings(s_).gains, paperSettings(s_).stages};
+    const CascadedGains gains{paper_.gains, paper_.stages};
     std::vector<StageStart> starts;
     for (int i = 0; i < stages_; ++i)
       starts.push_back({false, u.cascade.qc.row(i).transpose(), u.cascade.zeta.row(i).transpose()});
@@ -95,8 +96,8 @@ class LoopMap {
     };
     if (flexible_) {
       FlexibleController ctl(*control_model_, reference_, gains, u.qc0, s_.flexible->params,
-                             filtered_rate_ ? std::optional(paperSettings(s_).motor_rate_pole) : std::nullopt,
-                             starts, filtered_rate_ ? std::optional(u.rate) : std::nullopt);
+                             filtered_rate_ ? std::optional(paper_.motor_rate_pole) : std::nullopt, starts,
+                             filtered_rate_ ? std::optional(u.rate) : std::nullopt);
       const Eigen::VectorXd tau = ctl.step(t, read_now, u.q2, u.v2).tau;
       drivePlant(next, drive.step(tau, period, torque_steps).tau, period);
       ctl.step(t + period, readNext(), next.q2, next.v2);  // advances the filters over the period
@@ -112,7 +113,7 @@ class LoopMap {
       next.qc0 = ctl.stage0().filterState();
       next.cascade = ctl.state();
     } else {
-      Theorem1Controller ctl(*control_model_, reference_, paperSettings(s_).gains, u.qc0);
+      Theorem1Controller ctl(*control_model_, reference_, paper_.gains, u.qc0);
       const Eigen::VectorXd command = ctl.step(t, read_now).u;
       drivePlant(next, drive.step(command, period, torque_steps).tau, period);
       ctl.step(t + period, readNext());
@@ -250,6 +251,7 @@ class LoopMap {
   }
 
   const config::Scenario& s_;
+  const PaperSettings& paper_;  ///< s_'s controller section
   model::RobotModelPtr control_model_, arm_;
   model::Reference reference_;
   std::optional<model::FlexibleChain> flexible_plant_;

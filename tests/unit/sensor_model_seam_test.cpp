@@ -5,13 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "config/scenario.hpp"
 #include "plant/scenario_plant.hpp"
 #include "plant/sensor_models.hpp"
+#include "support/scenario_text.hpp"
 
 namespace lagrange::plant {
 namespace {
@@ -37,10 +36,7 @@ const bool calibration_registered = registerSensorModel(
      }});
 
 config::Scenario rigid(const std::vector<std::string>& overrides) {
-  std::ifstream in(std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  return config::parseScenario(text.str(), "rigid_2dof.yaml", overrides);
+  return config::parseScenario(testing::readFile(testing::kRigid), "rigid_2dof.yaml", overrides);
 }
 
 TEST(SensorModelSeam, ATestOnlyModelIsReadWrittenAndApplied) {
@@ -78,16 +74,13 @@ TEST(SensorModelSeam, TheEffectActsAfterTheDelayAndBeforeTheQuantisation) {
 }
 
 TEST(SensorModelSeam, ItsKeysAreCheckedLikeASensorsOwn) {
-  try {
-    rigid({"sensors={position: {test_offset: [0.1, 0]}}"});
-    ADD_FAILURE() << "half a model was accepted";
-  } catch (const config::ConfigError& e) {
-    EXPECT_NE(
-        std::string(e.what()).find("sensors.position.test_scale: missing; sensor model test_calibration "
-                                   "takes its keys together"),
-        std::string::npos)
-        << e.what();
-  }
+  const std::string half =
+      testing::errorOf(testing::readFile(testing::kRigid), {"sensors={position: {test_offset: [0.1, 0]}}"});
+  EXPECT_NE(
+      half.find(
+          "sensors.position.test_scale: missing; sensor model test_calibration takes its keys together"),
+      std::string::npos)
+      << half;
   EXPECT_THROW(rigid({"sensors={position: {test_scale: [1, 1, 1], test_offset: 0}}"}), config::ConfigError);
   EXPECT_THROW(rigid({"sensors={position: {test_scale: [1, -1], test_offset: 0}}"}), config::ConfigError);
   // Registrations close once a sensor's keys were read: a late one would be
