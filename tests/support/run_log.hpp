@@ -32,6 +32,7 @@ struct TruthSample {
   double t;
   Eigen::VectorXd q, qdot;
   double energy;
+  int torque_source;  ///< plant_truth_t::TORQUE_COMMANDED, TORQUE_HELD or TORQUE_ZERO
 };
 
 /// One sample per tick (retransmissions dropped), in tick order.
@@ -47,7 +48,7 @@ inline std::vector<TruthSample> readTruth(const std::string& log_path) {
         (m.header.checksum != 0 && !transport::intact(m)))
       continue;
     by_tick.emplace(m.header.tick, TruthSample{m.header.tick, m.header.sim_time, transport::toEigen(m.q),
-                                               transport::toEigen(m.qdot), m.total_energy});
+                                               transport::toEigen(m.qdot), m.total_energy, m.torque_source});
   }
   std::vector<TruthSample> out;
   for (auto& [tick, s] : by_tick) out.push_back(s);

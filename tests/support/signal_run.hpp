@@ -13,8 +13,10 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "support/launch.hpp"
+#include "support/run_log.hpp"
 
 namespace lagrange::testing {
 
@@ -41,11 +43,10 @@ struct SignalledRun {
 };
 
 /// Runs `config` into `dir` with `args` and sends `sig` to `process` once
-/// run.lcm holds `log_bytes` (the run is under way); returns when the run ends.
-inline SignalledRun signalMidRun(const std::string& dir, const std::string& config,
-                                 const std::string& process, int sig,
-                                 const std::string& args = "--set duration=600 -q",
-                                 std::uintmax_t log_bytes = 100000) {
+/// `ready(run.lcm)` holds (the run is far enough); returns when the run ends.
+inline SignalledRun signalWhen(const std::string& dir, const std::string& config, const std::string& process,
+                               int sig, const std::string& args,
+                               const std::function<bool(const std::filesystem::path&)>& ready) {
   namespace fs = std::filesystem;
   SignalledRun out;
   std::atomic<bool> done{false};
@@ -59,12 +60,35 @@ inline SignalledRun signalMidRun(const std::string& dir, const std::string& conf
   // so a run that never ends cannot hold the test forever).
   for (int i = 0; i < 12000 && !out.signalled && !done; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(25));
-    if (!fs::exists(log) || fs::file_size(log) < log_bytes) continue;
+    if (!fs::exists(log) || !ready(log)) continue;
     const pid_t pid = findProcess(process, dir);
     out.signalled = pid > 0 && kill(pid, sig) == 0;
   }
   runner.join();
   return out;
+}
+
+/// signalWhen, once run.lcm holds `log_bytes` (the run is under way).
+inline SignalledRun signalMidRun(const std::string& dir, const std::string& config,
+                                 const std::string& process, int sig,
+                                 const std::string& args = "--set duration=600 -q",
+                                 std::uintmax_t log_bytes = 100000) {
+  return signalWhen(dir, config, process, sig, args, [log_bytes](const std::filesystem::path& log) {
+    return std::filesystem::file_size(log) >= log_bytes;
+  });
+}
+
+/// signalWhen, once run.lcm holds a PLANT_TRUTH sample of simulated time
+/// `sim_time` or later: a point of the run in its own time, which the log's
+/// size is not (how many bytes a simulated second takes varies with the
+/// retransmissions and skips of a loaded machine).
+inline SignalledRun signalAtSimTime(const std::string& dir, const std::string& config,
+                                    const std::string& process, int sig, const std::string& args,
+                                    double sim_time) {
+  return signalWhen(dir, config, process, sig, args, [sim_time](const std::filesystem::path& log) {
+    const std::vector<TruthSample> truth = readTruth(log.string());
+    return !truth.empty() && truth.back().t >= sim_time;
+  });
 }
 
 }  // namespace lagrange::testing
