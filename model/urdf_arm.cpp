@@ -149,6 +149,7 @@ struct UrdfArm::Impl {
   KDL::Vector gravity;
   std::vector<std::string> joint_names;
   std::vector<std::string> notes;
+  std::vector<UrdfJointProperties> joint_properties;
   std::vector<UrdfBody> bodies;
 
   // KDL's dynamics solvers keep scratch space, so one serves one call at a
@@ -275,15 +276,31 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
       const KDL::Vector axis(joint.axis.x, joint.axis.y, joint.axis.z);
       kdl_joint = KDL::Joint(joint.name, origin.p, origin.M * axis, KDL::Joint::RotAxis);
       impl->joint_names.push_back(joint.name);
+      UrdfJointProperties props;
       std::ostringstream unused;
-      if (joint.limits && joint.type == urdf::Joint::REVOLUTE)
-        unused << " <limit lower=" << joint.limits->lower << " upper=" << joint.limits->upper << ">";
-      if (joint.dynamics && (joint.dynamics->damping != 0.0 || joint.dynamics->friction != 0.0))
-        unused << " <dynamics damping=" << joint.dynamics->damping << " friction=" << joint.dynamics->friction
-               << ">";
+      if (joint.limits) {
+        // urdfdom reads an absent effort or velocity as 0; a limit of 0 would
+        // stop the joint, so 0 is taken as "not given".
+        if (joint.limits->effort > 0.0) props.effort = joint.limits->effort;
+        if (joint.limits->velocity > 0.0) props.velocity = joint.limits->velocity;
+        if (joint.type == urdf::Joint::REVOLUTE) {
+          props.lower = joint.limits->lower;
+          props.upper = joint.limits->upper;
+          unused << " <limit lower=" << joint.limits->lower << " upper=" << joint.limits->upper << ">";
+        }
+      }
+      if (joint.dynamics) {
+        props.damping = joint.dynamics->damping;
+        props.friction = joint.dynamics->friction;
+        if (props.damping != 0.0 || props.friction != 0.0)
+          unused << " <dynamics damping=" << joint.dynamics->damping << " friction=" << joint.dynamics->friction
+                 << ">";
+      }
+      impl->joint_properties.push_back(props);
       if (!unused.str().empty())
         impl->notes.push_back("joint '" + joint.name + "':" + unused.str() +
-                              " not applied (the model is lossless, eq. 10, without joint limits)");
+                              " not in the controllers' model (lossless, eq. 10, without joint limits); the "
+                              "plant applies them with plant.urdf_dynamics and plant.joint_limits");
     }
     impl->chain.addSegment(KDL::Segment(link.name, kdl_joint, origin, inertia));
   }
@@ -335,6 +352,7 @@ UrdfArm::~UrdfArm() = default;
 int UrdfArm::dof() const { return static_cast<int>(impl_->joint_names.size()); }
 std::vector<std::string> UrdfArm::jointNames() const { return impl_->joint_names; }
 const std::vector<std::string>& UrdfArm::notes() const { return impl_->notes; }
+const std::vector<UrdfJointProperties>& UrdfArm::jointProperties() const { return impl_->joint_properties; }
 const std::vector<UrdfBody>& UrdfArm::bodies() const { return impl_->bodies; }
 const UrdfChainSpec& UrdfArm::spec() const { return impl_->spec; }
 

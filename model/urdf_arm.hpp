@@ -11,8 +11,11 @@
 /// zero position and its mass lumped into the link it hangs from. Gravity
 /// points along the URDF world's -z; base_link's frame is taken as the world
 /// (a fixed base). Joint limits, damping and friction in the URDF are not
-/// applied -- the model is lossless (eq. 10) -- and are listed in notes() for
-/// the processes to report at start.
+/// in this model -- it is lossless (eq. 10), as the controllers assume --
+/// but are kept per joint (jointProperties()) for the plant, which applies
+/// them when the scenario asks (plant.urdf_dynamics, plant.joint_limits,
+/// actuator.saturation: urdf); notes() lists them for the processes to
+/// report at start.
 ///
 /// C is the Christoffel-symbol matrix, obtained by polarisation of KDL's
 /// velocity terms h(q, v) = C(q, v) v (a symmetric bilinear form in v):
@@ -25,6 +28,7 @@
 /// (config), so this model stays free of I/O.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +55,16 @@ struct UrdfBody {
   double mass = 0.0;             ///< [kg]
   Eigen::Vector3d com;           ///< centre of mass [m]
   Eigen::Matrix3d inertia;       ///< about the centre of mass, base-frame axes [kg m^2]
+};
+
+/// What a chain joint's <dynamics> and <limit> say (absent: zero, none).
+struct UrdfJointProperties {
+  double damping = 0.0;            ///< <dynamics damping> [N m s/rad]
+  double friction = 0.0;           ///< <dynamics friction> [N m]
+  std::optional<double> lower;     ///< <limit lower> of a revolute joint [rad]
+  std::optional<double> upper;     ///< <limit upper> of a revolute joint [rad]
+  std::optional<double> effort;    ///< <limit effort> [N m]
+  std::optional<double> velocity;  ///< <limit velocity> [rad/s]
 };
 
 class UrdfArm : public RobotModel {
@@ -87,6 +101,8 @@ class UrdfArm : public RobotModel {
   Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const override;
 
   const std::vector<std::string>& notes() const;
+  /// Per joint, base to tip: its <dynamics> and <limit>.
+  const std::vector<UrdfJointProperties>& jointProperties() const;
   /// The moving bodies, base to tip, at q = 0 (for the plant's builder).
   const std::vector<UrdfBody>& bodies() const;
   const UrdfChainSpec& spec() const;

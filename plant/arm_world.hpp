@@ -10,10 +10,12 @@
 #include <Eigen/Dense>
 #include <functional>
 #include <memory>
+#include <vector>
 
-// ODE's world (ODE's dWorldID is dxWorld*), declared rather than included so
+// ODE's world and joints (ODE's dWorldID is dxWorld*, dJointID dxJoint*), declared rather than included so
 // that the plant's users do not compile against ODE: only plant/ links it.
 struct dxWorld;
+struct dxJoint;
 
 namespace lagrange::plant {
 
@@ -38,6 +40,9 @@ class ArmWorld {
   /// The largest distance between the two bodies' points of any joint [m]:
   /// how far ODE's maximal coordinates have let the chain come apart.
   virtual double jointSeparation() const = 0;
+  /// Joint i's hinge, attached (link i, its parent or the world): where the
+  /// plant adds damping, friction and stops (plant/joint_effects.hpp).
+  virtual std::vector<dxJoint*> hinges() const = 0;
   /// Kinetic and potential energy of the links, from the bodies' states [J].
   virtual double kineticEnergy() const = 0;
   virtual double potentialEnergy() const = 0;

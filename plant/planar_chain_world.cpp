@@ -99,6 +99,7 @@ class PlanarChainWorld final : public ArmWorld {
   }
 
   double jointSeparation() const override { return largestHingeSeparation(joints_); }
+  std::vector<dJointID> hinges() const override { return joints_; }
   bool finite() const override { return allBodiesFinite(bodies_); }
 
   double kineticEnergy() const override {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "plant/joint_effects.hpp"
 #include "plant/ode_body.hpp"
 
 namespace lagrange::plant {
@@ -36,14 +37,19 @@ struct PlantSim::Ode {
   dWorldID world = nullptr;
   std::unique_ptr<ArmWorld> arm;
   std::vector<dBodyID> rotors;  // flexible joints only
+  std::vector<dJointID> rotor_hinges;
+  std::unique_ptr<JointEffects> joint_effects, rotor_effects;  // none without JointPhysics
   ~Ode() {
+    joint_effects.reset();
+    rotor_effects.reset();
     arm.reset();
     if (world) dWorldDestroy(world);  // destroys bodies and joints too
   }
 };
 
 PlantSim::PlantSim(const ArmBuilder& arm, const PlantState& initial, double physics_step,
-                   std::optional<model::FlexibleParams> flexible, std::optional<double> max_rate)
+                   std::optional<model::FlexibleParams> flexible, std::optional<double> max_rate,
+                   const JointPhysics& joints)
     : dof_(arm.dof), physics_step_(physics_step), flexible_(std::move(flexible)), max_rate_(max_rate) {
   if (max_rate_ && !(*max_rate_ > 0.0))
     throw std::invalid_argument("plant: max_rate must be positive, got " + std::to_string(*max_rate_));
@@ -92,8 +98,20 @@ PlantSim::PlantSim(const ArmBuilder& arm, const PlantState& initial, double phys
       dJointSetHingeAnchor(hinge, 0.0, 0.0, -0.1 * (i + 1));
       dJointSetHingeAxis(hinge, 0, 0, 1);
       ode_->rotors.push_back(rotor);
+      ode_->rotor_hinges.push_back(hinge);
     }
     motor_q_ = initial.motor_q;
+  }
+  if (joints.damping.size() > 0 || joints.friction.size() > 0 || joints.lower.size() > 0)
+    ode_->joint_effects = std::make_unique<JointEffects>(ode_->world, ode_->arm->hinges(),
+                                                         JointLosses{joints.damping, joints.friction},
+                                                         JointStops{joints.lower, joints.upper}, q_);
+  if (joints.rotor_damping.size() > 0 || joints.rotor_friction.size() > 0) {
+    if (!flexible_) throw std::invalid_argument("plant: rotor damping or friction without flexible joints");
+    ode_->rotor_effects =
+        std::make_unique<JointEffects>(ode_->world, ode_->rotor_hinges,
+                                       JointLosses{joints.rotor_damping, joints.rotor_friction}, JointStops{},
+                                       motor_q_);
   }
 }
 
@@ -134,10 +152,9 @@ void PlantSim::checkBounded() const {
 }
 
 void PlantSim::updateMotorAngles() {
-  for (int i = 0; i < dof_; ++i) {
-    const double rate = dBodyGetAngularVel(ode_->rotors[i])[2];
-    motor_q_(i) = wrapToNearest(zRotation(ode_->rotors[i]), motor_q_(i) + rate * physics_step_);
-  }
+  const Eigen::VectorXd rates = rotorRates();
+  for (int i = 0; i < dof_; ++i)
+    motor_q_(i) = wrapToNearest(zRotation(ode_->rotors[i]), motor_q_(i) + rates(i) * physics_step_);
 }
 
 void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
@@ -151,9 +168,12 @@ void PlantSim::step(const Eigen::VectorXd& tau, int substeps) {
     ode_->arm->addJointTorques(joint);
     if (flexible_)
       for (int i = 0; i < dof_; ++i) dBodyAddTorque(ode_->rotors[i], 0, 0, tau(i) - joint(i));
+    if (ode_->joint_effects) ode_->joint_effects->beforeStep(q_);
     dWorldStep(ode_->world, physics_step_);
     updateJointAngles();
     if (flexible_) updateMotorAngles();
+    if (ode_->joint_effects) ode_->joint_effects->afterStep(ode_->arm->jointRates(), physics_step_);
+    if (ode_->rotor_effects) ode_->rotor_effects->afterStep(rotorRates(), physics_step_);
     time_ += physics_step_;
     checkBounded();
   }
@@ -173,10 +193,20 @@ PlantState PlantSim::state() const {
   s.qdot = ode_->arm->jointRates();
   if (flexible_) {
     s.motor_q = motor_q_;
-    s.motor_qdot.resize(dof_);
-    for (int i = 0; i < dof_; ++i) s.motor_qdot(i) = dBodyGetAngularVel(ode_->rotors[i])[2];
+    s.motor_qdot = rotorRates();
   }
   return s;
+}
+
+double PlantSim::dissipated() const {
+  return (ode_->joint_effects ? ode_->joint_effects->dissipated() : 0.0) +
+         (ode_->rotor_effects ? ode_->rotor_effects->dissipated() : 0.0);
+}
+
+Eigen::VectorXd PlantSim::rotorRates() const {
+  Eigen::VectorXd rates(dof_);
+  for (int i = 0; i < dof_; ++i) rates(i) = dBodyGetAngularVel(ode_->rotors[i])[2];
+  return rates;
 }
 
 double PlantSim::jointSeparation() const { return ode_->arm->jointSeparation(); }

@@ -17,7 +17,11 @@
 /// rotor, hinged to the base on the z axis with inertia J_i about it. Each
 /// sub-step the spring torque K_i (q2_i - q1_i) acts as joint torque on joint
 /// i (+ on link i, - on link i-1) and opposite on rotor i, and the input tau_i
-/// acts on rotor i; the stator reaction goes to the base. No damping.
+/// acts on rotor i; the stator reaction goes to the base.
+///
+/// No damping, friction or stops unless asked (JointPhysics): the paper's arm
+/// is lossless. With them, ODE applies them inside its step (implicitly; see
+/// plant/joint_effects.hpp) and dissipated() counts the energy they took.
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -36,6 +40,16 @@ struct PlantState {
   Eigen::VectorXd qdot;          ///< joint rates [rad/s]
   Eigen::VectorXd motor_q{};     ///< flexible joints: motor angles q2 [rad], continuous; else empty
   Eigen::VectorXd motor_qdot{};  ///< flexible joints: motor rates q2' [rad/s]; else empty
+};
+
+/// Damping, friction and hard stops of a real arm (plant/joint_effects.hpp's
+/// rules; empty vectors: none).
+struct JointPhysics {
+  Eigen::VectorXd damping;         ///< the arm's joints: D_i [N m s/rad]
+  Eigen::VectorXd friction;        ///< the arm's joints: Coulomb F_i [N m]
+  Eigen::VectorXd rotor_damping;   ///< flexible joints' rotors [N m s/rad]
+  Eigen::VectorXd rotor_friction;  ///< flexible joints' rotors [N m]
+  Eigen::VectorXd lower, upper;    ///< the arm's joints' hard stops [rad]; +-inf: none that side
 };
 
 struct PlantEnergy {
@@ -71,11 +85,12 @@ class PlantSim {
   /// @param flexible elastic joints with rotors; then `initial` needs motor_q, motor_qdot
   ///        and the torques of step() act on the rotors.
   /// @param max_rate a limit on any body's angular rate [rad/s] (plant.max_rate); none if unset.
-  /// @throws std::invalid_argument on a size mismatch, non-finite state, a bad step
-  ///         or bad flexible parameters.
+  /// @param joints damping, friction and stops; none by default.
+  /// @throws std::invalid_argument on a size mismatch, non-finite state, a bad step,
+  ///         bad flexible parameters or bad joint physics.
   PlantSim(const ArmBuilder& arm, const PlantState& initial, double physics_step,
            std::optional<model::FlexibleParams> flexible = std::nullopt,
-           std::optional<double> max_rate = std::nullopt);
+           std::optional<double> max_rate = std::nullopt, const JointPhysics& joints = {});
   ~PlantSim();
   PlantSim(const PlantSim&) = delete;
   PlantSim& operator=(const PlantSim&) = delete;
@@ -93,6 +108,10 @@ class PlantSim {
 
   PlantState state() const;
   PlantEnergy energy() const;
+  /// Energy the damping and friction of the joints and rotors took since the
+  /// start [J] (ODE's applied torques times the rates, step by step); 0
+  /// without them. With it the balance holds: E(t) - E(0) = work of the inputs - dissipated.
+  double dissipated() const;
   double time() const { return time_; }
   /// How far the joints have come apart in ODE's maximal coordinates [m] (ArmWorld::jointSeparation).
   double jointSeparation() const;
@@ -103,6 +122,7 @@ class PlantSim {
   struct Ode;
   void updateJointAngles();
   void updateMotorAngles();
+  Eigen::VectorXd rotorRates() const;
   void checkBounded() const;
   bool flexible() const { return flexible_.has_value(); }
 
