@@ -12,6 +12,7 @@
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
 #include "model/planar_chain.hpp"
+#include "model/urdf_arm.hpp"
 
 namespace lagrange::config::sections {
 
@@ -75,12 +76,42 @@ const Fields<FlexibleConfig>& flexibleFields() {
   return fields;
 }
 
-// plant: the physics step, the sample rate and a limit on the arm's rates.
+// plant: the physics step, the sample rate, a limit on the arm's rates, and
+// which of a URDF's joint properties the plant applies.
 const Fields<PlantConfig>& plantFields() {
   static const Fields<PlantConfig> fields = {
       positive("physics_step", &PlantConfig::physics_step),
       positive("publish_rate", &PlantConfig::publish_rate),
       optionalPositive("max_rate", &PlantConfig::max_rate),
+      boolean("urdf_dynamics", &PlantConfig::urdf_dynamics),
+      boolean("joint_limits", &PlantConfig::joint_limits),
+  };
+  return fields;
+}
+
+namespace {
+// A per-joint list (or one number for all) >= 0, sized by the arm; left out,
+// none (and then not written either).
+Field<Scenario> jointLosses(const std::string& key, std::optional<Eigen::VectorXd> PlantConfig::*member) {
+  return {key,
+          [key, member](MapReader& m, Scenario& s) {
+            s.plant.*member = m.optionalVector(key, s.dof(), true, false);
+            if (s.plant.*member && ((*(s.plant.*member)).array() < 0.0).any())
+              m.fail(key, "expected numbers >= 0, got " + std::to_string((*(s.plant.*member)).minCoeff()));
+          },
+          [key, member](YAML::Emitter& out, const Scenario& s) {
+            if (s.plant.*member) writeVector(out, key, *(s.plant.*member));
+          }};
+}
+}  // namespace
+
+// plant: the joints' and rotors' losses, per joint (sized by the arm).
+const Fields<Scenario>& plantLossFields() {
+  static const Fields<Scenario> fields = {
+      jointLosses("joint_damping", &PlantConfig::joint_damping),
+      jointLosses("joint_friction", &PlantConfig::joint_friction),
+      jointLosses("rotor_damping", &PlantConfig::rotor_damping),
+      jointLosses("rotor_friction", &PlantConfig::rotor_friction),
   };
   return fields;
 }
@@ -316,10 +347,55 @@ void readReferenceSection(MapReader& root, Scenario& s) {
 }
 
 // plant: physics_step and publish_rate; the run must last a whole number of periods.
+namespace {
+// What the plant's joint keys need of the arm: rotors for rotor_*, a URDF
+// for urdf_dynamics and joint_limits, sound values in the URDF they take,
+// and an initial state inside the stops.
+void checkPlantJoints(MapReader& plant, const Scenario& s) {
+  for (const char* key : {"rotor_damping", "rotor_friction"})
+    if (plant.has(key) && !s.flexible)
+      plant.fail(key, "only an arm with robot.flexible has rotors; expected it left out");
+  for (const char* key : {"urdf_dynamics", "joint_limits"})
+    if (plant.has(key) && plant.boolean(key, false) && !s.urdf_model)
+      plant.fail(key, "the arm has no URDF (robot.links or a preset); expected false, or plant.joint_damping "
+                      "and plant.joint_friction for a chain's losses");
+  if (!s.urdf_model) return;
+  const std::vector<model::UrdfJointProperties>& joints = s.urdf_model->jointProperties();
+  const std::vector<std::string> names = s.urdf_model->jointNames();
+  if (s.plant.urdf_dynamics)
+    for (size_t i = 0; i < joints.size(); ++i)
+      if (!(joints[i].damping >= 0.0 && joints[i].friction >= 0.0 && std::isfinite(joints[i].damping) &&
+            std::isfinite(joints[i].friction)))
+        plant.fail("urdf_dynamics", "joint '" + names[i] + "' of the URDF has <dynamics damping=" +
+                                        std::to_string(joints[i].damping) +
+                                        " friction=" + std::to_string(joints[i].friction) +
+                                        ">; expected finite numbers >= 0");
+  if (s.plant.joint_limits)
+    for (size_t i = 0; i < joints.size(); ++i) {
+      if (joints[i].lower && joints[i].upper && !(*joints[i].lower <= *joints[i].upper))
+        plant.fail("joint_limits", "joint '" + names[i] + "' of the URDF has <limit lower=" +
+                                       std::to_string(*joints[i].lower) + " upper=" +
+                                       std::to_string(*joints[i].upper) + ">; expected lower <= upper");
+      const double q = s.initial_state.q(static_cast<Eigen::Index>(i));
+      if (joints[i].lower && joints[i].upper && !(q >= *joints[i].lower && q <= *joints[i].upper))
+        plant.fail("joint_limits", "initial_state.q[" + std::to_string(i) + "] = " + std::to_string(q) +
+                                       " is outside joint '" + names[i] + "''s <limit lower=" +
+                                       std::to_string(*joints[i].lower) +
+                                       " upper=" + std::to_string(*joints[i].upper) +
+                                       ">; expected a start inside the stops");
+    }
+}
+}  // namespace
+
 void readPlantSection(MapReader& root, Scenario& s) {
   if (root.has("plant")) {
     MapReader plant = root.map("plant");
-    readFields(plant, s.plant, plantFields());
+    readFieldsAmongOthers(plant, s.plant, plantFields());
+    readFieldsAmongOthers(plant, s, plantLossFields());
+    std::set<std::string> known = keysOf(plantFields());
+    for (const std::string& key : keysOf(plantLossFields())) known.insert(key);
+    checkPlantJoints(plant, s);
+    plant.finish(known);
     const double ratio = s.tickPeriod() / s.plant.physics_step;
     if (ratio < 1.0 - 1e-9 || std::abs(ratio - std::round(ratio)) > 1e-6 * ratio)
       plant.fail("physics_step", "the publish period 1/publish_rate = " + std::to_string(s.tickPeriod()) +

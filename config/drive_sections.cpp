@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "model/urdf_arm.hpp"
 #include "config/controller_params.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
@@ -48,12 +49,22 @@ const Fields<ActuatorConfig>& actuatorChainFields() {
   return fields;
 }
 
+namespace {
+// Whether `key` holds the word `urdf` (a value taken from the arm's URDF).
+bool saysUrdf(MapReader& m, const std::string& key) {
+  if (!m.has(key)) return false;
+  const YAML::Node node = m.child(key);
+  return node.IsScalar() && node.Scalar() == "urdf";
+}
+}  // namespace
+
 // actuator.saturation and initial_state: per joint, and per integrator.
 const Fields<ActuatorConfig>& actuatorDriveFields() {
   using field::writeVector;
   static const Fields<ActuatorConfig> fields = {
       {"saturation",
        [](MapReader& m, ActuatorConfig& a) {
+         if (saysUrdf(m, "saturation")) return;  // the URDF's efforts, read with the arm (readActuatorSection)
          a.saturation = m.optionalVector("saturation", static_cast<int>(a.initial_state.cols()), true, true);
        },
        [](YAML::Emitter& out, const ActuatorConfig& a) {
@@ -73,6 +84,27 @@ const Fields<ActuatorConfig>& actuatorDriveFields() {
   };
   return fields;
 }
+
+namespace {
+// actuator.saturation: urdf -- each joint's <limit effort>.
+Eigen::VectorXd urdfEfforts(MapReader& act, const Scenario& s) {
+  if (!s.urdf_model)
+    act.fail("saturation", "`urdf` takes each joint's <limit effort> from the arm's URDF, and this arm has no "
+                           "URDF; expected a number or a list of " +
+                               std::to_string(s.dof()) + " numbers [N m]");
+  const auto& joints = s.urdf_model->jointProperties();
+  const std::vector<std::string> names = s.urdf_model->jointNames();
+  Eigen::VectorXd out(s.dof());
+  for (size_t i = 0; i < joints.size(); ++i) {
+    if (!joints[i].effort)
+      act.fail("saturation", "`urdf`: joint '" + names[i] +
+                                 "' of the URDF has no <limit effort> (or 0); expected a number or a list of " +
+                                 std::to_string(s.dof()) + " numbers [N m] instead");
+    out(static_cast<Eigen::Index>(i)) = *joints[i].effort;
+  }
+  return out;
+}
+}  // namespace
 
 // actuator: the integrator chain between controller and joints, and its rate.
 void readActuatorSection(MapReader& root, Scenario& s) {
@@ -95,6 +127,7 @@ void readActuatorSection(MapReader& root, Scenario& s) {
       act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to 4, got " +
                             std::to_string(s.actuator.order));
     s.actuator.initial_state = Eigen::MatrixXd::Zero(s.actuator.order, n);
+    if (saysUrdf(act, "saturation")) s.actuator.saturation = urdfEfforts(act, s);
     readFieldsAmongOthers(act, s.actuator, actuatorDriveFields());
     std::set<std::string> known = keysOf(actuatorChainFields());
     for (const std::string& key : keysOf(actuatorDriveFields())) known.insert(key);

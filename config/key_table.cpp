@@ -183,6 +183,37 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "links long before that limit (about 14 % in 10 ms at 0.06 rad per step): fast motion wants "
           "a small `physics_step`.",
           {0.0, 1e9, true, "rad/s", ""}),
+      row("plant.joint_damping", "vector or scalar ≥ 0", "none",
+          "viscous damping of the arm's joints, D_i [N m s/rad]: a torque −D_i q̇_i in the plant (an ODE "
+          "motor solved with the step, so stable for any D), which the controllers' lossless model "
+          "(eq. 10) does not know. Overrides the URDF's `<dynamics damping>` under `plant.urdf_dynamics`. "
+          "PLANT_TRUTH's energies then fall by what the damping and the friction take: E(t) − E(0) = "
+          "∫ τᵀq̇ − ∫ (D q̇² + F |q̇|) dt (a test holds it on a run's log).",
+          {0.0, 1e6, false, "N m s/rad", ""}),
+      row("plant.joint_friction", "vector or scalar ≥ 0", "none",
+          "Coulomb friction of the arm's joints, F_i [N m]: a torque of at most F_i against the joint's "
+          "motion, and a joint at rest stays at rest while the rest of its torque is below F_i "
+          "(stiction; an ODE motor with force limit F_i aiming at zero rate, not a sign() term). "
+          "Overrides the URDF's `<dynamics friction>` under `plant.urdf_dynamics`.",
+          {0.0, 1e6, false, "N m", ""}),
+      row("plant.urdf_dynamics", "`true` / `false`", "`false`",
+          "a URDF arm: apply each joint's `<dynamics damping friction>` in the plant (where "
+          "`plant.joint_damping` / `joint_friction` do not say otherwise). Off by default, so that the "
+          "shipped Panda and UR5 results stand; refused for an arm without a URDF, or a URDF whose "
+          "values are negative."),
+      row("plant.rotor_damping", "vector or scalar ≥ 0", "none",
+          "an arm with `robot.flexible`: viscous damping of the rotors' bearings [N m s/rad], as "
+          "`joint_damping`; refused without rotors.",
+          {0.0, 1e6, false, "N m s/rad", ""}),
+      row("plant.rotor_friction", "vector or scalar ≥ 0", "none",
+          "an arm with `robot.flexible`: Coulomb friction of the rotors' bearings [N m], as "
+          "`joint_friction`; refused without rotors.",
+          {0.0, 1e6, false, "N m", ""}),
+      row("plant.joint_limits", "`true` / `false`", "`false`",
+          "a URDF arm: each revolute joint's `<limit lower upper>` is a hard stop in the plant "
+          "(inelastic; ODE's hinge stops, placed relative to the joint's turn so that limits beyond ±π "
+          "hold too). The controllers do not know them. Refused for an arm without a URDF, or when "
+          "`initial_state.q` starts outside them."),
       row("actuator.order", "integer 0–4", "`0`",
           "m, the order of the actuator's integrator chain (eq. 600): 0, the torque passes through "
           "(controller `theorem1`); m ≥ 1, u drives xi_m' and xi_1 is the torque (controller "
@@ -196,8 +227,11 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           {0.1, 1e6, false, "Hz", ""}),
       row("actuator.initial_state", "list of m rows of n numbers (or one number per row)", "zeros",
           "xi_1(0) … xi_m(0).", largeState()),
-      row("actuator.saturation", "vector or scalar > 0", "none",
-          "per-joint torque limit [N m]; absent: no limit.", {0.0, 1e12, true, "N m", ""}),
+      row("actuator.saturation", "vector or scalar > 0, or `urdf`", "none",
+          "per-joint torque limit [N m]: the actuator clips each joint's torque to ±limit; absent: no "
+          "limit. `urdf`: each joint's `<limit effort>` of the arm's URDF (refused for an arm without "
+          "one, or a joint without an effort); config.resolved.yaml then holds the numbers.",
+          {0.0, 1e12, true, "N m", ""}),
   };
 }
 

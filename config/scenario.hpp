@@ -69,6 +69,14 @@ struct PlantConfig {
   /// the run when it is crossed. Unset (the default): no limit but the
   /// simulation's own (non-finite state, pi/2 per physics step).
   std::optional<double> max_rate;
+  /// The arm's joints' viscous damping D_i [N m s/rad] and Coulomb friction
+  /// F_i [N m] (plant/joint_effects.hpp). Unset: none, or with urdf_dynamics
+  /// the URDF's <dynamics damping friction>; set, they override the URDF.
+  std::optional<Eigen::VectorXd> joint_damping, joint_friction;
+  bool urdf_dynamics = false;  ///< a URDF arm's <dynamics> in the plant
+  /// The flexible joints' rotors' bearings: damping, Coulomb friction.
+  std::optional<Eigen::VectorXd> rotor_damping, rotor_friction;
+  bool joint_limits = false;  ///< a URDF arm's <limit lower upper> as hard stops
 };
 
 struct ActuatorConfig {

@@ -26,6 +26,8 @@ const Fields<UrdfRobotConfig>& urdfFields();       ///< robot.urdf (the document
 const Fields<InitialState>& initialStateFields();  ///< initial_state: q, qdot
 const Fields<InitialState>& motorStateFields();    ///< initial_state: motor_q, motor_qdot (robot.flexible)
 const Fields<PlantConfig>& plantFields();
+/// plant's per-joint losses (sized by the arm: read after robot).
+const Fields<Scenario>& plantLossFields();
 const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type);
 
 // What drives it (drive_sections.cpp).

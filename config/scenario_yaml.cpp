@@ -57,6 +57,7 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
   writeFields(out, s.plant, sections::plantFields());
+  writeFields(out, s, sections::plantLossFields());
   out << YAML::EndMap;
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;

@@ -60,6 +60,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
 
   TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
                           s.tickPeriod());
+  watchVelocityLimits(metrics, s);
   runtime::StatusReporter status(node);
   RunFacts facts;
   facts.log_path = log_path;

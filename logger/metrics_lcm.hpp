@@ -14,7 +14,7 @@
 namespace lagrange::logger {
 
 inline void observe(TrackingMetrics& metrics, const lagrange::plant_truth_t& m) {
-  metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q));
+  metrics.addSample(m.header.tick, m.header.sim_time, transport::toEigen(m.q), transport::toEigen(m.qdot));
 }
 inline void observe(TrackingMetrics& metrics, const lagrange::control_command_t& m) {
   metrics.addChainErrors(m.header.tick, m.header.sim_time, m.xi_error);

@@ -1,5 +1,9 @@
 #include "logger/summary.hpp"
 
+#include <limits>
+
+#include "model/urdf_arm.hpp"
+
 #include "controller/paper_section.hpp"
 
 namespace lagrange::logger {
@@ -63,6 +67,19 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
 }
 }  // namespace
 
+void watchVelocityLimits(TrackingMetrics& metrics, const config::Scenario& s) {
+  if (!s.urdf_model) return;
+  const auto& joints = s.urdf_model->jointProperties();
+  Eigen::VectorXd limits = Eigen::VectorXd::Constant(s.dof(), std::numeric_limits<double>::infinity());
+  bool any = false;
+  for (size_t i = 0; i < joints.size(); ++i)
+    if (joints[i].velocity) {
+      limits(static_cast<Eigen::Index>(i)) = *joints[i].velocity;
+      any = true;
+    }
+  if (any) metrics.watchVelocities(s.urdf_model->jointNames(), limits);
+}
+
 nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                            const controller::GainReport& g, const RunFacts& f) {
   using nlohmann::json;
@@ -110,6 +127,16 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                        {"convergence_time", c.convergence_time ? json(*c.convergence_time) : json(nullptr)}});
     }
     j["tracking"]["chain"] = chain;
+  }
+  if (t.velocity_crossings) {
+    json crossed = json::array();
+    for (const VelocityCrossing& c : *t.velocity_crossings)
+      crossed.push_back({{"joint", c.joint},
+                         {"limit", c.limit},
+                         {"largest", c.largest},
+                         {"first_time", c.first_time},
+                         {"samples", c.samples}});
+    j["limits"] = {{"velocity", crossed}};
   }
   j["torque"] = {{"max_abs", t.max_abs_torque},
                  {"total_variation", t.torque_total_variation},

@@ -26,6 +26,10 @@ struct RunFacts {
   std::map<std::string, long long> missing_records;
 };
 
+/// Makes `metrics` watch the joints' rates against the URDF's <limit
+/// velocity> when the arm has any (summary.json limits.velocity).
+void watchVelocityLimits(TrackingMetrics& metrics, const config::Scenario& scenario);
+
 nlohmann::json makeSummary(const config::Scenario& scenario, const TrackingSummary& tracking,
                            const controller::GainReport& gains, const RunFacts& facts);
 

@@ -44,8 +44,26 @@ void TrackingMetrics::addChainErrors(long long tick, double t,
             .norm());
 }
 
-std::optional<double> TrackingMetrics::addSample(long long tick, double t, const Eigen::VectorXd& q) {
+void TrackingMetrics::watchVelocities(std::vector<std::string> joints, Eigen::VectorXd limits) {
+  velocity_watch_.emplace();
+  for (size_t i = 0; i < joints.size(); ++i)
+    velocity_watch_->push_back({joints[i], limits(static_cast<Eigen::Index>(i)), 0.0, 0.0, 0});
+  velocity_limits_ = std::move(limits);
+}
+
+std::optional<double> TrackingMetrics::addSample(long long tick, double t, const Eigen::VectorXd& q,
+                                                 const Eigen::VectorXd& qdot) {
   if (tick < 0 || samples_.count(tick) > 0) return std::nullopt;
+  if (velocity_watch_ && qdot.size() == velocity_limits_.size())
+    for (Eigen::Index i = 0; i < qdot.size(); ++i) {
+      VelocityCrossing& c = (*velocity_watch_)[static_cast<size_t>(i)];
+      const double rate = std::abs(qdot(i));
+      if (!(rate > c.limit)) continue;
+      // Samples may come out of order (a re-sent one late): the earliest time counts.
+      c.first_time = c.samples == 0 ? t : std::min(c.first_time, t);
+      c.largest = std::max(c.largest, rate);
+      ++c.samples;
+    }
   Eigen::VectorXd qd(reference_.dof());
   for (int i = 0; i < reference_.dof(); ++i) qd(i) = reference_.jointDerivative(i, 0, t);
   const double e = (q - qd).norm();
@@ -61,6 +79,11 @@ void TrackingMetrics::addTorque(long long tick, const Eigen::MatrixXd& tau) {
 TrackingSummary TrackingMetrics::summary() const {
   TrackingSummary s;
   s.tolerance = tolerance_;
+  if (velocity_watch_) {
+    s.velocity_crossings.emplace();
+    for (const VelocityCrossing& c : *velocity_watch_)
+      if (c.samples > 0) s.velocity_crossings->push_back(c);
+  }
   // The torques in tick order: a re-sent or late ACTUATOR_STATE counts once.
   const Eigen::RowVectorXd* previous = nullptr;
   Eigen::RowVectorXd last;

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "model/reference.hpp"
@@ -17,6 +18,15 @@ struct ErrorSummary {
   double tolerance = 0.0;
   double final_error = 0.0, max_error = 0.0;
   std::optional<double> convergence_time;  ///< first time after which ||e|| < tolerance to the end
+};
+
+/// A joint whose rate went past its limit (a URDF's <limit velocity>).
+struct VelocityCrossing {
+  std::string joint;
+  double limit = 0.0;       ///< [rad/s]
+  double largest = 0.0;     ///< the largest |q'| seen [rad/s]
+  double first_time = 0.0;  ///< the first sample past the limit [s]
+  long long samples = 0;    ///< samples past the limit
 };
 
 struct TrackingSummary {
@@ -36,6 +46,8 @@ struct TrackingSummary {
   long long samples = 0;
   double sim_time = 0.0;            ///< time of the last sample [s]
   std::vector<ErrorSummary> chain;  ///< ||xit_i|| per stage i (cascaded controller)
+  /// With watchVelocities: the joints that went past their limits (maybe none).
+  std::optional<std::vector<VelocityCrossing>> velocity_crossings;
 };
 
 class TrackingMetrics {
@@ -47,7 +59,11 @@ class TrackingMetrics {
 
   /// A plant sample, in any order (a re-sent one may come late); a tick
   /// already recorded is ignored (returns nothing). Returns ||q~||.
-  std::optional<double> addSample(long long tick, double t, const Eigen::VectorXd& q);
+  /// With `qdot` (the true rates) and watchVelocities, the rates are checked too.
+  std::optional<double> addSample(long long tick, double t, const Eigen::VectorXd& q,
+                                  const Eigen::VectorXd& qdot = Eigen::VectorXd());
+  /// Watches each joint's |q'| against limits(i) (+inf: none) [rad/s].
+  void watchVelocities(std::vector<std::string> joints, Eigen::VectorXd limits);
   /// The torque profile applied after tick `tick` (rows: steps of the
   /// period); a tick already recorded is ignored.
   void addTorque(long long tick, const Eigen::MatrixXd& tau);
@@ -72,6 +88,8 @@ class TrackingMetrics {
     double t, error;
   };
   std::map<long long, Sample> samples_;  ///< by tick
+  std::optional<std::vector<VelocityCrossing>> velocity_watch_;  ///< limits, and what crossed them
+  Eigen::VectorXd velocity_limits_;
   long long contiguous_tick_ = -1;
   double tick_period_;
   std::map<long long, Eigen::MatrixXd> torques_;  ///< by tick

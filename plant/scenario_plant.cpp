@@ -1,15 +1,50 @@
 #include "plant/scenario_plant.hpp"
 
+#include <limits>
+
+#include "model/urdf_arm.hpp"
 #include "plant/robot_kinds.hpp"
 #include "plant/sensor_models.hpp"
 
 namespace lagrange::plant {
 
+JointPhysics jointPhysicsFor(const config::Scenario& s) {
+  JointPhysics out;
+  const config::PlantConfig& p = s.plant;
+  const int n = s.dof();
+  if (s.urdf_model && p.urdf_dynamics) {
+    const auto& joints = s.urdf_model->jointProperties();
+    out.damping = out.friction = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) {
+      out.damping(i) = joints[static_cast<size_t>(i)].damping;
+      out.friction(i) = joints[static_cast<size_t>(i)].friction;
+    }
+  }
+  if (p.joint_damping) out.damping = *p.joint_damping;
+  if (p.joint_friction) out.friction = *p.joint_friction;
+  if (p.rotor_damping) out.rotor_damping = *p.rotor_damping;
+  if (p.rotor_friction) out.rotor_friction = *p.rotor_friction;
+  if (s.urdf_model && p.joint_limits) {
+    const auto& joints = s.urdf_model->jointProperties();
+    out.lower = Eigen::VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
+    out.upper = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+    for (int i = 0; i < n; ++i) {
+      const model::UrdfJointProperties& j = joints[static_cast<size_t>(i)];
+      if (j.lower && j.upper) {
+        out.lower(i) = *j.lower;
+        out.upper(i) = *j.upper;
+      }
+    }
+  }
+  return out;
+}
+
 PlantSim plantFor(const config::Scenario& s) {
   return PlantSim(
       armBuilderFor(s),
       {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
-      s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt, s.plant.max_rate);
+      s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt, s.plant.max_rate,
+      jointPhysicsFor(s));
 }
 
 namespace {

@@ -13,8 +13,14 @@
 
 namespace lagrange::plant {
 
-/// The arm of `s.robot` at `s.initial_state` (with rotors when s.flexible), stepping s.plant.physics_step.
+/// The arm of `s.robot` at `s.initial_state` (with rotors when s.flexible), stepping s.plant.physics_step,
+/// with the joint damping, friction and stops the plant section asks for.
 PlantSim plantFor(const config::Scenario& s);
+
+/// The joint damping, friction and stops of the scenario's plant: plant.joint_*
+/// and plant.rotor_*, else (plant.urdf_dynamics) the URDF's <dynamics>, and
+/// (plant.joint_limits) the URDF's <limit lower upper>. Empty when none.
+JointPhysics jointPhysicsFor(const config::Scenario& s);
 
 /// The scenario's sensors (sensors.*), one per measured quantity, each with
 /// its own stream of draws from sensors.seed.

@@ -51,6 +51,7 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
   logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
                                   s.tickPeriod());
+  logger::watchVelocityLimits(metrics, s);
 
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
   // -> physics. Every value passes through the same message structs as over
@@ -65,7 +66,8 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
         k == 0 ? plant::TorqueInput{} : plant::TorqueInput{k - 1, lagrange::plant_truth_t::TORQUE_COMMANDED});
     record(transport::kPlantPosition, sample.position, sample.position.header.publish_utime);
     record(transport::kPlantTruth, sample.truth, sample.truth.header.publish_utime);
-    const auto error = metrics.addSample(k, t, transport::toEigen(sample.truth.q));
+    const auto error =
+        metrics.addSample(k, t, transport::toEigen(sample.truth.q), transport::toEigen(sample.truth.qdot));
 
     const double sample_time = sample.position.header.sim_time;
     if (sample.motor) {

@@ -212,7 +212,9 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
     EXPECT_EQ(keysUnder("controller", "paper").count(key), 1u) << key;
   for (const std::string& key : keysOf(controller::stageGainFields()))
     EXPECT_EQ(keysUnder("controller.stages[i]").count(key), 1u) << key;
-  EXPECT_EQ(keysOf(sections::plantFields()), keysUnder("plant"));
+  std::set<std::string> plant = keysOf(sections::plantFields());
+  for (const std::string& key : keysOf(sections::plantLossFields())) plant.insert(key);
+  EXPECT_EQ(plant, keysUnder("plant"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSmoothSine)),
             keysUnder("reference", "sine"));
