@@ -95,7 +95,9 @@ TEST(ConfigDocs, RangeLookupNamesKeysAsTheReadersDo) {
 }
 
 TEST(ConfigDocs, KnownKeysComeFromTheTable) {
-  EXPECT_EQ(keysUnder("plant"), (std::set<std::string>{"physics_step", "publish_rate", "max_rate"}));
+  EXPECT_EQ(keysUnder("plant"), (std::set<std::string>{"physics_step", "publish_rate", "max_rate", "joint_damping",
+                                                       "joint_friction", "urdf_dynamics", "rotor_damping",
+                                                       "rotor_friction", "joint_limits"}));
   EXPECT_EQ(keysUnder("robot.links[i]"), (std::set<std::string>{"length", "com", "mass", "inertia"}));
   EXPECT_EQ(keysUnder("reference", "free_motion"),
             (std::set<std::string>{"type", "initial_q", "initial_qdot"}));
