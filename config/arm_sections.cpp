@@ -357,8 +357,9 @@ void checkPlantJoints(MapReader& plant, const Scenario& s) {
       plant.fail(key, "only an arm with robot.flexible has rotors; expected it left out");
   for (const char* key : {"urdf_dynamics", "joint_limits"})
     if (plant.has(key) && plant.boolean(key, false) && !s.urdf_model)
-      plant.fail(key, "the arm has no URDF (robot.links or a preset); expected false, or plant.joint_damping "
-                      "and plant.joint_friction for a chain's losses");
+      plant.fail(key,
+                 "the arm has no URDF (robot.links or a preset); expected false, or plant.joint_damping "
+                 "and plant.joint_friction for a chain's losses");
   if (!s.urdf_model) return;
   const std::vector<model::UrdfJointProperties>& joints = s.urdf_model->jointProperties();
   const std::vector<std::string> names = s.urdf_model->jointNames();
@@ -366,21 +367,22 @@ void checkPlantJoints(MapReader& plant, const Scenario& s) {
     for (size_t i = 0; i < joints.size(); ++i)
       if (!(joints[i].damping >= 0.0 && joints[i].friction >= 0.0 && std::isfinite(joints[i].damping) &&
             std::isfinite(joints[i].friction)))
-        plant.fail("urdf_dynamics", "joint '" + names[i] + "' of the URDF has <dynamics damping=" +
-                                        std::to_string(joints[i].damping) +
-                                        " friction=" + std::to_string(joints[i].friction) +
-                                        ">; expected finite numbers >= 0");
+        plant.fail("urdf_dynamics",
+                   "joint '" + names[i] +
+                       "' of the URDF has <dynamics damping=" + std::to_string(joints[i].damping) +
+                       " friction=" + std::to_string(joints[i].friction) + ">; expected finite numbers >= 0");
   if (s.plant.joint_limits)
     for (size_t i = 0; i < joints.size(); ++i) {
       if (joints[i].lower && joints[i].upper && !(*joints[i].lower <= *joints[i].upper))
-        plant.fail("joint_limits", "joint '" + names[i] + "' of the URDF has <limit lower=" +
-                                       std::to_string(*joints[i].lower) + " upper=" +
-                                       std::to_string(*joints[i].upper) + ">; expected lower <= upper");
+        plant.fail("joint_limits", "joint '" + names[i] +
+                                       "' of the URDF has <limit lower=" + std::to_string(*joints[i].lower) +
+                                       " upper=" + std::to_string(*joints[i].upper) +
+                                       ">; expected lower <= upper");
       const double q = s.initial_state.q(static_cast<Eigen::Index>(i));
       if (joints[i].lower && joints[i].upper && !(q >= *joints[i].lower && q <= *joints[i].upper))
         plant.fail("joint_limits", "initial_state.q[" + std::to_string(i) + "] = " + std::to_string(q) +
-                                       " is outside joint '" + names[i] + "''s <limit lower=" +
-                                       std::to_string(*joints[i].lower) +
+                                       " is outside joint '" + names[i] +
+                                       "''s <limit lower=" + std::to_string(*joints[i].lower) +
                                        " upper=" + std::to_string(*joints[i].upper) +
                                        ">; expected a start inside the stops");
     }

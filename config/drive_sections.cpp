@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <sstream>
 
-#include "model/urdf_arm.hpp"
 #include "config/controller_params.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
+#include "model/urdf_arm.hpp"
 
 namespace lagrange::config::sections {
 
@@ -64,7 +64,8 @@ const Fields<ActuatorConfig>& actuatorDriveFields() {
   static const Fields<ActuatorConfig> fields = {
       {"saturation",
        [](MapReader& m, ActuatorConfig& a) {
-         if (saysUrdf(m, "saturation")) return;  // the URDF's efforts, read with the arm (readActuatorSection)
+         if (saysUrdf(m, "saturation"))
+           return;  // the URDF's efforts, read with the arm (readActuatorSection)
          a.saturation = m.optionalVector("saturation", static_cast<int>(a.initial_state.cols()), true, true);
        },
        [](YAML::Emitter& out, const ActuatorConfig& a) {
@@ -89,17 +90,19 @@ namespace {
 // actuator.saturation: urdf -- each joint's <limit effort>.
 Eigen::VectorXd urdfEfforts(MapReader& act, const Scenario& s) {
   if (!s.urdf_model)
-    act.fail("saturation", "`urdf` takes each joint's <limit effort> from the arm's URDF, and this arm has no "
-                           "URDF; expected a number or a list of " +
-                               std::to_string(s.dof()) + " numbers [N m]");
+    act.fail("saturation",
+             "`urdf` takes each joint's <limit effort> from the arm's URDF, and this arm has no "
+             "URDF; expected a number or a list of " +
+                 std::to_string(s.dof()) + " numbers [N m]");
   const auto& joints = s.urdf_model->jointProperties();
   const std::vector<std::string> names = s.urdf_model->jointNames();
   Eigen::VectorXd out(s.dof());
   for (size_t i = 0; i < joints.size(); ++i) {
     if (!joints[i].effort)
-      act.fail("saturation", "`urdf`: joint '" + names[i] +
-                                 "' of the URDF has no <limit effort> (or 0); expected a number or a list of " +
-                                 std::to_string(s.dof()) + " numbers [N m] instead");
+      act.fail("saturation",
+               "`urdf`: joint '" + names[i] +
+                   "' of the URDF has no <limit effort> (or 0); expected a number or a list of " +
+                   std::to_string(s.dof()) + " numbers [N m] instead");
     out(static_cast<Eigen::Index>(i)) = *joints[i].effort;
   }
   return out;

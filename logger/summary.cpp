@@ -2,9 +2,8 @@
 
 #include <limits>
 
-#include "model/urdf_arm.hpp"
-
 #include "controller/paper_section.hpp"
+#include "model/urdf_arm.hpp"
 
 namespace lagrange::logger {
 

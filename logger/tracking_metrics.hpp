@@ -87,7 +87,7 @@ class TrackingMetrics {
   struct Sample {
     double t, error;
   };
-  std::map<long long, Sample> samples_;  ///< by tick
+  std::map<long long, Sample> samples_;                          ///< by tick
   std::optional<std::vector<VelocityCrossing>> velocity_watch_;  ///< limits, and what crossed them
   Eigen::VectorXd velocity_limits_;
   long long contiguous_tick_ = -1;

@@ -293,8 +293,8 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
         props.damping = joint.dynamics->damping;
         props.friction = joint.dynamics->friction;
         if (props.damping != 0.0 || props.friction != 0.0)
-          unused << " <dynamics damping=" << joint.dynamics->damping << " friction=" << joint.dynamics->friction
-                 << ">";
+          unused << " <dynamics damping=" << joint.dynamics->damping
+                 << " friction=" << joint.dynamics->friction << ">";
       }
       impl->joint_properties.push_back(props);
       if (!unused.str().empty())

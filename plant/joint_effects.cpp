@@ -10,8 +10,8 @@ namespace {
 void checkPerJoint(const Eigen::VectorXd& v, size_t n, const std::string& what) {
   if (v.size() == 0) return;
   if (v.size() != static_cast<Eigen::Index>(n))
-    throw std::invalid_argument("plant: " + what + " has " + std::to_string(v.size()) + " entries, expected " +
-                                std::to_string(n));
+    throw std::invalid_argument("plant: " + what + " has " + std::to_string(v.size()) +
+                                " entries, expected " + std::to_string(n));
   if (!v.allFinite() || (v.array() < 0.0).any())
     throw std::invalid_argument("plant: " + what + " must be finite numbers >= 0");
 }
@@ -29,11 +29,12 @@ JointEffects::JointEffects(dWorldID world, const std::vector<dJointID>& hinges, 
   const size_t n = hinges.size();
   checkPerJoint(losses.damping, n, "joint damping");
   checkPerJoint(losses.friction, n, "joint friction");
-  if (stops.any() && (stops.lower.size() != static_cast<Eigen::Index>(n) ||
-                      stops.upper.size() != static_cast<Eigen::Index>(n) ||
-                      (stops.lower.array() > stops.upper.array()).any() || stops.lower.hasNaN() ||
-                      stops.upper.hasNaN()))
-    throw std::invalid_argument("plant: joint stops need " + std::to_string(n) + " pairs with lower <= upper");
+  if (stops.any() &&
+      (stops.lower.size() != static_cast<Eigen::Index>(n) ||
+       stops.upper.size() != static_cast<Eigen::Index>(n) ||
+       (stops.lower.array() > stops.upper.array()).any() || stops.lower.hasNaN() || stops.upper.hasNaN()))
+    throw std::invalid_argument("plant: joint stops need " + std::to_string(n) +
+                                " pairs with lower <= upper");
   for (size_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     if (losses.damping.size() > 0 && losses.damping(k) > 0.0)

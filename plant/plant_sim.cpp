@@ -108,10 +108,9 @@ PlantSim::PlantSim(const ArmBuilder& arm, const PlantState& initial, double phys
                                                          JointStops{joints.lower, joints.upper}, q_);
   if (joints.rotor_damping.size() > 0 || joints.rotor_friction.size() > 0) {
     if (!flexible_) throw std::invalid_argument("plant: rotor damping or friction without flexible joints");
-    ode_->rotor_effects =
-        std::make_unique<JointEffects>(ode_->world, ode_->rotor_hinges,
-                                       JointLosses{joints.rotor_damping, joints.rotor_friction}, JointStops{},
-                                       motor_q_);
+    ode_->rotor_effects = std::make_unique<JointEffects>(
+        ode_->world, ode_->rotor_hinges, JointLosses{joints.rotor_damping, joints.rotor_friction},
+        JointStops{}, motor_q_);
   }
 }
 

@@ -32,7 +32,8 @@ struct TruthSample {
   double t;
   Eigen::VectorXd q, qdot;
   double energy;
-  int torque_source;  ///< plant_truth_t::TORQUE_COMMANDED, TORQUE_HELD or TORQUE_ZERO
+  int torque_source;    ///< plant_truth_t::TORQUE_COMMANDED, TORQUE_HELD or TORQUE_ZERO
+  Eigen::VectorXd tau;  ///< the torque applied over the period that ended here (its first step)
 };
 
 /// One sample per tick (retransmissions dropped), in tick order.
@@ -48,7 +49,8 @@ inline std::vector<TruthSample> readTruth(const std::string& log_path) {
         (m.header.checksum != 0 && !transport::intact(m)))
       continue;
     by_tick.emplace(m.header.tick, TruthSample{m.header.tick, m.header.sim_time, transport::toEigen(m.q),
-                                               transport::toEigen(m.qdot), m.total_energy, m.torque_source});
+                                               transport::toEigen(m.qdot), m.total_energy, m.torque_source,
+                                               transport::toEigen(m.tau_applied)});
   }
   std::vector<TruthSample> out;
   for (auto& [tick, s] : by_tick) out.push_back(s);

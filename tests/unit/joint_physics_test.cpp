@@ -58,7 +58,8 @@ TEST(JointPhysics, CoulombFrictionStopsASpinningLinkAtTheClosedFormAngleAndHolds
   physics.friction = friction * kOne;
   PlantSim sim(planarChainWorld(oneLink(0.0)), {Eigen::VectorXd::Zero(1), w0 * kOne}, kStep, std::nullopt,
                std::nullopt, physics);
-  const double stop_time = kJointInertia * w0 / friction, stop_angle = kJointInertia * w0 * w0 / (2 * friction);
+  const double stop_time = kJointInertia * w0 / friction,
+               stop_angle = kJointInertia * w0 * w0 / (2 * friction);
   sim.step(Eigen::VectorXd::Zero(1), static_cast<int>(0.5 * stop_time / kStep));
   EXPECT_NEAR(sim.state().qdot(0), w0 / 2, 1e-3 * w0);  // decelerating at F / I
   sim.step(Eigen::VectorXd::Zero(1), static_cast<int>(stop_time / kStep));
@@ -69,7 +70,8 @@ TEST(JointPhysics, CoulombFrictionStopsASpinningLinkAtTheClosedFormAngleAndHolds
   EXPECT_NEAR(sim.state().q(0), stop_angle, 1e-3 * stop_angle);
   EXPECT_LT(std::abs(sim.state().qdot(0)), 1e-9);
   sim.step(1.5 * friction * kOne, 1000);  // 0.1 s at (1.5 F - F) / I
-  EXPECT_NEAR(sim.state().qdot(0), 0.5 * friction / kJointInertia * 0.1, 1e-2 * 0.5 * friction / kJointInertia * 0.1);
+  EXPECT_NEAR(sim.state().qdot(0), 0.5 * friction / kJointInertia * 0.1,
+              1e-2 * 0.5 * friction / kJointInertia * 0.1);
 }
 
 TEST(JointPhysics, FrictionHoldsALinkAgainstGravityOnlyWhenItIsStrongEnough) {
@@ -119,18 +121,19 @@ TEST(JointPhysics, EnergyBalanceHoldsWithDampingAndFrictionUnderTorque) {
   physics.damping = Eigen::Vector2d(0.3, 0.05);
   physics.friction = Eigen::Vector2d(0.8, 0.2);
   const Eigen::Vector2d q0(0.4, -0.3), v0(1.0, -2.0);
-  PlantSim sim(planarChainWorld(model::pelicanParams()), {q0, v0}, kStep, std::nullopt, std::nullopt, physics);
+  PlantSim sim(planarChainWorld(model::pelicanParams()), {q0, v0}, kStep, std::nullopt, std::nullopt,
+               physics);
   const double e0 = sim.energy().total();
   double work = 0.0, predicted = 0.0;  // sum tau q' h; sum (D q'^2 + F |q'|) h
-  for (int k = 0; k < 20000; ++k) {  // 2 s
+  for (int k = 0; k < 20000; ++k) {    // 2 s
     const double t = k * kStep;
     const Eigen::Vector2d tau(6.0 * std::sin(3.0 * t), 1.5 * std::cos(5.0 * t));
     sim.step(tau, 1);
     const Eigen::VectorXd v = sim.state().qdot;
     work += tau.dot(v) * kStep;
-    predicted += (physics.damping.cwiseProduct(v.cwiseAbs2()) + physics.friction.cwiseProduct(v.cwiseAbs()))
-                     .sum() *
-                 kStep;
+    predicted +=
+        (physics.damping.cwiseProduct(v.cwiseAbs2()) + physics.friction.cwiseProduct(v.cwiseAbs())).sum() *
+        kStep;
   }
   const double change = sim.energy().total() - e0;
   RecordProperty("dissipated", std::to_string(sim.dissipated()));
@@ -148,7 +151,8 @@ TEST(JointPhysics, ARotorsBearingLosesItsEnergyToo) {
   JointPhysics physics;
   physics.rotor_damping = 0.01 * kOne;
   physics.rotor_friction = 0.05 * kOne;
-  PlantState initial{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), 20.0 * kOne};
+  PlantState initial{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1),
+                     20.0 * kOne};
   PlantSim sim(planarChainWorld(oneLink(0.0)), initial, kStep, flex, std::nullopt, physics);
   const double e0 = sim.energy().total();
   sim.step(Eigen::VectorXd::Zero(1), 20000);
@@ -184,8 +188,9 @@ TEST(JointPhysics, RefusesBadValues) {
                std::invalid_argument);
   JointPhysics wrong_size;
   wrong_size.friction = Eigen::Vector2d(1.0, 1.0);
-  EXPECT_THROW(PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, wrong_size),
-               std::invalid_argument);
+  EXPECT_THROW(
+      PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, wrong_size),
+      std::invalid_argument);
   JointPhysics crossed;
   crossed.lower = kOne;
   crossed.upper = -1.0 * kOne;
@@ -193,9 +198,9 @@ TEST(JointPhysics, RefusesBadValues) {
                std::invalid_argument);
   JointPhysics rotor_without_rotors;
   rotor_without_rotors.rotor_damping = kOne;
-  EXPECT_THROW(
-      PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, rotor_without_rotors),
-      std::invalid_argument);
+  EXPECT_THROW(PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt,
+                        rotor_without_rotors),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -40,9 +40,8 @@ TEST(PlantKeys, AChainsLossesPerJointOrOneForAll) {
   EXPECT_EQ(p.damping, Eigen::Vector2d(0.5, 0.25));
   EXPECT_EQ(p.friction, Eigen::Vector2d(0.3, 0.3));
   // Written back as read.
-  const config::Scenario again =
-      config::parseScenario(config::toYaml(config::loadScenario(kRigid, {"plant.joint_friction=0.3"})),
-                            "resolved.yaml");
+  const config::Scenario again = config::parseScenario(
+      config::toYaml(config::loadScenario(kRigid, {"plant.joint_friction=0.3"})), "resolved.yaml");
   EXPECT_EQ(*again.plant.joint_friction, Eigen::Vector2d(0.3, 0.3));
   EXPECT_FALSE(again.plant.joint_damping.has_value());
 }
@@ -79,7 +78,8 @@ TEST(PlantKeys, RefusesWhatDoesNotFitTheArm) {
   EXPECT_NE(errorOf(rigid, {"plant.joint_damping=-0.1"}).find("plant.joint_damping: expected numbers >= 0"),
             std::string::npos)
       << errorOf(rigid, {"plant.joint_damping=-0.1"});
-  EXPECT_NE(errorOf(rigid, {"plant.joint_friction=[1, 2, 3]"}).find("plant.joint_friction"), std::string::npos);
+  EXPECT_NE(errorOf(rigid, {"plant.joint_friction=[1, 2, 3]"}).find("plant.joint_friction"),
+            std::string::npos);
   EXPECT_NE(errorOf(rigid, {"plant.joint_friction=1e7"}).find("plant.joint_friction"), std::string::npos);
   EXPECT_NE(errorOf(rigid, {"plant.rotor_damping=0.1"}).find("only an arm with robot.flexible has rotors"),
             std::string::npos);
@@ -87,10 +87,12 @@ TEST(PlantKeys, RefusesWhatDoesNotFitTheArm) {
             std::string::npos);
   EXPECT_NE(errorOf(rigid, {"plant.joint_limits=true"}).find("plant.joint_limits: the arm has no URDF"),
             std::string::npos);
-  EXPECT_NE(errorOf(rigid, {"actuator.saturation=urdf"}).find("actuator.saturation: `urdf`"), std::string::npos)
+  EXPECT_NE(errorOf(rigid, {"actuator.saturation=urdf"}).find("actuator.saturation: `urdf`"),
+            std::string::npos)
       << errorOf(rigid, {"actuator.saturation=urdf"});
   EXPECT_NE(errorOf(rigid, {"actuator.saturation=urdff"}).find("actuator.saturation"), std::string::npos);
-  const std::string outside = fileErrorOf(kPanda, {"plant.joint_limits=true", "initial_state.q=[0, 0, 0, 0, 0, 0, 0]"});
+  const std::string outside =
+      fileErrorOf(kPanda, {"plant.joint_limits=true", "initial_state.q=[0, 0, 0, 0, 0, 0, 0]"});
   EXPECT_NE(outside.find("initial_state.q[3] = 0.000000 is outside joint 'panda_joint4''s <limit"),
             std::string::npos)
       << outside;
