@@ -32,17 +32,17 @@ TEST(RealArm, ALossyArmsLoggedEnergyFallsByWhatItsDampingAndFrictionTake) {
   // tens of rad/s). Each period's torque is held flat (one actuator step a
   // period), so its work is tau . (q(k) - q(k-1)) exactly; the losses' power
   // D q'^2 + F |q'| is integrated by the trapezoid rule over the 1 ms samples.
-  auto balance = [](const std::vector<TruthSample>& truth, const Eigen::Vector2d& d,
+  auto balance = [](const std::vector<TruthSample>& run, const Eigen::Vector2d& d,
                     const Eigen::Vector2d& f) {
     struct {
       double change, work, lost;
-    } b{truth.back().energy - truth[200].energy, 0.0, 0.0};
+    } b{run.back().energy - run[200].energy, 0.0, 0.0};
     auto power = [&](const Eigen::VectorXd& v) {
       return (d.cwiseProduct(v.cwiseAbs2()) + f.cwiseProduct(v.cwiseAbs())).sum();
     };
-    for (size_t k = 201; k < truth.size(); ++k) {
-      b.work += truth[k].tau.dot(truth[k].q - truth[k - 1].q);
-      b.lost += 0.5 * (power(truth[k].qdot) + power(truth[k - 1].qdot)) * (truth[k].t - truth[k - 1].t);
+    for (size_t k = 201; k < run.size(); ++k) {
+      b.work += run[k].tau.dot(run[k].q - run[k - 1].q);
+      b.lost += 0.5 * (power(run[k].qdot) + power(run[k - 1].qdot)) * (run[k].t - run[k - 1].t);
     }
     return b;
   };
