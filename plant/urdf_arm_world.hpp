@@ -3,8 +3,9 @@
 /// A URDF arm (model/urdf_arm.hpp) in ODE: one rigid body per moving link
 /// (fixed-joint children and off-chain branches lumped into it, as the model
 /// does) with its frame at the centre of mass and the URDF inertia tensor,
-/// hinge joints on the URDF axes, gravity -g along the URDF world's z, no
-/// joint limits and no damping (the model is lossless, eq. 10). Joint angles
+/// hinge joints on the URDF axes, gravity -g along the URDF world's z; joint
+/// limits, damping and friction only as PlantSim adds them on the hinges
+/// (plant/joint_effects.hpp). Joint angles
 /// and rates are ODE's hinge readings; joint torque tau_i acts about axis i,
 /// +tau_i on link i and -tau_i on its parent.
 ///

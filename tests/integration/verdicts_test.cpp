@@ -83,6 +83,21 @@ TEST(SampledDataCheck, SeesTheJointSensorsDelay) {
       << on_time.output;
 }
 
+// The linearised check is the lossless model's: with the plant's friction
+// (or damping, or stops) it judges nothing, and says why, in check-gains and
+// in the run's summary alike.
+TEST(SampledDataCheck, DoesNotJudgeAPlantWithFriction) {
+  const std::string friction = " --set plant.joint_friction=0.5";
+  const RunResult check = lagrange("check-gains " + quote(kRigid) + friction);
+  EXPECT_NE(
+      check.output.find("sampled-data check at 1000 Hz: NOT ASSESSED: the linearised map is the lossless "
+                        "model's, without the plant's joint damping, friction or stops"),
+      std::string::npos)
+      << check.output;
+  const auto run = runInproc("rigid_2dof.yaml", "sdfriction", friction);
+  EXPECT_EQ(run["gains"]["sampled_data"]["verdict"], "not assessed");
+}
+
 // A URDF arm behind m = 1..4 integrators gets every check a planar chain
 // gets, with the same keys: eq. (11) on the estimated k_c, the eta estimates,
 // eq. (632) for m = 1, Theorem 3 and Proposition 1 for m >= 2, and the
