@@ -105,13 +105,86 @@ Field<Scenario> jointLosses(const std::string& key, std::optional<Eigen::VectorX
 }
 }  // namespace
 
-// plant: the joints' and rotors' losses, per joint (sized by the arm).
-const Fields<Scenario>& plantLossFields() {
+// plant.model_error: relative sizes and the seed of the draws.
+const Fields<model::ModelError>& modelErrorFields() {
+  static const Fields<model::ModelError> fields = {
+      nonNegative("mass", &model::ModelError::mass, "expected a relative size >= 0 (0.1: up to 10 %)"),
+      nonNegative("inertia", &model::ModelError::inertia, "expected a relative size >= 0 (0.1: up to 10 %)"),
+      nonNegative("com", &model::ModelError::com, "expected a relative size >= 0 (0.1: up to 10 %)"),
+      seed("seed", &model::ModelError::seed),
+  };
+  return fields;
+}
+
+namespace {
+// plant.payload: {mass, com}; com is a distance along the planar chain's last
+// link, or a point in a URDF arm's tip_link frame.
+Field<Scenario> payloadField() {
+  return {"payload",
+          [](MapReader& plant, Scenario& s) {
+            if (!plant.has("payload")) return;
+            if (s.registered_robot)
+              plant.fail("payload", "a robot." + s.registered_robot->key +
+                                        " arm takes no payload; expected it left out");
+            MapReader m = plant.map("payload");
+            model::Payload p;
+            p.mass = m.number("mass");
+            if (p.mass < 0.0) m.fail("mass", "expected a mass >= 0 [kg], got " + std::to_string(p.mass));
+            if (s.urdf_model) {
+              if (m.has("com")) p.com = m.vector("com", 3, false, false);
+            } else if (m.has("com")) {
+              const YAML::Node node = m.child("com");
+              if (!node.IsScalar())
+                m.fail("com",
+                       "the planar chain's payload sits on its last link: expected one number, its "
+                       "distance from the last joint [m]");
+              p.com.x() = m.number("com");
+            }
+            m.finish(keysUnder("plant.payload"));
+            s.plant.payload = p;
+          },
+          [](YAML::Emitter& out, const Scenario& s) {
+            if (!s.plant.payload) return;
+            out << YAML::Key << "payload" << YAML::Value << YAML::BeginMap;
+            out << YAML::Key << "mass" << YAML::Value << s.plant.payload->mass;
+            if (s.urdf_model)
+              writeVector(out, "com", s.plant.payload->com);
+            else
+              out << YAML::Key << "com" << YAML::Value << s.plant.payload->com.x();
+            out << YAML::EndMap;
+          }};
+}
+
+Field<Scenario> modelErrorField() {
+  return {"model_error",
+          [](MapReader& plant, Scenario& s) {
+            if (!plant.has("model_error")) return;
+            if (s.registered_robot)
+              plant.fail("model_error", "a robot." + s.registered_robot->key +
+                                            " arm takes no model error; expected it left out");
+            model::ModelError e;
+            readFields(plant.map("model_error"), e, modelErrorFields());
+            s.plant.model_error = e;
+          },
+          [](YAML::Emitter& out, const Scenario& s) {
+            if (!s.plant.model_error) return;
+            out << YAML::Key << "model_error" << YAML::Value << YAML::BeginMap;
+            writeFields(out, *s.plant.model_error, modelErrorFields());
+            out << YAML::EndMap;
+          }};
+}
+}  // namespace
+
+// plant: what is sized by the arm -- the joints' and rotors' losses per
+// joint, the payload's point, the model error per link.
+const Fields<Scenario>& plantArmFields() {
   static const Fields<Scenario> fields = {
       jointLosses("joint_damping", &PlantConfig::joint_damping),
       jointLosses("joint_friction", &PlantConfig::joint_friction),
       jointLosses("rotor_damping", &PlantConfig::rotor_damping),
       jointLosses("rotor_friction", &PlantConfig::rotor_friction),
+      payloadField(),
+      modelErrorField(),
   };
   return fields;
 }
@@ -393,9 +466,9 @@ void readPlantSection(MapReader& root, Scenario& s) {
   if (root.has("plant")) {
     MapReader plant = root.map("plant");
     readFieldsAmongOthers(plant, s.plant, plantFields());
-    readFieldsAmongOthers(plant, s, plantLossFields());
+    readFieldsAmongOthers(plant, s, plantArmFields());
     std::set<std::string> known = keysOf(plantFields());
-    for (const std::string& key : keysOf(plantLossFields())) known.insert(key);
+    for (const std::string& key : keysOf(plantArmFields())) known.insert(key);
     checkPlantJoints(plant, s);
     plant.finish(known);
     const double ratio = s.tickPeriod() / s.plant.physics_step;

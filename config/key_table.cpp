@@ -216,6 +216,31 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "(inelastic; ODE's hinge stops, placed relative to the joint's turn so that limits beyond ±π "
           "hold too). The controllers do not know them. Refused for an arm without a URDF, or when "
           "`initial_state.q` starts outside them."),
+      row("plant.payload.mass", "number ≥ 0", "none",
+          "a point mass [kg] at the last link that the controllers do not know of (they keep the "
+          "nominal arm): merged into the plant's last body by the parallel-axis theorem. The section "
+          "`plant.payload` is absent by default.",
+          {0.0, 1e4, false, "kg", ""}),
+      row("plant.payload.com", "number (planar chain) or 3 numbers (URDF arm)", "0",
+          "where the payload sits [m]: on the planar chain's last link, its distance from the last "
+          "joint along the link; on a URDF arm, a point in `tip_link`'s frame.",
+          {-100.0, 100.0, false, "m", "a payload more than 100 m from its link is a typo"}),
+      row("plant.model_error.mass", "number in [0, 0.9]", "0",
+          "seeded relative error of every link's mass in the plant, which the controllers do not see "
+          "(they keep the nominal URDF or chain): mass_i (1 + size u_i), u_i uniform in [−1, 1] "
+          "(model/plant_perturbation.hpp). summary.json `plant.links` lists each link's nominal and "
+          "actual values. The section `plant.model_error` is absent by default.",
+          {0.0, 0.9, false, "", "a size of 1 could make a mass 0"}),
+      row("plant.model_error.inertia", "number in [0, 0.9]", "0",
+          "relative error of every link's inertia tensor (scaled as a whole), as `mass`.",
+          {0.0, 0.9, false, "", "a size of 1 could make an inertia 0"}),
+      row("plant.model_error.com", "number in [0, 0.9]", "0",
+          "relative error of every link's centre-of-mass distance from its joint, as `mass`.",
+          {0.0, 0.9, false, "", "a size of 1 could put a centre of mass on its joint"}),
+      row("plant.model_error.seed", "integer ≥ 0", "`1`",
+          "seeds the draws (SplitMix64; per link, in the order mass, inertia, com): the same seed, "
+          "the same plant.",
+          {0.0, 1e9, false, "", ""}),
       row("actuator.order", "integer 0–4", "`0`",
           "m, the order of the actuator's integrator chain (eq. 600): 0, the torque passes through "
           "(controller `theorem1`); m ≥ 1, u drives xi_m' and xi_1 is the torque (controller "

@@ -17,6 +17,7 @@
 
 #include "model/flexible_joint.hpp"
 #include "model/planar_chain.hpp"
+#include "model/plant_perturbation.hpp"
 #include "model/reference.hpp"
 #include "model/robot_model.hpp"
 #include "model/urdf_arm.hpp"
@@ -77,6 +78,10 @@ struct PlantConfig {
   /// The flexible joints' rotors' bearings: damping, Coulomb friction.
   std::optional<Eigen::VectorXd> rotor_damping, rotor_friction;
   bool joint_limits = false;  ///< a URDF arm's <limit lower upper> as hard stops
+  /// A plant the controller does not know (model/plant_perturbation.hpp):
+  /// a payload at the last link, seeded relative errors per link.
+  std::optional<model::Payload> payload;
+  std::optional<model::ModelError> model_error;
 };
 
 struct ActuatorConfig {

@@ -26,8 +26,10 @@ const Fields<UrdfRobotConfig>& urdfFields();       ///< robot.urdf (the document
 const Fields<InitialState>& initialStateFields();  ///< initial_state: q, qdot
 const Fields<InitialState>& motorStateFields();    ///< initial_state: motor_q, motor_qdot (robot.flexible)
 const Fields<PlantConfig>& plantFields();
-/// plant's per-joint losses (sized by the arm: read after robot).
-const Fields<Scenario>& plantLossFields();
+/// plant's keys sized by the arm (losses per joint, payload, model error): read after robot.
+const Fields<Scenario>& plantArmFields();
+/// plant.model_error.
+const Fields<model::ModelError>& modelErrorFields();
 const Fields<model::ReferenceParams>& referenceFields(model::ReferenceType type);
 
 // What drives it (drive_sections.cpp).

@@ -57,7 +57,7 @@ std::string toYaml(const Scenario& s) {
 
   out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
   writeFields(out, s.plant, sections::plantFields());
-  writeFields(out, s, sections::plantLossFields());
+  writeFields(out, s, sections::plantArmFields());
   out << YAML::EndMap;
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;

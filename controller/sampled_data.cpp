@@ -317,16 +317,18 @@ SampledDataCheck check(const config::Scenario& s) {
             std::to_string(SampledDataCheck::kMaxSensorDelay) + " samples)";
     return c;
   }
-  // The map is the lossless model's (eq. 10): a plant with damping, friction
-  // or stops is another loop, and the check does not judge it.
+  // The map is the nominal lossless model's (eq. 10): a plant with damping,
+  // friction, stops, a payload or model error is another loop, and the check
+  // does not judge it.
   const config::PlantConfig& p = s.plant;
   if (p.joint_damping || p.joint_friction || p.rotor_damping || p.rotor_friction || p.urdf_dynamics ||
-      p.joint_limits) {
+      p.joint_limits || p.payload || p.model_error) {
     c.verdict = "not assessed";
     c.why =
-        "the linearised map is the lossless model's, without the plant's joint damping, friction or "
-        "stops (plant.joint_damping, joint_friction, rotor_damping, rotor_friction, urdf_dynamics, "
-        "joint_limits); run the scenario to see the loop with them";
+        "the linearised map is the nominal lossless model's, without the plant's joint damping, "
+        "friction, stops, payload or model error (plant.joint_damping, joint_friction, rotor_damping, "
+        "rotor_friction, urdf_dynamics, joint_limits, payload, model_error); run the scenario to see the "
+        "loop with them";
     return c;
   }
   const LoopMap loop(s, c.one_period_delay, true);

@@ -66,6 +66,41 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
 }
 }  // namespace
 
+namespace {
+// What the plant has that the controllers' model has not (summary.json plant).
+nlohmann::json plantJson(const config::Scenario& s) {
+  using nlohmann::json;
+  json out = json::object();
+  const config::PlantConfig& p = s.plant;
+  auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  if (p.joint_damping) out["joint_damping"] = vec(*p.joint_damping);
+  if (p.joint_friction) out["joint_friction"] = vec(*p.joint_friction);
+  if (p.rotor_damping) out["rotor_damping"] = vec(*p.rotor_damping);
+  if (p.rotor_friction) out["rotor_friction"] = vec(*p.rotor_friction);
+  if (p.urdf_dynamics) out["urdf_dynamics"] = true;
+  if (p.joint_limits) out["joint_limits"] = true;
+  if (p.payload) out["payload"] = {{"mass", p.payload->mass}, {"com", vec(p.payload->com)}};
+  if (p.model_error)
+    out["model_error"] = {{"mass", p.model_error->mass},
+                          {"inertia", p.model_error->inertia},
+                          {"com", p.model_error->com},
+                          {"seed", p.model_error->seed}};
+  if (p.payload || p.model_error) {
+    const std::vector<model::LinkChange> changes =
+        s.urdf_model ? model::perturbedBodies(*s.urdf_model, p.payload, p.model_error).changes
+                     : model::perturbedChain(s.robot, p.payload, p.model_error).changes;
+    json links = json::array();
+    for (const model::LinkChange& c : changes)
+      links.push_back({{"link", c.link},
+                       {"mass", {{"nominal", c.nominal_mass}, {"plant", c.mass}}},
+                       {"inertia_scale", c.inertia_scale},
+                       {"com", {{"nominal", vec(c.nominal_com)}, {"plant", vec(c.com)}}}});
+    out["links"] = links;
+  }
+  return out;
+}
+}  // namespace
+
 void watchVelocityLimits(TrackingMetrics& metrics, const config::Scenario& s) {
   if (!s.urdf_model) return;
   const auto& joints = s.urdf_model->jointProperties();
@@ -137,6 +172,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                          {"samples", c.samples}});
     j["limits"] = {{"velocity", crossed}};
   }
+  if (json plant = plantJson(s); !plant.empty()) j["plant"] = plant;
   j["torque"] = {{"max_abs", t.max_abs_torque},
                  {"total_variation", t.torque_total_variation},
                  {"energy", t.control_energy}};

@@ -381,12 +381,18 @@ RobotGeometry UrdfArm::geometry() const {
   return g;
 }
 
-Eigen::Vector3d UrdfArm::tipPosition(const Eigen::VectorXd& q) const {
+Eigen::Vector3d UrdfArm::tipPosition(const Eigen::VectorXd& q) const { return tipFrame(q).translation(); }
+
+Eigen::Isometry3d UrdfArm::tipFrame(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
   KDL::ChainFkSolverPos_recursive fk(impl_->chain);
   KDL::Frame tip;
   fk.JntToCart(toKdl(q), tip);
-  return toEigen(tip.p);
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out.linear()(r, c) = tip.M(static_cast<unsigned>(r), static_cast<unsigned>(c));
+  out.translation() = toEigen(tip.p);
+  return out;
 }
 
 // The dynamics below borrow KDL's solvers from the arm's pool (Impl::borrowSolvers).

@@ -27,6 +27,7 @@
 /// The URDF is given as text: reading the file is the caller's business
 /// (config), so this model stays free of I/O.
 
+#include <Eigen/Geometry>
 #include <memory>
 #include <optional>
 #include <string>
@@ -99,6 +100,8 @@ class UrdfArm : public RobotModel {
   RobotGeometry geometry() const override;
   /// The origin of tip_link, by KDL's forward kinematics.
   Eigen::Vector3d tipPosition(const Eigen::VectorXd& q) const override;
+  /// tip_link's frame in the base frame (a point in tip_link's frame -> base).
+  Eigen::Isometry3d tipFrame(const Eigen::VectorXd& q) const;
 
   const std::vector<std::string>& notes() const;
   /// Per joint, base to tip: its <dynamics> and <limit>.

@@ -33,7 +33,15 @@ ArmBuilder armBuilderFor(const config::Scenario& s) {
                              " was read by config but has no world builder in this program");
     return it->second(s.registered_robot->settings, s.robot.gravity);
   }
-  return s.urdf_model ? urdfArmWorld(s.urdf_model) : planarChainWorld(s.robot);
+  // The plant's arm: the nominal one, or with the payload and model error
+  // the controller does not know of.
+  const std::optional<model::Payload>& payload = s.plant.payload;
+  const std::optional<model::ModelError>& error = s.plant.model_error;
+  if (s.urdf_model)
+    return payload || error ? urdfArmWorld(model::perturbedBodies(*s.urdf_model, payload, error).bodies,
+                                           s.urdf_model->spec().gravity)
+                            : urdfArmWorld(s.urdf_model);
+  return planarChainWorld(payload || error ? model::perturbedChain(s.robot, payload, error).params : s.robot);
 }
 
 }  // namespace lagrange::plant

@@ -19,11 +19,10 @@ Vector3d toEigen(const dReal* v) { return {v[0], v[1], v[2]}; }
 
 class UrdfArmWorld final : public ArmWorld {
  public:
-  UrdfArmWorld(const model::UrdfArm& arm, dWorldID world, const Eigen::VectorXd& q,
-               const Eigen::VectorXd& qdot)
-      : gravity_(arm.spec().gravity) {
+  UrdfArmWorld(const std::vector<model::UrdfBody>& bodies, double gravity, dWorldID world,
+               const Eigen::VectorXd& q, const Eigen::VectorXd& qdot)
+      : gravity_(gravity) {
     dWorldSetGravity(world, 0.0, 0.0, -gravity_);
-    const std::vector<model::UrdfBody>& bodies = arm.bodies();
     // At q = 0 first: every body with the base frame's axes, so that its
     // inertia tensor is the model's as it stands, and every hinge's zero
     // where the URDF has it.
@@ -138,9 +137,14 @@ class UrdfArmWorld final : public ArmWorld {
 }  // namespace
 
 ArmBuilder urdfArmWorld(std::shared_ptr<const model::UrdfArm> arm) {
-  const int n = arm->dof();
-  return {n, [arm](dWorldID world, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot) {
-            return std::unique_ptr<ArmWorld>(std::make_unique<UrdfArmWorld>(*arm, world, q, qdot));
+  return urdfArmWorld(arm->bodies(), arm->spec().gravity);
+}
+
+ArmBuilder urdfArmWorld(std::vector<model::UrdfBody> bodies, double gravity) {
+  const int n = static_cast<int>(bodies.size());
+  return {n, [bodies = std::move(bodies), gravity](dWorldID world, const Eigen::VectorXd& q,
+                                                   const Eigen::VectorXd& qdot) {
+            return std::unique_ptr<ArmWorld>(std::make_unique<UrdfArmWorld>(bodies, gravity, world, q, qdot));
           }};
 }
 

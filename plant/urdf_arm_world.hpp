@@ -14,6 +14,7 @@
 /// drift is measured in tests/unit/urdf_plant_test.cpp and reported there.
 
 #include <memory>
+#include <vector>
 
 #include "model/urdf_arm.hpp"
 #include "plant/arm_world.hpp"
@@ -21,5 +22,7 @@
 namespace lagrange::plant {
 
 ArmBuilder urdfArmWorld(std::shared_ptr<const model::UrdfArm> arm);
+/// The same arm with other bodies (a payload, model error: model/plant_perturbation.hpp).
+ArmBuilder urdfArmWorld(std::vector<model::UrdfBody> bodies, double gravity);
 
 }  // namespace lagrange::plant

@@ -95,9 +95,12 @@ TEST(ConfigDocs, RangeLookupNamesKeysAsTheReadersDo) {
 }
 
 TEST(ConfigDocs, KnownKeysComeFromTheTable) {
-  EXPECT_EQ(keysUnder("plant"), (std::set<std::string>{"physics_step", "publish_rate", "max_rate", "joint_damping",
-                                                       "joint_friction", "urdf_dynamics", "rotor_damping",
-                                                       "rotor_friction", "joint_limits"}));
+  EXPECT_EQ(keysUnder("plant"),
+            (std::set<std::string>{"physics_step", "publish_rate", "max_rate", "joint_damping",
+                                   "joint_friction", "urdf_dynamics", "rotor_damping", "rotor_friction",
+                                   "joint_limits", "payload", "model_error"}));
+  EXPECT_EQ(keysUnder("plant.payload"), (std::set<std::string>{"mass", "com"}));
+  EXPECT_EQ(keysOf(sections::modelErrorFields()), keysUnder("plant.model_error"));
   EXPECT_EQ(keysUnder("robot.links[i]"), (std::set<std::string>{"length", "com", "mass", "inertia"}));
   EXPECT_EQ(keysUnder("reference", "free_motion"),
             (std::set<std::string>{"type", "initial_q", "initial_qdot"}));
@@ -215,7 +218,7 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
   for (const std::string& key : keysOf(controller::stageGainFields()))
     EXPECT_EQ(keysUnder("controller.stages[i]").count(key), 1u) << key;
   std::set<std::string> plant = keysOf(sections::plantFields());
-  for (const std::string& key : keysOf(sections::plantLossFields())) plant.insert(key);
+  for (const std::string& key : keysOf(sections::plantArmFields())) plant.insert(key);
   EXPECT_EQ(plant, keysUnder("plant"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSmoothSine)),
