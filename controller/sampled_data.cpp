@@ -322,7 +322,8 @@ SampledDataCheck check(const config::Scenario& s) {
   // does not judge it.
   const config::PlantConfig& p = s.plant;
   if (p.joint_damping || p.joint_friction || p.rotor_damping || p.rotor_friction || p.urdf_dynamics ||
-      p.joint_limits || p.payload || p.model_error) {
+      p.joint_limits || (p.payload && p.payload->mass > 0.0) ||
+      (p.model_error && (p.model_error->mass > 0.0 || p.model_error->inertia > 0.0 || p.model_error->com > 0.0))) {
     c.verdict = "not assessed";
     c.why =
         "the linearised map is the nominal lossless model's, without the plant's joint damping, "
