@@ -118,6 +118,7 @@ std::string describe(const GainReport& r) {
     for (const auto& c : r.proposition) out += "\n  " + line(c);
   }
   for (const auto& w : r.warnings) out += "\nwarning: " + w;
+  if (r.simulated) out += "\n" + describe(*r.simulated);
   if (!r.sampled.verdict.empty()) out += "\n" + describe(r.sampled);
   return out;
 }

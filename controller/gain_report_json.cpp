@@ -90,6 +90,52 @@ SampledDataCheck sampledFrom(const json& j) {
   return s;
 }
 
+json optionalNumber(const std::optional<double>& v) { return v ? number(*v) : json(nullptr); }
+std::optional<double> optionalFrom(const json& j) {
+  return j.is_null() ? std::nullopt : std::optional<double>(numberFrom(j));
+}
+
+json simulationJson(const SampledSimulation& c) {
+  json starts = json::array();
+  for (const SampledSimulation::Start& s : c.starts)
+    starts.push_back({{"what", s.what},
+                      {"sampled_status", s.sampled_status},
+                      {"fine_status", s.fine_status},
+                      {"sampled_time", optionalNumber(s.sampled_time)},
+                      {"fine_time", optionalNumber(s.fine_time)},
+                      {"sampled_error", number(s.sampled_error)},
+                      {"fine_error", number(s.fine_error)},
+                      {"verdict", s.verdict}});
+  return {{"rate", number(c.rate)},
+          {"fine_rate", number(c.fine_rate)},
+          {"confirmed_at", optionalNumber(c.confirmed_at)},
+          {"duration", number(c.duration)},
+          {"tolerance", number(c.tolerance)},
+          {"one_period_delay", c.one_period_delay},
+          {"starts", starts},
+          {"verdict", c.verdict},
+          {"why", c.why},
+          {"wall_time", number(c.wall_time)}};
+}
+SampledSimulation simulationFrom(const json& j) {
+  SampledSimulation c;
+  c.rate = numberFrom(j.at("rate"));
+  c.fine_rate = numberFrom(j.at("fine_rate"));
+  c.confirmed_at = optionalFrom(j.at("confirmed_at"));
+  c.duration = numberFrom(j.at("duration"));
+  c.tolerance = numberFrom(j.at("tolerance"));
+  c.one_period_delay = j.at("one_period_delay").get<bool>();
+  for (const json& s : j.at("starts"))
+    c.starts.push_back({s.at("what").get<std::string>(), s.at("sampled_status").get<std::string>(),
+                        s.at("fine_status").get<std::string>(), optionalFrom(s.at("sampled_time")),
+                        optionalFrom(s.at("fine_time")), numberFrom(s.at("sampled_error")),
+                        numberFrom(s.at("fine_error")), s.at("verdict").get<std::string>()});
+  c.verdict = j.at("verdict").get<std::string>();
+  c.why = j.at("why").get<std::string>();
+  c.wall_time = numberFrom(j.at("wall_time"));
+  return c;
+}
+
 // Every field of GainReport (controller/gain_report.hpp): a field added
 // there is added here, or the processes lose it.
 json reportJson(const GainReport& r) {
@@ -104,6 +150,7 @@ json reportJson(const GainReport& r) {
             {"eta", nullptr},
             {"warnings", r.warnings},
             {"sampled", sampledJson(r.sampled)},
+            {"simulated", r.simulated ? simulationJson(*r.simulated) : json(nullptr)},
             {"unchecked", r.unchecked ? json(*r.unchecked) : json(nullptr)}};
   if (r.eta)
     j["eta"] = {{"eta1", number(r.eta->eta1)}, {"eta2", number(r.eta->eta2)}, {"eta3", number(r.eta->eta3)}};
@@ -124,6 +171,7 @@ GainReport reportFrom(const json& j) {
                                numberFrom(eta.at("eta3"))};
   r.warnings = j.at("warnings").get<std::vector<std::string>>();
   r.sampled = sampledFrom(j.at("sampled"));
+  if (const json& simulated = j.at("simulated"); !simulated.is_null()) r.simulated = simulationFrom(simulated);
   if (const json& why = j.at("unchecked"); !why.is_null()) r.unchecked = why.get<std::string>();
   return r;
 }

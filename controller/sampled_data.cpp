@@ -439,7 +439,7 @@ std::string describe(const SampledDataCheck& c) {
   std::transform(verdict.begin(), verdict.end(), verdict.begin(), ::toupper);
   std::snprintf(
       buf, sizeof buf,
-      "sampled-data check at %g Hz%s: %s: %s; spectral radius %.6g (t = %.3g s), fastest continuous "
+      "linearised check at %g Hz%s: %s: %s; spectral radius %.6g (t = %.3g s), fastest continuous "
       "mode |lambda| T = %.3g",
       c.rate, c.one_period_delay ? " with the realtime wiring's one-period delay" : "", verdict.c_str(),
       c.why.c_str(), c.spectral_radius, c.worst_time, c.fastestModeTimesPeriod());
@@ -448,10 +448,51 @@ std::string describe(const SampledDataCheck& c) {
     out += c.sufficient_rate ? "; " + std::to_string(static_cast<long long>(*c.sufficient_rate)) +
                                    " Hz would suffice (plant.publish_rate)"
                              : "; no rate up to 1024 x this one suffices";
-  out += "  [estimate: the discretised loop linearised along the reference at " +
+  out += "  [estimate, local: the discretised loop linearised along the reference at " +
          std::to_string(SampledDataCheck::kInstants) +
          " instants, the cores as implemented, the plant's model by RK4; see docs/architecture.md]";
   return out;
+}
+
+namespace {
+// What one loop did: "converged at 0.915 s", "did not converge within the run", "diverged".
+std::string outcome(const std::string& status, const std::optional<double>& t) {
+  if (status != "completed") return "diverged";
+  if (!t) return "did not converge within the run";
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "converged at %.3g s", *t);
+  return buf;
+}
+}  // namespace
+
+std::string describe(const SampledSimulation& c) {
+  std::string verdict = c.verdict;
+  std::transform(verdict.begin(), verdict.end(), verdict.begin(), ::toupper);
+  char head[160];
+  std::snprintf(head, sizeof head, "sampled-data check at %g Hz%s: %s: ", c.rate,
+                c.one_period_delay ? " with the realtime wiring's one-period delay" : "", verdict.c_str());
+  std::string out = head + c.why;
+  for (const SampledSimulation::Start& s : c.starts) {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "\n  from %s: the sampled loop %s, the fine-rate loop %s; RMS error of the last second %.3g rad "
+                  "(fine: %.3g)",
+                  s.what.c_str(), outcome(s.sampled_status, s.sampled_time).c_str(),
+                  outcome(s.fine_status, s.fine_time).c_str(), s.sampled_error, s.fine_error);
+    out += line;
+  }
+  char tail[320];
+  std::snprintf(tail, sizeof tail,
+                "\n  [evidence from these %zu states, not a proof for all: in-process simulations of %g s, the "
+                "loop as configured at %g Hz against the same plant and controller at %g Hz with exact sensors "
+                "(%s); %.1f s; see docs/architecture.md]",
+                c.starts.size(), c.duration, c.rate, c.fine_rate,
+                c.confirmed_at ? ("the same loop at " + std::to_string(static_cast<long long>(*c.confirmed_at)) +
+                                  " Hz agrees")
+                                     .c_str()
+                               : "no finer rate up to the cap agreed with it",
+                c.wall_time);
+  return out + tail;
 }
 
 }  // namespace lagrange::controller

@@ -44,6 +44,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "config/scenario.hpp"
 
@@ -78,5 +79,50 @@ SampledDataCheck checkSampledData(const config::Scenario& scenario);
 
 /// One line a person reads.
 std::string describe(const SampledDataCheck& check);
+
+/// The sampled loop simulated (wiring/sampled_simulation.hpp computes it; the
+/// data and its words are here, beside the linearised check's): the scenario
+/// as configured, in process, from its initial state and a few seeded states
+/// of the same error norm, against the same loop at a fine rate that stands
+/// for continuous time. True for these states by construction; evidence from
+/// them, not a proof for all.
+struct SampledSimulation {
+  /// ADEQUATE when the sampled loop converges within this factor of the fine
+  /// loop's time (or, where neither reaches the tolerance, its steady-state
+  /// error is within this factor of the fine loop's).
+  static constexpr double kSlack = 1.25;
+
+  /// One start: where from, and what each loop did.
+  struct Start {
+    std::string what;                      ///< "the initial state", "seeded state 1", ...
+    std::string sampled_status;            ///< "completed" or "diverged"
+    std::string fine_status;
+    std::optional<double> sampled_time;    ///< convergence time [s]; none: not within the run
+    std::optional<double> fine_time;
+    double sampled_error = 0.0;            ///< RMS of ||q~|| over the last second [rad]
+    double fine_error = 0.0;
+    std::string verdict;                   ///< as the overall one, for this start
+  };
+
+  double rate = 0.0;       ///< the configured rate [Hz]
+  double fine_rate = 0.0;  ///< the rate standing for continuous time [Hz]
+  /// The finer rate that confirmed fine_rate (the initial state's loop the
+  /// same at both), or none when no rate up to the cap agreed.
+  std::optional<double> confirmed_at;
+  double duration = 0.0;   ///< each simulation's length [s]
+  double tolerance = 0.0;  ///< metrics.tolerance [rad]
+  /// The realtime wiring's one period of delay, simulated as one sample of
+  /// joint-angle sensor delay (the same lag, the reference a period apart).
+  bool one_period_delay = false;
+  std::vector<Start> starts;
+  std::string verdict;  ///< "adequate", "inadequate", "diverges" or "not assessed"
+  std::string why;      ///< one sentence behind the verdict
+  double wall_time = 0.0;  ///< what the simulations took [s]
+
+  bool adequate() const { return verdict == "adequate"; }
+};
+
+/// What a person reads: the verdict, the times, and what it rests on.
+std::string describe(const SampledSimulation& simulation);
 
 }  // namespace lagrange::controller

@@ -9,19 +9,25 @@
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
 #include "tools/command_error.hpp"
+#include "wiring/sampled_simulation.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::tools {
 
 int checkGainsCommand(const std::string& config_path, const std::vector<std::string>& overrides,
-                      bool suggest) {
+                      bool suggest, bool simulate) {
   try {
     const config::Scenario s = config::loadScenario(config_path, overrides);
-    const controller::GainReport r = controller::checkGains(s);
+    controller::GainReport r = controller::checkGains(s);
+    if (simulate) r.simulated = wiring::simulateSampledData(s);
     std::cout << controller::describe(r) << "\n";
     // Exit 1 when the theory's conditions fail, or when the sampled loop at the
-    // configured rate is unstable near the reference ("slow" only warns).
-    if (!suggest) return r.holds() && r.sampled.verdict != "unstable" ? 0 : 1;
+    // configured rate diverges in simulation or is unstable near the reference
+    // ("inadequate" and "slow" only warn).
+    if (!suggest) return r.holds() && r.sampled.verdict != "unstable" &&
+                           !(r.simulated && r.simulated->verdict == "diverges")
+                       ? 0
+                       : 1;
     if (r.unchecked) {
       std::cout << "\nno suggestion: --suggest knows the paper's controllers only\n";
       return kExitFailed;

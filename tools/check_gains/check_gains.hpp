@@ -15,7 +15,7 @@ namespace lagrange::tools {
 /// Exit 0 when the conditions hold, 1 when one is violated, the sampled loop
 /// is unstable or no suggestion passes, 2 for a bad scenario.
 int checkGainsCommand(const std::string& config_path, const std::vector<std::string>& overrides,
-                      bool suggest);
+                      bool suggest, bool simulate = true);
 
 /// Declares `check-gains` on the front end.
 Subcommand addCheckGainsCommand(CLI::App& app);

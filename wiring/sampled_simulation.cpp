@@ -1,0 +1,288 @@
+#include "wiring/sampled_simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cerrno>
+#include <cstring>
+#include <iostream>
+#include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "model/reference.hpp"
+#include "util/error.hpp"
+#include "wiring/inproc_runner.hpp"
+
+namespace lagrange::wiring {
+
+namespace {
+
+using controller::SampledSimulation;
+
+// The fine rate's cap, as a multiple of the configured rate.
+constexpr int kMaxRefinement = 64;
+
+// One loop's outcome.
+struct Loop {
+  std::string status;
+  std::optional<double> time;
+  double error = 0.0;
+};
+
+Loop simulate(const config::Scenario& s) {
+  const InProcessOutcome o = simulateInProcess(s, nullptr, nullptr, nullptr);
+  return {o.status, o.tracking.convergence_time, o.tracking.rms_last_second};
+}
+
+// Gaussian draws from SplitMix64 (portable: std:: distributions differ between libraries).
+class Draws {
+ public:
+  explicit Draws(std::uint64_t seed) : state_(seed) {}
+  double gaussian() {
+    const double u1 = (static_cast<double>(next() >> 11) + 0.5) * 0x1.0p-53;
+    const double u2 = static_cast<double>(next() >> 11) * 0x1.0p-53;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  }
+
+ private:
+  std::uint64_t next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  std::uint64_t state_;
+};
+
+struct StartState {
+  std::string what;
+  config::InitialState state;
+};
+
+// The initial state, and kSeededStates more with the same ||q(0) - q_d(0)||
+// in other directions (the rates as configured; the motors moved with the links).
+std::vector<StartState> startsOf(const config::Scenario& s) {
+  std::vector<StartState> out = {{"the initial state", s.initial_state}};
+  const model::Reference reference(s.reference);
+  const Eigen::VectorXd qd0 = reference.evaluate(0.0, 0).q();
+  const double norm = (s.initial_state.q - qd0).norm();
+  if (!(norm > 0.0)) return out;
+  Draws draws(1);
+  for (int k = 1; k <= kSeededStates; ++k) {
+    Eigen::VectorXd direction(s.dof());
+    for (int i = 0; i < s.dof(); ++i) direction(i) = draws.gaussian();
+    StartState start{"seeded state " + std::to_string(k), s.initial_state};
+    start.state.q = qd0 + norm * direction.normalized();
+    if (start.state.motor_q.size() == s.dof()) start.state.motor_q += start.state.q - s.initial_state.q;
+    out.push_back(start);
+  }
+  return out;
+}
+
+// The scenario as configured, from `start`.
+config::Scenario sampledScenario(const config::Scenario& s, const config::InitialState& start) {
+  config::Scenario out = s;
+  out.initial_state = start;
+  if (s.mode == config::Mode::kRealtime) {
+    if (!out.sensors) {
+      out.sensors = config::SensorsConfig{};
+      out.sensors->position.counts_per_revolution = Eigen::VectorXd::Zero(s.dof());
+      out.sensors->position.noise_sigma = Eigen::VectorXd::Zero(s.dof());
+    }
+    ++out.sensors->position.delay;
+  }
+  return out;
+}
+
+// The same loop at `rate`, exact sensors, one actuator update a period.
+config::Scenario fineScenario(const config::Scenario& s, const config::InitialState& start, double rate) {
+  config::Scenario out = s;
+  out.initial_state = start;
+  const double period = 1.0 / rate;
+  out.plant.publish_rate = rate;
+  out.plant.physics_step = period / std::ceil(period / s.plant.physics_step - 1e-9);
+  out.actuator.rate = rate;
+  out.sensors.reset();
+  if (s.velocitySensor()) {  // a controller that reads the rates reads exact ones
+    out.sensors = config::SensorsConfig{};
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.dof());
+    out.sensors->position = {zero, zero, 0, {}};
+    out.sensors->velocity = config::JointSensorConfig{zero, zero, 0, {}};
+  }
+  return out;
+}
+
+// Whether two fine loops agree (the refinement's test).
+bool agree(const Loop& a, const Loop& b, double tolerance, double period) {
+  if (a.status != b.status) return false;
+  if (a.time && b.time) return std::abs(*a.time - *b.time) <= 0.05 * *b.time + 2.0 * period;
+  if (a.time || b.time) return false;
+  return std::abs(a.error - b.error) <= 0.05 * b.error + 0.05 * tolerance;
+}
+
+std::string seconds(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g s", t);
+  return buf;
+}
+
+// One start's verdict and its reason.
+std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, double tolerance, double period) {
+  if (st.fine_status != "completed")
+    return {"not assessed", "the fine-rate loop itself diverged from " + st.what};
+  if (st.sampled_status != "completed")
+    return {"diverges", "the sampled loop diverged from " + st.what + ", where the fine-rate loop converged"};
+  const double slack = SampledSimulation::kSlack;
+  if (st.fine_time) {
+    if (st.sampled_time && *st.sampled_time <= slack * *st.fine_time + 2.0 * period) return {"adequate", ""};
+    return {"inadequate", "from " + st.what + " the sampled loop " +
+                              (st.sampled_time ? "converged at " + seconds(*st.sampled_time)
+                                               : std::string("did not converge within the run")) +
+                              ", the fine-rate loop at " + seconds(*st.fine_time) + " (ADEQUATE: within " +
+                              std::to_string(static_cast<int>(std::lround((slack - 1) * 100))) + " %)"};
+  }
+  if (st.sampled_error <= slack * st.fine_error + 0.25 * tolerance) return {"adequate", ""};
+  char why[256];
+  std::snprintf(why, sizeof why,
+                "from %s neither loop reached the tolerance, and the sampled loop's steady-state error "
+                "(%.3g rad RMS over the last second) is more than %.0f %% above the fine-rate loop's (%.3g rad)",
+                st.what.c_str(), st.sampled_error, (slack - 1) * 100, st.fine_error);
+  return {"inadequate", why};
+}
+
+// Runs each scenario's loop in a child process of its own, up to `processes`
+// at a time, and returns what each did, in order. Processes, not threads:
+// ODE's default threading object is one per process, and the models a
+// scenario shares between copies are not all safe to step from two threads.
+std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int processes) {
+  std::vector<Loop> out(scenarios.size());
+  struct Child {
+    pid_t pid;
+    int fd;
+    size_t index;
+  };
+  std::vector<Child> running;
+  auto collect = [&](const Child& c) {
+    // status (0 completed, 1 diverged), has_time, time, error
+    double record[4] = {1, 0, 0, 0};
+    size_t got = 0;
+    while (got < sizeof record) {
+      const ssize_t n = read(c.fd, reinterpret_cast<char*>(record) + got, sizeof record - got);
+      if (n <= 0) break;
+      got += static_cast<size_t>(n);
+    }
+    close(c.fd);
+    int wstatus = 0;
+    waitpid(c.pid, &wstatus, 0);
+    if (got != sizeof record || !WIFEXITED(wstatus) || WEXITSTATUS(wstatus) != 0)
+      throw lagrange::RuntimeFault("sampled-data simulation: a simulation process failed (" +
+                                   std::string(WIFSIGNALED(wstatus) ? strsignal(WTERMSIG(wstatus)) : "no result") +
+                                   ")");
+    out[c.index] = {record[0] == 0 ? "completed" : "diverged",
+                    record[1] != 0 ? std::optional<double>(record[2]) : std::nullopt, record[3]};
+  };
+  for (size_t i = 0; i < scenarios.size(); ++i) {
+    if (static_cast<int>(running.size()) >= processes) {
+      collect(running.front());
+      running.erase(running.begin());
+    }
+    int fds[2];
+    if (pipe(fds) != 0) throw lagrange::RuntimeFault(std::string("sampled-data simulation: pipe: ") + strerror(errno));
+    std::cout.flush();
+    std::cerr.flush();
+    const pid_t pid = fork();
+    if (pid < 0) throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
+    if (pid == 0) {
+      close(fds[0]);
+      int code = 0;
+      try {
+        const Loop loop = simulate(scenarios[i]);
+        const double record[4] = {loop.status == "completed" ? 0.0 : 1.0, loop.time ? 1.0 : 0.0,
+                                  loop.time.value_or(0.0), loop.error};
+        if (write(fds[1], record, sizeof record) != static_cast<ssize_t>(sizeof record)) code = 1;
+      } catch (...) {
+        code = 1;
+      }
+      _exit(code);
+    }
+    close(fds[1]);
+    running.push_back({pid, fds[0], i});
+  }
+  for (const Child& c : running) collect(c);
+  return out;
+}
+
+}  // namespace
+
+SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  SampledSimulation out;
+  out.rate = s.plant.publish_rate;
+  out.duration = s.duration;
+  out.tolerance = s.metrics.tolerance;
+  out.one_period_delay = s.mode == config::Mode::kRealtime;
+  const int processes = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (s.controller.type == "external") {
+    out.verdict = "not assessed";
+    out.why = "an external controller does not run in process, where the check simulates the loop";
+    return out;
+  }
+  const std::vector<StartState> starts = startsOf(s);
+
+  // The fine rate, confirmed by refinement on the initial state.
+  double fine = 8.0 * out.rate;
+  Loop fine_initial;
+  for (;;) {
+    const std::vector<Loop> pair = simulateAll(
+        {fineScenario(s, starts[0].state, fine), fineScenario(s, starts[0].state, 2.0 * fine)}, processes);
+    fine_initial = pair[0];
+    if (agree(pair[0], pair[1], s.metrics.tolerance, 1.0 / fine)) {
+      out.confirmed_at = 2.0 * fine;
+      break;
+    }
+    if (2.0 * fine >= kMaxRefinement * out.rate) break;
+    fine *= 2.0;
+  }
+  out.fine_rate = fine;
+
+  // The sampled loop from every start, the fine one from the seeded starts.
+  std::vector<config::Scenario> runs;
+  for (const StartState& start : starts) runs.push_back(sampledScenario(s, start.state));
+  for (size_t i = 1; i < starts.size(); ++i) runs.push_back(fineScenario(s, starts[i].state, fine));
+  const std::vector<Loop> loops = simulateAll(runs, processes);
+  std::vector<Loop> sampled_loops(loops.begin(), loops.begin() + static_cast<long>(starts.size()));
+  std::vector<Loop> fine_loops = {fine_initial};
+  fine_loops.insert(fine_loops.end(), loops.begin() + static_cast<long>(starts.size()), loops.end());
+
+  const std::vector<std::string> order = {"adequate", "not assessed", "inadequate", "diverges"};
+  auto rank = [&](const std::string& v) { return std::find(order.begin(), order.end(), v) - order.begin(); };
+  out.verdict = "adequate";
+  for (size_t i = 0; i < starts.size(); ++i) {
+    SampledSimulation::Start st{starts[i].what,       sampled_loops[i].status, fine_loops[i].status,
+                                sampled_loops[i].time, fine_loops[i].time,     sampled_loops[i].error,
+                                fine_loops[i].error,  ""};
+    const auto [verdict, why] = judge(st, s.metrics.tolerance, 1.0 / out.rate);
+    st.verdict = verdict;
+    if (rank(verdict) > rank(out.verdict)) {
+      out.verdict = verdict;
+      out.why = why;
+    }
+    out.starts.push_back(st);
+  }
+  if (out.verdict == "adequate")
+    out.why = "from every start the sampled loop converged within " +
+              std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
+              " % of the fine-rate loop's time (or, where neither reached the tolerance, its steady-state error)";
+  if (!out.confirmed_at && out.verdict == "adequate") {
+    out.verdict = "not assessed";
+    out.why = "no fine rate up to " + std::to_string(kMaxRefinement) +
+              " x the configured one agreed with the next finer: no loop stands for continuous time";
+  }
+  out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return out;
+}
+
+}  // namespace lagrange::wiring

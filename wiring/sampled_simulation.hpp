@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// The sampled-data verdict by simulation (controller::SampledSimulation):
+/// is the loop as configured -- its rate, sensors, actuator chain and
+/// saturation, the plant's payload, model error, damping, friction and stops
+/// -- as good as the same loop at a rate that stands for continuous time?
+///
+/// From the scenario's initial state and kSeededStates more of the same
+/// position-error norm (directions drawn from a fixed seed), two in-process
+/// simulations each, over the scenario's duration (wiring::simulateInProcess,
+/// no log):
+///  - sampled: the scenario as configured. The realtime wiring's one period
+///    of delay is simulated as one more sample of joint-angle sensor delay
+///    (the same lag; the reference a period apart);
+///  - fine: the same arm, plant, controller gains and actuator saturation at
+///    the fine rate F, with exact sensors and no delay, the actuator updating
+///    once a period, the physics step the scenario's or less (so that it
+///    divides 1/F).
+/// F starts at 8 x the configured rate and is confirmed by refinement: the
+/// initial state's fine loop at 2F must agree with it (convergence times
+/// within 5 % and two periods, or, where neither converges, steady-state
+/// errors within 5 %); else F doubles, up to 64 x.
+///
+/// A start is ADEQUATE when the sampled loop converges by kSlack x the fine
+/// loop's time plus two periods; where the fine loop does not reach the
+/// tolerance (a payload, model error, friction), when the sampled loop's
+/// steady-state error (RMS over the last second) is within kSlack x the fine
+/// one's plus a quarter of the tolerance. It DIVERGES when the sampled
+/// simulation is stopped (a failing simulation, plant.max_rate); otherwise
+/// it is INADEQUATE. The overall verdict is the worst start's. A controller
+/// that does not run in process (external) is "not assessed".
+
+#include "config/scenario.hpp"
+#include "controller/sampled_data.hpp"
+
+namespace lagrange::wiring {
+
+inline constexpr int kSeededStates = 2;
+
+/// The verdict for the scenario at its plant.publish_rate. Runs the
+/// simulations in up to `jobs` child processes at a time (0: one per core).
+controller::SampledSimulation simulateSampledData(const config::Scenario& scenario, int jobs = 0);
+
+}  // namespace lagrange::wiring
