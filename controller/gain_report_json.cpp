@@ -171,7 +171,8 @@ GainReport reportFrom(const json& j) {
                                numberFrom(eta.at("eta3"))};
   r.warnings = j.at("warnings").get<std::vector<std::string>>();
   r.sampled = sampledFrom(j.at("sampled"));
-  if (const json& simulated = j.at("simulated"); !simulated.is_null()) r.simulated = simulationFrom(simulated);
+  if (const json& simulated = j.at("simulated"); !simulated.is_null())
+    r.simulated = simulationFrom(simulated);
   if (const json& why = j.at("unchecked"); !why.is_null()) r.unchecked = why.get<std::string>();
   return r;
 }

@@ -323,7 +323,8 @@ SampledDataCheck check(const config::Scenario& s) {
   const config::PlantConfig& p = s.plant;
   if (p.joint_damping || p.joint_friction || p.rotor_damping || p.rotor_friction || p.urdf_dynamics ||
       p.joint_limits || (p.payload && p.payload->mass > 0.0) ||
-      (p.model_error && (p.model_error->mass > 0.0 || p.model_error->inertia > 0.0 || p.model_error->com > 0.0))) {
+      (p.model_error &&
+       (p.model_error->mass > 0.0 || p.model_error->inertia > 0.0 || p.model_error->com > 0.0))) {
     c.verdict = "not assessed";
     c.why =
         "the linearised map is the nominal lossless model's, without the plant's joint damping, "
@@ -437,12 +438,11 @@ std::string describe(const SampledDataCheck& c) {
   char buf[768];
   std::string verdict = c.verdict;
   std::transform(verdict.begin(), verdict.end(), verdict.begin(), ::toupper);
-  std::snprintf(
-      buf, sizeof buf,
-      "linearised check at %g Hz%s: %s: %s; spectral radius %.6g (t = %.3g s), fastest continuous "
-      "mode |lambda| T = %.3g",
-      c.rate, c.one_period_delay ? " with the realtime wiring's one-period delay" : "", verdict.c_str(),
-      c.why.c_str(), c.spectral_radius, c.worst_time, c.fastestModeTimesPeriod());
+  std::snprintf(buf, sizeof buf,
+                "linearised check at %g Hz%s: %s: %s; spectral radius %.6g (t = %.3g s), fastest continuous "
+                "mode |lambda| T = %.3g",
+                c.rate, c.one_period_delay ? " with the realtime wiring's one-period delay" : "",
+                verdict.c_str(), c.why.c_str(), c.spectral_radius, c.worst_time, c.fastestModeTimesPeriod());
   std::string out = buf;
   if (!c.adequate() && c.verdict != "not assessed")
     out += c.sufficient_rate ? "; " + std::to_string(static_cast<long long>(*c.sufficient_rate)) +
@@ -474,24 +474,26 @@ std::string describe(const SampledSimulation& c) {
   std::string out = head + c.why;
   for (const SampledSimulation::Start& s : c.starts) {
     char line[320];
-    std::snprintf(line, sizeof line,
-                  "\n  from %s: the sampled loop %s, the fine-rate loop %s; RMS error of the last second %.3g rad "
-                  "(fine: %.3g)",
-                  s.what.c_str(), outcome(s.sampled_status, s.sampled_time).c_str(),
-                  outcome(s.fine_status, s.fine_time).c_str(), s.sampled_error, s.fine_error);
+    std::snprintf(
+        line, sizeof line,
+        "\n  from %s: the sampled loop %s, the fine-rate loop %s; RMS error of the last second %.3g rad "
+        "(fine: %.3g)",
+        s.what.c_str(), outcome(s.sampled_status, s.sampled_time).c_str(),
+        outcome(s.fine_status, s.fine_time).c_str(), s.sampled_error, s.fine_error);
     out += line;
   }
   char tail[320];
-  std::snprintf(tail, sizeof tail,
-                "\n  [evidence from these %zu states, not a proof for all: in-process simulations of %g s, the "
-                "loop as configured at %g Hz against the same plant and controller at %g Hz with exact sensors "
-                "(%s); %.1f s; see docs/architecture.md]",
-                c.starts.size(), c.duration, c.rate, c.fine_rate,
-                c.confirmed_at ? ("the same loop at " + std::to_string(static_cast<long long>(*c.confirmed_at)) +
-                                  " Hz agrees")
-                                     .c_str()
-                               : "no finer rate up to the cap agreed with it",
-                c.wall_time);
+  std::snprintf(
+      tail, sizeof tail,
+      "\n  [evidence from these %zu states, not a proof for all: in-process simulations of %g s, the "
+      "loop as configured at %g Hz against the same plant and controller at %g Hz with exact sensors "
+      "(%s); %.1f s; see docs/architecture.md]",
+      c.starts.size(), c.duration, c.rate, c.fine_rate,
+      c.confirmed_at
+          ? ("the same loop at " + std::to_string(static_cast<long long>(*c.confirmed_at)) + " Hz agrees")
+                .c_str()
+          : "no finer rate up to the cap agreed with it",
+      c.wall_time);
   return out + tail;
 }
 

@@ -94,14 +94,14 @@ struct SampledSimulation {
 
   /// One start: where from, and what each loop did.
   struct Start {
-    std::string what;                      ///< "the initial state", "seeded state 1", ...
-    std::string sampled_status;            ///< "completed" or "diverged"
+    std::string what;            ///< "the initial state", "seeded state 1", ...
+    std::string sampled_status;  ///< "completed" or "diverged"
     std::string fine_status;
-    std::optional<double> sampled_time;    ///< convergence time [s]; none: not within the run
+    std::optional<double> sampled_time;  ///< convergence time [s]; none: not within the run
     std::optional<double> fine_time;
-    double sampled_error = 0.0;            ///< RMS of ||q~|| over the last second [rad]
+    double sampled_error = 0.0;  ///< RMS of ||q~|| over the last second [rad]
     double fine_error = 0.0;
-    std::string verdict;                   ///< as the overall one, for this start
+    std::string verdict;  ///< as the overall one, for this start
   };
 
   double rate = 0.0;       ///< the configured rate [Hz]
@@ -115,8 +115,8 @@ struct SampledSimulation {
   /// joint-angle sensor delay (the same lag, the reference a period apart).
   bool one_period_delay = false;
   std::vector<Start> starts;
-  std::string verdict;  ///< "adequate", "inadequate", "diverges" or "not assessed"
-  std::string why;      ///< one sentence behind the verdict
+  std::string verdict;     ///< "adequate", "inadequate", "diverges" or "not assessed"
+  std::string why;         ///< one sentence behind the verdict
   double wall_time = 0.0;  ///< what the simulations took [s]
 
   bool adequate() const { return verdict == "adequate"; }

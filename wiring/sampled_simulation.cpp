@@ -1,16 +1,16 @@
 #include "wiring/sampled_simulation.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cerrno>
 #include <cstring>
 #include <iostream>
 #include <thread>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "model/reference.hpp"
 #include "util/error.hpp"
@@ -130,7 +130,8 @@ std::string seconds(double t) {
 }
 
 // One start's verdict and its reason.
-std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, double tolerance, double period) {
+std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, double tolerance,
+                                          double period) {
   if (st.fine_status != "completed")
     return {"not assessed", "the fine-rate loop itself diverged from " + st.what};
   if (st.sampled_status != "completed")
@@ -146,10 +147,11 @@ std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, do
   }
   if (st.sampled_error <= slack * st.fine_error + 0.25 * tolerance) return {"adequate", ""};
   char why[256];
-  std::snprintf(why, sizeof why,
-                "from %s neither loop reached the tolerance, and the sampled loop's steady-state error "
-                "(%.3g rad RMS over the last second) is more than %.0f %% above the fine-rate loop's (%.3g rad)",
-                st.what.c_str(), st.sampled_error, (slack - 1) * 100, st.fine_error);
+  std::snprintf(
+      why, sizeof why,
+      "from %s neither loop reached the tolerance, and the sampled loop's steady-state error "
+      "(%.3g rad RMS over the last second) is more than %.0f %% above the fine-rate loop's (%.3g rad)",
+      st.what.c_str(), st.sampled_error, (slack - 1) * 100, st.fine_error);
   return {"inadequate", why};
 }
 
@@ -178,9 +180,9 @@ std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, in
     int wstatus = 0;
     waitpid(c.pid, &wstatus, 0);
     if (got != sizeof record || !WIFEXITED(wstatus) || WEXITSTATUS(wstatus) != 0)
-      throw lagrange::RuntimeFault("sampled-data simulation: a simulation process failed (" +
-                                   std::string(WIFSIGNALED(wstatus) ? strsignal(WTERMSIG(wstatus)) : "no result") +
-                                   ")");
+      throw lagrange::RuntimeFault(
+          "sampled-data simulation: a simulation process failed (" +
+          std::string(WIFSIGNALED(wstatus) ? strsignal(WTERMSIG(wstatus)) : "no result") + ")");
     out[c.index] = {record[0] == 0 ? "completed" : "diverged",
                     record[1] != 0 ? std::optional<double>(record[2]) : std::nullopt, record[3]};
   };
@@ -190,11 +192,13 @@ std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, in
       running.erase(running.begin());
     }
     int fds[2];
-    if (pipe(fds) != 0) throw lagrange::RuntimeFault(std::string("sampled-data simulation: pipe: ") + strerror(errno));
+    if (pipe(fds) != 0)
+      throw lagrange::RuntimeFault(std::string("sampled-data simulation: pipe: ") + strerror(errno));
     std::cout.flush();
     std::cerr.flush();
     const pid_t pid = fork();
-    if (pid < 0) throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
+    if (pid < 0)
+      throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
     if (pid == 0) {
       close(fds[0]);
       int code = 0;
@@ -261,9 +265,9 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
   auto rank = [&](const std::string& v) { return std::find(order.begin(), order.end(), v) - order.begin(); };
   out.verdict = "adequate";
   for (size_t i = 0; i < starts.size(); ++i) {
-    SampledSimulation::Start st{starts[i].what,       sampled_loops[i].status, fine_loops[i].status,
-                                sampled_loops[i].time, fine_loops[i].time,     sampled_loops[i].error,
-                                fine_loops[i].error,  ""};
+    SampledSimulation::Start st{
+        starts[i].what,     sampled_loops[i].status, fine_loops[i].status, sampled_loops[i].time,
+        fine_loops[i].time, sampled_loops[i].error,  fine_loops[i].error,  ""};
     const auto [verdict, why] = judge(st, s.metrics.tolerance, 1.0 / out.rate);
     st.verdict = verdict;
     if (rank(verdict) > rank(out.verdict)) {
@@ -273,9 +277,10 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
     out.starts.push_back(st);
   }
   if (out.verdict == "adequate")
-    out.why = "from every start the sampled loop converged within " +
-              std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
-              " % of the fine-rate loop's time (or, where neither reached the tolerance, its steady-state error)";
+    out.why =
+        "from every start the sampled loop converged within " +
+        std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
+        " % of the fine-rate loop's time (or, where neither reached the tolerance, its steady-state error)";
   if (!out.confirmed_at && out.verdict == "adequate") {
     out.verdict = "not assessed";
     out.why = "no fine rate up to " + std::to_string(kMaxRefinement) +

@@ -9,13 +9,13 @@
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
 #include "tools/command_error.hpp"
-#include "wiring/sampled_simulation.hpp"
 #include "util/error.hpp"
+#include "wiring/sampled_simulation.hpp"
 
 namespace lagrange::tools {
 
-int checkGainsCommand(const std::string& config_path, const std::vector<std::string>& overrides,
-                      bool suggest, bool simulate) {
+int checkGainsCommand(const std::string& config_path, const std::vector<std::string>& overrides, bool suggest,
+                      bool simulate) {
   try {
     const config::Scenario s = config::loadScenario(config_path, overrides);
     controller::GainReport r = controller::checkGains(s);
@@ -24,10 +24,11 @@ int checkGainsCommand(const std::string& config_path, const std::vector<std::str
     // Exit 1 when the theory's conditions fail, or when the sampled loop at the
     // configured rate diverges in simulation or is unstable near the reference
     // ("inadequate" and "slow" only warn).
-    if (!suggest) return r.holds() && r.sampled.verdict != "unstable" &&
-                           !(r.simulated && r.simulated->verdict == "diverges")
-                       ? 0
-                       : 1;
+    if (!suggest)
+      return r.holds() && r.sampled.verdict != "unstable" &&
+                     !(r.simulated && r.simulated->verdict == "diverges")
+                 ? 0
+                 : 1;
     if (r.unchecked) {
       std::cout << "\nno suggestion: --suggest knows the paper's controllers only\n";
       return kExitFailed;

@@ -87,9 +87,10 @@ bool gainsAllowRun(const config::Scenario& scenario, const controller::GainRepor
   if (!opt.quiet && scenario.urdf_model)
     for (const std::string& note : scenario.urdf_model->notes()) std::cout << "robot.urdf: " << note << "\n";
   if (!opt.quiet)
-    std::cout << controller::describe(gains)
-              << "\nsampled-data check: not simulated before a run; `lagrange check-gains` simulates the loop "
-                 "as configured against the same loop at a fine rate\n";
+    std::cout
+        << controller::describe(gains)
+        << "\nsampled-data check: not simulated before a run; `lagrange check-gains` simulates the loop "
+           "as configured against the same loop at a fine rate\n";
   if (!gains.holds() && opt.strict) {
     std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is "
               << (gains.unchecked ? "not checked" : "violated") << "\n";

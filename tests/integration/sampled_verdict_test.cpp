@@ -1,0 +1,96 @@
+// The sampled-data verdict against the runs it speaks of (#30): for every
+// shipped scenario (4 s of it, to keep the suite short), the check's loops
+// are the scenario run as configured and run at the check's fine rate with
+// exact sensors -- the same trajectories -- and its word for the initial
+// state follows from those two runs' convergence times or steady-state errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "config/scenario.hpp"
+#include "support/configs.hpp"
+#include "support/launch.hpp"
+#include "support/run_log.hpp"
+#include "wiring/sampled_simulation.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+class ShippedVerdict : public ::testing::TestWithParam<std::string> {};
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+TEST_P(ShippedVerdict, TheSampledDataWordAgreesWithTheRunsItSpeaksOf) {
+  const std::string config = kConfigs + "/" + GetParam() + ".yaml";
+  const config::Scenario s = config::loadScenario(config, {"duration=4"});
+  ASSERT_NE(s.mode, config::Mode::kRealtime) << "the runs below are in process";
+  const controller::SampledSimulation check = wiring::simulateSampledData(s);
+  ASSERT_FALSE(check.starts.empty());
+  const controller::SampledSimulation::Start& initial = check.starts.front();
+
+  // The run as configured.
+  const std::string sampled_dir = freshDir("verdict-sampled");
+  const RunResult sampled = runScenario(config, sampled_dir, "-q --mode inproc --set duration=4");
+  ASSERT_TRUE(sampled.exit_code == 0 || sampled.exit_code == 1) << sampled.output;
+  const auto run = readSummary(sampled_dir)["tracking"];
+  // The run at the fine rate, exact sensors, the actuator once a period.
+  const double period = 1.0 / check.fine_rate;
+  const double step = period / std::ceil(period / s.plant.physics_step - 1e-9);
+  std::string fine_sets = " --set plant.publish_rate=" + number(check.fine_rate) +
+                          " --set plant.physics_step=" + number(step) +
+                          " --set actuator.rate=" + number(check.fine_rate);
+  if (s.sensors) {
+    fine_sets +=
+        " --set sensors.position.counts_per_revolution=0 --set sensors.position.noise_sigma=0"
+        " --set sensors.position.delay=0";
+    if (s.sensors->motor)
+      fine_sets +=
+          " --set sensors.motor.counts_per_revolution=0 --set sensors.motor.noise_sigma=0"
+          " --set sensors.motor.delay=0";
+    if (s.sensors->velocity)
+      fine_sets += " --set sensors.velocity.noise_sigma=0 --set sensors.velocity.delay=0";
+  }
+  const std::string fine_dir = freshDir("verdict-fine");
+  const RunResult fine = runScenario(config, fine_dir, "-q --mode inproc --set duration=4" + fine_sets);
+  ASSERT_TRUE(fine.exit_code == 0 || fine.exit_code == 1) << fine.output;
+  const auto fine_run = readSummary(fine_dir)["tracking"];
+
+  // The check's loops are these runs.
+  auto time = [](const nlohmann::json& t) {
+    return t["convergence_time"].is_null() ? std::optional<double>() : t["convergence_time"].get<double>();
+  };
+  EXPECT_EQ(time(run), initial.sampled_time) << run.dump();
+  EXPECT_EQ(time(fine_run), initial.fine_time) << fine_run.dump();
+  EXPECT_DOUBLE_EQ(run["rms_last_second"].get<double>(), initial.sampled_error);
+  EXPECT_DOUBLE_EQ(fine_run["rms_last_second"].get<double>(), initial.fine_error);
+
+  // And its word for the initial state is what the two runs say.
+  const double slack = controller::SampledSimulation::kSlack;
+  std::string expected;
+  if (initial.fine_time)
+    expected = time(run) && *time(run) <= slack * *initial.fine_time + 2.0 / s.plant.publish_rate
+                   ? "adequate"
+                   : "inadequate";
+  else
+    expected = run["rms_last_second"].get<double>() <=
+                       slack * fine_run["rms_last_second"].get<double>() + 0.25 * s.metrics.tolerance
+                   ? "adequate"
+                   : "inadequate";
+  if (initial.sampled_status == "diverged") expected = "diverges";
+  EXPECT_EQ(initial.verdict, expected) << "run " << run.dump() << "\nfine " << fine_run.dump();
+  // The overall word is never better than the initial state's.
+  if (initial.verdict != "adequate") {
+    EXPECT_NE(check.verdict, "adequate");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Configs, ShippedVerdict, ::testing::ValuesIn(shippedConfigs()));
+
+}  // namespace
+}  // namespace lagrange::testing
