@@ -56,6 +56,17 @@ void expectSameReport(const GainReport& a, const GainReport& b) {
   EXPECT_EQ(a.sampled.sufficient_rate, b.sampled.sufficient_rate);
   EXPECT_EQ(a.sampled.one_period_delay, b.sampled.one_period_delay);
   EXPECT_EQ(a.unchecked, b.unchecked);
+  ASSERT_EQ(a.simulated.has_value(), b.simulated.has_value());
+  if (a.simulated) {
+    EXPECT_EQ(a.simulated->fine_rate, b.simulated->fine_rate);
+    EXPECT_EQ(a.simulated->confirmed_at, b.simulated->confirmed_at);
+    EXPECT_EQ(a.simulated->verdict, b.simulated->verdict);
+    ASSERT_EQ(a.simulated->starts.size(), b.simulated->starts.size());
+    for (size_t i = 0; i < a.simulated->starts.size(); ++i) {
+      EXPECT_EQ(a.simulated->starts[i].sampled_time, b.simulated->starts[i].sampled_time);
+      EXPECT_EQ(a.simulated->starts[i].fine_error, b.simulated->starts[i].fine_error);
+    }
+  }
   EXPECT_EQ(describe(a), describe(b));
 }
 
@@ -71,6 +82,38 @@ class GainsFile : public testing::TempDirTest {
 // Theorem 1 on the planar arm (k_c proven), and the cascaded controller with
 // m = 3 (Theorem 3's conditions, Proposition 1, eta, a warning, a sampled-data
 // verdict with a sufficient rate): every field comes back bit for bit.
+// A simulated sampled-data verdict (wiring::simulateSampledData's; made up
+// here) comes back too, times and all, and its absence stays absent.
+TEST(GainReportJson, GivesBackTheSimulatedVerdict) {
+  const config::Scenario s = config::loadScenario(kConfigs + "/rigid_2dof.yaml");
+  GainReport r = checkGains(s, false);
+  SampledSimulation sim;
+  sim.rate = 1000;
+  sim.fine_rate = 8000;
+  sim.confirmed_at = 16000;
+  sim.duration = 10;
+  sim.tolerance = 1e-3;
+  sim.starts = {{"the initial state", "completed", "completed", 0.915, 0.896, 1.24e-5, 1.28e-6, "adequate"},
+                {"seeded state 1", "diverged", "completed", std::nullopt, 0.81, 3.5, 1e-6, "diverges"}};
+  sim.verdict = "diverges";
+  sim.why = "the sampled loop diverged from seeded state 1";
+  sim.wall_time = 4.2;
+  r.simulated = sim;
+  const HandedGainReport back = gainReportFromJson(gainReportJson(r, config::toYaml(s)), config::toYaml(s));
+  ASSERT_TRUE(back.report) << back.why_not;
+  expectSameReport(r, *back.report);
+  EXPECT_NE(describe(*back.report)
+                .find("sampled-data check at 1000 Hz: DIVERGES: the sampled loop diverged from "
+                      "seeded state 1\n  from the initial state: the sampled loop converged at "
+                      "0.915 s, the fine-rate loop converged at 0.896 s"),
+            std::string::npos)
+      << describe(*back.report);
+  r.simulated.reset();
+  const HandedGainReport none = gainReportFromJson(gainReportJson(r, config::toYaml(s)), config::toYaml(s));
+  ASSERT_TRUE(none.report);
+  EXPECT_FALSE(none.report->simulated.has_value());
+}
+
 TEST(GainReportJson, GivesBackEveryFieldExactly) {
   for (const char* name : {"rigid_2dof", "chain_m3"}) {
     SCOPED_TRACE(name);
