@@ -7,7 +7,8 @@
 #    bar, lcm-spy): sanitized code runs several times slower, which they
 #    would see as a slow machine, not as a bug;
 #  - the per-config sweeps and the long default-run comparisons (10 s runs of
-#    every shipped scenario), the URDF arm's gain checks for m = 1..4 and the
+#    every shipped scenario, and the sampled-data verdict against every
+#    shipped scenario's runs: Configs/), the URDF arm's gain checks for m = 1..4 and the
 #    Panda under faults, the flexible arm's filtered-rate pole study and the
 #    flexible arm under faults (73 s and 43 s here): the same code paths as
 #    the tests kept (the Panda's and the flexible arm's golden logs, the
