@@ -190,7 +190,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "motor solved with the step, so stable for any D), which the controllers' lossless model "
           "(eq. 10) does not know. Overrides the URDF's `<dynamics damping>` under `plant.urdf_dynamics`. "
           "PLANT_TRUTH's energies then fall by what the damping and the friction take: E(t) − E(0) = "
-          "∫ τᵀq̇ − ∫ (D q̇² + F |q̇|) dt (a test holds it on a run's log).",
+          "∫ τᵀq̇ − ∫ (D q̇² + F |q̇|) dt without stops (a test holds it on a run's log).",
           {0.0, 1e6, false, "N m s/rad", ""}),
       row("plant.joint_friction", "vector or scalar ≥ 0", "none",
           "Coulomb friction of the arm's joints, F_i [N m]: a torque of at most F_i against the joint's "
@@ -363,8 +363,9 @@ std::vector<KeyInfo> judgementKeys() {
           "meanwhile; a restarted Theorem 1 controller starts its filter afresh and brings the arm "
           "back from wherever the gap left it. That it does is what the tests show for the shipped "
           "configs; the paper's *global* result is about the continuous-time loop, and the sampled 1 "
-          "kHz loop is only covered locally, by the sampled-data check (`check-gains`; "
-          "docs/architecture.md), so a gap that throws the arm far enough can leave it outside what "
+          "kHz loop is only covered locally, by the linearised sampled-data check, and from three "
+          "starts by the simulated one (`check-gains`; docs/architecture.md), so a gap that throws the arm "
+          "far enough can leave it outside what "
           "the implementation recovers from. In lockstep the plant waits, re-sending its position, and "
           "the actuator re-sends its last state (which a fresh cascaded controller needs) until the "
           "new controller answers; the launcher sends the plant a SIGCONT when it restarts a process, "

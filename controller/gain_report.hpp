@@ -33,8 +33,9 @@ struct GainReport {
   /// the continuous-time conditions above say nothing about it.
   SampledDataCheck sampled;
   /// The sampled loop simulated against a fine-rate one, when the caller ran
-  /// it (wiring::simulateSampledData: check-gains and run do; the processes
-  /// read it from gains.json). Printed first: it is the verdict.
+  /// it (wiring::simulateSampledData: check-gains does; lagrange run does not
+  /// simulate before a run, so its gains.json carries none). Printed first:
+  /// it is the verdict.
   std::optional<SampledSimulation> simulated;
   /// Set when no stability condition is known for the controller (one
   /// registered outside the paper): why nothing was checked. The fields

@@ -105,7 +105,8 @@ json simulationJson(const SampledSimulation& c) {
                       {"fine_time", optionalNumber(s.fine_time)},
                       {"sampled_error", number(s.sampled_error)},
                       {"fine_error", number(s.fine_error)},
-                      {"verdict", s.verdict}});
+                      {"verdict", s.verdict},
+                      {"initial_error", number(s.initial_error)}});
   return {{"rate", number(c.rate)},
           {"fine_rate", number(c.fine_rate)},
           {"confirmed_at", optionalNumber(c.confirmed_at)},
@@ -129,7 +130,8 @@ SampledSimulation simulationFrom(const json& j) {
     c.starts.push_back({s.at("what").get<std::string>(), s.at("sampled_status").get<std::string>(),
                         s.at("fine_status").get<std::string>(), optionalFrom(s.at("sampled_time")),
                         optionalFrom(s.at("fine_time")), numberFrom(s.at("sampled_error")),
-                        numberFrom(s.at("fine_error")), s.at("verdict").get<std::string>()});
+                        numberFrom(s.at("fine_error")), s.at("verdict").get<std::string>(),
+                        numberFrom(s.at("initial_error"))});
   c.verdict = j.at("verdict").get<std::string>();
   c.why = j.at("why").get<std::string>();
   c.wall_time = numberFrom(j.at("wall_time"));

@@ -321,8 +321,9 @@ SampledDataCheck check(const config::Scenario& s) {
   // friction, stops, a payload or model error is another loop, and the check
   // does not judge it.
   const config::PlantConfig& p = s.plant;
-  if (p.joint_damping || p.joint_friction || p.rotor_damping || p.rotor_friction || p.urdf_dynamics ||
-      p.joint_limits || (p.payload && p.payload->mass > 0.0) ||
+  auto any = [](const std::optional<Eigen::VectorXd>& v) { return v && (v->array() > 0.0).any(); };
+  if (any(p.joint_damping) || any(p.joint_friction) || any(p.rotor_damping) || any(p.rotor_friction) ||
+      p.urdf_dynamics || p.joint_limits || (p.payload && p.payload->mass > 0.0) ||
       (p.model_error &&
        (p.model_error->mass > 0.0 || p.model_error->inertia > 0.0 || p.model_error->com > 0.0))) {
     c.verdict = "not assessed";

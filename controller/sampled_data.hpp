@@ -95,13 +95,14 @@ struct SampledSimulation {
   /// One start: where from, and what each loop did.
   struct Start {
     std::string what;            ///< "the initial state", "seeded state 1", ...
-    std::string sampled_status;  ///< "completed" or "diverged"
+    std::string sampled_status;  ///< "completed", or "diverged" (the simulation was stopped)
     std::string fine_status;
     std::optional<double> sampled_time;  ///< convergence time [s]; none: not within the run
     std::optional<double> fine_time;
     double sampled_error = 0.0;  ///< RMS of ||q~|| over the last second [rad]
     double fine_error = 0.0;
-    std::string verdict;  ///< as the overall one, for this start
+    std::string verdict;         ///< as the overall one, for this start
+    double initial_error = 0.0;  ///< ||q(0) - q_d(0)|| [rad]
   };
 
   double rate = 0.0;       ///< the configured rate [Hz]

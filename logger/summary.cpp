@@ -62,32 +62,6 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
       {"one_period_delay", sd.one_period_delay},
       {"method", "estimate: the discretised closed loop linearised along the reference"},
   };
-  if (g.simulated) {
-    const controller::SampledSimulation& c = *g.simulated;
-    json starts = json::array();
-    auto time = [](const std::optional<double>& t) { return t ? json(*t) : json(nullptr); };
-    for (const auto& st : c.starts)
-      starts.push_back({{"what", st.what},
-                        {"verdict", st.verdict},
-                        {"sampled_status", st.sampled_status},
-                        {"fine_status", st.fine_status},
-                        {"sampled_time", time(st.sampled_time)},
-                        {"fine_time", time(st.fine_time)},
-                        {"sampled_error", st.sampled_error},
-                        {"fine_error", st.fine_error}});
-    j["sampled_simulation"] = {
-        {"rate", c.rate},
-        {"verdict", c.verdict},
-        {"why", c.why},
-        {"fine_rate", c.fine_rate},
-        {"confirmed_at", time(c.confirmed_at)},
-        {"one_period_delay", c.one_period_delay},
-        {"starts", starts},
-        {"method",
-         "evidence from these states: the loop as configured simulated in process against the same loop at "
-         "fine_rate with exact sensors"},
-    };
-  }
   return j;
 }
 }  // namespace

@@ -279,11 +279,13 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
       UrdfJointProperties props;
       std::ostringstream unused;
       if (joint.limits) {
-        // urdfdom reads an absent effort or velocity as 0; a limit of 0 would
-        // stop the joint, so 0 is taken as "not given".
+        // urdfdom reads an absent lower or upper as 0, and files write
+        // lower = upper = 0 for "no limits" (robots/double_pendulum.urdf): a
+        // stop is taken only from lower < upper. An effort or velocity of 0
+        // would stop the joint, so 0 is taken as "not given" too.
         if (joint.limits->effort > 0.0) props.effort = joint.limits->effort;
         if (joint.limits->velocity > 0.0) props.velocity = joint.limits->velocity;
-        if (joint.type == urdf::Joint::REVOLUTE) {
+        if (joint.type == urdf::Joint::REVOLUTE && joint.limits->lower < joint.limits->upper) {
           props.lower = joint.limits->lower;
           props.upper = joint.limits->upper;
           unused << " <limit lower=" << joint.limits->lower << " upper=" << joint.limits->upper << ">";
@@ -300,7 +302,7 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
       if (!unused.str().empty())
         impl->notes.push_back("joint '" + joint.name + "':" + unused.str() +
                               " not in the controllers' model (lossless, eq. 10, without joint limits); the "
-                              "plant applies them with plant.urdf_dynamics and plant.joint_limits");
+                              "plant applies them only when asked (plant.urdf_dynamics, plant.joint_limits)");
     }
     impl->chain.addSegment(KDL::Segment(link.name, kdl_joint, origin, inertia));
   }
@@ -390,7 +392,8 @@ Eigen::Isometry3d UrdfArm::tipFrame(const Eigen::VectorXd& q) const {
   fk.JntToCart(toKdl(q), tip);
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out.linear()(r, c) = tip.M(static_cast<unsigned>(r), static_cast<unsigned>(c));
+    for (int c = 0; c < 3; ++c)
+      out.linear()(r, c) = tip.M(static_cast<unsigned>(r), static_cast<unsigned>(c));
   out.translation() = toEigen(tip.p);
   return out;
 }

@@ -24,11 +24,11 @@ Eigen::Vector3d hingeAxis(dJointID hinge) {
 }  // namespace
 
 JointEffects::JointEffects(dWorldID world, const std::vector<dJointID>& hinges, const JointLosses& losses,
-                           const JointStops& stops, const Eigen::VectorXd& q)
+                           const JointStops& stops, const Eigen::VectorXd& q, const std::string& label)
     : hinges_(hinges), stops_(stops) {
   const size_t n = hinges.size();
-  checkPerJoint(losses.damping, n, "joint damping");
-  checkPerJoint(losses.friction, n, "joint friction");
+  checkPerJoint(losses.damping, n, label + " damping");
+  checkPerJoint(losses.friction, n, label + " friction");
   if (stops.any() &&
       (stops.lower.size() != static_cast<Eigen::Index>(n) ||
        stops.upper.size() != static_cast<Eigen::Index>(n) ||
@@ -40,13 +40,10 @@ JointEffects::JointEffects(dWorldID world, const std::vector<dJointID>& hinges, 
     if (losses.damping.size() > 0 && losses.damping(k) > 0.0)
       motors_.push_back(motorOn(world, static_cast<int>(i), dInfinity, 1.0 / losses.damping(k)));
     if (losses.friction.size() > 0 && losses.friction(k) > 0.0)
-      motors_.push_back(motorOn(world, static_cast<int>(i), losses.friction(k), 0.0));
+      motors_.push_back(motorOn(world, static_cast<int>(i), losses.friction(k), std::nullopt));
   }
   if (stops_.any()) {
-    for (dJointID h : hinges_) {
-      dJointSetHingeParam(h, dParamBounce, 0.0);
-      dJointSetHingeParam(h, dParamStopCFM, 0.0);
-    }
+    for (dJointID h : hinges_) dJointSetHingeParam(h, dParamBounce, 0.0);
     beforeStep(q);
   }
 }
@@ -55,7 +52,7 @@ JointEffects::~JointEffects() {
   for (Motor& m : motors_) dJointDestroy(m.amotor);
 }
 
-JointEffects::Motor JointEffects::motorOn(dWorldID world, int joint, double fmax, double cfm) {
+JointEffects::Motor JointEffects::motorOn(dWorldID world, int joint, double fmax, std::optional<double> cfm) {
   dJointID hinge = hinges_[static_cast<size_t>(joint)];
   Motor m{joint, dJointCreateAMotor(world, nullptr), std::make_unique<dJointFeedback>()};
   dJointAttach(m.amotor, dJointGetBody(hinge, 0), dJointGetBody(hinge, 1));
@@ -65,7 +62,10 @@ JointEffects::Motor JointEffects::motorOn(dWorldID world, int joint, double fmax
   dJointSetAMotorAxis(m.amotor, 0, 1, axis.x(), axis.y(), axis.z());  // fixed in the moving body
   dJointSetAMotorParam(m.amotor, dParamVel, 0.0);
   dJointSetAMotorParam(m.amotor, dParamFMax, fmax);
-  dJointSetAMotorParam(m.amotor, dParamCFM, cfm);
+  // The friction motor keeps the world's CFM (1e-10): a little regularisation,
+  // since its row and a stop's on the same axis would otherwise make the LCP
+  // singular when a rubbing joint rests on its stop.
+  if (cfm) dJointSetAMotorParam(m.amotor, dParamCFM, *cfm);
   dJointSetFeedback(m.amotor, m.feedback.get());
   return m;
 }

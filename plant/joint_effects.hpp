@@ -10,7 +10,7 @@
 ///    makes the motor's torque -D q' with q' the rate at the end of the step
 ///    (dWorldStep solves J v' = -cfm lambda): implicit, so stable for any D
 ///    and step, where an explicit -D q' would blow up once D h / I > 2;
-///  - Coulomb friction F: force limit F, no mixing: the torque that stops the
+///  - Coulomb friction F: force limit F, the world's tiny mixing: the torque that stops the
 ///    joint if at most F does (stiction), else F against the motion -- what
 ///    an LCP solves well, with no sign() discontinuity to chatter on.
 /// Each motor reports the torque it applied (dJointSetFeedback), so the
@@ -27,6 +27,8 @@
 
 #include <Eigen/Dense>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace lagrange::plant {
@@ -49,8 +51,9 @@ class JointEffects {
   /// @param hinges the joints, each attached (moving body, parent or world)
   /// @param q the joints' continuous angles now (for the stops' wrap)
   /// @throws std::invalid_argument on a size mismatch or a negative, non-finite value
+  /// @param label names the joints in errors ("joint", "rotor")
   JointEffects(dWorldID world, const std::vector<dJointID>& hinges, const JointLosses& losses,
-               const JointStops& stops, const Eigen::VectorXd& q);
+               const JointStops& stops, const Eigen::VectorXd& q, const std::string& label = "joint");
   ~JointEffects();
   JointEffects(const JointEffects&) = delete;
   JointEffects& operator=(const JointEffects&) = delete;
@@ -68,7 +71,7 @@ class JointEffects {
     dJointID amotor;
     std::unique_ptr<dJointFeedback> feedback;
   };
-  Motor motorOn(dWorldID world, int joint, double fmax, double cfm);
+  Motor motorOn(dWorldID world, int joint, double fmax, std::optional<double> cfm);
 
   std::vector<dJointID> hinges_;
   std::vector<Motor> motors_;

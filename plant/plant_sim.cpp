@@ -102,15 +102,21 @@ PlantSim::PlantSim(const ArmBuilder& arm, const PlantState& initial, double phys
     }
     motor_q_ = initial.motor_q;
   }
-  if (joints.damping.size() > 0 || joints.friction.size() > 0 || joints.lower.size() > 0)
-    ode_->joint_effects = std::make_unique<JointEffects>(ode_->world, ode_->arm->hinges(),
-                                                         JointLosses{joints.damping, joints.friction},
-                                                         JointStops{joints.lower, joints.upper}, q_);
-  if (joints.rotor_damping.size() > 0 || joints.rotor_friction.size() > 0) {
-    if (!flexible_) throw std::invalid_argument("plant: rotor damping or friction without flexible joints");
-    ode_->rotor_effects = std::make_unique<JointEffects>(
-        ode_->world, ode_->rotor_hinges, JointLosses{joints.rotor_damping, joints.rotor_friction},
-        JointStops{}, motor_q_);
+  try {
+    if (joints.damping.size() > 0 || joints.friction.size() > 0 || joints.lower.size() > 0)
+      ode_->joint_effects = std::make_unique<JointEffects>(ode_->world, ode_->arm->hinges(),
+                                                           JointLosses{joints.damping, joints.friction},
+                                                           JointStops{joints.lower, joints.upper}, q_);
+    if (joints.rotor_damping.size() > 0 || joints.rotor_friction.size() > 0) {
+      if (!flexible_) throw std::invalid_argument("plant: rotor damping or friction without flexible joints");
+      ode_->rotor_effects = std::make_unique<JointEffects>(
+          ode_->world, ode_->rotor_hinges, JointLosses{joints.rotor_damping, joints.rotor_friction},
+          JointStops{}, motor_q_, "rotor");
+    }
+  } catch (...) {  // the destructor does not run: give ODE back here
+    ode_.reset();
+    releaseOde();
+    throw;
   }
 }
 

@@ -110,7 +110,8 @@ class PlantSim {
   PlantEnergy energy() const;
   /// Energy the damping and friction of the joints and rotors took since the
   /// start [J] (ODE's applied torques times the rates, step by step); 0
-  /// without them. With it the balance holds: E(t) - E(0) = work of the inputs - dissipated.
+  /// without them. With it the balance holds without stops: E(t) - E(0) =
+  /// work of the inputs - dissipated (an inelastic stop takes energy too).
   double dissipated() const;
   double time() const { return time_; }
   /// How far the joints have come apart in ODE's maximal coordinates [m] (ArmWorld::jointSeparation).

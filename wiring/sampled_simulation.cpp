@@ -1,5 +1,6 @@
 #include "wiring/sampled_simulation.hpp"
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include "model/reference.hpp"
+#include "plant/scenario_plant.hpp"
 #include "util/error.hpp"
 #include "wiring/inproc_runner.hpp"
 
@@ -25,7 +27,8 @@ using controller::SampledSimulation;
 // The fine rate's cap, as a multiple of the configured rate.
 constexpr int kMaxRefinement = 64;
 
-// One loop's outcome.
+// One loop's outcome: "completed" or "diverged" (the simulation was stopped),
+// its convergence time and its RMS error over the last second.
 struct Loop {
   std::string status;
   std::optional<double> time;
@@ -34,7 +37,8 @@ struct Loop {
 
 Loop simulate(const config::Scenario& s) {
   const InProcessOutcome o = simulateInProcess(s, nullptr, nullptr, nullptr);
-  return {o.status, o.tracking.convergence_time, o.tracking.rms_last_second};
+  return {o.status == "completed" ? "completed" : "diverged", o.tracking.convergence_time,
+          o.tracking.rms_last_second};
 }
 
 // Gaussian draws from SplitMix64 (portable: std:: distributions differ between libraries).
@@ -60,15 +64,17 @@ class Draws {
 struct StartState {
   std::string what;
   config::InitialState state;
+  double error = 0.0;  ///< ||q(0) - q_d(0)|| [rad]
 };
 
 // The initial state, and kSeededStates more with the same ||q(0) - q_d(0)||
 // in other directions (the rates as configured; the motors moved with the links).
 std::vector<StartState> startsOf(const config::Scenario& s) {
-  std::vector<StartState> out = {{"the initial state", s.initial_state}};
   const model::Reference reference(s.reference);
   const Eigen::VectorXd qd0 = reference.evaluate(0.0, 0).q();
-  const double norm = (s.initial_state.q - qd0).norm();
+  std::vector<StartState> out = {{"the initial state", s.initial_state, (s.initial_state.q - qd0).norm()}};
+  const plant::JointPhysics stops = plant::jointPhysicsFor(s);  // a seeded start stays inside the stops
+  const double norm = out.front().error;
   if (!(norm > 0.0)) return out;
   Draws draws(1);
   for (int k = 1; k <= kSeededStates; ++k) {
@@ -76,7 +82,10 @@ std::vector<StartState> startsOf(const config::Scenario& s) {
     for (int i = 0; i < s.dof(); ++i) direction(i) = draws.gaussian();
     StartState start{"seeded state " + std::to_string(k), s.initial_state};
     start.state.q = qd0 + norm * direction.normalized();
+    if (stops.lower.size() == s.dof())
+      start.state.q = start.state.q.cwiseMax(stops.lower).cwiseMin(stops.upper);
     if (start.state.motor_q.size() == s.dof()) start.state.motor_q += start.state.q - s.initial_state.q;
+    start.error = (start.state.q - qd0).norm();
     out.push_back(start);
   }
   return out;
@@ -86,13 +95,18 @@ std::vector<StartState> startsOf(const config::Scenario& s) {
 config::Scenario sampledScenario(const config::Scenario& s, const config::InitialState& start) {
   config::Scenario out = s;
   out.initial_state = start;
-  if (s.mode == config::Mode::kRealtime) {
+  if (s.mode == config::Mode::kRealtime) {  // every measurement a sample late
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.dof());
     if (!out.sensors) {
       out.sensors = config::SensorsConfig{};
-      out.sensors->position.counts_per_revolution = Eigen::VectorXd::Zero(s.dof());
-      out.sensors->position.noise_sigma = Eigen::VectorXd::Zero(s.dof());
+      out.sensors->position = {zero, zero, 0, {}};
     }
     ++out.sensors->position.delay;
+    if (out.sensors->velocity) ++out.sensors->velocity->delay;
+    if (s.flexible) {
+      if (!out.sensors->motor) out.sensors->motor = config::JointSensorConfig{zero, zero, 0, {}};
+      ++out.sensors->motor->delay;
+    }
   }
   return out;
 }
@@ -101,10 +115,12 @@ config::Scenario sampledScenario(const config::Scenario& s, const config::Initia
 config::Scenario fineScenario(const config::Scenario& s, const config::InitialState& start, double rate) {
   config::Scenario out = s;
   out.initial_state = start;
-  const double period = 1.0 / rate;
   out.plant.publish_rate = rate;
+  // The actuator as fast as this rate, or as configured when that is faster;
+  // the physics step the scenario's, or less so that it divides the actuator's period.
+  out.actuator.rate = rate * std::max(1.0, std::ceil(s.actuator.rate / rate - 1e-9));
+  const double period = 1.0 / out.actuator.rate;
   out.plant.physics_step = period / std::ceil(period / s.plant.physics_step - 1e-9);
-  out.actuator.rate = rate;
   out.sensors.reset();
   if (s.velocitySensor()) {  // a controller that reads the rates reads exact ones
     out.sensors = config::SensorsConfig{};
@@ -133,9 +149,21 @@ std::string seconds(double t) {
 std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, double tolerance,
                                           double period) {
   if (st.fine_status != "completed")
-    return {"not assessed", "the fine-rate loop itself diverged from " + st.what};
+    return {"not assessed", "the fine-rate loop itself was stopped (it diverged) from " + st.what};
   if (st.sampled_status != "completed")
-    return {"diverges", "the sampled loop diverged from " + st.what + ", where the fine-rate loop converged"};
+    return {"diverges", "the sampled loop was stopped (it diverged) from " + st.what +
+                            ", where the fine-rate loop ran to the end"};
+  // Ended farther from the reference than it started, where the fine loop
+  // ended close to it: a loop that runs away without the plant stopping it.
+  if (st.sampled_error > st.initial_error && st.sampled_error > 10.0 * std::max(st.fine_error, tolerance)) {
+    char why[256];
+    std::snprintf(
+        why, sizeof why,
+        "from %s the sampled loop ended farther from the reference than it started (%.3g rad RMS over "
+        "the last second, from %.3g rad), where the fine-rate loop ended at %.3g rad",
+        st.what.c_str(), st.sampled_error, st.initial_error, st.fine_error);
+    return {"diverges", why};
+  }
   const double slack = SampledSimulation::kSlack;
   if (st.fine_time) {
     if (st.sampled_time && *st.sampled_time <= slack * *st.fine_time + 2.0 * period) return {"adequate", ""};
@@ -149,7 +177,7 @@ std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, do
   char why[256];
   std::snprintf(
       why, sizeof why,
-      "from %s neither loop reached the tolerance, and the sampled loop's steady-state error "
+      "from %s the fine-rate loop did not reach the tolerance, and the sampled loop's steady-state error "
       "(%.3g rad RMS over the last second) is more than %.0f %% above the fine-rate loop's (%.3g rad)",
       st.what.c_str(), st.sampled_error, (slack - 1) * 100, st.fine_error);
   return {"inadequate", why};
@@ -159,63 +187,98 @@ std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, do
 // at a time, and returns what each did, in order. Processes, not threads:
 // ODE's default threading object is one per process, and the models a
 // scenario shares between copies are not all safe to step from two threads.
-std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int processes) {
-  std::vector<Loop> out(scenarios.size());
-  struct Child {
-    pid_t pid;
-    int fd;
-    size_t index;
-  };
-  std::vector<Child> running;
-  auto collect = [&](const Child& c) {
-    // status (0 completed, 1 diverged), has_time, time, error
-    double record[4] = {1, 0, 0, 0};
-    size_t got = 0;
-    while (got < sizeof record) {
-      const ssize_t n = read(c.fd, reinterpret_cast<char*>(record) + got, sizeof record - got);
-      if (n <= 0) break;
-      got += static_cast<size_t>(n);
+// A child that throws or is killed (ODE aborts on a state it cannot
+// normalise) counts as a loop that diverged.
+class Children {
+ public:
+  ~Children() {  // on an error midway: no child outlives the check
+    for (const Child& c : running_) {
+      kill(c.pid, SIGKILL);
+      close(c.fd);
+      waitFor(c.pid);
     }
-    close(c.fd);
-    int wstatus = 0;
-    waitpid(c.pid, &wstatus, 0);
-    if (got != sizeof record || !WIFEXITED(wstatus) || WEXITSTATUS(wstatus) != 0)
-      throw lagrange::RuntimeFault(
-          "sampled-data simulation: a simulation process failed (" +
-          std::string(WIFSIGNALED(wstatus) ? strsignal(WTERMSIG(wstatus)) : "no result") + ")");
-    out[c.index] = {record[0] == 0 ? "completed" : "diverged",
-                    record[1] != 0 ? std::optional<double>(record[2]) : std::nullopt, record[3]};
-  };
-  for (size_t i = 0; i < scenarios.size(); ++i) {
-    if (static_cast<int>(running.size()) >= processes) {
-      collect(running.front());
-      running.erase(running.begin());
-    }
+  }
+  bool full(int processes) const { return static_cast<int>(running_.size()) >= processes; }
+  bool empty() const { return running_.empty(); }
+
+  void start(const config::Scenario& scenario, size_t index) {
     int fds[2];
     if (pipe(fds) != 0)
       throw lagrange::RuntimeFault(std::string("sampled-data simulation: pipe: ") + strerror(errno));
     std::cout.flush();
     std::cerr.flush();
     const pid_t pid = fork();
-    if (pid < 0)
+    if (pid < 0) {
+      close(fds[0]);
+      close(fds[1]);
       throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
+    }
     if (pid == 0) {
       close(fds[0]);
-      int code = 0;
+      double record[4] = {1.0, 0.0, 0.0, 0.0};  // status (0 completed), has_time, time, error
       try {
-        const Loop loop = simulate(scenarios[i]);
-        const double record[4] = {loop.status == "completed" ? 0.0 : 1.0, loop.time ? 1.0 : 0.0,
-                                  loop.time.value_or(0.0), loop.error};
-        if (write(fds[1], record, sizeof record) != static_cast<ssize_t>(sizeof record)) code = 1;
-      } catch (...) {
-        code = 1;
+        const Loop loop = simulate(scenario);
+        record[0] = loop.status == "completed" ? 0.0 : 1.0;
+        record[1] = loop.time ? 1.0 : 0.0;
+        record[2] = loop.time.value_or(0.0);
+        record[3] = loop.error;
+      } catch (...) {  // the loop failed in a core: it diverged
       }
-      _exit(code);
+      const bool sent = write(fds[1], record, sizeof record) == static_cast<ssize_t>(sizeof record);
+      _exit(sent ? 0 : 1);
     }
     close(fds[1]);
-    running.push_back({pid, fds[0], i});
+    running_.push_back({pid, fds[0], index});
   }
-  for (const Child& c : running) collect(c);
+
+  /// Waits for the oldest child; its index and loop.
+  std::pair<size_t, Loop> finishOldest() {
+    const Child c = running_.front();
+    running_.erase(running_.begin());
+    double record[4] = {1.0, 0.0, 0.0, 0.0};
+    size_t got = 0;
+    while (got < sizeof record) {
+      const ssize_t n = read(c.fd, reinterpret_cast<char*>(record) + got, sizeof record - got);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      got += static_cast<size_t>(n);
+    }
+    close(c.fd);
+    waitFor(c.pid);
+    if (got != sizeof record) record[0] = 1.0;  // killed before it could say: diverged
+    return {c.index,
+            {record[0] == 0.0 ? "completed" : "diverged",
+             record[1] != 0.0 ? std::optional<double>(record[2]) : std::nullopt, record[3]}};
+  }
+
+ private:
+  struct Child {
+    pid_t pid;
+    int fd;
+    size_t index;
+  };
+  static void waitFor(pid_t pid) {
+    int wstatus = 0;
+    while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+    }
+  }
+  std::vector<Child> running_;
+};
+
+std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int processes) {
+  std::vector<Loop> out(scenarios.size());
+  Children children;
+  for (size_t i = 0; i < scenarios.size(); ++i) {
+    if (children.full(processes)) {
+      const auto [index, loop] = children.finishOldest();
+      out[index] = loop;
+    }
+    children.start(scenarios[i], i);
+  }
+  while (!children.empty()) {
+    const auto [index, loop] = children.finishOldest();
+    out[index] = loop;
+  }
   return out;
 }
 
@@ -267,7 +330,8 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
   for (size_t i = 0; i < starts.size(); ++i) {
     SampledSimulation::Start st{
         starts[i].what,     sampled_loops[i].status, fine_loops[i].status, sampled_loops[i].time,
-        fine_loops[i].time, sampled_loops[i].error,  fine_loops[i].error,  ""};
+        fine_loops[i].time, sampled_loops[i].error,  fine_loops[i].error,  "",
+        starts[i].error};
     const auto [verdict, why] = judge(st, s.metrics.tolerance, 1.0 / out.rate);
     st.verdict = verdict;
     if (rank(verdict) > rank(out.verdict)) {
@@ -280,11 +344,13 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
     out.why =
         "from every start the sampled loop converged within " +
         std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
-        " % of the fine-rate loop's time (or, where neither reached the tolerance, its steady-state error)";
-  if (!out.confirmed_at && out.verdict == "adequate") {
-    out.verdict = "not assessed";
+        " % of the fine-rate loop's time (or, where the fine-rate loop did not reach the tolerance, its "
+        "steady-state error was within as much)";
+  if (!out.confirmed_at) {
+    if (out.verdict == "adequate") out.verdict = "not assessed";
     out.why = "no fine rate up to " + std::to_string(kMaxRefinement) +
-              " x the configured one agreed with the next finer: no loop stands for continuous time";
+              " x the configured one agreed with the next finer, so no loop stands for continuous time; " +
+              out.why;
   }
   out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return out;

@@ -161,7 +161,7 @@ TEST(SampledDataCheck, SeesTheRealtimeWiringsDelay) {
             std::string::npos)
       << realtime.output;
   EXPECT_NE(realtime.output.find(
-                "sampled-data check at 1000 Hz with the realtime wiring's one-period delay: INADEQUATE"),
+                "sampled-data check at 1000 Hz with the realtime wiring's one-period delay: DIVERGES"),
             std::string::npos)
       << realtime.output;
   EXPECT_NE(realtime.output.find("Hz would suffice"), std::string::npos) << realtime.output;

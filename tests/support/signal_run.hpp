@@ -86,8 +86,12 @@ inline SignalledRun signalAtSimTime(const std::string& dir, const std::string& c
                                     const std::string& process, int sig, const std::string& args,
                                     double sim_time) {
   return signalWhen(dir, config, process, sig, args, [sim_time](const std::filesystem::path& log) {
-    const std::vector<TruthSample> truth = readTruth(log.string());
-    return !truth.empty() && truth.back().t >= sim_time;
+    try {  // the log is being written: a half-written last event is left for the next poll
+      const std::vector<TruthSample> truth = readTruth(log.string());
+      return !truth.empty() && truth.back().t >= sim_time;
+    } catch (const std::exception&) {
+      return false;
+    }
   });
 }
 

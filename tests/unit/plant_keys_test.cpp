@@ -73,6 +73,16 @@ TEST(PlantKeys, TheUrdfsLimitsAsStopsAndItsEffortsAsTheSaturation) {
   EXPECT_NE(resolved.find("saturation: [87, 87, 87, 87, 12, 12, 12]"), std::string::npos) << resolved;
 }
 
+TEST(PlantKeys, AUrdfLimitOfZeroToZeroIsNoStop) {
+  // robots/double_pendulum.urdf writes <limit lower="0" upper="0">: no limits, not a locked joint.
+  const config::Scenario s =
+      config::loadScenario(kConfigs + "/double_pendulum_flexible.yaml", {"plant.joint_limits=true"});
+  const plant::JointPhysics p = plant::jointPhysicsFor(s);
+  ASSERT_EQ(p.lower.size(), 2);
+  EXPECT_TRUE(std::isinf(p.lower(0)) && std::isinf(p.upper(0)) && std::isinf(p.lower(1)) &&
+              std::isinf(p.upper(1)));
+}
+
 TEST(PlantKeys, RefusesWhatDoesNotFitTheArm) {
   const std::string rigid = readFile(kRigid);
   EXPECT_NE(errorOf(rigid, {"plant.joint_damping=-0.1"}).find("plant.joint_damping: expected numbers >= 0"),

@@ -12,8 +12,10 @@
 namespace lagrange::tools {
 
 /// Prints the report (and with `suggest` the paper's gains and their report).
-/// Exit 0 when the conditions hold, 1 when one is violated, the sampled loop
-/// is unstable or no suggestion passes, 2 for a bad scenario.
+/// With `simulate`, the sampled-data verdict by simulation too
+/// (wiring/sampled_simulation.hpp). Exit 0 when the conditions hold, 1 when
+/// one is violated, the sampled loop diverges in simulation or is unstable
+/// near the reference, or no suggestion passes, 2 for a bad scenario.
 int checkGainsCommand(const std::string& config_path, const std::vector<std::string>& overrides, bool suggest,
                       bool simulate = true);
 
