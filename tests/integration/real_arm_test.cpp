@@ -32,8 +32,7 @@ TEST(RealArm, ALossyArmsLoggedEnergyFallsByWhatItsDampingAndFrictionTake) {
   // tens of rad/s). Each period's torque is held flat (one actuator step a
   // period), so its work is tau . (q(k) - q(k-1)) exactly; the losses' power
   // D q'^2 + F |q'| is integrated by the trapezoid rule over the 1 ms samples.
-  auto balance = [](const std::vector<TruthSample>& run, const Eigen::Vector2d& d,
-                    const Eigen::Vector2d& f) {
+  auto balance = [](const std::vector<TruthSample>& run, const Eigen::Vector2d& d, const Eigen::Vector2d& f) {
     struct {
       double change, work, lost;
     } b{run.back().energy - run[200].energy, 0.0, 0.0};
