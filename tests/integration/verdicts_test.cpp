@@ -77,9 +77,10 @@ TEST(SampledDataCheck, SeesTheJointSensorsDelay) {
   const RunResult check = lagrange("check-gains " + quote(kConfigs + "/panda_theorem1.yaml") + late);
   EXPECT_EQ(check.output.find("sampled-data check at 1000 Hz: ADEQUATE"), std::string::npos) << check.output;
   // Simulated, the late sensor's loop runs away: it ends farther off than it started.
-  EXPECT_NE(check.output.find("sampled-data check at 1000 Hz: DIVERGES: from the initial state the sampled loop "
-                              "ended farther from the reference than it started"),
-            std::string::npos)
+  EXPECT_NE(
+      check.output.find("sampled-data check at 1000 Hz: DIVERGES: from the initial state the sampled loop "
+                        "ended farther from the reference than it started"),
+      std::string::npos)
       << check.output;
   EXPECT_EQ(check.exit_code, 1);
   EXPECT_NE(check.output.find("linearised check at 1000 Hz: UNSTABLE"), std::string::npos) << check.output;
