@@ -3,25 +3,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "util/splitmix.hpp"
+
 namespace lagrange::model {
 
 namespace {
 
-// SplitMix64: a portable stream (std:: distributions differ between libraries).
-class Draws {
- public:
-  explicit Draws(std::uint64_t seed) : state_(seed) {}
-  double uniform() {  // in [-1, 1)
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53 * 2.0 - 1.0;
-  }
-
- private:
-  std::uint64_t state_;
-};
+using Draws = util::SplitMix64Stream;
 
 void validate(const std::optional<Payload>& payload, const std::optional<ModelError>& error) {
   if (payload && !(payload->mass >= 0.0 && std::isfinite(payload->mass) && payload->com.allFinite()))
@@ -39,7 +27,7 @@ struct Factors {
 };
 Factors draw(Draws* draws, const std::optional<ModelError>& error) {
   if (!error) return {};
-  const double um = draws->uniform(), ui = draws->uniform(), uc = draws->uniform();
+  const double um = draws->symmetric(), ui = draws->symmetric(), uc = draws->symmetric();
   return {1.0 + error->mass * um, 1.0 + error->inertia * ui, 1.0 + error->com * uc};
 }
 

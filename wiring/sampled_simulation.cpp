@@ -16,6 +16,7 @@
 #include "model/reference.hpp"
 #include "plant/scenario_plant.hpp"
 #include "util/error.hpp"
+#include "util/splitmix.hpp"
 #include "wiring/inproc_runner.hpp"
 
 namespace lagrange::wiring {
@@ -41,26 +42,6 @@ Loop simulate(const config::Scenario& s) {
           o.tracking.rms_last_second};
 }
 
-// Gaussian draws from SplitMix64 (portable: std:: distributions differ between libraries).
-class Draws {
- public:
-  explicit Draws(std::uint64_t seed) : state_(seed) {}
-  double gaussian() {
-    const double u1 = (static_cast<double>(next() >> 11) + 0.5) * 0x1.0p-53;
-    const double u2 = static_cast<double>(next() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-  }
-
- private:
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  std::uint64_t state_;
-};
-
 struct StartState {
   std::string what;
   config::InitialState state;
@@ -76,7 +57,7 @@ std::vector<StartState> startsOf(const config::Scenario& s) {
   const plant::JointPhysics stops = plant::jointPhysicsFor(s);  // a seeded start stays inside the stops
   const double norm = out.front().error;
   if (!(norm > 0.0)) return out;
-  Draws draws(1);
+  util::SplitMix64Stream draws(1);
   for (int k = 1; k <= kSeededStates; ++k) {
     Eigen::VectorXd direction(s.dof());
     for (int i = 0; i < s.dof(); ++i) direction(i) = draws.gaussian();

@@ -2,22 +2,19 @@
 
 #include <cmath>
 
+#include "util/splitmix.hpp"
+
 namespace lagrange::tools {
 
 namespace {
 
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-  return x ^ (x >> 31);
-}
+using util::splitmix64;
 
 std::uint64_t bits(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
   return splitmix64(splitmix64(splitmix64(seed) ^ stream) ^ index);
 }
 
-double toUnit(std::uint64_t b) { return static_cast<double>(b >> 11) * 0x1.0p-53; }
+double toUnit(std::uint64_t b) { return util::unitInterval(b); }
 
 }  // namespace
 
