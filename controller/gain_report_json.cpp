@@ -95,7 +95,9 @@ std::optional<double> optionalFrom(const json& j) {
   return j.is_null() ? std::nullopt : std::optional<double>(numberFrom(j));
 }
 
-json simulationJson(const SampledSimulation& c) {
+}  // namespace
+
+nlohmann::json sampledSimulationJson(const SampledSimulation& c) {
   json starts = json::array();
   for (const SampledSimulation::Start& s : c.starts)
     starts.push_back({{"what", s.what},
@@ -118,6 +120,8 @@ json simulationJson(const SampledSimulation& c) {
           {"why", c.why},
           {"wall_time", number(c.wall_time)}};
 }
+namespace {
+
 SampledSimulation simulationFrom(const json& j) {
   SampledSimulation c;
   c.rate = numberFrom(j.at("rate"));
@@ -152,7 +156,7 @@ json reportJson(const GainReport& r) {
             {"eta", nullptr},
             {"warnings", r.warnings},
             {"sampled", sampledJson(r.sampled)},
-            {"simulated", r.simulated ? simulationJson(*r.simulated) : json(nullptr)},
+            {"simulated", r.simulated ? sampledSimulationJson(*r.simulated) : json(nullptr)},
             {"unchecked", r.unchecked ? json(*r.unchecked) : json(nullptr)}};
   if (r.eta)
     j["eta"] = {{"eta1", number(r.eta->eta1)}, {"eta2", number(r.eta->eta2)}, {"eta3", number(r.eta->eta3)}};

@@ -14,12 +14,17 @@
 /// wrong report. Every number is kept exactly (non-finite ones as "inf",
 /// "-inf", "nan"), so the report read back is the report written.
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "controller/gain_report.hpp"
 
 namespace lagrange::controller {
+
+/// The simulated sampled-data check as JSON (gains.json's `simulated`, and
+/// summary.json's gains.sampled_simulation); non-finite numbers as text.
+nlohmann::json sampledSimulationJson(const SampledSimulation& simulation);
 
 /// The report as the JSON text of OUT/gains.json, for the scenario whose
 /// resolved YAML (config::toYaml) is `scenario_yaml`.

@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include "controller/gain_report_json.hpp"
 #include "controller/paper_section.hpp"
 #include "model/urdf_arm.hpp"
 
@@ -62,6 +63,8 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
       {"one_period_delay", sd.one_period_delay},
       {"method", "estimate: the discretised closed loop linearised along the reference"},
   };
+  // `lagrange run --check-sampled`: the loop simulated against a fine-rate one.
+  if (g.simulated) j["sampled_simulation"] = controller::sampledSimulationJson(*g.simulated);
   return j;
 }
 }  // namespace

@@ -28,13 +28,7 @@ using controller::SampledSimulation;
 // The fine rate's cap, as a multiple of the configured rate.
 constexpr int kMaxRefinement = 64;
 
-// One loop's outcome: "completed" or "diverged" (the simulation was stopped),
-// its convergence time and its RMS error over the last second.
-struct Loop {
-  std::string status;
-  std::optional<double> time;
-  double error = 0.0;
-};
+using Loop = LoopOutcome;
 
 Loop simulate(const config::Scenario& s) {
   const InProcessOutcome o = simulateInProcess(s, nullptr, nullptr, nullptr);
@@ -263,22 +257,18 @@ std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, in
   return out;
 }
 
-}  // namespace
-
-SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
+// The verdict from `starts` (the first the scenario's initial state): the
+// fine rate confirmed by refinement on the first start up to `max_refinement`
+// x the rate, then each start's sampled loop (the first one's given as
+// `known_first` when already run) against its fine loop.
+SampledSimulation check(const config::Scenario& s, const std::vector<StartState>& starts, int max_refinement,
+                        int processes, const std::optional<Loop>& known_first) {
   const auto wall_start = std::chrono::steady_clock::now();
   SampledSimulation out;
   out.rate = s.plant.publish_rate;
   out.duration = s.duration;
   out.tolerance = s.metrics.tolerance;
   out.one_period_delay = s.mode == config::Mode::kRealtime;
-  const int processes = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  if (s.controller.type == "external") {
-    out.verdict = "not assessed";
-    out.why = "an external controller does not run in process, where the check simulates the loop";
-    return out;
-  }
-  const std::vector<StartState> starts = startsOf(s);
 
   // The fine rate, confirmed by refinement on the initial state.
   double fine = 8.0 * out.rate;
@@ -291,19 +281,25 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
       out.confirmed_at = 2.0 * fine;
       break;
     }
-    if (2.0 * fine >= kMaxRefinement * out.rate) break;
+    if (2.0 * fine >= max_refinement * out.rate) break;
     fine *= 2.0;
   }
   out.fine_rate = fine;
 
-  // The sampled loop from every start, the fine one from the seeded starts.
+  // The sampled loop from every start (the first unless known), the fine one
+  // from the others.
   std::vector<config::Scenario> runs;
-  for (const StartState& start : starts) runs.push_back(sampledScenario(s, start.state));
+  for (size_t i = known_first ? 1 : 0; i < starts.size(); ++i)
+    runs.push_back(sampledScenario(s, starts[i].state));
   for (size_t i = 1; i < starts.size(); ++i) runs.push_back(fineScenario(s, starts[i].state, fine));
   const std::vector<Loop> loops = simulateAll(runs, processes);
-  std::vector<Loop> sampled_loops(loops.begin(), loops.begin() + static_cast<long>(starts.size()));
+  std::vector<Loop> sampled_loops;
+  if (known_first) sampled_loops.push_back(*known_first);
+  const size_t simulated_sampled = starts.size() - sampled_loops.size();
+  sampled_loops.insert(sampled_loops.end(), loops.begin(),
+                       loops.begin() + static_cast<long>(simulated_sampled));
   std::vector<Loop> fine_loops = {fine_initial};
-  fine_loops.insert(fine_loops.end(), loops.begin() + static_cast<long>(starts.size()), loops.end());
+  fine_loops.insert(fine_loops.end(), loops.begin() + static_cast<long>(simulated_sampled), loops.end());
 
   const std::vector<std::string> order = {"adequate", "not assessed", "inadequate", "diverges"};
   auto rank = [&](const std::string& v) { return std::find(order.begin(), order.end(), v) - order.begin(); };
@@ -323,18 +319,46 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
   }
   if (out.verdict == "adequate")
     out.why =
-        "from every start the sampled loop converged within " +
+        std::string(starts.size() > 1 ? "from every start the sampled loop" : "the sampled loop") +
+        " converged within " +
         std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
         " % of the fine-rate loop's time (or, where the fine-rate loop did not reach the tolerance, its "
         "steady-state error was within as much)";
   if (!out.confirmed_at) {
     if (out.verdict == "adequate") out.verdict = "not assessed";
-    out.why = "no fine rate up to " + std::to_string(kMaxRefinement) +
+    out.why = "no fine rate up to " + std::to_string(max_refinement) +
               " x the configured one agreed with the next finer, so no loop stands for continuous time; " +
               out.why;
   }
   out.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return out;
+}
+
+SampledSimulation notAssessedExternal(const config::Scenario& s) {
+  SampledSimulation out;
+  out.rate = s.plant.publish_rate;
+  out.duration = s.duration;
+  out.tolerance = s.metrics.tolerance;
+  out.one_period_delay = s.mode == config::Mode::kRealtime;
+  out.verdict = "not assessed";
+  out.why = "an external controller does not run in process, where the check simulates the loop";
+  return out;
+}
+
+}  // namespace
+
+SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
+  if (s.controller.type == "external") return notAssessedExternal(s);
+  const int processes = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return check(s, startsOf(s), kMaxRefinement, processes, std::nullopt);
+}
+
+SampledSimulation judgeRun(const config::Scenario& s, const LoopOutcome& run) {
+  if (s.controller.type == "external") return notAssessedExternal(s);
+  config::Scenario in_process = s;
+  in_process.mode = config::Mode::kInproc;
+  const std::vector<StartState> start = {startsOf(in_process).front()};
+  return check(in_process, start, kRunRefinement, 1, run);
 }
 
 }  // namespace lagrange::wiring

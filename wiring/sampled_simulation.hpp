@@ -30,6 +30,9 @@
 /// it is INADEQUATE. The overall verdict is the worst start's. A controller
 /// that does not run in process (external) is "not assessed".
 
+#include <optional>
+#include <string>
+
 #include "config/scenario.hpp"
 #include "controller/sampled_data.hpp"
 
@@ -40,5 +43,25 @@ inline constexpr int kSeededStates = 2;
 /// The verdict for the scenario at its plant.publish_rate. Runs the
 /// simulations in up to `jobs` child processes at a time (0: one per core).
 controller::SampledSimulation simulateSampledData(const config::Scenario& scenario, int jobs = 0);
+
+/// What one loop did: "completed", or "diverged" (the simulation was
+/// stopped); its convergence time; its RMS error over the last second [rad].
+struct LoopOutcome {
+  std::string status;
+  std::optional<double> time;
+  double error = 0.0;
+};
+
+/// The refinement cap of judgeRun: the fine loop at 8 x the rate, confirmed
+/// at 16 x and no further, so that a row costs a bounded 24 x its own run.
+inline constexpr int kRunRefinement = 16;
+
+/// The verdict for one run already made in process from the scenario's
+/// initial state (a sweep's row: `run` is that loop at the configured rate),
+/// against the fine-rate loop from the same start: 8 x the rate, confirmed at
+/// 16 x (else "not assessed"), in one child process at a time. No seeded
+/// starts: the row is the start. A realtime scenario is judged as the
+/// in-process loop it ran, without the one-period delay.
+controller::SampledSimulation judgeRun(const config::Scenario& scenario, const LoopOutcome& run);
 
 }  // namespace lagrange::wiring

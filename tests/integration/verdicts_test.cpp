@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "support/configs.hpp"
@@ -196,6 +197,42 @@ TEST(SampledDataCheck, SeesTheRealtimeWiringsDelay) {
 
 // --check: a run that misses its stated metric exits 3 naming it; one that
 // meets it exits 0.
+// `lagrange run --check-sampled`: the verdict printed before a lockstep run is
+// the one in summary.json, and the run itself -- the sampled loop from the
+// initial state -- converges when the simulation said it would, within two
+// periods. With --strict, a loop that diverges in simulation is not started.
+TEST(RunCheck, CheckSampledSimulatesBeforeTheRunAndTheRunAgrees) {
+  const std::string out = freshDir("check-sampled");
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", out, "--check-sampled --set duration=3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("sampled-data check at 1000 Hz: ADEQUATE"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("not simulated before this run"), std::string::npos) << r.output;
+  const auto summary = readSummary(out);
+  const auto& simulated = summary["gains"]["sampled_simulation"];
+  ASSERT_TRUE(simulated.is_object()) << summary["gains"].dump();
+  EXPECT_EQ(simulated["verdict"], "adequate");
+  EXPECT_EQ(simulated["starts"][0]["what"], "the initial state");
+  EXPECT_NEAR(simulated["starts"][0]["sampled_time"].get<double>(),
+              summary["tracking"]["convergence_time"].get<double>(), 2e-3);
+
+  const std::string refused = freshDir("check-sampled-strict");
+  const RunResult strict = runScenario(kConfigs + "/rigid_2dof.yaml", refused,
+                                       "--mode inproc --check-sampled --strict --set plant.publish_rate=50 "
+                                       "--set duration=3");
+  EXPECT_EQ(strict.exit_code, 2) << strict.output;
+  EXPECT_NE(strict.output.find("sampled-data check at 50 Hz: DIVERGES"), std::string::npos) << strict.output;
+  EXPECT_NE(
+      strict.output.find("refusing to start (--strict) because the sampled loop diverges in simulation"),
+      std::string::npos)
+      << strict.output;
+  EXPECT_FALSE(std::filesystem::exists(refused + "/summary.json"));
+
+  const RunResult plain = runScenario(kConfigs + "/rigid_2dof.yaml", freshDir("check-sampled-not"),
+                                      "--mode inproc --set duration=1");
+  EXPECT_NE(plain.output.find("sampled-data check: not simulated before this run"), std::string::npos)
+      << plain.output;
+}
+
 TEST(RunCheck, AMissedMetricExits3AndNamesIt) {
   const std::string met = freshDir("checkmet"), missed = freshDir("checkmiss");
   const RunResult ok = runScenario(kConfigs + "/rigid_2dof.yaml", met, "-q --mode inproc --check");

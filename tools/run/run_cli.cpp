@@ -36,6 +36,11 @@ Subcommand addRunCommand(CLI::App& app) {
   cmd->add_option("--lcm-url", run.lcm_url, "LCM URL for the run (default: a fresh udpm port, TTL 0)");
   cmd->add_flag("--strict", run.strict,
                 "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
+  cmd->add_flag(
+      "--check-sampled", run.check_sampled,
+      "Before the run, simulate the sampled loop as configured against the same loop at a fine rate "
+      "(as lagrange check-gains; seconds) and print its verdict; with --strict, refuse when it "
+      "DIVERGES. summary.json gains.sampled_simulation keeps it");
   cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
   cmd->add_option("--run-id", run.run_id,
                   "The run's identity stamped on every message (default: random; with --processes, derived "

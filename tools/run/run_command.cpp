@@ -35,6 +35,7 @@
 #include "wiring/inproc_runner.hpp"
 #include "wiring/netns.hpp"
 #include "wiring/progress.hpp"
+#include "wiring/sampled_simulation.hpp"
 #include "wiring/supervisor.hpp"
 
 namespace lagrange::tools {
@@ -80,6 +81,14 @@ void checkOutputPaths(const std::string& out_dir, bool report) {
   for (const auto& entry : fs::directory_iterator(report_dir)) util::checkOutputPath(entry.path().string());
 }
 
+// The gain report; with --check-sampled the sampled loop simulated too
+// (before the run's own processes start, so they do not share the cores).
+controller::GainReport checkGainsBeforeRun(const config::Scenario& scenario, const RunOptions& opt) {
+  controller::GainReport gains = controller::checkGains(scenario);
+  if (opt.check_sampled) gains.simulated = wiring::simulateSampledData(scenario);
+  return gains;
+}
+
 // Prints what the robot's model leaves out of its description (URDF limits,
 // damping, lumped branches) and the gain report; false when --strict forbids running.
 bool gainsAllowRun(const config::Scenario& scenario, const controller::GainReport& gains,
@@ -87,13 +96,21 @@ bool gainsAllowRun(const config::Scenario& scenario, const controller::GainRepor
   if (!opt.quiet && scenario.urdf_model)
     for (const std::string& note : scenario.urdf_model->notes()) std::cout << "robot.urdf: " << note << "\n";
   if (!opt.quiet)
-    std::cout
-        << controller::describe(gains)
-        << "\nsampled-data check: not simulated before a run; `lagrange check-gains` simulates the loop "
-           "as configured against the same loop at a fine rate\n";
+    std::cout << controller::describe(gains) << "\n"
+              << (gains.simulated
+                      ? ""
+                      : "sampled-data check: not simulated before this run (--check-sampled, or "
+                        "`lagrange check-gains`, simulates the loop as configured against the same "
+                        "loop at a fine rate)\n");
   if (!gains.holds() && opt.strict) {
     std::cerr << "lagrange run: refusing to start (--strict) because the gain condition is "
               << (gains.unchecked ? "not checked" : "violated") << "\n";
+    return false;
+  }
+  if (opt.strict && gains.simulated && gains.simulated->verdict == "diverges") {
+    std::cerr
+        << "lagrange run: refusing to start (--strict) because the sampled loop diverges in simulation: "
+        << gains.simulated->why << "\n";
     return false;
   }
   return true;
@@ -422,7 +439,7 @@ int runScenarioLocked(const RunOptions& opt) {
       return kExitBadInput;
     }
     lockOutDir();
-    const controller::GainReport gains = controller::checkGains(scenario);
+    const controller::GainReport gains = checkGainsBeforeRun(scenario, opt);
     if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
     writeResolved(scenario, opt.config_path, out_dir);
     writeGains(scenario, gains, out_dir);  // as every run leaves it, though nothing here reads it
@@ -450,7 +467,7 @@ int runScenarioLocked(const RunOptions& opt) {
     }
   }
   lockOutDir();
-  const controller::GainReport gains = controller::checkGains(scenario);
+  const controller::GainReport gains = checkGainsBeforeRun(scenario, opt);
   if (!gainsAllowRun(scenario, gains, opt)) return kExitBadInput;
   const std::string resolved = writeResolved(scenario, opt.config_path, out_dir);
   const std::string gains_path = writeGains(scenario, gains, out_dir);

@@ -20,6 +20,9 @@ struct RunOptions {
   bool private_netns = true;
   std::string lcm_url;  ///< empty: a fresh URL per run
   bool strict = false;
+  /// Simulate the sampled loop against a fine-rate one before the run
+  /// (wiring::simulateSampledData; seconds); with --strict, refuse on DIVERGES.
+  bool check_sampled = false;
   bool quiet = false;
   bool report = false;  ///< write OUT/report (CSV + plots) when the run ends with a log
   /// Exit 3 when the run completed but missed its stated metric (tracking.met false).

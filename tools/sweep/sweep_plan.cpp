@@ -163,7 +163,8 @@ SweepSpec readSweepSpec(const std::string& path) {
   }
   try {
     config::MapReader m(root, "");
-    m.finish({"scenario", "set", "design", "samples", "seed", "axes", "maps"});  // a misspelt key first
+    m.finish({"scenario", "set", "design", "samples", "seed", "axes", "maps",
+              "simulate_sampled_data"});  // a misspelt key first
     const std::string scenario = m.text("scenario");
     spec.scenario_path = (fs::path(spec.file).parent_path() / scenario).lexically_normal().string();
     if (!fs::is_regular_file(spec.scenario_path))
@@ -187,6 +188,7 @@ SweepSpec readSweepSpec(const std::string& path) {
     const double seed = m.number("seed", 1);
     if (seed < 0 || seed != std::floor(seed) || seed > 9.0e15) m.fail("seed", "expected a whole number >= 0");
     spec.seed = static_cast<std::uint64_t>(seed);
+    spec.simulate_sampled_data = m.boolean("simulate_sampled_data", false);
     const YAML::Node axes = m.child("axes");
     if (!axes.IsSequence() || axes.size() == 0)
       m.fail("axes", "expected a list of at least one axis ({key, values | range | norm})");
@@ -315,6 +317,7 @@ std::string planJson(const SweepPlan& plan) {
   head["scenario_digest"] = plan.spec.scenario_digest;
   head["columns"] = plan.param_columns;
   head["heat_map"] = plan.spec.heat_map;
+  if (plan.spec.simulate_sampled_data) head["simulate_sampled_data"] = true;  // absent: the plans of before
   head["rows"] = plan.rows.size();
   std::string text = head.dump() + "\n";
   for (const SweepRow& r : plan.rows) {
@@ -338,6 +341,8 @@ SweepPlan planFromJson(const std::string& text, const std::string& source) {
     plan.spec.scenario_digest = head.at("scenario_digest").get<std::string>();
     plan.param_columns = head.at("columns").get<std::vector<std::string>>();
     plan.spec.heat_map = head.at("heat_map").get<std::vector<std::string>>();
+    plan.spec.simulate_sampled_data =
+        head.value("simulate_sampled_data", false);  // a plan from before the key: off
     const auto rows = head.at("rows").get<size_t>();
     while (plan.rows.size() < rows) {
       const size_t start = pos + 1;

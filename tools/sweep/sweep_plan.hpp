@@ -52,6 +52,9 @@ struct SweepSpec {
   std::uint64_t seed = 1;
   std::vector<SweepAxis> axes;
   std::vector<std::string> heat_map;  ///< `maps.heat_map`: two parameter columns (default: the first two)
+  /// `simulate_sampled_data`: each row's run judged against the same loop at a
+  /// fine rate (wiring::judgeRun; the sampled_verdict column), 24 x its cost.
+  bool simulate_sampled_data = false;
 };
 
 /// One run of the sweep.

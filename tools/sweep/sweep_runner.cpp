@@ -7,6 +7,7 @@
 #include "controller/paper_section.hpp"
 #include "model/reference.hpp"
 #include "wiring/inproc_runner.hpp"
+#include "wiring/sampled_simulation.hpp"
 
 namespace lagrange::tools {
 
@@ -38,10 +39,25 @@ nlohmann::json paramValue(const std::string& text) {
 }  // namespace
 
 const std::vector<std::string>& resultColumns() {
-  static const std::vector<std::string> columns = {
-      "status",      "diverged",        "converged",       "convergence_time", "final_error",
-      "max_error",   "initial_error",   "x0_norm",         "gains_checked",    "condition_holds",
-      "gain_margin", "sampled_verdict", "spectral_radius", "wall_time",        "stop_reason"};
+  static const std::vector<std::string> columns = {"status",
+                                                   "diverged",
+                                                   "converged",
+                                                   "convergence_time",
+                                                   "final_error",
+                                                   "max_error",
+                                                   "initial_error",
+                                                   "x0_norm",
+                                                   "gains_checked",
+                                                   "condition_holds",
+                                                   "gain_margin",
+                                                   "linearised_verdict",
+                                                   "spectral_radius",
+                                                   "sampled_verdict",
+                                                   "fine_rate",
+                                                   "fine_convergence_time",
+                                                   "fine_error_last_second",
+                                                   "wall_time",
+                                                   "stop_reason"};
   return columns;
 }
 
@@ -102,11 +118,27 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   j["gains_checked"] = !gains.unchecked;
   j["condition_holds"] = gains.unchecked ? nlohmann::json() : nlohmann::json(gains.holds());
   j["gain_margin"] = gains.unchecked ? nlohmann::json() : finiteOrNull(gains.margin());
-  j["sampled_verdict"] = gains.sampled.verdict.empty() ? "not assessed" : gains.sampled.verdict;
+  j["linearised_verdict"] = gains.sampled.verdict.empty() ? "not assessed" : gains.sampled.verdict;
   j["spectral_radius"] = gains.sampled.verdict == "adequate" || gains.sampled.verdict == "slow" ||
                                  gains.sampled.verdict == "unstable"
                              ? finiteOrNull(gains.sampled.spectral_radius)
                              : nlohmann::json();
+  for (const char* column :
+       {"sampled_verdict", "fine_rate", "fine_convergence_time", "fine_error_last_second"})
+    j[column] = nullptr;                   // in the table's order
+  if (plan_.spec.simulate_sampled_data) {  // this run against the same loop at a fine rate
+    const controller::SampledSimulation check =
+        wiring::judgeRun(s, {o.status == "completed" ? "completed" : "diverged", o.tracking.convergence_time,
+                             o.tracking.rms_last_second});
+    if (stop_requested && stop_requested()) return std::nullopt;
+    j["sampled_verdict"] = check.verdict;
+    if (!check.starts.empty()) {
+      const controller::SampledSimulation::Start& st = check.starts.front();
+      j["fine_rate"] = check.fine_rate;
+      j["fine_convergence_time"] = st.fine_time ? nlohmann::json(*st.fine_time) : nlohmann::json();
+      j["fine_error_last_second"] = finiteOrNull(st.fine_error);
+    }
+  }
   j["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["stop_reason"] = o.stop_message;
   return j;
