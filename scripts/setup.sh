@@ -21,6 +21,7 @@ run_packages=(
 # benchmarks, the fuzzers.
 more_packages=(
   git liblcm-java libjchart2d-java default-jdk-headless
+  python3  # python/lagrange and its tests (standard library only)
   libgtest-dev libbenchmark-dev
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it

@@ -10,6 +10,7 @@
 
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
+#include "support/sweep_files.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -32,7 +33,15 @@ const std::string& pdClasses() {
 
 // The Pelican without gravity, regulated by the external PD to a constant q_d.
 const Eigen::Vector2d kKp(20.0, 5.0), kKd(4.0, 1.0), kQd(0.5, -0.2);
-std::string scenario(const std::string& mode) {
+const std::string kPdArguments = "--kp, \"20,5\", --kd, \"4,1\", --qd, \"0.5,-0.2\"";
+std::string javaCommand() { return "java, -cp, \"" + pdClasses() + ":" + kClassPath + "\", PdController"; }
+// The Python PD of examples/external_controller/, with python/ on PYTHONPATH
+// by the scenario's environment and -S: no site-packages, so no numpy.
+std::string pythonCommand() {
+  return "env, \"PYTHONPATH=" + std::string(LAGRANGE_SOURCE_DIR) + "/python\", python3, -S, \"" +
+         LAGRANGE_SOURCE_DIR + "/examples/external_controller/pd_controller.py\"";
+}
+std::string scenario(const std::string& mode, const std::string& command = javaCommand()) {
   const std::string path = freshDir("external-config") + ".yaml";
   std::ofstream(path)
       << "name: external_pd\nduration: 3.0\nmode: " << mode
@@ -40,11 +49,29 @@ std::string scenario(const std::string& mode) {
          "initial_state: {q: [0.2, -0.1], qdot: [0.0, 0.0]}\n"
          "reference: {type: sine, offset: [0.5, -0.2], amplitude: [0.0, 0.0], frequency: [0.0, 0.0]}\n"
          "plant: {physics_step: 1.0e-4, publish_rate: 1000}\n"
-         "controller:\n  type: external\n  command: [java, -cp, \""
-      << pdClasses() << ":" << kClassPath
-      << "\", PdController, --kp, \"20,5\", --kd, \"4,1\", --qd, \"0.5,-0.2\"]\n"
+         "controller:\n  type: external\n  command: ["
+      << command << ", " << kPdArguments
+      << "]\n"
          "metrics: {tolerance: 1.0e-3, convergence_deadline: 2.0}\n";
   return path;
+}
+
+// Every command of a log is the PD law on the positions it answered, where
+// the controller also answered the tick before (its velocity's difference).
+void expectThePdLaw(const std::string& log) {
+  const auto positions = readPositions(log);
+  const auto commands = readCommands(log);
+  ASSERT_GT(commands.size(), 2000u);
+  size_t checked = 0;
+  for (const auto& [k, u] : commands) {
+    if (k == 0 || !commands.count(k - 1)) continue;
+    for (int i = 0; i < 2; ++i) {
+      const double q = positions.at(k)[i], v = (q - positions.at(k - 1)[i]) / 1e-3;
+      EXPECT_NEAR(u[i], -kKp(i) * (q - kQd(i)) - kKd(i) * v, 1e-9) << "tick " << k;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 2000u);
 }
 
 TEST(ExternalController, AJavaPdTakesTheControllersPlaceInLockstepAndItsRunReplays) {
@@ -56,15 +83,8 @@ TEST(ExternalController, AJavaPdTakesTheControllersPlaceInLockstepAndItsRunRepla
   const auto j = readSummary(out);
   EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
   // Every command is the PD law on the positions it answered, as written here.
-  const auto positions = readPositions(out + "/run.lcm");
-  const auto commands = readCommands(out + "/run.lcm");
-  ASSERT_EQ(commands.size(), 3001u);
-  for (long long k = 1; k <= 3000; ++k) {
-    for (int i = 0; i < 2; ++i) {
-      const double q = positions.at(k)[i], v = (q - positions.at(k - 1)[i]) / 1e-3;
-      EXPECT_NEAR(commands.at(k)[i], -kKp(i) * (q - kQd(i)) - kKd(i) * v, 1e-9) << "tick " << k;
-    }
-  }
+  EXPECT_EQ(readCommands(out + "/run.lcm").size(), 3001u);
+  expectThePdLaw(out + "/run.lcm");
   for (const std::string component : {"controller", "actuator", "plant"}) {
     const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component " + component);
     EXPECT_EQ(replay.exit_code, 0) << component << ": " << replay.output;
@@ -86,6 +106,63 @@ TEST(ExternalController, AJavaPdRunsInRealtimeAndItsRunReplays) {
   // against a published total; convergence shows it answered, and how many
   // ticks it answered depends on the machine's load, so no count is asserted.
   EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
+  const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
+  EXPECT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
+}
+
+}  // namespace
+}  // namespace lagrange::testing
+
+namespace lagrange::testing {
+namespace {
+
+// The Python PD (python/lagrange/external.py keeps the contract) in lockstep:
+// the same run as the Java PD's, every sample bit for bit, and it replays.
+TEST(ExternalController, APythonPdMatchesTheJavaOneBitForBitInLockstepAndReplays) {
+  const std::string java = freshDir("external-java"), python = freshDir("external-python");
+  ASSERT_EQ(runScenario(scenario("lockstep"), java, "-q").exit_code, 0);
+  const RunResult run = runScenario(scenario("lockstep", pythonCommand()), python, "-q");
+  ASSERT_EQ(run.exit_code, 0) << run.output << readText(python + "/controller.log");
+  EXPECT_TRUE(readSummary(python)["tracking"]["met"].get<bool>());
+  const auto a = readTruth(java + "/run.lcm"), b = readTruth(python + "/run.lcm");
+  ASSERT_EQ(a.size(), 3001u);
+  ASSERT_EQ(b.size(), a.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    ASSERT_LE((a[k].q - b[k].q).cwiseAbs().maxCoeff(), 1e-9) << "tick " << k;
+    ASSERT_LE((a[k].qdot - b[k].qdot).cwiseAbs().maxCoeff(), 1e-9) << "tick " << k;
+  }
+  EXPECT_EQ(readCommands(java + "/run.lcm"), readCommands(python + "/run.lcm"));
+  expectThePdLaw(python + "/run.lcm");
+  const RunResult replay = lagrange("replay " + quote(python + "/run.lcm") + " --component controller");
+  EXPECT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("reproduced all 3001 recorded outputs bit for bit"), std::string::npos)
+      << replay.output;
+
+  // lagrange.log.load, without numpy, reads the run as the C++ reader does:
+  // the samples, their values (repr: every bit) and every checksum intact.
+  const RunResult loaded =
+      shell("PYTHONPATH=" + quote(std::string(LAGRANGE_SOURCE_DIR) + "/python") +
+            " python3 -S -c 'import sys, lagrange.log as L; r = L.load(sys.argv[1]); "
+            "t = r.channels[\"PLANT_TRUTH\"]; c = r.channels[\"CONTROL_COMMAND\"]; "
+            "print(len(t[\"t\"]), len(c[\"u\"]), repr(t[\"q\"][1234][1]), repr(c[\"u\"][2999][0]), "
+            "sum(r.corrupt.values()), sum(r.undecodable.values()), r.summary[\"tracking\"][\"met\"])' " +
+            quote(python));
+  ASSERT_EQ(loaded.exit_code, 0) << loaded.output;
+  char expected[256];
+  std::snprintf(expected, sizeof expected, "3001 3001 %.17g %.17g 0 0 True\n", b[1234].q(1),
+                readCommands(python + "/run.lcm").at(2999)[0]);
+  EXPECT_EQ(loaded.output, expected);
+}
+
+// In realtime: it answers the positions as they come, obeys the law, and its
+// run replays bit for bit.
+TEST(ExternalController, APythonPdRunsInRealtimeAndItsRunReplays) {
+  const std::string out = freshDir("external-python-realtime");
+  const RunResult run = runScenario(scenario("realtime", pythonCommand()), out, "-q");
+  ASSERT_EQ(run.exit_code, 0) << run.output << readText(out + "/controller.log");
+  EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
+  expectThePdLaw(out + "/run.lcm");
   const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;

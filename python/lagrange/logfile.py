@@ -1,0 +1,175 @@
+"""A reader of LCM log files with the bounds checks of the C++ one
+(logs/log_event_reader.hpp). The format, every field big-endian:
+
+    sync word 0xEDA1DA01 | event number int64 | timestamp int64 |
+    channel length int32 | data length int32 | channel | data
+
+Both lengths are checked against a sane limit and against the bytes left in
+the file before anything is read into memory. What stands where an event
+should start:
+
+- a whole event: yielded;
+- a header whose lengths no LCM log can hold (negative, a channel name longer
+  than 999 bytes, data larger than LCM's largest message): LogError names the
+  file, the byte offset and what was expected;
+- no sync word (a corrupt stretch): skipped up to the next sync word that
+  starts a whole, sane event, and counted (scan.skipped_bytes);
+- an event running past the end of the file (a logger killed while writing):
+  the end; the rest is counted (scan.unreadable_tail_bytes).
+"""
+
+import os
+import struct
+
+SYNC_WORD = 0xEDA1DA01
+HEADER_BYTES = 4 + 8 + 8 + 4 + 4
+MAX_CHANNEL_BYTES = 999
+MAX_DATA_BYTES = 1 << 28  # LCM_MAX_MESSAGE_SIZE
+_SYNC = struct.pack(">I", SYNC_WORD)
+_HEADER = struct.Struct(">Iqqii")
+
+
+class LogError(ValueError):
+    """A file that is not an LCM log, is malformed, or cannot be read."""
+
+
+class Event:
+    __slots__ = ("eventnum", "timestamp", "channel", "data", "offset")
+
+    def __init__(self, eventnum, timestamp, channel, data, offset):
+        self.eventnum = eventnum
+        self.timestamp = timestamp  # µs, the logger's receive time
+        self.channel = channel
+        self.data = data
+        self.offset = offset  # the event's byte offset in the file
+
+
+class Scan:
+    """What a pass over a log read."""
+
+    def __init__(self):
+        self.events = 0
+        self.skipped_bytes = 0
+        self.first_skipped_at = -1
+        self.unreadable_tail_bytes = 0
+        self.channels = {}
+
+    def problems(self):
+        """Warnings for a person; empty when the log was read whole."""
+        out = []
+        if self.skipped_bytes:
+            out.append("%d corrupt bytes between events were skipped (the first stretch starts at byte %d, "
+                       "where an event with the LCM sync word 0xEDA1DA01 was expected)"
+                       % (self.skipped_bytes, self.first_skipped_at))
+        if self.unreadable_tail_bytes:
+            out.append("the log ends with %d bytes that are not a whole event (cut short, e.g. a run killed "
+                       "while writing); %d whole events before them were read"
+                       % (self.unreadable_tail_bytes, self.events))
+        return out
+
+
+_EVENT, _NO_SYNC, _CUT_SHORT, _MALFORMED = range(4)
+
+
+class LogReader:
+    """Reads a log's events in file order: `for event in LogReader(path)`.
+    `scan` holds what was read once the iteration ends."""
+
+    def __init__(self, path):
+        self.path = str(path)
+        if not os.path.isfile(self.path):
+            raise LogError("cannot read %s: not a regular file; expected an LCM log file" % self.path)
+        try:
+            self._file = open(self.path, "rb")
+        except OSError as e:
+            raise LogError("cannot open %s: %s" % (self.path, e.strerror)) from None
+        self._size = os.fstat(self._file.fileno()).st_size
+        self.scan = Scan()
+
+    def close(self):
+        self._file.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _read_at(self, offset, n):
+        self._file.seek(offset)
+        return self._file.read(n)
+
+    def _inspect(self, offset):
+        left = self._size - offset
+        head = self._read_at(offset, HEADER_BYTES)
+        if len(head) < 4:
+            return _CUT_SHORT, None, None
+        if head[:4] != _SYNC:
+            return _NO_SYNC, None, None
+        if len(head) < HEADER_BYTES:
+            return _CUT_SHORT, None, None
+        _, eventnum, timestamp, channel_bytes, data_bytes = _HEADER.unpack(head)
+        at = "%s: malformed LCM log: the event at byte %d" % (self.path, offset)
+        if channel_bytes < 1 or channel_bytes > MAX_CHANNEL_BYTES:
+            return _MALFORMED, None, "%s gives a channel name length of %d bytes; expected 1 to %d" % (
+                at, channel_bytes, MAX_CHANNEL_BYTES)
+        if data_bytes < 0 or data_bytes > MAX_DATA_BYTES:
+            return _MALFORMED, None, (
+                "%s gives a data length of %d bytes; expected 0 to %d (LCM's largest message), and at most "
+                "the %d bytes left in the file after its header and channel"
+                % (at, data_bytes, MAX_DATA_BYTES, max(0, left - HEADER_BYTES - channel_bytes)))
+        if HEADER_BYTES + channel_bytes + data_bytes > left:
+            return _CUT_SHORT, None, None
+        return _EVENT, (eventnum, timestamp, channel_bytes, data_bytes), None
+
+    def _next_event_start(self, start):
+        candidate = start
+        while candidate + 4 <= self._size:
+            self._file.seek(candidate)
+            found = -1
+            position = candidate
+            while position < self._size:
+                chunk = self._file.read(1 << 16)
+                if not chunk:
+                    break
+                i = chunk.find(_SYNC)
+                if i >= 0:
+                    found = position + i
+                    break
+                # keep 3 bytes: a sync word across two chunks
+                position += max(1, len(chunk) - 3)
+                self._file.seek(position)
+            if found < 0:
+                return -1
+            kind, _, _ = self._inspect(found)
+            if kind == _EVENT:
+                return found
+            candidate = found + 1
+        return -1
+
+    def __iter__(self):
+        position = 0
+        while position < self._size:
+            kind, header, problem = self._inspect(position)
+            if kind == _MALFORMED:
+                raise LogError(problem)
+            if kind != _EVENT:
+                following = self._next_event_start(position + 1)
+                if following < 0:
+                    self.scan.unreadable_tail_bytes = self._size - position
+                    break
+                if self.scan.first_skipped_at < 0:
+                    self.scan.first_skipped_at = position
+                self.scan.skipped_bytes += following - position
+                position = following
+                continue
+            eventnum, timestamp, channel_bytes, data_bytes = header
+            body = self._read_at(position + HEADER_BYTES, channel_bytes + data_bytes)
+            channel = body[:channel_bytes].decode("utf-8", "replace")
+            self.scan.events += 1
+            self.scan.channels[channel] = self.scan.channels.get(channel, 0) + 1
+            yield Event(eventnum, timestamp, channel, body[channel_bytes:], position)
+            position += HEADER_BYTES + channel_bytes + data_bytes
+        if self.scan.events == 0 and self._size > 0:
+            raise LogError("%s is not an LCM log: no event in its %d bytes (expected events starting with the LCM "
+                           "sync word 0xEDA1DA01)" % (self.path, self._size))

@@ -1,0 +1,222 @@
+"""The Python package's own tests (python/lagrange): standard library only.
+
+    PYTHONPATH=python python3 -m unittest discover -s python/tests
+
+The runs through it (a Python controller against the Java one, a run's log
+against the C++ reader) are in tests/integration/external_controller_test.cpp.
+"""
+
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "python"))
+
+import lagrange  # noqa: E402
+import lagrange.contract  # noqa: E402
+import lagrange.lcm  # noqa: E402
+import lagrange.log  # noqa: E402
+import lagrange.logfile  # noqa: E402
+
+
+def event(channel, data, eventnum=0, timestamp=0):
+    c = channel.encode()
+    return struct.pack(">Iqqii", lagrange.logfile.SYNC_WORD, eventnum, timestamp, len(c), len(data)) + c + data
+
+
+def position(tick, q, run_id=7):
+    p = lagrange.plant_position_t()
+    p.header = lagrange.header_t()
+    p.header.tick, p.header.sim_time, p.header.run_id, p.header.publisher = tick, tick * 1e-3, run_id, "plant"
+    p.num_joints, p.q = len(q), list(q)
+    return lagrange.contract.seal(p)
+
+
+class TypesAreCurrent(unittest.TestCase):
+    def test_the_checked_in_classes_are_what_lcm_gen_writes(self):
+        with tempfile.TemporaryDirectory() as out:
+            subprocess.run([os.path.join(ROOT, "scripts", "generate-python-types.sh"), out], check=True)
+            made = sorted(f for f in os.listdir(out) if f.endswith("_t.py"))
+            kept = sorted(f for f in os.listdir(os.path.join(ROOT, "python", "lagrange")) if f.endswith("_t.py"))
+            self.assertEqual(made, kept, "run scripts/generate-python-types.sh after changing lcmtypes/")
+            self.assertEqual(len(made), len(os.listdir(os.path.join(ROOT, "lcmtypes"))) - 2)  # less CMake files
+            for name in made:
+                with open(os.path.join(out, name)) as a, open(os.path.join(ROOT, "python", "lagrange", name)) as b:
+                    self.assertEqual(a.read(), b.read(), name + " is stale: run scripts/generate-python-types.sh")
+            for name in made:  # and the package exports each
+                self.assertTrue(hasattr(lagrange, name[:-3]), name)
+
+    def test_a_boolean_array_decodes_to_a_list_that_encodes_again(self):
+        a = lagrange.actuator_state_t()
+        a.header = lagrange.header_t()
+        a.num_joints, a.order, a.torque_steps = 2, 0, 1
+        a.u_commanded, a.tau_applied, a.saturated, a.xi = [1.0, 2.0], [[1.0, 2.0]], [True, False], []
+        data = a.encode()
+        b = lagrange.actuator_state_t.decode(data)
+        self.assertEqual(b.saturated, [True, False])
+        self.assertEqual(b.encode(), data)
+
+
+class Contract(unittest.TestCase):
+    def test_the_checksum_uses_lagranges_basis_and_is_never_zero(self):
+        self.assertEqual(lagrange.contract.fnv1a(b""), 1469598103934665603)
+        # FNV-1a of "a" with lagrange's basis, by hand: (basis ^ 0x61) * prime mod 2^64
+        self.assertEqual(lagrange.contract.fnv1a(b"a"), ((1469598103934665603 ^ 0x61) * 1099511628211) % 2**64)
+        p = position(3, [0.1, 0.2])
+        self.assertTrue(lagrange.contract.intact(p))
+        self.assertEqual(p.header.checksum & 1, 1)
+        p.q[1] = 0.25
+        self.assertFalse(lagrange.contract.intact(p), "a changed angle breaks the checksum")
+
+    def test_a_signed_datagram_authenticates_and_an_altered_one_does_not(self):
+        key = lagrange.contract.Key(bytes(range(32)))
+        datagram = key.sign(b"message")
+        self.assertEqual(len(datagram), len(b"message") + 32)
+        self.assertEqual(key.authenticate(datagram), b"message")
+        self.assertIsNone(key.authenticate(datagram[:-1] + bytes([datagram[-1] ^ 1])))
+        self.assertIsNone(key.authenticate(b"x" + datagram[1:]))
+        self.assertIsNone(lagrange.contract.Key(bytes(32)).authenticate(datagram), "another key")
+        self.assertIsNone(key.authenticate(b"short"))
+
+    def test_a_key_file_must_hold_64_hex_digits(self):
+        with tempfile.TemporaryDirectory() as d:
+            good, bad = os.path.join(d, "good"), os.path.join(d, "bad")
+            with open(good, "w") as f:
+                f.write("ab" * 32 + "\n")
+            with open(bad, "w") as f:
+                f.write("not a key\n")
+            self.assertEqual(lagrange.contract.Key.from_file(good).sign(b""), lagrange.contract.Key(b"\xab" * 32).sign(b""))
+            with self.assertRaisesRegex(ValueError, "does not hold 64 hex digits"):
+                lagrange.contract.Key.from_file(bad)
+            with self.assertRaisesRegex(ValueError, "cannot read the run's key file"):
+                lagrange.contract.Key.from_file(os.path.join(d, "missing"))
+
+    def test_publish_utime_never_goes_backwards(self):
+        h = lagrange.contract.Headers(1, "controller")
+        stamps = [h.utime() for _ in range(1000)]
+        self.assertEqual(stamps, sorted(stamps))
+
+
+class LogFile(unittest.TestCase):
+    def write(self, data):
+        f = tempfile.NamedTemporaryFile(suffix=".lcm", delete=False)
+        f.write(data)
+        f.close()
+        self.addCleanup(os.unlink, f.name)
+        return f.name
+
+    def test_whole_events_are_read_in_order(self):
+        path = self.write(event("A", b"1", 0) + event("B", b"22", 1) + event("A", b"", 2))
+        with lagrange.logfile.LogReader(path) as r:
+            got = [(e.channel, e.data, e.offset) for e in r]
+            self.assertEqual(r.scan.events, 3)
+            self.assertEqual(r.scan.channels, {"A": 2, "B": 1})
+            self.assertEqual(r.scan.problems(), [])
+        self.assertEqual(got, [("A", b"1", 0), ("B", b"22", 30), ("A", b"", 61)])
+
+    def test_a_huge_length_is_named_with_its_offset_and_nothing_is_allocated(self):
+        good = event("A", b"1")
+        huge = struct.pack(">Iqqii", lagrange.logfile.SYNC_WORD, 1, 0, 1, 0x7FFFFFFF) + b"A"
+        path = self.write(good + huge)
+        with self.assertRaisesRegex(lagrange.logfile.LogError,
+                                    "the event at byte 30 gives a data length of 2147483647 bytes; expected 0 to"):
+            with lagrange.logfile.LogReader(path) as r:
+                list(r)
+        negative = struct.pack(">Iqqii", lagrange.logfile.SYNC_WORD, 1, 0, -5, 0)
+        with self.assertRaisesRegex(lagrange.logfile.LogError, "channel name length of -5 bytes; expected 1 to 999"):
+            with lagrange.logfile.LogReader(self.write(good + negative)) as r:
+                list(r)
+
+    def test_a_corrupt_stretch_is_skipped_and_counted(self):
+        path = self.write(event("A", b"1") + b"garbage!" + event("B", b"2"))
+        with lagrange.logfile.LogReader(path) as r:
+            self.assertEqual([e.channel for e in r], ["A", "B"])
+            self.assertEqual((r.scan.skipped_bytes, r.scan.first_skipped_at), (8, 30))
+            self.assertIn("8 corrupt bytes between events were skipped", r.scan.problems()[0])
+
+    def test_a_log_cut_short_reads_to_its_last_whole_event(self):
+        whole = event("A", b"1") + event("B", b"22")
+        path = self.write(whole + event("C", b"333")[:-2])
+        with lagrange.logfile.LogReader(path) as r:
+            self.assertEqual([e.channel for e in r], ["A", "B"])
+            self.assertEqual(r.scan.unreadable_tail_bytes, len(event("C", b"333")) - 2)
+
+    def test_a_file_that_is_no_log_is_named(self):
+        with self.assertRaisesRegex(lagrange.logfile.LogError, "is not an LCM log: no event in its 11 bytes"):
+            with lagrange.logfile.LogReader(self.write(b"hello world")) as r:
+                list(r)
+        with self.assertRaisesRegex(lagrange.logfile.LogError, "not a regular file"):
+            lagrange.logfile.LogReader(tempfile.gettempdir())
+
+
+class Lcm(unittest.TestCase):
+    def test_publish_and_subscribe_through_liblcm(self):
+        got = []
+        with lagrange.lcm.LCM("memq://") as lc:
+            sub = lc.subscribe("CH.*", lambda channel, data: got.append((channel, data)))
+            lc.publish("CH1", b"\x00one")
+            lc.publish("OTHER", b"two")
+            lc.publish("CH2", b"x" * 100000)
+            while lc.handle_timeout(10) > 0:
+                pass
+            self.assertGreaterEqual(lc.fileno(), 0)
+            lc.unsubscribe(sub)
+            lc.publish("CH1", b"after")
+            lc.handle_timeout(10)
+        self.assertEqual(got, [("CH1", b"\x00one"), ("CH2", b"x" * 100000)])
+
+    def test_an_exception_in_a_handler_is_raised_from_handle(self):
+        def fail(channel, data):
+            raise KeyError("from the handler")
+
+        with lagrange.lcm.LCM("memq://") as lc:
+            lc.subscribe("CH", fail)
+            lc.publish("CH", b"1")
+            with self.assertRaises(KeyError):
+                lc.handle_timeout(100)
+
+    def test_a_bad_url_is_named(self):
+        with self.assertRaisesRegex(lagrange.lcm.LCMError, "could not be created on 'nonsense://x'"):
+            lagrange.lcm.LCM("nonsense://x")
+
+    def test_without_liblcm_the_error_names_the_package(self):
+        env = dict(os.environ, LAGRANGE_LIBLCM="/nonexistent/liblcm.so.1", PYTHONPATH=os.path.join(ROOT, "python"))
+        r = subprocess.run([sys.executable, "-c", "import lagrange.lcm; lagrange.lcm.LCM('memq://')"], env=env,
+                           capture_output=True, text=True)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("install the Debian package liblcm1", r.stderr)
+
+    def test_a_log_written_by_liblcm_loads_into_columns(self):
+        with tempfile.TemporaryDirectory() as d:
+            with lagrange.lcm.LCM("file://%s/run.lcm?mode=w" % d) as lc:
+                for tick in range(5):
+                    lc.publish("PLANT_POSITION", position(tick, [tick * 0.5, -tick]).encode())
+                lc.publish("PLANT_POSITION", position(2, [1.0, -2.0]).encode())  # a lockstep re-send
+                damaged = position(5, [9.0, 9.0])
+                damaged.q[0] = 8.0  # recorded as it arrived, checksum broken
+                lc.publish("PLANT_POSITION", damaged.encode())
+                lc.publish("PLANT_TRUTH", b"not a message")
+                lc.publish("SOMETHING_ELSE", b"x")
+            run = lagrange.log.load(d, numpy=False)
+        pos = run.channels["PLANT_POSITION"]
+        self.assertEqual(pos["header.tick"], [0, 1, 2, 3, 4])
+        self.assertEqual(pos["t"], [0.0, 1e-3, 2e-3, 3e-3, 4e-3])
+        self.assertEqual(pos["q"][3], [1.5, -3.0])
+        self.assertEqual(run.repeated, {"PLANT_POSITION": 1})
+        self.assertEqual(run.corrupt, {"PLANT_POSITION": 1})
+        self.assertEqual(run.undecodable, {"PLANT_TRUTH": 1})
+        self.assertEqual(run.unknown_channels, {"SOMETHING_ELSE": 1})
+        self.assertIsNone(run.summary)
+
+    def test_a_directory_without_a_log_is_named(self):
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaisesRegex(lagrange.logfile.LogError, "has no run.lcm; expected the output directory"):
+                lagrange.log.load(d)
+
+
+if __name__ == "__main__":
+    unittest.main()
