@@ -21,7 +21,8 @@ run_packages=(
 # benchmarks, the fuzzers.
 more_packages=(
   git liblcm-java libjchart2d-java default-jdk-headless
-  python3  # python/lagrange and its tests (standard library only)
+  # python/lagrange, its tests (standard library only) and `pip install ./python`
+  python3 python3-venv python3-pip python3-setuptools python3-wheel
   libgtest-dev libbenchmark-dev
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it

@@ -18,6 +18,7 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 
 import lagrange  # noqa: E402
 import lagrange.contract  # noqa: E402
+import lagrange.external  # noqa: E402
 import lagrange.lcm  # noqa: E402
 import lagrange.log  # noqa: E402
 import lagrange.logfile  # noqa: E402
@@ -216,6 +217,90 @@ class Lcm(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             with self.assertRaisesRegex(lagrange.logfile.LogError, "has no run.lcm; expected the output directory"):
                 lagrange.log.load(d)
+
+
+class ExternalController(unittest.TestCase):
+    """The contract around step(t, q), on LCM's in-process memq:// bus: this
+    test plays the plant and reads the commands."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.addCleanup(self.dir.cleanup)
+        key_file = os.path.join(self.dir.name, "run.key")
+        with open(key_file, "w") as f:
+            f.write("5a" * 32 + "\n")
+        self.key = lagrange.contract.Key(b"\x5a" * 32)
+        self.calls = []
+        env = {"LAGRANGE_LCM_URL": "memq://", "LAGRANGE_RUN_ID": "7", "LAGRANGE_KEY_FILE": key_file,
+               "LAGRANGE_JOINTS": "2", "LAGRANGE_MODE": "lockstep"}
+        self.controller = lagrange.external.Controller(self.step, environ=env)
+        self.commands = []
+        self.controller.lcm.subscribe("CONTROL_COMMAND", self.on_command)
+
+    def step(self, t, q):
+        self.calls.append((t, list(q)))
+        return [-q[0], -2.0 * q[1]]
+
+    def on_command(self, _channel, data):
+        payload = self.key.authenticate(data)
+        self.assertIsNotNone(payload, "every datagram carries the run's MAC")
+        c = lagrange.control_command_t.decode(payload)
+        self.assertTrue(lagrange.contract.intact(c))
+        self.commands.append(c)
+
+    def send(self, message, key=None):
+        self.controller.lcm.publish("PLANT_POSITION", (key or self.key).sign(message.encode()))
+        while self.controller.lcm.handle_timeout(5) > 0:
+            pass
+
+    def test_answers_a_position_once_and_a_resent_one_with_the_same_command(self):
+        self.send(position(0, [1.0, 2.0]))
+        self.send(position(1, [0.5, 0.25]))
+        self.send(position(1, [0.5, 0.25]))  # lockstep re-sends tick 1
+        self.assertEqual(len(self.calls), 2, "the law is never stepped twice on one sample")
+        self.assertEqual([c.header.tick for c in self.commands], [0, 1, 1])
+        self.assertEqual([list(c.u) for c in self.commands], [[-1.0, -4.0], [-0.5, -0.5], [-0.5, -0.5]])
+        self.assertEqual([c.header.seq for c in self.commands], [1, 2, 3], "a re-sent command has a new seq")
+        c = self.commands[1]
+        self.assertEqual((c.header.run_id, c.header.publisher, c.input_position_tick, c.input_actuator_tick),
+                         (7, "controller", 1, -1))
+        self.assertEqual(c.header.sim_time, 1e-3)
+
+    def test_drops_what_is_not_this_runs_plant(self):
+        self.send(position(0, [1.0, 2.0]), key=lagrange.contract.Key(bytes(32)))  # forged: another key
+        self.send(position(0, [1.0, 2.0], run_id=8))  # another run
+        other = position(0, [1.0, 2.0])
+        other.header.publisher = "actuator"
+        self.send(lagrange.contract.seal(other))
+        damaged = position(0, [1.0, 2.0])
+        damaged.q[0] = 3.0  # checksum no longer matches
+        self.send(damaged)
+        self.send(position(0, [1.0, 2.0, 3.0]))  # three joints for a two-joint arm
+        self.assertEqual((self.calls, self.commands, self.controller.rejected), ([], [], 5))
+        self.send(position(5, [1.0, 2.0]))
+        self.send(position(4, [1.0, 2.0]))  # older than one answered: never step back
+        self.assertEqual([c.header.tick for c in self.commands], [5])
+
+    def test_a_law_that_returns_the_wrong_size_is_named(self):
+        self.controller.step = lambda t, q: [1.0]
+        with self.assertRaisesRegex(lagrange.external.ContractError,
+                                    "step\\(\\) returned 1 numbers for u; expected 2 \\(one per joint\\)"):
+            self.send(position(0, [1.0, 2.0]))
+
+    def test_ends_with_finished_when_the_plant_finishes(self):
+        states = []
+        publish_status = self.controller.publish_status
+        self.controller.publish_status = lambda state: (states.append(state), publish_status(state))
+        s = lagrange.status_t()
+        s.header = lagrange.header_t()
+        s.header.run_id, s.header.publisher = 7, "plant"
+        s.process, s.state, s.message, s.num_channels, s.channels = "plant", "finished", "", 0, []
+        s.loop = lagrange.loop_stats_t()
+        s.loop.scheduler = ""
+        self.controller.lcm.publish("STATUS", self.key.sign(lagrange.contract.seal(s).encode()))
+        self.assertEqual(self.controller.serve(), 0)
+        self.assertTrue(self.controller.plant_finished)
+        self.assertEqual(states, ["ready", "finished", "finished", "finished"])
 
 
 if __name__ == "__main__":
