@@ -54,6 +54,12 @@ KeyRange seed() { return {0.0, 1e9, false, "", ""}; }
 // What the run is: its name, length and wiring.
 std::vector<KeyInfo> runKeys() {
   return {
+      row("extends", "path", "none",
+          "another scenario file (relative to this one's folder) read first: this file's keys are merged "
+          "over it (maps key by key, lists and numbers replaced whole), then `--set` applies. It may "
+          "extend a third; a cycle is refused. "
+          "Relative `robot.urdf.file` and `controller.working_directory` of a base file stay relative to its "
+          "own folder. The resolved scenario has no `extends`"),
       row("name", "string", "required", "scenario name, shown in outputs"),
       row("description", "string", "`\"\"`", "free text"),
       row("duration", "number > 0", "required",

@@ -8,6 +8,7 @@
 
 #include "config/input_file.hpp"
 #include "config/key_table.hpp"
+#include "config/scenario_extends.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
 #include "config/yaml_duplicates.hpp"
@@ -106,37 +107,50 @@ Scenario readScenario(MapReader root, const std::string& source) {
 
 }  // namespace
 
-Scenario parseScenario(const std::string& yaml_text, const std::string& source,
-                       const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError("config: " + source + ": malformed YAML at line " + std::to_string(e.mark.line + 1) +
-                      ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
+namespace {
+
+// The key path an error message starts with ("config: KEY: ..."), or "".
+std::string keyOfError(const std::string& what) {
+  const std::string prefix = "config: ";
+  if (what.compare(0, prefix.size(), prefix) != 0) return "";
+  const size_t end = what.find(": ", prefix.size());
+  return end == std::string::npos ? "" : what.substr(prefix.size(), end - prefix.size());
+}
+
+// An error about a value --set gave points at the option, not at "(line 1)"
+// of the one-line YAML the option's value was parsed from.
+std::string namingTheOption(std::string what, const std::vector<std::string>& overrides) {
+  const std::string key = keyOfError(what);
+  for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {  // the last --set of a key wins
+    const std::string set_key = o->substr(0, o->find('='));
+    if (key != set_key && key.compare(0, set_key.size() + 1, set_key + ".") != 0) continue;
+    const size_t line = what.rfind(" (line ");
+    if (line != std::string::npos && what.back() == ')') what.erase(line);
+    return what + " (from --set " + *o + ")";
   }
-  if (root.IsNull())
-    throw ConfigError(
-        "config: " + source +
-        ": no keys (the file is empty or only comments); expected a map of keys at the top level");
-  if (!root.IsMap())
-    throw ConfigError("config: " + source + ": expected a map of keys at the top level, got a " +
-                      (root.IsSequence() ? "list" : "single value"));
-  rejectDuplicateKeys(root, source);
+  return what;
+}
+
+Scenario readTree(YAML::Node root, const std::string& source, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) applyOverride(root, o);
   try {
     return readScenario(MapReader(root, ""), source);
   } catch (const ConfigError& e) {
-    const std::string what = e.what();
+    const std::string what = namingTheOption(e.what(), overrides);
     // Prefix the source so the user knows which file (or --set) was wrong.
     throw ConfigError("config: " + source + ": " + what.substr(std::string("config: ").size()));
   }
 }
 
+}  // namespace
+
+Scenario parseScenario(const std::string& yaml_text, const std::string& source,
+                       const std::vector<std::string>& overrides) {
+  return readTree(parseScenarioTree(yaml_text, source), source, overrides);
+}
+
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
-  const FileText file = readRegularFile(path, kMaxScenarioBytes, "a YAML scenario file");
-  if (!file.error.empty()) throw ConfigError("config: " + file.error);
-  return parseScenario(file.text, path, overrides);
+  return readTree(loadScenarioTree(path), path, overrides);
 }
 
 }  // namespace lagrange::config

@@ -1,0 +1,123 @@
+#include "config/scenario_extends.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <vector>
+
+#include "config/input_file.hpp"
+#include "config/scenario.hpp"
+#include "config/yaml_duplicates.hpp"
+
+namespace lagrange::config {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The most files one chain may hold: far past any real use, short of a
+// stack a hostile chain of generated files could exhaust.
+constexpr size_t kMaxChain = 32;
+
+YAML::Node parseRoot(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError("config: " + source + ": malformed YAML at line " + std::to_string(e.mark.line + 1) +
+                      ", column " + std::to_string(e.mark.column + 1) + ": " + e.msg);
+  }
+  if (root.IsNull())
+    throw ConfigError(
+        "config: " + source +
+        ": no keys (the file is empty or only comments); expected a map of keys at the top level");
+  if (!root.IsMap())
+    throw ConfigError("config: " + source + ": expected a map of keys at the top level, got a " +
+                      (root.IsSequence() ? "list" : "single value"));
+  rejectDuplicateKeys(root, source);
+  return root;
+}
+
+// `over` merged onto a copy of `base`: maps key by key, anything else replaced.
+YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& entry : over) {
+    const std::string key = entry.first.as<std::string>();
+    out[key] = out[key].IsDefined() ? merged(out[key], entry.second) : YAML::Clone(entry.second);
+  }
+  return out;
+}
+
+// A relative path a base file gives, made absolute from its folder, so that
+// it means what it meant there whatever folder the extending file is in.
+void anchorPaths(YAML::Node& root, const fs::path& folder) {
+  const auto anchor = [&](YAML::Node section, const char* key) {
+    if (!section.IsDefined() || !section.IsMap()) return;
+    YAML::Node value = section[key];
+    if (value.IsScalar() && !value.Scalar().empty() && fs::path(value.Scalar()).is_relative())
+      section[key] = fs::absolute(folder / value.Scalar()).lexically_normal().string();
+  };
+  const YAML::Node robot = root["robot"];
+  if (robot.IsDefined() && robot.IsMap()) anchor(robot["urdf"], "file");
+  anchor(root["controller"], "working_directory");
+}
+
+YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& folder,
+                   std::vector<std::string>& chain) {
+  const YAML::Node extends = root["extends"];
+  if (!extends.IsDefined()) return root;
+  if (!extends.IsScalar() || extends.Scalar().empty())
+    throw ConfigError("config: " + source + ": extends: expected the path of another scenario file, e.g. " +
+                      "extends: rigid_2dof.yaml (relative to this file's folder)");
+  if (folder.empty())
+    throw ConfigError("config: " + source + ": extends: '" + extends.Scalar() +
+                      "' cannot be resolved here (a scenario that is not read from a file); expected a "
+                      "scenario without extends");
+  const fs::path base_path = (folder / extends.Scalar()).lexically_normal();
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(base_path, ec);
+  const std::string key = ec ? base_path.string() : canonical.string();
+  if (std::find(chain.begin(), chain.end(), key) != chain.end()) {
+    std::string cycle;
+    for (const std::string& file : chain) cycle += file + " -> ";
+    throw ConfigError("config: " + source + ": extends: a cycle: " + cycle + key +
+                      "; expected a chain of files that ends in one without extends");
+  }
+  if (chain.size() >= kMaxChain)
+    throw ConfigError("config: " + source + ": extends: more than " + std::to_string(kMaxChain) +
+                      " files in one chain; expected a shorter chain");
+  chain.push_back(key);
+  const FileText file =
+      readRegularFile(base_path.string(), kMaxScenarioBytes, "a YAML scenario file to extend");
+  if (!file.error.empty()) throw ConfigError("config: " + source + ": extends: " + file.error);
+  YAML::Node base =
+      resolve(parseRoot(file.text, base_path.string()), base_path.string(), base_path.parent_path(), chain);
+  if (base_path.parent_path() != folder) anchorPaths(base, base_path.parent_path());
+  root.remove("extends");
+  return merged(base, root);
+}
+
+fs::path folderOf(const std::string& source) {
+  const fs::path p(source);
+  std::error_code ec;
+  return fs::is_regular_file(p, ec) ? p.parent_path() : fs::path();
+}
+
+}  // namespace
+
+YAML::Node loadScenarioTree(const std::string& path) {
+  const FileText file = readRegularFile(path, kMaxScenarioBytes, "a YAML scenario file");
+  if (!file.error.empty()) throw ConfigError("config: " + file.error);
+  return parseScenarioTree(file.text, path);
+}
+
+YAML::Node parseScenarioTree(const std::string& yaml_text, const std::string& source) {
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(source, ec);
+  std::vector<std::string> chain = {ec ? source : canonical.string()};
+  fs::path folder = folderOf(source);
+  if (folder.empty() && fs::is_regular_file(source, ec)) folder = ".";
+  return resolve(parseRoot(yaml_text, source), source, folder, chain);
+}
+
+}  // namespace lagrange::config

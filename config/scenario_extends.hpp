@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// `extends: other.yaml` in a scenario file: the other file (relative to
+/// this one's folder; it may extend a third) is read first and this file's
+/// keys are merged over it -- maps key by key, any other value (a list, a
+/// number) replaced whole -- before `--set` applies. A cycle is refused,
+/// naming the chain. A relative path a base file gives (`robot.urdf`,
+/// `controller.working_directory`) stays relative to the base file's folder.
+/// The resolved scenario (config.resolved.yaml) holds the merged result and
+/// no `extends`.
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+
+namespace lagrange::config {
+
+/// The scenario file at `path` with its `extends` chain merged in.
+/// @throws ConfigError naming the file, the chain and what was expected.
+YAML::Node loadScenarioTree(const std::string& path);
+
+/// The tree of scenario text `yaml_text` read from `source` (a path, or a
+/// name such as "LOG:SCENARIO"), with an `extends` resolved against the
+/// folder of `source` when it has one.
+YAML::Node parseScenarioTree(const std::string& yaml_text, const std::string& source);
+
+}  // namespace lagrange::config

@@ -1,0 +1,112 @@
+// `extends:` (config/scenario_extends.hpp): a scenario built on another, a
+// chain, a cycle refused, a base file's relative paths kept relative to it;
+// and a --set error names the option, not "(line 1)".
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "config/scenario.hpp"
+#include "support/scenario_text.hpp"
+
+namespace lagrange::config {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::kConfigs;
+
+// A fresh folder of scenario files for one test.
+class Extends : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        fs::temp_directory_path() /
+        ("lagrange-extends-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "sub");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream((dir_ / name).string()) << text;
+    return (dir_ / name).string();
+  }
+  std::string errorLoading(const std::string& path, const std::vector<std::string>& overrides = {}) {
+    try {
+      loadScenario(path, overrides);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST_F(Extends, MergesMapsKeyByKeyReplacesListsAndThenAppliesSet) {
+  write("base.yaml",
+        "extends: " + kConfigs + "/rigid_2dof.yaml\nduration: 4.0\nplant: {publish_rate: 2000}\n");
+  const std::string child = write("sub/child.yaml",
+                                  "extends: ../base.yaml\nname: child\ncontroller: {kd: [7, 8]}\n"
+                                  "initial_state: {q: [0.1, 0.2]}\n");
+  const Scenario base = loadScenario(kConfigs + "/rigid_2dof.yaml");
+  const Scenario s = loadScenario(child, {"duration=3.0"});
+  EXPECT_EQ(s.name, "child");
+  EXPECT_EQ(s.duration, 3.0) << "--set applies after the merge";
+  EXPECT_EQ(s.plant.publish_rate, 2000.0) << "from the middle file";
+  EXPECT_EQ(s.plant.physics_step, base.plant.physics_step) << "a key the middle file left alone";
+  EXPECT_EQ(s.controller.type, base.controller.type) << "the controller map merged, not replaced";
+  EXPECT_EQ(s.initial_state.q, Eigen::Vector2d(0.1, 0.2));
+  // The resolved scenario is whole and has no extends.
+  const std::string resolved = toYaml(s);
+  EXPECT_EQ(resolved.find("extends"), std::string::npos);
+  EXPECT_EQ(toYaml(parseScenario(resolved, "resolved")), resolved);
+}
+
+TEST_F(Extends, ACycleIsRefusedNamingTheChain) {
+  write("a.yaml", "extends: b.yaml\nname: a\n");
+  write("b.yaml", "extends: a.yaml\nname: b\n");
+  const std::string error = errorLoading((dir_ / "a.yaml").string());
+  EXPECT_NE(error.find("extends: a cycle: " + (dir_ / "a.yaml").string() + " -> " +
+                       (dir_ / "b.yaml").string() + " -> " + (dir_ / "a.yaml").string()),
+            std::string::npos)
+      << error;
+  write("self.yaml", "extends: self.yaml\nname: s\n");
+  EXPECT_NE(errorLoading((dir_ / "self.yaml").string()).find("a cycle"), std::string::npos);
+}
+
+TEST_F(Extends, AMissingOrBadBaseIsNamed) {
+  const std::string missing = write("m.yaml", "extends: nowhere.yaml\nname: m\n");
+  EXPECT_NE(errorLoading(missing).find("extends: "), std::string::npos) << errorLoading(missing);
+  EXPECT_NE(errorLoading(missing).find("nowhere.yaml"), std::string::npos) << errorLoading(missing);
+  const std::string list = write("l.yaml", "extends: [a, b]\nname: l\n");
+  EXPECT_NE(errorLoading(list).find("extends: expected the path of another scenario file"),
+            std::string::npos);
+  EXPECT_NE(testing::errorOf("extends: x.yaml\nname: t\n").find("cannot be resolved here"),
+            std::string::npos);
+}
+
+TEST_F(Extends, ABaseFilesUrdfStaysRelativeToItsOwnFolder) {
+  const std::string child =
+      write("panda.yaml", "extends: " + kConfigs + "/panda_theorem1.yaml\nname: mine\nduration: 1.0\n");
+  const Scenario s = loadScenario(child);
+  EXPECT_EQ(s.dof(), 7);
+  ASSERT_TRUE(s.urdf.has_value());
+  EXPECT_EQ(s.urdf->file, fs::weakly_canonical(kConfigs + "/../robots/panda.urdf").string())
+      << "the base file's ../robots/panda.urdf, from the base file's folder";
+}
+
+TEST(SetErrors, NameTheOptionInsteadOfLineOne) {
+  const std::string error =
+      testing::errorOf(testing::readFile(kConfigs + "/rigid_2dof.yaml"), {"controller.kd=abc"});
+  EXPECT_NE(error.find("controller.kd: expected"), std::string::npos) << error;
+  EXPECT_NE(error.find("(from --set controller.kd=abc)"), std::string::npos) << error;
+  EXPECT_EQ(error.find("(line 1)"), std::string::npos) << error;
+  // An error in the file itself keeps its line.
+  std::string text = testing::readFile(kConfigs + "/rigid_2dof.yaml");
+  text += "bogus_key: 1\n";
+  const std::string in_file = testing::errorOf(text, {"controller.kd=5"});
+  EXPECT_NE(in_file.find("bogus_key: unknown key (line "), std::string::npos) << in_file;
+  EXPECT_EQ(in_file.find("--set"), std::string::npos) << in_file;
+}
+
+}  // namespace
+}  // namespace lagrange::config
