@@ -8,12 +8,6 @@
 
 namespace lagrange::transport {
 
-int64_t nowUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 lagrange::header_t makeHeader(int64_t tick, double sim_time) {
   lagrange::header_t h{};  // run_id, publisher and seq: stamped by LcmNode::publish
   h.tick = tick;

@@ -18,7 +18,8 @@
 
 namespace lagrange::transport {
 
-/// Wall-clock time now [us since the Unix epoch].
+/// Now on the run's clock [us since the Unix epoch]: monotonic, on the
+/// wall clock by one offset per run and host (transport/run_clock.hpp).
 int64_t nowUtime();
 
 lagrange::header_t makeHeader(int64_t tick, double sim_time);

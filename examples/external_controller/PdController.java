@@ -49,6 +49,21 @@ public class PdController implements LCMSubscriber {
   private double previousT;
   private volatile boolean plantFinished = false;
   private final Mac mac;  // HMAC-SHA256 with the run's key
+  // publish_utime: the run's clock, the monotonic one (System.nanoTime is
+  // CLOCK_MONOTONIC on Linux) moved onto the wall clock by the offset every
+  // process of the run stamps with (LAGRANGE_CLOCK_OFFSET_US), in µs.
+  private final long clockOffsetUs = clockOffset();
+
+  static long clockOffset() {
+    String text = System.getenv("LAGRANGE_CLOCK_OFFSET_US");
+    try {
+      if (text != null) return Long.parseLong(text);
+    } catch (NumberFormatException e) {
+      // measured below
+    }
+    java.time.Instant now = java.time.Instant.now();
+    return now.getEpochSecond() * 1_000_000L + now.getNano() / 1000 - System.nanoTime() / 1000;
+  }
 
   static final int MAC_BYTES = 32;
 
@@ -83,7 +98,7 @@ public class PdController implements LCMSubscriber {
     header_t h = new header_t();
     h.tick = tick;
     h.sim_time = simTime;
-    h.publish_utime = System.currentTimeMillis() * 1000;
+    h.publish_utime = System.nanoTime() / 1000 + clockOffsetUs;
     h.run_id = runId;
     h.publisher = "controller";
     h.publisher_pid = pid;

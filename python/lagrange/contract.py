@@ -93,6 +93,15 @@ class Key:
         return payload if hmac.compare_digest(good, tag) else None
 
 
+def clock_offset_us(environ=None):
+    """Wall minus monotonic [µs]: LAGRANGE_CLOCK_OFFSET_US, or measured now."""
+    text = (os.environ if environ is None else environ).get("LAGRANGE_CLOCK_OFFSET_US", "")
+    try:
+        return int(text)
+    except ValueError:
+        return time.time_ns() // 1000 - time.monotonic_ns() // 1000
+
+
 class Headers:
     """The headers a process stamps: its run, its name, its pid and one
     sequence number per channel (1 for the first message, re-sent ones
@@ -103,14 +112,14 @@ class Headers:
         self.publisher = publisher
         self.pid = os.getpid()
         self._seq = {}
-        # publish_utime: wall-clock microseconds, advanced by the monotonic
-        # clock, so that two stamps never go backwards when the wall clock is
-        # stepped (statistics only).
-        self._wall0 = time.time_ns() // 1000
-        self._mono0 = time.monotonic_ns() // 1000
+        # publish_utime: the run's clock (transport/run_clock.hpp): the
+        # monotonic clock moved onto the wall clock by the offset the launcher
+        # hands every process of the run (LAGRANGE_CLOCK_OFFSET_US), so that a
+        # latency between two processes is never negative; else our own.
+        self._offset = clock_offset_us()
 
     def utime(self):
-        return self._wall0 + (time.monotonic_ns() // 1000 - self._mono0)
+        return time.monotonic_ns() // 1000 + self._offset
 
     def stamp(self, header, channel, tick, sim_time):
         """Fills `header` for the next message on `channel` (checksum 0: seal last)."""

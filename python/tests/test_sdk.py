@@ -96,6 +96,12 @@ class Contract(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "cannot read the run's key file"):
                 lagrange.contract.Key.from_file(os.path.join(d, "missing"))
 
+    def test_publish_utime_is_the_runs_clock(self):
+        self.assertEqual(lagrange.contract.clock_offset_us({"LAGRANGE_CLOCK_OFFSET_US": "123"}), 123)
+        measured = lagrange.contract.clock_offset_us({})
+        import time
+        self.assertLess(abs(measured - (time.time_ns() - time.monotonic_ns()) // 1000), 100000)
+
     def test_publish_utime_never_goes_backwards(self):
         h = lagrange.contract.Headers(1, "controller")
         stamps = [h.utime() for _ in range(1000)]

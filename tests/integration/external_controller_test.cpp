@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
@@ -56,6 +57,31 @@ std::string scenario(const std::string& mode, const std::string& command = javaC
   return path;
 }
 
+// The report's TIMING.csv (a realtime run with --report): every latency from
+// a position's publish_utime to the command and the actuator state answering
+// it is >= 0 -- each process stamps the run's clock (transport/run_clock.hpp),
+// the external program too, from LAGRANGE_CLOCK_OFFSET_US.
+void expectLatenciesNeverNegative(const std::string& out) {
+  std::ifstream timing(out + "/report/TIMING.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(timing, line)) << "no " << out << "/report/TIMING.csv";
+  ASSERT_EQ(line, "tick,period_error_us,command_latency_us,actuator_latency_us");
+  long long rows = 0, negative = 0;
+  while (std::getline(timing, line)) {
+    std::stringstream fields(line);
+    std::string tick, period, command, actuator;
+    std::getline(fields, tick, ',');
+    std::getline(fields, period, ',');
+    std::getline(fields, command, ',');
+    std::getline(fields, actuator, ',');
+    if (command.empty() || actuator.empty()) continue;
+    ++rows;
+    if (std::stoll(command) < 0 || std::stoll(actuator) < 0) ++negative;
+  }
+  EXPECT_GT(rows, 2000);
+  EXPECT_EQ(negative, 0) << "latencies below zero in " << out << "/report/TIMING.csv";
+}
+
 // Every command of a log is the PD law on the positions it answered, where
 // the controller also answered the tick before (its velocity's difference).
 void expectThePdLaw(const std::string& log) {
@@ -100,12 +126,13 @@ TEST(ExternalController, AJavaPdTakesTheControllersPlaceInLockstepAndItsRunRepla
 
 TEST(ExternalController, AJavaPdRunsInRealtimeAndItsRunReplays) {
   const std::string out = freshDir("external-realtime");
-  const RunResult run = runScenario(scenario("realtime"), out, "-q");
+  const RunResult run = runScenario(scenario("realtime"), out, "-q --report");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // The program publishes no STATUS, so its commands cannot be counted
   // against a published total; convergence shows it answered, and how many
   // ticks it answered depends on the machine's load, so no count is asserted.
   EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
+  expectLatenciesNeverNegative(out);
   const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
@@ -159,9 +186,10 @@ TEST(ExternalController, APythonPdMatchesTheJavaOneBitForBitInLockstepAndReplays
 // run replays bit for bit.
 TEST(ExternalController, APythonPdRunsInRealtimeAndItsRunReplays) {
   const std::string out = freshDir("external-python-realtime");
-  const RunResult run = runScenario(scenario("realtime", pythonCommand()), out, "-q");
+  const RunResult run = runScenario(scenario("realtime", pythonCommand()), out, "-q --report");
   ASSERT_EQ(run.exit_code, 0) << run.output << readText(out + "/controller.log");
   EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
+  expectLatenciesNeverNegative(out);
   expectThePdLaw(out + "/run.lcm");
   const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;

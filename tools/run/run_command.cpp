@@ -30,6 +30,7 @@
 #include "tools/spy/spy.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "transport/run_clock.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 #include "wiring/inproc_runner.hpp"
@@ -281,6 +282,10 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   ProgressReader progress_reader(progress_pipe[0]);
 
   const std::string bin = executableDir();
+  // One clock offset for every process of the run here: their publish_utime
+  // stamps then differ by the time that passed (transport/run_clock.hpp).
+  const std::string clock_offset =
+      std::string(transport::kClockOffsetVariable) + "=" + std::to_string(transport::clockOffsetUs());
   wiring::Supervisor supervisor;
   auto spec = [&](const std::string& name, std::vector<std::string> extra) {
     wiring::ChildSpec c;
@@ -290,6 +295,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     c.argv.insert(c.argv.end(), key_args.begin(), key_args.end());
     c.argv.insert(c.argv.end(), extra.begin(), extra.end());
     c.log_path = (fs::path(out_dir) / (name + ".log")).string();
+    c.env = {clock_offset};
     return c;
   };
   // The logger first, so that it records from the first tick; the plant waits
@@ -305,7 +311,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     // needs to join the run comes in its environment (docs/external_controllers.md).
     controller.argv = scenario.controller.command;
     controller.working_directory = scenario.controller.working_directory;
-    controller.env = {"LAGRANGE_LCM_URL=" + url,
+    controller.env = {clock_offset,
+                      "LAGRANGE_LCM_URL=" + url,
                       "LAGRANGE_RUN_ID=" + std::to_string(run_id),
                       "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
                       "LAGRANGE_CONFIG=" + resolved,
