@@ -12,6 +12,7 @@
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
+#include "support/sweep_files.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -195,8 +196,6 @@ TEST(SampledDataCheck, SeesTheRealtimeWiringsDelay) {
   EXPECT_TRUE(converged["tracking"]["met"].get<bool>()) << converged["tracking"].dump();
 }
 
-// --check: a run that misses its stated metric exits 3 naming it; one that
-// meets it exits 0.
 // `lagrange run --check-sampled`: the verdict printed before a lockstep run is
 // the one in summary.json, and the run itself -- the sampled loop from the
 // initial state -- converges when the simulation said it would, within two
@@ -233,6 +232,8 @@ TEST(RunCheck, CheckSampledSimulatesBeforeTheRunAndTheRunAgrees) {
       << plain.output;
 }
 
+// --check: a run that misses its stated metric exits 3 naming it; one that
+// meets it exits 0. Named checks, and their JUnit XML for CI systems.
 TEST(RunCheck, AMissedMetricExits3AndNamesIt) {
   const std::string met = freshDir("checkmet"), missed = freshDir("checkmiss");
   const RunResult ok = runScenario(kConfigs + "/rigid_2dof.yaml", met, "-q --mode inproc --check");
@@ -243,6 +244,43 @@ TEST(RunCheck, AMissedMetricExits3AndNamesIt) {
   EXPECT_NE(late.output.find("metric MISSED"), std::string::npos) << late.output;
   EXPECT_NE(late.output.find("by t = 0.5 s"), std::string::npos) << late.output;
   EXPECT_FALSE(readSummary(missed)["tracking"]["met"].get<bool>());  // the claim the exit code makes
+}
+
+TEST(RunCheck, NamedChecksAndJUnitXml) {
+  const std::string out = freshDir("check-named"), junit = out + "-junit.xml";
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", out,
+                                  "-q --mode inproc --set duration=2 --check 'met,final_error<1e-3' "
+                                  "--check 'max_torque<=100' --check 'tracking.rms_last_second<1' --junit " +
+                                      quote(junit));
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  const auto summary = readSummary(out);
+  const double torque = summary["torque"]["max_abs"];
+  ASSERT_GT(torque, 100.0) << "the check below must miss";
+  EXPECT_NE(r.output.find("--check: metric MISSED: max_torque<=100: torque.max_abs = "), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("final_error<1e-3"), std::string::npos) << "only what was missed is printed";
+  const std::string xml = readText(junit);
+  EXPECT_NE(xml.find("<testsuite name=\"lagrange run rigid_2dof\" tests=\"4\" failures=\"1\""),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(xml.find("<testcase classname=\"rigid_2dof\" name=\"final_error&lt;1e-3\"><system-out>"),
+            std::string::npos)
+      << xml;
+  EXPECT_NE(
+      xml.find("name=\"max_torque&lt;=100\">\n      <failure message=\"max_torque&lt;=100: torque.max_abs"),
+      std::string::npos)
+      << xml;
+  // A check that cannot be read stops the run before it starts (exit 2).
+  const RunResult bad = runScenario(kConfigs + "/rigid_2dof.yaml", freshDir("check-bad"),
+                                    "-q --mode inproc --check 'final_error<<1'");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--check 'final_error<<1': '<1' is not a finite number"), std::string::npos)
+      << bad.output;
+  // All met: exit 0, and the XML says so.
+  const RunResult ok = runScenario(kConfigs + "/rigid_2dof.yaml", freshDir("check-ok"),
+                                   "-q --mode inproc --check 'met,max_error<=3' --junit " + quote(junit));
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(readText(junit).find("tests=\"2\" failures=\"0\""), std::string::npos) << readText(junit);
 }
 
 // plant.max_rate: a limit the user sets stops the run, named, with the log kept.

@@ -2,6 +2,7 @@
 /// `lagrange run`'s command line (tools/run/run_command.hpp).
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <sstream>
 
 #include "tools/run/run_command.hpp"
 
@@ -12,6 +13,7 @@ struct RunCommandLine {
   RunOptions run;
   std::string mode;
   bool no_netns = false;
+  CLI::Option* check_option = nullptr;
 };
 }  // namespace
 
@@ -53,14 +55,35 @@ Subcommand addRunCommand(CLI::App& app) {
                   "The run's secret key (from `lagrange keygen`, mode 600) instead of a fresh one in "
                   "OUT/run.key; every host of a run spread with --processes needs the same one")
       ->check(CLI::ExistingFile);
-  cmd->add_flag("--check", run.check,
-                "Exit 3, naming the metric and its value, when the run completes but misses its stated "
-                "metric (summary.json tracking.met false): for guarding a controller in CI");
+  CLI::Option* check =
+      cmd->add_option("--check", run.checks,
+                      "Exit 3, naming each one missed with its value, when the run completes but misses a "
+                      "check: alone, the scenario's stated metric (summary.json tracking.met); or a comma-"
+                      "separated list of met and KEY OP NUMBER (OP one of < <= > >=, KEY a number of "
+                      "summary.json or final_error, max_error, convergence_time, rms_last_second, "
+                      "max_torque), e.g. --check 'met,final_error<1e-4,max_torque<=300'; repeatable")
+          ->expected(0, 1)
+          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  o->check_option = check;
+  cmd->add_option(
+      "--junit", run.junit_path,
+      "Write the checks' results (--check's, or the stated metric's) as JUnit XML to FILE, for CI "
+      "systems");
   cmd->add_flag("--report", run.report,
                 "At the end of the run, write CSV files and PNG plots to OUT/report (as lagrange report)");
   return {cmd, [o](const Invocation& inv) {
             RunOptions options = o->run;
             options.private_netns = !o->no_netns;
+            // Each --check's comma-separated list; --check alone stores an empty value.
+            std::vector<std::string> checks;
+            for (const std::string& list : options.checks) {
+              std::stringstream items(list);
+              for (std::string item; std::getline(items, item, ',');)
+                if (!item.empty()) checks.push_back(item);
+            }
+            options.checks = checks;
+            options.check = o->check_option->count() > 0 || !options.junit_path.empty();
+            if (options.check && options.checks.empty()) options.checks = {"met"};
             if (!o->mode.empty()) options.overrides.push_back("mode=" + o->mode);
             options.self_argv = inv.argv;
             options.sign = inv.sign;

@@ -24,6 +24,7 @@
 #include "tools/command_error.hpp"
 #include "tools/report/report.hpp"
 #include "tools/run/launch_rules.hpp"
+#include "tools/run/metric_checks.hpp"
 #include "tools/run/progress_reader.hpp"
 #include "tools/run/run_key.hpp"
 #include "tools/run/run_outcome.hpp"
@@ -178,19 +179,36 @@ void printResult(const std::string& out_dir) {
 // --check: a completed run that missed its stated metric exits kExitMetricMissed,
 // naming each metric it missed with its value, so CI can guard a controller.
 int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code) {
-  if (!opt.check || exit_code != 0) return exit_code;
-  nlohmann::json j;
+  if (!opt.check || exit_code == kExitInterrupted) return exit_code;
+  nlohmann::json j;  // null when unreadable: every check then fails, saying why
   try {
     j = nlohmann::json::parse(std::ifstream(fs::path(out_dir) / "summary.json"));
   } catch (const std::exception&) {
-    std::cerr << "lagrange run: --check: summary.json could not be read in " << out_dir
-              << "; expected the logger's summary of this run\n";
-    return kExitMetricMissed;
   }
-  const std::vector<std::string> missed = missedMetrics(j);
-  if (missed.empty()) return kExitOk;
-  for (const std::string& line : missed) std::cerr << "lagrange run: --check: " << line << "\n";
-  return kExitMetricMissed;
+  std::vector<MetricCheck> checks;
+  for (const std::string& text : opt.checks)
+    checks.push_back(parseMetricCheck(text));  // parsed before the run
+  const std::vector<CheckResult> results = evaluateChecks(checks, j);
+  if (!opt.junit_path.empty()) {
+    const double wall = j.is_object() ? j.value("/timing/wall_time"_json_pointer, 0.0) : 0.0;
+    try {
+      util::writeOutputFile(
+          opt.junit_path,
+          junitXml(j.is_object() ? j.value("scenario", std::string("?")) : "?", results, wall));
+    } catch (const std::exception& e) {
+      std::cerr << "lagrange run: --junit " << opt.junit_path << ": " << e.what() << "\n";
+      if (exit_code == kExitOk) exit_code = kExitFailed;
+    }
+  }
+  if (exit_code != kExitOk) return exit_code;  // the run's own failure first
+  int missed = 0;
+  for (const CheckResult& r : results)
+    if (!r.passed) {
+      ++missed;
+      std::cerr << "lagrange run: --check: " << (r.check.key == "met" ? "" : "metric MISSED: ") << r.message
+                << "\n";
+    }
+  return missed > 0 ? kExitMetricMissed : kExitOk;
 }
 
 // --report: CSV and plots of the log in OUT/report; a failed or diverged run
@@ -413,6 +431,11 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
 
 namespace {
 int runScenarioLocked(const RunOptions& opt) {
+  try {
+    for (const std::string& text : opt.checks) parseMetricCheck(text);  // a bad check stops nothing half-way
+  } catch (const std::exception& e) {
+    return failWith("lagrange run", e);
+  }
   if (opt.check && !runsHere(opt, "logger")) {
     std::cerr << "lagrange run: --check reads the run's summary.json, which the logger writes on its own "
                  "host; expected --processes to include logger\n";

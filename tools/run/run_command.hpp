@@ -25,8 +25,12 @@ struct RunOptions {
   bool check_sampled = false;
   bool quiet = false;
   bool report = false;  ///< write OUT/report (CSV + plots) when the run ends with a log
-  /// Exit 3 when the run completed but missed its stated metric (tracking.met false).
+  /// Exit 3 when the run completed but missed a check (tools/run/metric_checks.hpp):
+  /// --check alone is {"met"}, the scenario's stated metric.
   bool check = false;
+  std::vector<std::string> checks;
+  /// --junit FILE: the checks' results as JUnit XML (implies --check's "met" when no check is named).
+  std::string junit_path;
   /// The processes to start on this host (a run spread over several hosts);
   /// empty: all four. A subset needs --no-netns and an explicit LCM URL.
   std::vector<std::string> processes;
