@@ -68,15 +68,15 @@ struct Perturbation {
 TEST(Golden, APerturbedGainOrDiscretisationFailsAtTheRightTick) {
   const std::vector<Perturbation> cases = {
       {"rigid_2dof_lockstep", "controller", "controller.kp=[150.001,10]",
-       "at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[0]: recorded"},
+       "at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[1]: recorded"},
       {"chain_m2_lockstep", "controller", "controller.a=[50.001,50]",
        "at tick 2 (t = 0.002000 s): CONTROL_COMMAND."},
       {"chain_m1_realtime", "controller", "controller.kp=[150,10.001]",
-       "at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[1]"},
+       "at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[2]"},
       {"chain_m2_lockstep", "actuator", "actuator.rate=2000",
        "at tick 0 (t = 0.000000 s): ACTUATOR_STATE.tau_applied: recorded 1 steps, replayed 2"},
       {"chain_m1_realtime", "plant", "plant.physics_step=5e-5",
-       "at tick 1 (t = 0.001000 s): PLANT_TRUTH.q[0]"},
+       "at tick 1 (t = 0.001000 s): PLANT_TRUTH.q[1]"},
       {"flexible_2dof_filtered_rate_lockstep", "plant", "robot.flexible.stiffness=[100,30.001]",
        "at tick 0 (t = 0.000000 s): PLANT_TRUTH.potential_energy"},
   };

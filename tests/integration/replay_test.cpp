@@ -69,7 +69,7 @@ TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {
   const RunResult r =
       lagrange("replay " + quote(chainLog()) + " --component actuator --set actuator.saturation=5");
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("ACTUATOR_STATE.tau_applied[0]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ACTUATOR_STATE.tau_applied[1]"), std::string::npos) << r.output;
 }
 
 // The replay test has teeth: a changed gain fails at the first tick it can
@@ -78,7 +78,7 @@ TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {
 TEST_F(Recorded, APerturbedGainDivergesAtTheRightTick) {
   const RunResult kp = lagrange("replay " + quote(chainLog()) + " --set controller.kp=[150.001,10]");
   EXPECT_EQ(kp.exit_code, 1) << kp.output;
-  EXPECT_NE(kp.output.find("at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[0]: recorded"), std::string::npos)
+  EXPECT_NE(kp.output.find("at tick 0 (t = 0.000000 s): CONTROL_COMMAND.u[1]: recorded"), std::string::npos)
       << kp.output;
   const RunResult pole = lagrange("replay " + quote(chainLog()) + " --set controller.a=[50.001,50]");
   EXPECT_EQ(pole.exit_code, 1) << pole.output;
@@ -149,14 +149,14 @@ TEST_F(Recorded, ReportWritesOneCsvPerChannelWithEveryTick) {
   std::string header, first;
   std::getline(truth, header);
   std::getline(truth, first);
-  EXPECT_EQ(header.rfind("tick,sim_time,q[0],q[1],qdot[0],qdot[1],tau_applied[0]", 0), 0u) << header;
+  EXPECT_EQ(header.rfind("tick,sim_time,q[1],q[2],qdot[1],qdot[2],tau_applied[1]", 0), 0u) << header;
   EXPECT_EQ(first.rfind("0,0,2,-1.5,", 0), 0u) << first;  // chain_m2.yaml starts at q = (2, -1.5)
   long long lines = 2;
   for (std::string line; std::getline(truth, line);) ++lines;
   EXPECT_EQ(lines, 1 + 1001);  // header + ticks 0..1000
   std::ifstream command(out + "/CONTROL_COMMAND.csv");
   std::getline(command, header);
-  EXPECT_NE(header.find("xi_error[1][0]"), std::string::npos) << header;  // m = 2 chain errors
+  EXPECT_NE(header.find("xi_error[2][1]"), std::string::npos) << header;  // m = 2 chain errors
 
   const std::string text = freshDir("notalog") + ".txt";
   std::ofstream(text) << "hello\n";

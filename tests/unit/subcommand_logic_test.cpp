@@ -19,6 +19,7 @@
 #include "tools/report/plots.hpp"
 #include "tools/spy/spy.hpp"
 #include "util/error.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::tools {
 namespace {
@@ -77,10 +78,10 @@ TEST_F(SubcommandLogic, SpyRefusesAMissingOrForeignEndpointFileNamingIt) {
 }
 
 TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {
-  writeFile("PLANT_TRUTH.csv", "utime,t,tick,q[0],q[1],qdot[0],qdot[1],tau[0],tau[1]\n1,0,0,0,0,0,0,0,0\n");
+  writeFile("PLANT_TRUTH.csv", "utime,t,tick,q[1],q[2],qdot[1],qdot[2],tau[1],tau[2]\n1,0,0,0,0,0,0,0,0\n");
   writeFile("CONTROL_COMMAND.csv",
-            "utime,t,tick,u[0],u[1],q_desired[0],q_desired[1],q_error[0],q_error[1],theta[0],theta[1],"
-            "filter_state[0],filter_state[1]\n");
+            "utime,t,tick,u[1],u[2],q_desired[1],q_desired[2],q_error[1],q_error[2],theta[1],theta[2],"
+            "filter_state[1],filter_state[2]\n");
   PlotSpec spec = specFromCsv(dir_, "rigid \"2dof\"");
   EXPECT_EQ(spec.dof, 2);
   EXPECT_EQ(spec.chain_order, 0);
@@ -102,12 +103,31 @@ TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {
 
   // A chain's CONTROL_COMMAND has xi_error columns per stage: its stages are drawn.
   writeFile("CONTROL_COMMAND.csv",
-            "utime,t,tick,u[0],u[1],q_error[0],q_error[1],xi_error[0][0],xi_error[0][1],xi_error[1][0],"
-            "xi_error[1][1]\n");
-  writeFile("ACTUATOR_STATE.csv", "utime,t,tick,xi[0][0],xi[0][1],xi[1][0],xi[1][1]\n");
+            "utime,t,tick,u[1],u[2],q_error[1],q_error[2],xi_error[1][1],xi_error[1][2],xi_error[2][1],"
+            "xi_error[2][2]\n");
+  writeFile("ACTUATOR_STATE.csv", "utime,t,tick,xi[1][1],xi[1][2],xi[2][1],xi[2][2]\n");
   const PlotSpec chain = specFromCsv(dir_, "chain");
   EXPECT_EQ(chain.chain_order, 2);
   EXPECT_TRUE(has(plotScript(chain).pngs, "chain_error.png"));
+}
+
+// CSV and table numbers: the shortest text that reads back as the same
+// double, bit for bit ("0.1", not "0.10000000000000001").
+TEST(NumberText, IsTheShortestTextThatRoundTrips) {
+  EXPECT_EQ(util::exactText(0.1), "0.1");
+  EXPECT_EQ(util::exactText(1e-3), "0.001");
+  EXPECT_EQ(util::exactText(2.0), "2");
+  EXPECT_EQ(util::exactText(-1.5e300), "-1.5e+300");
+  EXPECT_EQ(util::exactText(std::nextafter(0.1, 1.0)), "0.10000000000000002");
+  uint64_t state = 12345;
+  for (int i = 0; i < 100000; ++i) {  // random bit patterns: every finite double round-trips
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    double x;
+    std::memcpy(&x, &state, sizeof x);
+    if (!std::isfinite(x)) continue;
+    const double back = std::strtod(util::exactText(x).c_str(), nullptr);
+    ASSERT_EQ(std::memcmp(&back, &x, sizeof x), 0) << util::exactText(x);
+  }
 }
 
 TEST(ReplayCompare, IsBitForBit) {
@@ -124,11 +144,11 @@ TEST(ReplayCompare, IsBitForBit) {
             "u[0]: recorded nan (bits 0x7ff8000000000000), replayed nan (bits 0x7ff8000000000001)");
   const double next = std::nextafter(0.1, 1.0);
   EXPECT_EQ(compare("theta[1]", 0.1, next),
-            "theta[1]: recorded 0.10000000000000001, replayed 0.10000000000000002");
+            "theta[1]: recorded 0.1, replayed 0.10000000000000002");
   Eigen::VectorXd replayed(2);
   replayed << 1.0, 2.0;
   EXPECT_EQ(compare("u", std::vector<double>{1.0, 2.0}, replayed), "");
-  EXPECT_EQ(compare("u", std::vector<double>{1.0, 3.0}, replayed), "u[1]: recorded 3, replayed 2");
+  EXPECT_EQ(compare("u", std::vector<double>{1.0, 3.0}, replayed), "u[2]: recorded 3, replayed 2");
   EXPECT_EQ(compare("u", std::vector<double>{1.0}, replayed), "u: recorded 1 values, replayed 2");
   EXPECT_EQ(replay_log::at(42, 0.042), "tick 42 (t = 0.042000 s): ");
 }

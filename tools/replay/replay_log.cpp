@@ -120,7 +120,7 @@ std::string compare(const std::string& field, const std::vector<double>& recorde
            std::to_string(replayed.size());
   for (size_t i = 0; i < recorded.size(); ++i) {
     const std::string d =
-        compare(field + "[" + std::to_string(i) + "]", recorded[i], replayed(static_cast<Eigen::Index>(i)));
+        compare(field + "[" + std::to_string(i + 1) + "]", recorded[i], replayed(static_cast<Eigen::Index>(i)));
     if (!d.empty()) return d;
   }
   return "";

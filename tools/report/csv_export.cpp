@@ -30,11 +30,13 @@ class Row {
     names_.push_back(name);
     values_.push_back(util::exactText(value));
   }
+  // Joints (and torque steps, chain stages) numbered from 1, as the plots,
+  // the URDF's joint names and the paper number them: q[1] is joint 1.
   void add(const std::string& name, const std::vector<double>& values) {
-    for (size_t i = 0; i < values.size(); ++i) add(name + "[" + std::to_string(i) + "]", values[i]);
+    for (size_t i = 0; i < values.size(); ++i) add(name + "[" + std::to_string(i + 1) + "]", values[i]);
   }
   void add(const std::string& name, const std::vector<std::vector<double>>& rows) {
-    for (size_t i = 0; i < rows.size(); ++i) add(name + "[" + std::to_string(i) + "]", rows[i]);
+    for (size_t i = 0; i < rows.size(); ++i) add(name + "[" + std::to_string(i + 1) + "]", rows[i]);
   }
   std::string header() const { return join(names_); }
   std::string line() const { return join(values_); }

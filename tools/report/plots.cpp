@@ -44,7 +44,8 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-std::string indexed(const std::string& field, int i) { return field + "[" + std::to_string(i) + "]"; }
+// The CSV column of element i (0-based here) of a field: numbered from 1 there.
+std::string indexed(const std::string& field, int i) { return field + "[" + std::to_string(i + 1) + "]"; }
 
 // "column(A)**2 + column(B)**2 + ..." under a square root: the norm of a vector field.
 std::string normOf(const std::map<std::string, int>& cols, const std::string& field, int n) {
