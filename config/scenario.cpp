@@ -124,9 +124,11 @@ std::string namingTheOption(std::string what, const std::vector<std::string>& ov
   for (auto o = overrides.rbegin(); o != overrides.rend(); ++o) {  // the last --set of a key wins
     const std::string set_key = o->substr(0, o->find('='));
     if (key != set_key && key.compare(0, set_key.size() + 1, set_key + ".") != 0) continue;
-    const size_t line = what.rfind(" (line ");
-    if (line != std::string::npos && what.back() == ')') what.erase(line);
-    return what + " (from --set " + *o + ")";
+    const std::string from = " (from --set " + *o + ")";
+    const size_t line = what.find(" (line ");
+    const size_t close = line == std::string::npos ? line : what.find(')', line);
+    if (close == std::string::npos) return what + from;
+    return what.replace(line, close + 1 - line, from);
   }
   return what;
 }

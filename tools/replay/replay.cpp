@@ -37,7 +37,7 @@ std::string replay_log::commandDifference(const lagrange::control_command_t& rec
     return "xi_error: recorded " + std::to_string(rec.xi_error.size()) + " stages, replayed " +
            std::to_string(out.xi_error.rows());
   for (size_t i = 0; i < rec.xi_error.size(); ++i) {
-    const std::string field = "xi_error[" + std::to_string(i) + "]";
+    const std::string field = "xi_error[" + std::to_string(i + 1) + "]";
     const std::string d =
         compare(field, rec.xi_error[i], out.xi_error.row(static_cast<Eigen::Index>(i)).transpose());
     if (!d.empty()) return d;
@@ -110,14 +110,14 @@ ReplayResult replayActuator(const std::string& log_path, const std::vector<std::
             d = "tau_applied: recorded " + std::to_string(state.tau_applied.size()) + " steps, replayed " +
                 std::to_string(out.tau.rows());
           for (size_t i = 0; d.empty() && i < state.tau_applied.size(); ++i)
-            d = compare("tau_applied[" + std::to_string(i) + "]", state.tau_applied[i],
+            d = compare("tau_applied[" + std::to_string(i + 1) + "]", state.tau_applied[i],
                         out.tau.row(static_cast<Eigen::Index>(i)).transpose());
           for (size_t i = 0; d.empty() && i < state.xi.size(); ++i)
-            d = compare("xi[" + std::to_string(i) + "]", state.xi[i],
+            d = compare("xi[" + std::to_string(i + 1) + "]", state.xi[i],
                         act.state().row(static_cast<Eigen::Index>(i)).transpose());
           for (size_t j = 0; d.empty() && j < state.saturated.size(); ++j)
             if (state.saturated[j] != static_cast<int8_t>(out.saturated(static_cast<Eigen::Index>(j))))
-              d = "saturated[" + std::to_string(j) + "]: recorded " + std::to_string(state.saturated[j]) +
+              d = "saturated[" + std::to_string(j + 1) + "]: recorded " + std::to_string(state.saturated[j]) +
                   ", replayed " + std::to_string(out.saturated(static_cast<Eigen::Index>(j)));
           if (!d.empty()) {
             result.divergence =
