@@ -13,6 +13,7 @@ run_packages=(
   gnuplot-nox  # lagrange report's plots
   liburdfdom-dev liborocos-kdl-dev  # URDF arms: the document, the dynamics
   libsodium-dev libssl-dev  # each run's random key; every message's HMAC-SHA256 (libcrypto)
+  libhdf5-dev  # lagrange export: HDF5 through its C++ API (H5Cpp)
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libcpp-httplib-dev libjs-three  # lagrange view: its HTTP server, three.js for its page
   iproute2 util-linux  # each run's private network namespace
@@ -23,6 +24,7 @@ more_packages=(
   git liblcm-java libjchart2d-java default-jdk-headless
   # python/lagrange, its tests (standard library only) and `pip install ./python`
   python3 python3-venv python3-pip python3-setuptools python3-wheel
+  python3-h5py  # lagrange export's test reads the file back as a user would
   libgtest-dev libbenchmark-dev
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it

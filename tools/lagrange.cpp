@@ -6,6 +6,7 @@
 ///   check-gains   print the gain conditions of a scenario without running it
 ///   replay        rebuild a component from a log and compare its outputs bit for bit
 ///   report        CSV files and plots of a run
+///   export        a run as one HDF5 file
 ///   compare       run a scenario for several controllers and tabulate them
 ///   sweep         many in-process runs over axes of scenario keys (locally or on Slurm)
 ///   keygen        write a secret key for a run spread over hosts
@@ -14,6 +15,7 @@
 
 #include "tools/check_gains/check_gains.hpp"
 #include "tools/compare/compare.hpp"
+#include "tools/export/export.hpp"
 #include "tools/front_end.hpp"
 #include "tools/keygen/keygen.hpp"
 #include "tools/keys/keys.hpp"
@@ -32,8 +34,8 @@ int main(int argc, char** argv) {
 #endif
   // Every subcommand, in the order --help lists them: a new one is one line here.
   return dispatch(argc, argv,
-                  {addRunCommand, addCheckGainsCommand, addReplayCommand, addReportCommand, addCompareCommand,
-                   addSweepCommand, addSweepShardCommand, addKeygenCommand, addKeysCommand, addSpyCommand,
-                   addViewCommand},
+                  {addRunCommand, addCheckGainsCommand, addReplayCommand, addReportCommand, addExportCommand,
+                   addCompareCommand, addSweepCommand, addSweepShardCommand, addKeygenCommand, addKeysCommand,
+                   addSpyCommand, addViewCommand},
                   front_end);
 }

@@ -16,6 +16,7 @@
 #include "lagrange/plant_truth_t.hpp"
 #include "logs/log_reader.hpp"
 #include "transport/channels.hpp"
+#include "transport/message_fields.hpp"
 #include "util/number_text.hpp"
 #include "util/output_stream.hpp"
 
@@ -23,20 +24,21 @@ namespace lagrange::tools {
 
 namespace {
 
-// One CSV row under construction: named columns in order.
+// One CSV row under construction: named columns in order (a visitor of
+// transport::fields; the units are the docs', not the columns').
 class Row {
  public:
-  void add(const std::string& name, double value) {
+  void add(const std::string& name, double value, const char* /*unit*/ = "") {
     names_.push_back(name);
     values_.push_back(util::exactText(value));
   }
   // Joints (and torque steps, chain stages) numbered from 1, as the plots,
   // the URDF's joint names and the paper number them: q[1] is joint 1.
-  void add(const std::string& name, const std::vector<double>& values) {
-    for (size_t i = 0; i < values.size(); ++i) add(name + "[" + std::to_string(i + 1) + "]", values[i]);
+  void add(const std::string& name, const std::vector<double>& values, const char* unit = "") {
+    for (size_t i = 0; i < values.size(); ++i) add(name + "[" + std::to_string(i + 1) + "]", values[i], unit);
   }
-  void add(const std::string& name, const std::vector<std::vector<double>>& rows) {
-    for (size_t i = 0; i < rows.size(); ++i) add(name + "[" + std::to_string(i + 1) + "]", rows[i]);
+  void add(const std::string& name, const std::vector<std::vector<double>>& rows, const char* unit = "") {
+    for (size_t i = 0; i < rows.size(); ++i) add(name + "[" + std::to_string(i + 1) + "]", rows[i], unit);
   }
   std::string header() const { return join(names_); }
   std::string line() const { return join(values_); }
@@ -55,31 +57,12 @@ void headerColumns(Row& row, const lagrange::header_t& h) {
   row.add("sim_time", h.sim_time);
 }
 
-// The columns of each message type after tick and sim_time.
-void columns(Row& row, const lagrange::plant_truth_t& m) {
-  row.add("q", m.q), row.add("qdot", m.qdot), row.add("tau_applied", m.tau_applied);
-  row.add("kinetic_energy", m.kinetic_energy), row.add("potential_energy", m.potential_energy);
-  row.add("total_energy", m.total_energy);
-  row.add("input_actuator_tick", static_cast<double>(m.input_actuator_tick));
-  row.add("torque_source", m.torque_source);
-}
-void columns(Row& row, const lagrange::plant_position_t& m) { row.add("q", m.q); }
-void columns(Row& row, const lagrange::plant_rate_t& m) { row.add("qdot", m.qdot); }
-void columns(Row& row, const lagrange::plant_motor_t& m) { row.add("q", m.q), row.add("qdot", m.qdot); }
-void columns(Row& row, const lagrange::control_command_t& m) {
-  row.add("u", m.u), row.add("q_desired", m.q_desired), row.add("q_error", m.q_error);
-  row.add("theta", m.theta), row.add("filter_state", m.filter_state), row.add("xi_error", m.xi_error);
-}
-void columns(Row& row, const lagrange::actuator_state_t& m) {
-  row.add("u_commanded", m.u_commanded), row.add("tau_applied", m.tau_applied), row.add("xi", m.xi);
-}
-
 // The row of one event of a known channel; false if the event is not decodable.
 bool rowOf(const lcm::LogEvent& ev, Row& row, int64_t& tick) {
   return transport::withChannelMessage(ev.channel, false, [&](auto m) {
     if (!logs::decodeEvent(ev, m)) return false;
     headerColumns(row, m.header);
-    columns(row, m);
+    transport::fields(row, m);
     tick = m.header.tick;
     return true;
   });

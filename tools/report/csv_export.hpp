@@ -1,9 +1,11 @@
 #pragma once
 /// @file
 /// `lagrange report LOG|DIR`, its tables: one CSV file per channel of a run's
-/// LCM log, one row per recorded message (first copy of each tick), columns
-/// named after the message fields with the joint index (q[0], q[1], ...) and
-/// the stage for chain arrays (xi_error[1][0]). Units are those of
+/// LCM log, one row per recorded message (the first intact copy of each
+/// tick), columns named after the message fields (transport/message_fields.hpp)
+/// with the joint numbered from 1 (q[1], q[2], ...) and the stage or torque
+/// step first for arrays of rows (xi_error[2][1]: stage 2, joint 1). Numbers
+/// as the shortest text that reads back bit for bit. Units are those of
 /// lcmtypes/*.lcm. For realtime runs also TIMING.csv, derived from the
 /// messages' publish times.
 

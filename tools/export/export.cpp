@@ -1,0 +1,302 @@
+#include "tools/export/export.hpp"
+
+#include <H5Cpp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "config/scenario.hpp"
+#include "transport/channels.hpp"
+#include "transport/message_fields.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kFormat = "lagrange run export 1";
+// Rows held before they are written, so that they go out in runs of
+// contiguous rows (one write per dataset each), not one write a row.
+constexpr size_t kHeldRows = 4096;
+
+// A field's shape from the first message: [] a number, [joints], or [rows, joints].
+struct FieldShape {
+  std::string name, unit;
+  std::vector<hsize_t> dims;
+  size_t size() const {
+    size_t n = 1;
+    for (hsize_t d : dims) n *= d;
+    return n;
+  }
+};
+
+struct ShapeVisitor {
+  std::vector<FieldShape> fields;
+  void add(const std::string& name, double, const char* unit) { fields.push_back({name, unit, {}}); }
+  void add(const std::string& name, const std::vector<double>& v, const char* unit) {
+    fields.push_back({name, unit, {v.size()}});
+  }
+  void add(const std::string& name, const std::vector<std::vector<double>>& rows, const char* unit) {
+    fields.push_back({name, unit, {rows.size(), rows.empty() ? 0 : rows.front().size()}});
+  }
+};
+
+// One message's values, flat in the fields' order; a value of another shape
+// than the first message's is NaN-filled (and counted).
+struct FlatVisitor {
+  const std::vector<FieldShape>& shapes;
+  std::vector<double> values;
+  size_t field = 0;
+  bool misshapen = false;
+  void put(const std::vector<double>& flat) {
+    const size_t want = shapes.at(field++).size();
+    if (flat.size() != want) misshapen = true;
+    for (size_t i = 0; i < want; ++i)
+      values.push_back(i < flat.size() && flat.size() == want ? flat[i] : std::nan(""));
+  }
+  void add(const std::string&, double v, const char*) { put({v}); }
+  void add(const std::string&, const std::vector<double>& v, const char*) { put(v); }
+  void add(const std::string&, const std::vector<std::vector<double>>& rows, const char*) {
+    std::vector<double> flat;
+    const size_t width = shapes.at(field).dims.size() == 2 ? shapes.at(field).dims[1] : 0;
+    for (const auto& r : rows) {
+      if (r.size() != width) misshapen = true;
+      flat.insert(flat.end(), r.begin(), r.end());
+    }
+    put(flat);
+  }
+};
+
+struct Row {
+  int64_t tick = 0, utime = 0;
+  double t = 0.0;
+  std::vector<double> values;
+};
+
+// One channel's group: its ticks (pass 1), its datasets and held rows (pass 2).
+struct ChannelTable {
+  std::vector<FieldShape> fields;
+  std::vector<int64_t> ticks;  // sorted, unique
+  std::vector<bool> written;
+  std::map<size_t, Row> held;
+  H5::Group group;
+  H5::DataSet tick, t, utime;
+  std::vector<H5::DataSet> datasets;  // per field; an empty field has none
+  long long misshapen = 0;
+};
+
+// Decodes `ev` as its channel's type and calls f(message); false if it is
+// not a whole, intact message of a per-tick channel.
+template <class F>
+bool withMessage(const lcm::LogEvent& ev, F&& f) {
+  return transport::withChannelMessage(ev.channel, false, [&](auto m) {
+    if (!logs::decodeEvent(ev, m)) return false;
+    f(m);
+    return true;
+  });
+}
+
+H5::StrType textType() { return H5::StrType(H5::PredType::C_S1, H5T_VARIABLE); }
+
+void textAttribute(H5::H5Object& at, const std::string& name, const std::string& value) {
+  const H5::StrType type = textType();
+  H5::Attribute a = at.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
+  a.write(type, value);
+}
+
+void textListAttribute(H5::H5Object& at, const std::string& name, const std::vector<std::string>& values) {
+  const H5::StrType type = textType();
+  const hsize_t n = values.size();
+  H5::Attribute a = at.createAttribute(name, type, H5::DataSpace(1, &n));
+  std::vector<const char*> pointers;
+  for (const std::string& v : values) pointers.push_back(v.c_str());
+  a.write(type, pointers.data());
+}
+
+H5::DataSet dataset(H5::Group& g, const std::string& name, const H5::PredType& type,
+                    std::vector<hsize_t> dims, const std::string& unit, const std::string& description) {
+  H5::DataSet d = g.createDataSet(name, type, H5::DataSpace(static_cast<int>(dims.size()), dims.data()));
+  if (!unit.empty()) textAttribute(d, "units", unit);
+  if (!description.empty()) textAttribute(d, "description", description);
+  return d;
+}
+
+// Writes rows [first, first + count) of a dataset of `row_elements` values a row.
+void writeRows(H5::DataSet& d, const H5::PredType& type, const void* data, size_t first, size_t count) {
+  H5::DataSpace file_space = d.getSpace();
+  const int rank = file_space.getSimpleExtentNdims();
+  std::vector<hsize_t> dims(static_cast<size_t>(rank)), start(static_cast<size_t>(rank), 0);
+  file_space.getSimpleExtentDims(dims.data());
+  start[0] = first;
+  dims[0] = count;
+  file_space.selectHyperslab(H5S_SELECT_SET, dims.data(), start.data());
+  const H5::DataSpace memory(rank, dims.data());
+  d.write(data, type, memory, file_space);
+}
+
+// Writes the held rows of a table, each contiguous run in one write per dataset.
+void flush(ChannelTable& c) {
+  while (!c.held.empty()) {
+    const size_t first = c.held.begin()->first;
+    size_t count = 0;
+    for (auto it = c.held.begin(); it != c.held.end() && it->first == first + count; ++it) ++count;
+    std::vector<int64_t> ticks, utimes;
+    std::vector<double> times;
+    std::vector<std::vector<double>> columns(c.fields.size());
+    auto it = c.held.begin();
+    for (size_t k = 0; k < count; ++k, ++it) {
+      ticks.push_back(it->second.tick), utimes.push_back(it->second.utime), times.push_back(it->second.t);
+      size_t offset = 0;
+      for (size_t f = 0; f < c.fields.size(); ++f) {
+        const size_t n = c.fields[f].size();
+        columns[f].insert(columns[f].end(), it->second.values.begin() + static_cast<long>(offset),
+                          it->second.values.begin() + static_cast<long>(offset + n));
+        offset += n;
+      }
+    }
+    writeRows(c.tick, H5::PredType::NATIVE_INT64, ticks.data(), first, count);
+    writeRows(c.utime, H5::PredType::NATIVE_INT64, utimes.data(), first, count);
+    writeRows(c.t, H5::PredType::NATIVE_DOUBLE, times.data(), first, count);
+    for (size_t f = 0; f < c.fields.size(); ++f)
+      if (c.fields[f].size() > 0)
+        writeRows(c.datasets[f], H5::PredType::NATIVE_DOUBLE, columns[f].data(), first, count);
+    c.held.erase(c.held.begin(), it);
+  }
+}
+
+std::optional<std::string> fileText(const fs::path& p) {
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) return std::nullopt;
+  std::ifstream in(p);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+HdfExport exportHdf5(const std::string& target, const std::string& out_file, bool force) {
+  std::error_code ec;
+  const fs::path log = fs::is_directory(target, ec) ? fs::path(target) / "run.lcm" : fs::path(target);
+  if (!fs::is_regular_file(log, ec))
+    throw BadInput("no run log at " + log.string() +
+                   "; expected a run directory (lagrange run --out) or its run.lcm");
+  const fs::path dir = log.parent_path();
+  if (fs::exists(fs::symlink_status(out_file)) && !force)
+    throw BadInput(out_file + " exists; expected a new file name (or --force to replace it)");
+  util::checkOutputPath(out_file);  // never through a link planted there
+
+  HdfExport result;
+  result.path = out_file;
+  // Pass 1: each channel's ticks and its fields' shapes; the run's identity.
+  std::map<std::string, ChannelTable> tables;
+  std::optional<std::string> logged_scenario;
+  int64_t run_id = 0;
+  logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
+    if (ev.channel == transport::kScenario && !logged_scenario) logged_scenario = logs::scenarioYaml(ev);
+    withMessage(ev, [&](const auto& m) {
+      ChannelTable& c = tables[ev.channel];
+      if (c.ticks.empty() && c.fields.empty()) {
+        ShapeVisitor shapes;
+        transport::fields(shapes, m);
+        c.fields = shapes.fields;
+        run_id = m.header.run_id;
+      }
+      c.ticks.push_back(m.header.tick);
+    });
+  });
+  for (auto& [channel, c] : tables) {
+    std::sort(c.ticks.begin(), c.ticks.end());
+    c.ticks.erase(std::unique(c.ticks.begin(), c.ticks.end()), c.ticks.end());
+    c.written.assign(c.ticks.size(), false);
+  }
+
+  const std::optional<std::string> resolved = fileText(dir / "config.resolved.yaml");
+  const std::optional<std::string> scenario_text = resolved ? resolved : logged_scenario;
+  const std::optional<std::string> summary = fileText(dir / "summary.json");
+  std::vector<std::string> joint_names;
+  if (scenario_text) {
+    try {
+      joint_names = config::parseScenario(*scenario_text, "the run's scenario").robotModel()->jointNames();
+    } catch (const std::exception& e) {
+      result.warnings.push_back(std::string("joint_names left out: the run's scenario does not read (") +
+                                e.what() + ")");
+    }
+  }
+
+  const std::string partial = out_file + ".partial-" + std::to_string(getpid());
+  H5::Exception::dontPrint();
+  try {
+    {
+      H5::H5File file(partial, H5F_ACC_EXCL);
+      H5::Group root = file.openGroup("/");
+      textAttribute(root, "format", kFormat);
+      textAttribute(root, "source", fs::absolute(log).lexically_normal().string());
+      textAttribute(root, "run_id", std::to_string(run_id));
+      if (scenario_text) textAttribute(root, "scenario", *scenario_text);
+      if (summary) textAttribute(root, "summary", *summary);
+      if (!joint_names.empty()) textListAttribute(root, "joint_names", joint_names);
+      for (auto& [channel, c] : tables) {
+        const hsize_t n = c.ticks.size();
+        c.group = file.createGroup("/" + channel);
+        c.tick = dataset(c.group, "tick", H5::PredType::NATIVE_INT64, {n}, "tick", "the sample's tick");
+        c.t = dataset(c.group, "t", H5::PredType::NATIVE_DOUBLE, {n}, "s", "header.sim_time");
+        c.utime = dataset(c.group, "publish_utime", H5::PredType::NATIVE_INT64, {n}, "us",
+                          "header.publish_utime: the run's clock when it was published");
+        for (const FieldShape& f : c.fields) {
+          std::vector<hsize_t> dims = {n};
+          dims.insert(dims.end(), f.dims.begin(), f.dims.end());
+          c.datasets.push_back(f.size() > 0
+                                   ? dataset(c.group, f.name, H5::PredType::NATIVE_DOUBLE, dims, f.unit, "")
+                                   : H5::DataSet());
+        }
+      }
+      // Pass 2: the first intact copy of each tick, into its row.
+      logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
+        withMessage(ev, [&](const auto& m) {
+          ChannelTable& c = tables.at(ev.channel);
+          const size_t row = static_cast<size_t>(
+              std::lower_bound(c.ticks.begin(), c.ticks.end(), m.header.tick) - c.ticks.begin());
+          if (row >= c.ticks.size() || c.written[row]) return;  // a later copy of a tick
+          c.written[row] = true;
+          FlatVisitor flat{c.fields, {}, 0, false};
+          transport::fields(flat, m);
+          if (flat.misshapen) ++c.misshapen;
+          c.held[row] = {m.header.tick, m.header.publish_utime, m.header.sim_time, std::move(flat.values)};
+          if (c.held.size() >= kHeldRows) flush(c);  // rows have their places: any order is right
+        });
+      });
+      for (auto& [channel, c] : tables) {
+        flush(c);
+        result.channels.push_back({channel, static_cast<long long>(c.ticks.size())});
+        if (c.misshapen > 0)
+          result.warnings.push_back(
+              channel + ": " + std::to_string(c.misshapen) +
+              " messages had a field of another size than the first message's; their values "
+              "there are NaN");
+      }
+      file.close();
+    }
+    fs::rename(partial, out_file);
+  } catch (const H5::Exception& e) {
+    fs::remove(partial, ec);
+    throw RuntimeFault("HDF5 could not write " + out_file + ": " + e.getDetailMsg());
+  } catch (...) {
+    fs::remove(partial, ec);
+    throw;
+  }
+  return result;
+}
+
+}  // namespace lagrange::tools

@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// `lagrange export RUN -o FILE`: a run's log as one HDF5 file, readable by
+/// h5py, MATLAB's h5read and Julia's HDF5.jl (docs/export.md):
+///
+///   /                       attributes: format, lagrange_version, run_id, joint_names,
+///                           scenario (the resolved YAML), summary (summary.json's text)
+///   /PLANT_TRUTH/tick       int64 [samples]             the sample's tick
+///   /PLANT_TRUTH/t          float64 [samples]           header.sim_time [s]
+///   /PLANT_TRUTH/publish_utime  int64 [samples]         the run's clock [us]
+///   /PLANT_TRUTH/q          float64 [samples, joints]   attribute units = "rad"
+///   /ACTUATOR_STATE/xi      float64 [samples, stages, joints]
+///   ...
+///
+/// One group per per-tick channel of the log, one dataset per field
+/// (transport/message_fields.hpp), one row per tick in tick order (the first
+/// intact copy of each). Written in blocks as the log is read, so the memory
+/// stays bounded by the number of ticks, not the log's size.
+
+#include <string>
+#include <vector>
+
+#include "logs/log_reader.hpp"
+#include "tools/subcommand.hpp"
+
+namespace lagrange::tools {
+
+struct HdfExport {
+  std::string path;
+  std::vector<std::pair<std::string, long long>> channels;  ///< rows written per channel
+  std::vector<std::string> warnings;                        ///< what could not be exported as it was
+  logs::LogScan scan;
+};
+
+/// Writes `out_file` from the run at `target` (a run directory, or a run.lcm
+/// beside its summary.json and config.resolved.yaml). Refuses to replace an
+/// existing file unless `force`.
+/// @throws lagrange::BadInput (a missing log, an existing file), RuntimeFault (HDF5 failed).
+HdfExport exportHdf5(const std::string& target, const std::string& out_file, bool force);
+
+/// Declares `lagrange export` on the front end (tools/export/export_cli.cpp).
+Subcommand addExportCommand(CLI::App& app);
+
+}  // namespace lagrange::tools
