@@ -19,8 +19,10 @@ void readControllers(MapReader& r, CompareConfig& c) {
     const YAML::Node keys = controllers.child(type);
     if (!keys.IsNull() && !keys.IsMap())
       controllers.fail(type, "expected a map of the controller's keys (e.g. {kp: [150, 10], kd: [15, 1]})");
-    if (keys.IsMap() && keys["type"])
-      controllers.fail(type + ".type", "the controller's type is its key here; expected its other keys only");
+    // A `type` key makes the name a row label: several external programs
+    // (type external, each its command), or one type tuned twice.
+    if (keys.IsMap() && keys["type"] && (!keys["type"].IsScalar() || keys["type"].Scalar().empty()))
+      controllers.fail(type + ".type", "expected a controller type, e.g. type: external");
     c.controllers.push_back({type, keys.IsNull() ? std::string("{}") : flowYaml(keys)});
   }
   if (c.controllers.empty()) r.fail("controllers", "expected at least one controller");

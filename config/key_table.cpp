@@ -470,7 +470,9 @@ std::vector<KeyInfo> compareKeys() {
           "it): a controller to compare, TYPE its `controller.type`, the map its other `controller.*` "
           "keys (e.g. `pd_plus: {kp: [150, 10], kd: [15, 1]}`); its run gets `controller = {type: "
           "TYPE, …}`. An empty map for the scenario's own `controller.type` keeps the `controller` "
-          "section as it is. In file order; `--controllers` picks some"),
+          "section as it is. With a `type` key inside, TYPE is only the row's name: e.g. "
+          "`pd_python: {type: external, command: [python3, pd_controller.py, ...]}` compares an external "
+          "program (run in lockstep, the others in process). In file order; `--controllers` picks some"),
       row("compare.sweep.key", "a dotted key", "absent",
           "`lagrange compare` also runs every controller for each value of this key (e.g. "
           "`sensors.position.counts_per_revolution`, `sensors.position.noise_sigma`, "

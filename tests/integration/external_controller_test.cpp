@@ -6,7 +6,9 @@
 // recorded positions and gets every recorded command back bit for bit.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "support/launch.hpp"
@@ -194,6 +196,68 @@ TEST(ExternalController, APythonPdRunsInRealtimeAndItsRunReplays) {
   const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
+}
+
+// `lagrange compare`: external programs are rows like any controller (a
+// compare.controllers entry with type external names the row), run in
+// lockstep beside the built-in ones in process. The Java and the Python PD
+// give the same row, number for number.
+TEST(ExternalController, CompareRunsExternalProgramsAsRows) {
+  const std::string dir = freshDir("external-compare");
+  std::filesystem::create_directories(dir);
+  std::string text = readText(scenario("lockstep", pythonCommand()));
+  text = text.substr(0, text.find("controller:")) +
+         "controller: {type: theorem1, kp: [20, 5], kd: [4, 1], a: [50, 50], b: [50, 50]}\n"
+         "metrics: {tolerance: 1.0e-3, convergence_deadline: 2.0}\n"
+         "compare:\n  controllers:\n"
+         "    pd_python: {type: external, command: [" +
+         pythonCommand() + ", " + kPdArguments + "]}\n    pd_java: {type: external, command: [" +
+         javaCommand() + ", " + kPdArguments + "]}\n";
+  std::ofstream(dir + "/compare.yaml") << text;
+  const RunResult r = lagrange("compare " + quote(dir + "/compare.yaml") + " -o " + quote(dir + "/out") +
+                               " --controllers theorem1,pd_python,pd_java");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto row = [&](const std::string& name) {
+    const size_t at = r.output.find("| " + name + " | ");
+    return at == std::string::npos
+               ? std::string()
+               : r.output.substr(at + name.size() + 3, r.output.find('\n', at) - at - name.size() - 3);
+  };
+  EXPECT_NE(row("theorem1"), "") << r.output;
+  EXPECT_NE(row("pd_python").find("completed | 1.05 |"), std::string::npos) << r.output;
+  EXPECT_EQ(row("pd_python"), row("pd_java")) << r.output;
+  EXPECT_EQ(readSummary(dir + "/out/runs/pd_python")["mode"], "lockstep");
+  EXPECT_EQ(readCommands(dir + "/out/runs/pd_python/run.lcm"),
+            readCommands(dir + "/out/runs/pd_java/run.lcm"));
+}
+
+// `lagrange sweep` over an external controller: each row is a lockstep run
+// of the program, the same to the last bit as `lagrange run` with the row's
+// overrides.
+TEST(ExternalController, SweepRunsAnExternalProgramPerRow) {
+  const std::string dir = freshDir("external-sweep");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/sweep.yaml")
+      << "scenario: " << scenario("lockstep", pythonCommand())
+      << "\nset: {duration: 2}\n"
+         "axes:\n  - {key: initial_state.q, values: [[0.2, -0.1], [1.0, 1.0]]}\n";
+  const RunResult r = lagrange("sweep " + quote(dir + "/sweep.yaml") + " -o " + quote(dir + "/out") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream rows(dir + "/out/sweep.jsonl");
+  std::string line;
+  std::getline(rows, line);
+  std::getline(rows, line);  // row 1: from (1, 1)
+  const auto row = nlohmann::json::parse(line);
+  EXPECT_EQ(row.at("status"), "completed") << line;
+  const std::string direct = freshDir("external-sweep-direct");
+  ASSERT_EQ(runScenario(scenario("lockstep", pythonCommand()), direct,
+                        "-q --set duration=2 --set 'initial_state.q=[1.0, 1.0]'")
+                .exit_code,
+            0);
+  const auto summary = readSummary(direct);
+  EXPECT_EQ(row.at("final_error").get<double>(), summary["tracking"]["final_error"].get<double>());
+  EXPECT_EQ(row.at("convergence_time").get<double>(), summary["tracking"]["convergence_time"].get<double>());
+  EXPECT_EQ(row.at("gains_checked"), false);
 }
 
 }  // namespace

@@ -53,13 +53,25 @@ std::optional<std::string> controllerOverride(const config::Scenario& s, const s
           if (type == s.controller.type) return std::nullopt;
           section = YAML::Node(YAML::NodeType::Map);
         }
-        section["type"] = type;
+        if (!section["type"]) section["type"] = type;  // else the name is a row label
         return "controller=" + flowYaml(section);
       }
   if (type == s.controller.type) return std::nullopt;
   throw ConfigError("config: " + path + ": compare.controllers has no section for '" + type +
                     "'; expected compare.controllers." + type +
                     " with its keys (or the scenario's own controller.type; docs/comparison.md)");
+}
+
+// A row's controller type: its compare.controllers entry's `type` when it has
+// one (the name is then a label, e.g. one external program of several), else its name.
+std::string typeOf(const config::Scenario& s, const std::string& name) {
+  if (s.compare)
+    for (const auto& [t, keys] : s.compare->controllers)
+      if (t == name) {
+        const YAML::Node section = YAML::Load(keys);
+        if (section.IsMap() && section["type"]) return section["type"].Scalar();
+      }
+  return name;
 }
 
 struct Sweep {
@@ -99,8 +111,7 @@ std::string valueDir(size_t index, const std::string& value) {
 
 // Starts `self run CONFIG --mode inproc -q --out DIR --set ...`, output in DIR/compare.log.
 pid_t startRun(const CompareOptions& o, const CompareRun& run) {
-  std::vector<std::string> args = {o.self_exe, "run", o.config_path, "--mode",
-                                   "inproc",   "-q",  "--out",       run.dir};
+  std::vector<std::string> args = {o.self_exe, "run", o.config_path, "-q", "--out", run.dir};  // mode: --set
   for (const std::string& ov : run.overrides) args.insert(args.end(), {"--set", ov});
   return wiring::spawnLogged(args, {(fs::path(run.dir) / "compare.log").string()});
 }
@@ -205,7 +216,7 @@ ComparisonPlan planComparison(const CompareOptions& o) {
   const std::vector<std::string> known = config::controllerTypes();
   for (const std::string& type : types) {
     if (!unique.insert(type).second) throw ConfigError("--controllers: '" + type + "' is named twice");
-    if (std::find(known.begin(), known.end(), type) == known.end()) {
+    if (std::find(known.begin(), known.end(), typeOf(base, type)) == known.end()) {
       const std::string list = config::controllerTypeList();
       throw ConfigError(
           (o.controllers.empty() ? "config: " + o.config_path + ": compare.controllers" : "--controllers") +
@@ -216,7 +227,9 @@ ComparisonPlan planComparison(const CompareOptions& o) {
   if (sweep) plan.sweep_key = sweep->key;
   std::vector<CompareRun>& runs = plan.runs;
   for (const std::string& type : types) {
-    std::vector<std::string> overrides = {"mode=inproc"};
+    // In process, as fast as the machine allows; an external program in
+    // lockstep, its own process over LCM (the same loop, bit for bit).
+    std::vector<std::string> overrides = {typeOf(base, type) == "external" ? "mode=lockstep" : "mode=inproc"};
     if (const auto controller = controllerOverride(base, type, o.config_path))
       overrides.push_back(*controller);
     overrides.insert(overrides.end(), o.overrides.begin(), o.overrides.end());

@@ -319,7 +319,7 @@ int collectSweep(const std::string& out_dir, bool quiet) {
   }
 }
 
-int runSweepShard(const std::string& out_dir, int shard, int of, int parent) {
+int runSweepShard(const std::string& out_dir, int shard, int of, int parent, const std::string& self_exe) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   // A local shard ends with its sweep: killed, the sweep leaves no shard
@@ -341,7 +341,7 @@ int runSweepShard(const std::string& out_dir, int shard, int of, int parent) {
     RowWriter writer((fs::path(out_dir) / "rows" /
                       ("shard-" + std::to_string(shard) + "-of-" + std::to_string(of) + ".jsonl"))
                          .string());
-    SweepRunner runner(plan);
+    SweepRunner runner(plan, out_dir, self_exe);
     long ran = 0;
     for (const SweepRow& row : plan.rows) {
       if (row.index % of != shard || finished.count(row.index)) continue;

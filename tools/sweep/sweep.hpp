@@ -42,7 +42,10 @@ int collectSweep(const std::string& out_dir, bool quiet);
 /// no file in OUT/rows has, in order, each appended to
 /// OUT/rows/shard-K-of-N.jsonl as it ends. 0, or 130 when stopped by a signal.
 /// `parent` > 0 (a local shard): the sweep's pid; the shard stops when it dies.
-int runSweepShard(const std::string& out_dir, int shard, int of, int parent = 0);
+/// `self_exe`: the lagrange binary, which runs the rows of an external
+/// controller (`lagrange run --mode lockstep`).
+int runSweepShard(const std::string& out_dir, int shard, int of, int parent = 0,
+                  const std::string& self_exe = "");
 
 /// Declares `sweep` (with `sweep collect`) and its options on the front end (tools/sweep/sweep_cli.cpp).
 Subcommand addSweepCommand(CLI::App& app);

@@ -84,7 +84,9 @@ Subcommand addSweepShardCommand(CLI::App& app) {
   cmd->add_option("--shard", o->shard, "This shard, K in 0..N-1")->required();
   cmd->add_option("--of", o->of, "Shards, N")->required();
   cmd->add_option("--parent", o->parent, "The local sweep's pid: stop when it ends");
-  return {cmd, [o](const Invocation&) { return runSweepShard(o->out_dir, o->shard, o->of, o->parent); }};
+  return {cmd, [o](const Invocation& inv) {
+            return runSweepShard(o->out_dir, o->shard, o->of, o->parent, inv.self_exe);
+          }};
 }
 
 }  // namespace lagrange::tools

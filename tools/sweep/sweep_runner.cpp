@@ -1,13 +1,23 @@
 #include "tools/sweep/sweep_runner.hpp"
 
+#include <sys/wait.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
 
 #include "controller/paper_section.hpp"
 #include "model/reference.hpp"
+#include "util/error.hpp"
 #include "wiring/inproc_runner.hpp"
 #include "wiring/sampled_simulation.hpp"
+#include "wiring/spawn_logged.hpp"
 
 namespace lagrange::tools {
 
@@ -95,9 +105,12 @@ nlohmann::ordered_json SweepRunner::failedRow(const SweepRow& row, const std::st
 std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool (*stop_requested)()) {
   const auto start = std::chrono::steady_clock::now();
   config::Scenario s = config::loadScenario(plan_.spec.scenario_path, row.overrides);
-  s.mode = config::Mode::kInproc;  // the sampled-data check examines the wiring that runs
+  const bool external = s.controller.type == "external";  // a program of its own: lockstep over LCM
+  if (!external) s.mode = config::Mode::kInproc;  // the sampled-data check examines the wiring that runs
   const controller::GainReport& gains = gainsOf(s);
-  const wiring::InProcessOutcome o = wiring::simulateInProcess(s, nullptr, nullptr, stop_requested);
+  const wiring::InProcessOutcome o = external
+                                         ? runExternal(row, stop_requested)
+                                         : wiring::simulateInProcess(s, nullptr, nullptr, stop_requested);
   if (o.status == "interrupted") return std::nullopt;
 
   const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);
@@ -142,6 +155,55 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   j["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["stop_reason"] = o.stop_message;
   return j;
+}
+
+wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*stop_requested)()) {
+  namespace fs = std::filesystem;
+  if (self_exe_.empty() || out_dir_.empty())
+    throw RuntimeFault(
+        "an external controller's row runs through lagrange run; this sweep runner has no binary");
+  const fs::path dir = fs::path(out_dir_) / "external" / ("row-" + std::to_string(row.index));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::vector<std::string> args = {
+      self_exe_, "run", plan_.spec.scenario_path, "--mode", "lockstep", "-q", "--out", dir.string()};
+  for (const std::string& ov : row.overrides) args.insert(args.end(), {"--set", ov});
+  const pid_t pid = wiring::spawnLogged(args, {(dir / "run.out").string()});
+  int wstatus = 0;
+  for (;;) {
+    const pid_t done = waitpid(pid, &wstatus, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) throw RuntimeFault(std::string("waitpid: ") + std::strerror(errno));
+    if (stop_requested && stop_requested()) {
+      kill(pid, SIGTERM);  // the launcher stops its processes
+      waitpid(pid, &wstatus, 0);
+      wiring::InProcessOutcome stopped;
+      stopped.status = "interrupted";
+      return stopped;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  wiring::InProcessOutcome o;
+  nlohmann::json summary;
+  try {
+    summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+  } catch (const std::exception&) {
+    throw RuntimeFault("the external controller's run left no summary.json (exit " +
+                       std::to_string(WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus)) +
+                       "); see " + dir.string());
+  }
+  o.status = summary.value("status", std::string("failed"));
+  const nlohmann::json& t = summary.at("tracking");
+  if (!t.at("convergence_time").is_null())
+    o.tracking.convergence_time = t.at("convergence_time").get<double>();
+  o.tracking.final_error = t.at("final_error").get<double>();
+  o.tracking.max_error = t.at("max_error").get<double>();
+  o.tracking.rms_last_second = t.at("rms_last_second").get<double>();
+  // Why a run that did not complete stopped: the plant's last word.
+  const nlohmann::json plant = summary.value("/processes/plant"_json_pointer, nlohmann::json::object());
+  if (o.status != "completed") o.stop_message = plant.value("message", std::string("see ") + dir.string());
+  if (o.status == "completed") fs::remove_all(dir);  // kept when it failed: its logs say why
+  return o;
 }
 
 }  // namespace lagrange::tools

@@ -12,6 +12,7 @@
 
 #include "controller/gain_report.hpp"
 #include "tools/sweep/sweep_plan.hpp"
+#include "wiring/inproc_runner.hpp"
 
 namespace lagrange::tools {
 
@@ -20,7 +21,11 @@ const std::vector<std::string>& resultColumns();
 
 class SweepRunner {
  public:
-  explicit SweepRunner(const SweepPlan& plan) : plan_(plan) {}
+  /// `out_dir` and `self_exe`: where and with which lagrange binary a row of
+  /// an external controller runs (`lagrange run --mode lockstep`, in
+  /// OUT/external/row-N, removed once read unless the run failed).
+  SweepRunner(const SweepPlan& plan, std::string out_dir = "", std::string self_exe = "")
+      : plan_(plan), out_dir_(std::move(out_dir)), self_exe_(std::move(self_exe)) {}
   /// The row's results (the parameter and result columns), or none when
   /// `stop_requested` stopped it midway. A scenario that cannot be read (the
   /// plan checked it) throws config::ConfigError.
@@ -30,7 +35,10 @@ class SweepRunner {
 
  private:
   const controller::GainReport& gainsOf(const config::Scenario& s);
+  // An external controller's row: the program over LCM, what its summary.json says.
+  wiring::InProcessOutcome runExternal(const SweepRow& row, bool (*stop_requested)());
   const SweepPlan& plan_;
+  std::string out_dir_, self_exe_;
   std::map<std::string, controller::GainReport> gains_;  // by the scenario without its initial state
 };
 
