@@ -14,9 +14,11 @@
 #    the tests kept (the Panda's and the flexible arm's golden logs, the
 #    restarted controllers, the other faults runs, the motor sensor's run), at
 #    a cost that would double this pass's time;
-#  - the external controller's tests: its Java PD needs the jar of message
+#  - the external controllers' tests: the Java PD needs the jar of message
 #    types, which this build leaves out (-DLAGRANGE_BUILD_JAVA=OFF), and runs
-#    on the JVM, which the sanitizers do not see;
+#    on the JVM, the Python one in CPython, which the sanitizers do not see;
+#    the C++ one is built outside the tree against the installed package,
+#    without the sanitizers' runtime its instrumented library would need;
 #  - the sweep's Slurm test: most of its time is the scheduler's polling, and
 #    what its array tasks run is the sweep's own shard code, which the local
 #    sweep's tests (Sweep.*) run under the sanitizers.

@@ -25,6 +25,8 @@ logs       : util transport messages
 wiring     : util model core config scenario lcm runtime transport messages
 process    : util model core config scenario lcm runtime transport messages logs wiring
 test       : util model core config scenario lcm runtime transport messages logs wiring process
+sdk        : messages
+example    : messages sdk
 EOF
 }
 
@@ -38,6 +40,8 @@ place() {
   case $f in
     util/*) layer=util ;;
     model/*) layer=model ;;
+    sdk/* | lagrange/sdk/*) layer=sdk ;;  # the installed C++ SDK: messages only, built out of tree
+    examples/*) layer=example ;;
     lagrange/*) layer=messages ;;
     transport/*) layer=transport ;;
     */main.cpp) layer=process ;;
@@ -138,7 +142,8 @@ cmake_commands() {
       { grep -ioE '(add_library|add_executable|target_link_libraries|target_include_directories|include_directories|lagrange_subcommand)[[:space:]]*\([^)]*\)' ||
         true; } |
       sed -E "s/^([A-Za-z_]+)[[:space:]]*\(/\L\1(/; s|^|$dir\t|"
-  done < <(find . \( -name 'build*' -o -name .git -o -name runs -o -name tests -o -name bench -o -name fuzz \) \
+  done < <(find . \( -name 'build*' -o -name .git -o -name runs -o -name tests -o -name bench -o -name fuzz \
+    -o -name examples \) \
     -prune -o -name CMakeLists.txt -print | sort)
 }
 # place_library NAME DIR SOURCE...: its layer from its sources' (lcmtypes/: messages).
@@ -214,6 +219,12 @@ while IFS=$'\t' read -r dir command; do
         case $a in
           PUBLIC | PRIVATE | INTERFACE | SYSTEM | BEFORE | AFTER | '${PROJECT_SOURCE_DIR}') ;;
           '${cpp_out}') [[ $dir == lcmtypes ]] || bad_include_dir "$dir" "${args[0]}" "$a" ;;
+          # A third-party package's own headers (found by CMake): no layer of ours.
+          '${HDF5_INCLUDE_DIRS}') ;;
+          # The installed SDK's headers (lagrange/sdk/*.hpp, the sdk layer), in
+          # the tree and once installed; and the message headers, as lcmtypes'.
+          '$<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>' | '$<BUILD_INTERFACE:${CMAKE_BINARY_DIR}/lcmtypes/cpp>' | \
+            '$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>') [[ $dir == sdk ]] || bad_include_dir "$dir" "${args[0]}" "$a" ;;
           *) bad_include_dir "$dir" "$([[ $first == 1 ]] && echo "${args[0]}" || echo "include_directories")" "$a" ;;
         esac
       done

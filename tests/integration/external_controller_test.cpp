@@ -260,5 +260,37 @@ TEST(ExternalController, SweepRunsAnExternalProgramPerRow) {
   EXPECT_EQ(row.at("gains_checked"), false);
 }
 
+// The C++ SDK from outside the tree: `cmake --install` of this build, then
+// examples/cpp_controller configured with find_package(lagrange) against
+// the installed package, built, and run as the controller: its lockstep run
+// is the Java PD's, command for command, and the installed `lagrange` runs it.
+TEST(ExternalController, ACppPdBuiltAgainstTheInstalledPackageMatchesTheJavaOne) {
+  const std::string prefix = freshDir("cpp-sdk-install"), build = freshDir("cpp-sdk-build");
+  const std::string tree = std::string(LAGRANGE_BIN_DIR) + "/..";
+  const RunResult install = shell("cmake --install " + quote(tree) + " --prefix " + quote(prefix) + " 2>&1");
+  ASSERT_EQ(install.exit_code, 0) << install.output;
+  for (const char* file :
+       {"/include/lagrange/sdk/external_controller.hpp", "/include/lagrange/plant_position_t.hpp",
+        "/lib/cmake/lagrange/lagrangeConfig.cmake", "/bin/lagrange"})
+    EXPECT_TRUE(std::filesystem::exists(prefix + file)) << file;
+  const RunResult configure =
+      shell("cmake -S " + quote(std::string(LAGRANGE_SOURCE_DIR) + "/examples/cpp_controller") + " -B " +
+            quote(build) + " -DCMAKE_PREFIX_PATH=" + quote(prefix) + " 2>&1 && cmake --build " +
+            quote(build) + " 2>&1");
+  ASSERT_EQ(configure.exit_code, 0) << configure.output;
+
+  const std::string java = freshDir("cpp-sdk-java"), cpp = freshDir("cpp-sdk-cpp");
+  ASSERT_EQ(runScenario(scenario("lockstep"), java, "-q").exit_code, 0);
+  const RunResult run =
+      shell(quote(prefix + "/bin/lagrange") + " run " +
+            quote(scenario("lockstep", quote(build + "/pd_controller"))) + " -q -o " + quote(cpp) + " 2>&1");
+  ASSERT_EQ(run.exit_code, 0) << run.output << readText(cpp + "/controller.log");
+  EXPECT_TRUE(readSummary(cpp)["tracking"]["met"].get<bool>());
+  EXPECT_EQ(readCommands(java + "/run.lcm"), readCommands(cpp + "/run.lcm"));
+  expectThePdLaw(cpp + "/run.lcm");
+  const RunResult replay = lagrange("replay " + quote(cpp + "/run.lcm") + " --component controller");
+  EXPECT_EQ(replay.exit_code, 0) << replay.output;
+}
+
 }  // namespace
 }  // namespace lagrange::testing
