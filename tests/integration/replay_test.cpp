@@ -69,7 +69,9 @@ TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {
   const RunResult r =
       lagrange("replay " + quote(chainLog()) + " --component actuator --set actuator.saturation=5");
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("ACTUATOR_STATE.tau_applied[1][1]: recorded -13.01920363834606, replayed -5"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ACTUATOR_STATE.tau_applied[1][1]: recorded -13.01920363834606, replayed -5"),
+            std::string::npos)
+      << r.output;
 }
 
 // The replay test has teeth: a changed gain fails at the first tick it can

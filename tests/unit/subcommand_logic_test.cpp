@@ -143,8 +143,7 @@ TEST(ReplayCompare, IsBitForBit) {
   EXPECT_EQ(compare("u[0]", nan, other_nan),
             "u[0]: recorded nan (bits 0x7ff8000000000000), replayed nan (bits 0x7ff8000000000001)");
   const double next = std::nextafter(0.1, 1.0);
-  EXPECT_EQ(compare("theta[1]", 0.1, next),
-            "theta[1]: recorded 0.1, replayed 0.10000000000000002");
+  EXPECT_EQ(compare("theta[1]", 0.1, next), "theta[1]: recorded 0.1, replayed 0.10000000000000002");
   Eigen::VectorXd replayed(2);
   replayed << 1.0, 2.0;
   EXPECT_EQ(compare("u", std::vector<double>{1.0, 2.0}, replayed), "");
