@@ -119,8 +119,8 @@ std::string compare(const std::string& field, const std::vector<double>& recorde
     return field + ": recorded " + std::to_string(recorded.size()) + " values, replayed " +
            std::to_string(replayed.size());
   for (size_t i = 0; i < recorded.size(); ++i) {
-    const std::string d =
-        compare(field + "[" + std::to_string(i + 1) + "]", recorded[i], replayed(static_cast<Eigen::Index>(i)));
+    const std::string d = compare(field + "[" + std::to_string(i + 1) + "]", recorded[i],
+                                  replayed(static_cast<Eigen::Index>(i)));
     if (!d.empty()) return d;
   }
   return "";
