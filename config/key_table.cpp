@@ -56,10 +56,13 @@ std::vector<KeyInfo> runKeys() {
   return {
       row("extends", "path", "none",
           "another scenario file (relative to this one's folder) read first: this file's keys are merged "
-          "over it (maps key by key, lists and numbers replaced whole), then `--set` applies. It may "
+          "over it (maps key by key, lists and numbers replaced whole; a section whose `type` changes, "
+          "e.g. `controller`, replaced whole), then `--set` applies. It may "
           "extend a third; a cycle is refused. "
-          "Relative `robot.urdf.file` and `controller.working_directory` of a base file stay relative to its "
-          "own folder. The resolved scenario has no `extends`"),
+          "Relative `robot.urdf.file`, `controller.working_directory` and the program of "
+          "`controller.command` (a path) of a base file stay relative to its own folder. Errors in a merged "
+          "scenario name the files instead of a line. The resolved scenario has no `extends`; "
+          "`--set extends` is refused"),
       row("name", "string", "required", "scenario name, shown in outputs"),
       row("description", "string", "`\"\"`", "free text"),
       row("duration", "number > 0", "required",

@@ -59,6 +59,10 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
   if (eq == std::string::npos || eq == 0)
     throw ConfigError("config: --set '" + assignment + "': expected key=value, e.g. controller.kp=50");
   const std::string key = assignment.substr(0, eq);
+  if (key == "extends")
+    throw ConfigError(
+        "config: --set extends: a scenario's base is read before --set applies; expected extends "
+        "in the scenario file itself");
   YAML::Node value;
   try {
     value = YAML::Load(assignment.substr(eq + 1));
@@ -133,12 +137,27 @@ std::string namingTheOption(std::string what, const std::vector<std::string>& ov
   return what;
 }
 
-Scenario readTree(YAML::Node root, const std::string& source, const std::vector<std::string>& overrides) {
+// In a tree merged from an extends chain, yaml-cpp keeps no line numbers: an
+// error's "(line N)" would point at line 1; it names the files instead.
+std::string namingTheChain(std::string what, const std::vector<std::string>& chain) {
+  if (chain.size() < 2) return what;
+  const size_t line = what.find(" (line ");
+  const size_t close = line == std::string::npos ? line : what.find(')', line);
+  std::string files;
+  for (size_t i = 1; i < chain.size(); ++i) files += (i > 1 ? ", " : "") + chain[i];
+  const std::string where = " (in this file or one it extends: " + files + ")";
+  if (close == std::string::npos) return what + where;
+  return what.replace(line, close + 1 - line, where);
+}
+
+Scenario readTree(ScenarioTree tree, const std::string& source, const std::vector<std::string>& overrides) {
+  YAML::Node& root = tree.root;
   for (const auto& o : overrides) applyOverride(root, o);
   try {
     return readScenario(MapReader(root, ""), source);
   } catch (const ConfigError& e) {
-    const std::string what = namingTheOption(e.what(), overrides);
+    std::string what = namingTheOption(e.what(), overrides);
+    if (what.find("(from --set ") == std::string::npos) what = namingTheChain(what, tree.chain);
     // Prefix the source so the user knows which file (or --set) was wrong.
     throw ConfigError("config: " + source + ": " + what.substr(std::string("config: ").size()));
   }

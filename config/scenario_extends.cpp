@@ -37,9 +37,15 @@ YAML::Node parseRoot(const std::string& yaml_text, const std::string& source) {
   return root;
 }
 
-// `over` merged onto a copy of `base`: maps key by key, anything else replaced.
+// `over` merged onto a copy of `base`: maps key by key, anything else
+// replaced; a map whose `type` changes (controller, reference) is another
+// kind of section, and replaced whole: no key of the old kind stays.
 YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  const YAML::Node base_type = base["type"], over_type = over["type"];
+  if (base_type.IsDefined() && over_type.IsDefined() && base_type.IsScalar() && over_type.IsScalar() &&
+      base_type.Scalar() != over_type.Scalar())
+    return YAML::Clone(over);
   YAML::Node out = YAML::Clone(base);
   for (const auto& entry : over) {
     const std::string key = entry.first.as<std::string>();
@@ -59,7 +65,17 @@ void anchorPaths(YAML::Node& root, const fs::path& folder) {
   };
   const YAML::Node robot = root["robot"];
   if (robot.IsDefined() && robot.IsMap()) anchor(robot["urdf"], "file");
-  anchor(root["controller"], "working_directory");
+  YAML::Node controller = root["controller"];
+  anchor(controller, "working_directory");
+  // The program, when its first word is a path (a name is looked up on PATH).
+  if (controller.IsDefined() && controller.IsMap()) {
+    YAML::Node command = controller["command"];
+    if (command.IsDefined() && command.IsSequence() && command.size() > 0 && command[0].IsScalar()) {
+      const std::string program = command[0].Scalar();
+      if (program.find('/') != std::string::npos && fs::path(program).is_relative())
+        command[0] = fs::absolute(folder / program).lexically_normal().string();
+    }
+  }
 }
 
 YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& folder,
@@ -105,19 +121,21 @@ fs::path folderOf(const std::string& source) {
 
 }  // namespace
 
-YAML::Node loadScenarioTree(const std::string& path) {
+ScenarioTree loadScenarioTree(const std::string& path) {
   const FileText file = readRegularFile(path, kMaxScenarioBytes, "a YAML scenario file");
   if (!file.error.empty()) throw ConfigError("config: " + file.error);
   return parseScenarioTree(file.text, path);
 }
 
-YAML::Node parseScenarioTree(const std::string& yaml_text, const std::string& source) {
+ScenarioTree parseScenarioTree(const std::string& yaml_text, const std::string& source) {
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(source, ec);
-  std::vector<std::string> chain = {ec ? source : canonical.string()};
+  ScenarioTree tree;
+  tree.chain = {ec ? source : canonical.string()};
   fs::path folder = folderOf(source);
   if (folder.empty() && fs::is_regular_file(source, ec)) folder = ".";
-  return resolve(parseRoot(yaml_text, source), source, folder, chain);
+  tree.root = resolve(parseRoot(yaml_text, source), source, folder, tree.chain);
+  return tree;
 }
 
 }  // namespace lagrange::config

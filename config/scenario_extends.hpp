@@ -3,7 +3,8 @@
 /// `extends: other.yaml` in a scenario file: the other file (relative to
 /// this one's folder; it may extend a third) is read first and this file's
 /// keys are merged over it -- maps key by key, any other value (a list, a
-/// number) replaced whole -- before `--set` applies. A cycle is refused,
+/// number) replaced whole, and a map whose `type` changes (a controller of
+/// another kind) replaced whole -- before `--set` applies. A cycle is refused,
 /// naming the chain. A relative path a base file gives (`robot.urdf`,
 /// `controller.working_directory`) stays relative to the base file's folder.
 /// The resolved scenario (config.resolved.yaml) holds the merged result and
@@ -15,13 +16,24 @@
 
 namespace lagrange::config {
 
+#include <vector>
+
+/// A scenario's YAML with its `extends` chain merged in.
+struct ScenarioTree {
+  YAML::Node root;
+  /// The files read, the scenario's first, then each one it extends. More
+  /// than one: the merge has lost the values' line numbers (yaml-cpp keeps
+  /// none in a merged tree), so errors name the chain instead.
+  std::vector<std::string> chain;
+};
+
 /// The scenario file at `path` with its `extends` chain merged in.
 /// @throws ConfigError naming the file, the chain and what was expected.
-YAML::Node loadScenarioTree(const std::string& path);
+ScenarioTree loadScenarioTree(const std::string& path);
 
 /// The tree of scenario text `yaml_text` read from `source` (a path, or a
 /// name such as "LOG:SCENARIO"), with an `extends` resolved against the
 /// folder of `source` when it has one.
-YAML::Node parseScenarioTree(const std::string& yaml_text, const std::string& source);
+ScenarioTree parseScenarioTree(const std::string& yaml_text, const std::string& source);
 
 }  // namespace lagrange::config

@@ -230,7 +230,7 @@ class Controller {
       c.filter_state = vector(out.filter_state, "filter_state");
       c.chain_order = 0;
       answered_[tick] = c;
-      answered_.erase(tick - kKeepAnswers);
+      answered_.erase(answered_.begin(), answered_.upper_bound(tick - kKeepAnswers));  // skipped ticks too
       last_tick_ = tick;
       publishCommand(c);
     } catch (const std::exception& e) {  // not through LCM's C frames: serve() throws it

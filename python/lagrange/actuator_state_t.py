@@ -60,10 +60,12 @@ class actuator_state_t(object):
         self.u_commanded = struct.unpack('>%dd' % self.num_joints, buf.read(self.num_joints * 8))
         self.torque_steps = struct.unpack(">i", buf.read(4))[0]
         self.tau_applied = []
+        if not 0 <= self.torque_steps <= len(buf.getbuffer()): raise ValueError("torque_steps larger than the message")
         for i0 in range(self.torque_steps):
             self.tau_applied.append(struct.unpack('>%dd' % self.num_joints, buf.read(self.num_joints * 8)))
         self.saturated = list(map(bool, struct.unpack('>%db' % self.num_joints, buf.read(self.num_joints))))
         self.xi = []
+        if not 0 <= self.order <= len(buf.getbuffer()): raise ValueError("order larger than the message")
         for i0 in range(self.order):
             self.xi.append(struct.unpack('>%dd' % self.num_joints, buf.read(self.num_joints * 8)))
         return self

@@ -68,6 +68,7 @@ class control_command_t(object):
         self.filter_state = struct.unpack('>%dd' % self.num_joints, buf.read(self.num_joints * 8))
         self.chain_order = struct.unpack(">i", buf.read(4))[0]
         self.xi_error = []
+        if not 0 <= self.chain_order <= len(buf.getbuffer()): raise ValueError("chain_order larger than the message")
         for i0 in range(self.chain_order):
             self.xi_error.append(struct.unpack('>%dd' % self.num_joints, buf.read(self.num_joints * 8)))
         return self

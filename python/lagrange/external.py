@@ -105,7 +105,8 @@ class Controller:
             self.reset()
         command = self._command(p)
         self.answered[tick] = command
-        self.answered.pop(tick - _KEEP_ANSWERS, None)
+        for old in [t for t in self.answered if t <= tick - _KEEP_ANSWERS]:  # ticks skipped in realtime too
+            del self.answered[old]
         self.last_tick = tick
         self._publish_command(command)
 

@@ -94,6 +94,7 @@ class robot_description_t(object):
         self.kind = buf.read(__kind_len)[:-1].decode('utf-8', 'replace')
         self.num_joints = struct.unpack(">i", buf.read(4))[0]
         self.joint_names = []
+        if not 0 <= self.num_joints <= len(buf.getbuffer()): raise ValueError("num_joints larger than the message")
         for i0 in range(self.num_joints):
             __joint_names_len = struct.unpack('>I', buf.read(4))[0]
             self.joint_names.append(buf.read(__joint_names_len)[:-1].decode('utf-8', 'replace'))
@@ -102,24 +103,30 @@ class robot_description_t(object):
         self.frame_parent = struct.unpack('>%di' % self.num_frames, buf.read(self.num_frames * 4))
         self.frame_joint = struct.unpack('>%di' % self.num_frames, buf.read(self.num_frames * 4))
         self.frame_xyz = []
+        if not 0 <= self.num_frames <= len(buf.getbuffer()): raise ValueError("num_frames larger than the message")
         for i0 in range(self.num_frames):
             self.frame_xyz.append(struct.unpack('>3d', buf.read(24)))
         self.frame_quat = []
+        if not 0 <= self.num_frames <= len(buf.getbuffer()): raise ValueError("num_frames larger than the message")
         for i0 in range(self.num_frames):
             self.frame_quat.append(struct.unpack('>4d', buf.read(32)))
         self.frame_axis = []
+        if not 0 <= self.num_frames <= len(buf.getbuffer()): raise ValueError("num_frames larger than the message")
         for i0 in range(self.num_frames):
             self.frame_axis.append(struct.unpack('>3d', buf.read(24)))
         self.num_shapes = struct.unpack(">i", buf.read(4))[0]
         self.shape_frame = struct.unpack('>%di' % self.num_shapes, buf.read(self.num_shapes * 4))
         self.shape_type = struct.unpack('>%db' % self.num_shapes, buf.read(self.num_shapes))
         self.shape_size = []
+        if not 0 <= self.num_shapes <= len(buf.getbuffer()): raise ValueError("num_shapes larger than the message")
         for i0 in range(self.num_shapes):
             self.shape_size.append(struct.unpack('>3d', buf.read(24)))
         self.shape_xyz = []
+        if not 0 <= self.num_shapes <= len(buf.getbuffer()): raise ValueError("num_shapes larger than the message")
         for i0 in range(self.num_shapes):
             self.shape_xyz.append(struct.unpack('>3d', buf.read(24)))
         self.shape_quat = []
+        if not 0 <= self.num_shapes <= len(buf.getbuffer()): raise ValueError("num_shapes larger than the message")
         for i0 in range(self.num_shapes):
             self.shape_quat.append(struct.unpack('>4d', buf.read(32)))
         self.tip_frame = struct.unpack(">i", buf.read(4))[0]

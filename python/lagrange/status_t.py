@@ -80,6 +80,7 @@ class status_t(object):
         self.message = buf.read(__message_len)[:-1].decode('utf-8', 'replace')
         self.num_channels = struct.unpack(">i", buf.read(4))[0]
         self.channels = []
+        if not 0 <= self.num_channels <= len(buf.getbuffer()): raise ValueError("num_channels larger than the message")
         for i0 in range(self.num_channels):
             self.channels.append(lagrange.channel_stats_t._decode_one(buf))
         self.loop = lagrange.loop_stats_t._decode_one(buf)

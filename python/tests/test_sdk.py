@@ -44,12 +44,28 @@ class TypesAreCurrent(unittest.TestCase):
             made = sorted(f for f in os.listdir(out) if f.endswith("_t.py"))
             kept = sorted(f for f in os.listdir(os.path.join(ROOT, "python", "lagrange")) if f.endswith("_t.py"))
             self.assertEqual(made, kept, "run scripts/generate-python-types.sh after changing lcmtypes/")
-            self.assertEqual(len(made), len(os.listdir(os.path.join(ROOT, "lcmtypes"))) - 2)  # less CMake files
+            self.assertEqual(len(made), len([f for f in os.listdir(os.path.join(ROOT, "lcmtypes")) if f.endswith(".lcm")]))
             for name in made:
                 with open(os.path.join(out, name)) as a, open(os.path.join(ROOT, "python", "lagrange", name)) as b:
                     self.assertEqual(a.read(), b.read(), name + " is stale: run scripts/generate-python-types.sh")
             for name in made:  # and the package exports each
                 self.assertTrue(hasattr(lagrange, name[:-3]), name)
+
+    def test_a_count_larger_than_the_message_is_refused_at_once(self):
+        c = lagrange.control_command_t()
+        c.header = lagrange.header_t()
+        c.num_joints, c.chain_order = 0, 0
+        c.u = c.q_desired = c.q_error = c.theta = c.filter_state = []
+        c.xi_error = []
+        data = bytearray(c.encode())
+        # chain_order is the int32 before the (empty) xi_error: rows of zero width, 2^31 - 1 of them
+        data[-4:] = struct.pack(">i", 0x7FFFFFFF)
+        import time
+        start = time.monotonic()
+        with self.assertRaisesRegex(ValueError, "chain_order larger than the message"):
+            lagrange.control_command_t.decode(bytes(data))
+        self.assertLess(time.monotonic() - start, 1.0)
+        self.assertIsNone(lagrange.log.decode("CONTROL_COMMAND", bytes(data)))
 
     def test_a_boolean_array_decodes_to_a_list_that_encodes_again(self):
         a = lagrange.actuator_state_t()
@@ -98,6 +114,14 @@ class Contract(unittest.TestCase):
 
     def test_publish_utime_is_the_runs_clock(self):
         self.assertEqual(lagrange.contract.clock_offset_us({"LAGRANGE_CLOCK_OFFSET_US": "123"}), 123)
+        import time
+        from unittest import mock
+        with mock.patch.dict(os.environ, {"LAGRANGE_CLOCK_OFFSET_US": "5000000"}):
+            h = lagrange.contract.Headers(1, "controller")
+        before = time.monotonic_ns() // 1000
+        stamp = h.utime()
+        after = time.monotonic_ns() // 1000
+        self.assertTrue(before + 5000000 <= stamp <= after + 5000000, "monotonic time plus the launcher's offset")
         measured = lagrange.contract.clock_offset_us({})
         import time
         self.assertLess(abs(measured - (time.time_ns() - time.monotonic_ns()) // 1000), 100000)

@@ -94,6 +94,38 @@ TEST_F(Extends, ABaseFilesUrdfStaysRelativeToItsOwnFolder) {
       << "the base file's ../robots/panda.urdf, from the base file's folder";
 }
 
+// A merged tree has no line numbers: an error names the files instead of "(line 1)".
+TEST_F(Extends, AnErrorInAMergedScenarioNamesTheFilesNotALine) {
+  const std::string child = write("child.yaml", "extends: " + kConfigs +
+                                                    "/rigid_2dof.yaml\nname: c\n"
+                                                    "controller: {kd: abc}\n");
+  const std::string error = errorLoading(child);
+  EXPECT_NE(error.find("controller.kd: expected"), std::string::npos) << error;
+  EXPECT_NE(error.find("(in this file or one it extends: "), std::string::npos) << error;
+  EXPECT_NE(error.find("rigid_2dof.yaml)"), std::string::npos) << error;
+  EXPECT_EQ(error.find("(line "), std::string::npos) << error;
+  const std::string set = errorLoading(child, {"extends=other.yaml"});
+  EXPECT_NE(set.find("--set extends: a scenario's base is read before --set applies"), std::string::npos)
+      << set;
+}
+
+// A section whose type changes is replaced whole (no theorem1 gain is left in
+// an external controller's section), and a base's program path stays its own.
+TEST_F(Extends, AControllerOfAnotherTypeReplacesTheSectionAndKeepsItsProgramPath) {
+  fs::create_directories(dir_ / "base");
+  const std::string program = (dir_ / "base" / "prog.sh").string();
+  std::ofstream(program) << "#!/bin/sh\n";
+  fs::permissions(program, fs::perms::owner_all);
+  write("base/external.yaml",
+        "extends: " + kConfigs +
+            "/rigid_2dof.yaml\nmode: lockstep\ncontroller: {type: external, command: [./prog.sh, "
+            "--gain, 2]}\n");
+  const Scenario s = loadScenario(write("child.yaml", "extends: base/external.yaml\nname: c\n"));
+  EXPECT_EQ(s.controller.type, "external");
+  ASSERT_EQ(s.controller.command.size(), 3u);
+  EXPECT_EQ(s.controller.command[0], fs::weakly_canonical(program).string());
+}
+
 TEST(SetErrors, NameTheOptionInsteadOfLineOne) {
   const std::string error =
       testing::errorOf(testing::readFile(kConfigs + "/rigid_2dof.yaml"), {"controller.kd=abc"});

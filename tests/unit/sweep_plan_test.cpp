@@ -196,5 +196,22 @@ TEST(SweepStore, APartialLineAKilledShardLeftIsDroppedAndCutBeforeTheNextRow) {
   EXPECT_EQ(text, "{\"index\":0,\"status\":\"completed\"}\n{\"index\":1,\"status\":\"completed\"}\n");
 }
 
+// A row written before the simulated verdict existed called the linearised
+// verdict sampled_verdict: read back, it is linearised_verdict, and the
+// simulated column is empty.
+TEST(SweepStore, AnOldRowsSampledVerdictIsReadAsTheLinearisedOne) {
+  const fs::path dir = scratch("store-old");
+  fs::create_directories(dir / "rows");
+  std::ofstream(dir / "rows" / "shard-0-of-1.jsonl")
+      << "{\"index\":0,\"sampled_verdict\":\"slow\",\"spectral_radius\":0.99}\n"
+         "{\"index\":1,\"linearised_verdict\":\"adequate\",\"sampled_verdict\":\"diverges\"}\n";
+  const auto rows = readFinishedRows(dir.string());
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows.at(0).at("linearised_verdict"), "slow");
+  EXPECT_TRUE(rows.at(0).at("sampled_verdict").is_null());
+  EXPECT_EQ(rows.at(1).at("linearised_verdict"), "adequate");
+  EXPECT_EQ(rows.at(1).at("sampled_verdict"), "diverges");
+}
+
 }  // namespace
 }  // namespace lagrange::tools

@@ -29,6 +29,7 @@ constexpr const char* kFormat = "lagrange run export 1";
 // Rows held before they are written, so that they go out in runs of
 // contiguous rows (one write per dataset each), not one write a row.
 constexpr size_t kHeldRows = 4096;
+constexpr size_t kHeldValues = size_t{1} << 22;  // 32 MiB of doubles across the channels
 
 // A field's shape from the first message: [] a number, [joints], or [rows, joints].
 struct FieldShape {
@@ -203,7 +204,7 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
   std::map<std::string, ChannelTable> tables;
   std::optional<std::string> logged_scenario;
   int64_t run_id = 0;
-  logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
+  result.scan = logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
     if (ev.channel == transport::kScenario && !logged_scenario) logged_scenario = logs::scenarioYaml(ev);
     withMessage(ev, [&](const auto& m) {
       ChannelTable& c = tables[ev.channel];
@@ -263,18 +264,25 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
         }
       }
       // Pass 2: the first intact copy of each tick, into its row.
+      size_t held_values = 0;
       logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
         withMessage(ev, [&](const auto& m) {
           ChannelTable& c = tables.at(ev.channel);
           const size_t row = static_cast<size_t>(
               std::lower_bound(c.ticks.begin(), c.ticks.end(), m.header.tick) - c.ticks.begin());
-          if (row >= c.ticks.size() || c.written[row]) return;  // a later copy of a tick
+          // A later copy of a tick; or a tick the first pass did not see (the log grew between them).
+          if (row >= c.ticks.size() || c.ticks[row] != m.header.tick || c.written[row]) return;
           c.written[row] = true;
           FlatVisitor flat{c.fields, {}, 0, false};
           transport::fields(flat, m);
           if (flat.misshapen) ++c.misshapen;
+          held_values += flat.values.size();
           c.held[row] = {m.header.tick, m.header.publish_utime, m.header.sim_time, std::move(flat.values)};
-          if (c.held.size() >= kHeldRows) flush(c);  // rows have their places: any order is right
+          // Rows have their places: any order is right. Bounded by rows and by values held.
+          if (c.held.size() >= kHeldRows || held_values >= kHeldValues) {
+            for (auto& [name, table] : tables) flush(table);
+            held_values = 0;
+          }
         });
       });
       for (auto& [channel, c] : tables) {

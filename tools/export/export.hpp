@@ -3,7 +3,7 @@
 /// `lagrange export RUN -o FILE`: a run's log as one HDF5 file, readable by
 /// h5py, MATLAB's h5read and Julia's HDF5.jl (docs/export.md):
 ///
-///   /                       attributes: format, lagrange_version, run_id, joint_names,
+///   /                       attributes: format, source, run_id, joint_names,
 ///                           scenario (the resolved YAML), summary (summary.json's text)
 ///   /PLANT_TRUTH/tick       int64 [samples]             the sample's tick
 ///   /PLANT_TRUTH/t          float64 [samples]           header.sim_time [s]
@@ -14,8 +14,9 @@
 ///
 /// One group per per-tick channel of the log, one dataset per field
 /// (transport/message_fields.hpp), one row per tick in tick order (the first
-/// intact copy of each). Written in blocks as the log is read, so the memory
-/// stays bounded by the number of ticks, not the log's size.
+/// intact copy of each). Written in blocks as the log is read (at most 4096
+/// rows a channel, or 32 MiB of values, held), so the memory is the ticks'
+/// list and those blocks, not the log's size.
 
 #include <string>
 #include <vector>

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 
 #include "config/scenario.hpp"
@@ -90,7 +91,12 @@ MetricCheck parseMetricCheck(const std::string& raw) {
     return c;
   }
   const size_t at = text.find_first_of("<>");
-  const auto grammar = [&](const std::string& what) {
+  const auto grammar = [&](std::string what) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(text, ec))
+      what +=
+          " (it is a file: was the scenario taken for --check's value? write --check=LIST, or --check after "
+          "it)";
     return config::ConfigError("--check '" + raw + "': " + what +
                                "; expected met, or KEY OP NUMBER with OP one of < <= > >= and KEY a number "
                                "of summary.json (e.g. tracking.final_error) or one of final_error, "
@@ -106,6 +112,7 @@ MetricCheck parseMetricCheck(const std::string& raw) {
   if (value.empty() || end == nullptr || *end != '\0' || !std::isfinite(c.threshold))
     throw grammar("'" + value + "' is not a finite number");
   if (c.key.empty() || c.key.find_first_of(" <>=") != std::string::npos) throw grammar("no key");
+  if (c.key == "met") throw grammar("met takes no comparison");
   return c;
 }
 

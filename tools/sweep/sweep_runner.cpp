@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 #include "controller/paper_section.hpp"
@@ -196,9 +197,13 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   const nlohmann::json& t = summary.at("tracking");
   if (!t.at("convergence_time").is_null())
     o.tracking.convergence_time = t.at("convergence_time").get<double>();
-  o.tracking.final_error = t.at("final_error").get<double>();
-  o.tracking.max_error = t.at("max_error").get<double>();
-  o.tracking.rms_last_second = t.at("rms_last_second").get<double>();
+  // A non-finite number is null in summary.json (a run that blew up): NaN here.
+  const auto number = [](const nlohmann::json& v) {
+    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  o.tracking.final_error = number(t.at("final_error"));
+  o.tracking.max_error = number(t.at("max_error"));
+  o.tracking.rms_last_second = number(t.at("rms_last_second"));
   // Why a run that did not complete stopped: the plant's last word.
   const nlohmann::json plant = summary.value("/processes/plant"_json_pointer, nlohmann::json::object());
   if (o.status != "completed") o.stop_message = plant.value("message", std::string("see ") + dir.string());

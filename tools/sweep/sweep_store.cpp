@@ -56,6 +56,12 @@ std::map<long, nlohmann::ordered_json> readFinishedRows(const std::string& out_d
       if (in.eof()) break;  // no newline: a line a killed shard did not finish
       nlohmann::ordered_json j = nlohmann::ordered_json::parse(line, nullptr, false);
       if (j.is_discarded() || !j.contains("index")) continue;
+      // A row written before the simulated verdict existed: its
+      // sampled_verdict was the linearised one (now linearised_verdict).
+      if (!j.contains("linearised_verdict") && j.contains("sampled_verdict")) {
+        j["linearised_verdict"] = j["sampled_verdict"];
+        j["sampled_verdict"] = nullptr;
+      }
       rows.emplace(j["index"].get<long>(), std::move(j));
     }
   }

@@ -234,7 +234,8 @@ public final class ExternalController implements LCMSubscriber {
       if (p.header.tick <= lastTick) return;  // older than one answered: never step back
       control_command_t c = command(p);
       answered.put(p.header.tick, c);
-      answered.remove(p.header.tick - KEEP_ANSWERS);
+      final long oldest = p.header.tick - KEEP_ANSWERS;
+      answered.keySet().removeIf(k -> k <= oldest);  // ticks skipped in realtime too
       lastTick = p.header.tick;
       publishCommand(c);
     } catch (IOException | RuntimeException e) {
