@@ -9,7 +9,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cp -r "$root/python" "$work/src"
 /usr/bin/python3 -m venv --system-site-packages "$work/venv"
-"$work/venv/bin/pip" install --quiet --no-build-isolation --no-index "$work/src"
+"$work/venv/bin/pip" install --quiet --disable-pip-version-check --no-cache-dir --no-build-isolation --no-index \
+  "$work/src"  # nothing from the network, nothing left in ~/.cache
 rm -rf "$work/src"  # the installed copy, not the source, must be what imports
 cd "$work"
 "$work/venv/bin/python" - "$work/venv" <<'PY'
