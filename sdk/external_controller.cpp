@@ -18,6 +18,7 @@
 #include "lagrange/control_command_t.hpp"
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/status_t.hpp"
+#include "transport/checksum.hpp"
 
 namespace lagrange::sdk {
 
@@ -61,17 +62,9 @@ std::array<unsigned char, 32> readKey(const std::string& path) {
   return key;
 }
 
-// FNV-1a (64 bit) with lagrange's offset basis 1469598103934665603 (not the
-// standard one: docs/external_controllers.md), lowest bit set.
-template <class Msg>
-int64_t checksumOf(Msg msg) {
-  msg.header.checksum = 0;
-  std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  uint64_t h = 1469598103934665603ULL;
-  for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ULL;
-  return static_cast<int64_t>(h | 1ULL);
-}
+// The checksum is the project's own (transport/checksum.hpp, header-only:
+// compiled in here, not installed): lagrange's FNV-1a basis, lowest bit set.
+using transport::checksumOf;
 
 int64_t monotonicUs() {
   return std::chrono::duration_cast<std::chrono::microseconds>(

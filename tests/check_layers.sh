@@ -25,7 +25,7 @@ logs       : util transport messages
 wiring     : util model core config scenario lcm runtime transport messages
 process    : util model core config scenario lcm runtime transport messages logs wiring
 test       : util model core config scenario lcm runtime transport messages logs wiring process
-sdk        : messages
+sdk        : messages transport/checksum.hpp
 example    : messages sdk
 EOF
 }
