@@ -9,9 +9,13 @@
 #include <fstream>
 #include <lcm/lcm-cpp.hpp>
 #include <set>
+#include <sstream>
 
 #include "support/configs.hpp"
 #include "support/launch.hpp"
+#include "support/run_log.hpp"
+#include "support/sweep_files.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -50,13 +54,17 @@ void expectPlots(const std::string& dir, const std::set<std::string>& expected, 
   }
 }
 
-const std::set<std::string> kEveryRun = {"tracking_error.png", "joints.png", "torques.png",
+// What any log's CSV files allow; a log with its scenario adds the per-joint
+// errors (TRACKING.csv: the truth against the scenario's reference).
+const std::set<std::string> kEveryLog = {"tracking_error.png", "joints.png", "velocities.png", "torques.png",
                                          "filter_states.png"};
 
 std::set<std::string> with(std::set<std::string> base, const std::set<std::string>& more) {
   base.insert(more.begin(), more.end());
   return base;
 }
+
+const std::set<std::string> kEveryRun = with(kEveryLog, {"joint_errors.png"});
 
 TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
   const std::set<std::string> chain = {"chain_error.png", "control_input.png", "actuator_states.png"};
@@ -130,11 +138,55 @@ TEST(Report, RunWithReportFlagWritesThePlotsAtTheEnd) {
   const RunResult r = runScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/chain_m1.yaml", out,
                                   "--set duration=1 --report");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("report: 4 CSV files, 7 plots in " + out + "/report"), std::string::npos)
+  EXPECT_NE(r.output.find("report: 5 CSV files, 9 plots in " + out + "/report"), std::string::npos)
       << r.output;
   expectPlots(out + "/report",
               with(kEveryRun, {"chain_error.png", "control_input.png", "actuator_states.png"}),
               "run --report");
+}
+
+// TRACKING.csv is the truth against the reference, row by row: each q − q_d
+// equals PLANT_TRUTH's q minus the controller's own q_desired of that tick
+// (clean sensors, lockstep: the same instant), and the error plots' marker is
+// summary.json's convergence time, to the bit.
+TEST(Report, TheTrackingTableAndMarkerAgreeWithTheRunsOwnFigures) {
+  const std::string out = freshDir("run-report-tracking");
+  const RunResult r = runScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml", out,
+                                  "--set duration=2 --report");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto truth = readTruth(out + "/run.lcm");
+  const auto desired =
+      readReadings(out + "/run.lcm", "CONTROL_COMMAND", &lagrange::control_command_t::q_desired);
+  std::ifstream table(out + "/report/TRACKING.csv");
+  std::string line;
+  std::getline(table, line);
+  EXPECT_EQ(line,
+            "tick,sim_time,q_error_norm,q_error[1],q_error[2],qdot_desired[1],qdot_desired[2],"
+            "qdot_error[1],qdot_error[2]");
+  size_t rows = 0;
+  while (std::getline(table, line)) {
+    std::vector<double> v;
+    std::istringstream fields(line);
+    for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+    ASSERT_EQ(v.size(), 9u) << line;
+    const auto& sample = truth.at(rows);
+    ASSERT_EQ(static_cast<long long>(v[0]), sample.tick);
+    const auto& qd = desired.at(sample.tick);
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_NEAR(v[3 + j], sample.q(j) - qd[j], 1e-12) << "tick " << sample.tick << " joint " << j + 1;
+      EXPECT_NEAR(v[7 + j], sample.qdot(j) - v[5 + j], 1e-12) << "tick " << sample.tick;
+    }
+    EXPECT_NEAR(v[2], std::hypot(v[3], v[4]), 1e-15);
+    ++rows;
+  }
+  EXPECT_EQ(rows, truth.size());
+  const auto summary = readSummary(out);
+  const std::string script = readText(out + "/report/plots.gp");
+  ASSERT_TRUE(summary["tracking"]["convergence_time"].is_number()) << summary.dump();
+  const std::string t = util::exactText(summary["tracking"]["convergence_time"].get<double>());
+  EXPECT_NE(script.find("set arrow from " + t + ", graph 0 to " + t + ", graph 1"), std::string::npos) << t;
+  // Its torques start with a spike far above their later swing: clipped, and said so.
+  EXPECT_NE(script.find("the start-up peaks above are cut"), std::string::npos);
 }
 
 // A stock logger started late misses SCENARIO: the plots come from the CSV columns.
@@ -151,8 +203,9 @@ TEST(Report, ALogWithoutItsScenarioStillGetsPlots) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("warning: the log has no SCENARIO channel"), std::string::npos) << r.output;
   expectPlots(dir + "/report",
-              with(kEveryRun, {"chain_error.png", "control_input.png", "actuator_states.png"}),
+              with(kEveryLog, {"chain_error.png", "control_input.png", "actuator_states.png"}),
               "no scenario");
+  EXPECT_FALSE(fs::exists(dir + "/report/TRACKING.csv")) << "no reference to judge the truth against";
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/png_image.hpp"
+#include "support/run_log.hpp"
 #include "support/wait.hpp"
 #include "support/webdriver.hpp"
 #include "transport/channels.hpp"
@@ -272,8 +273,43 @@ TEST(View, AUrdfArmAndFlexibleJointsAreDrawnFromTheirLogs) {
     const TipCheck c =
         drawnTip(browser, *s.robotModel(), logged, loggedTimeNear(logged, 0.15), keep ? keep : "");
     EXPECT_GT(c.rotor_pixels, 20) << "the rotors' pointers are not drawn";
+    EXPECT_EQ(browser.run("return document.getElementById('legend-rotor').hidden;"), false)
+        << "elastic joints: the legend names the rotors";
     expectNoConsoleError(browser);
   }
+}
+
+// A log longer than the page is sent whole (41 001 frames, sent as every
+// 3rd): the torque plot still spans every logged torque to its extremes --
+// the frames between those sent come as an envelope, and each pixel column
+// draws its min and max rather than one sample of many. A rigid arm's legend
+// names no rotor.
+TEST(View, ItsPlotsKeepEveryPeakAndNameOnlyWhatTheArmHas) {
+  const std::string dir = freshDir("view-peaks");
+  fs::create_directories(dir);
+  const std::string log = inprocLog("rigid_2dof.yaml", dir, "--set duration=41");
+  const auto truth = readTruth(log);
+  ASSERT_EQ(truth.size(), 41001u);
+  double lo = truth[0].tau.minCoeff(), hi = truth[0].tau.maxCoeff();
+  double sent_lo = lo, sent_hi = hi;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    lo = std::min(lo, truth[i].tau.minCoeff()), hi = std::max(hi, truth[i].tau.maxCoeff());
+    if (i % 3 == 0)
+      sent_lo = std::min(sent_lo, truth[i].tau.minCoeff()),
+      sent_hi = std::max(sent_hi, truth[i].tau.maxCoeff());
+  }
+  // The check can fail: an extreme lies on a frame the page is not sent.
+  ASSERT_TRUE(sent_lo != lo || sent_hi != hi) << "every extreme is on a sent frame; pick another duration";
+  ViewServer server(log, dir);
+  Browser browser(dir, 1280, 720);
+  openViewer(browser, server);
+  const json extents = browser.run("return window.lagrangeViewer.plotExtents();");
+  ASSERT_TRUE(extents["torque"].is_array()) << extents.dump();
+  EXPECT_EQ(extents["torque"][0].get<double>(), lo);
+  EXPECT_EQ(extents["torque"][1].get<double>(), hi);
+  EXPECT_EQ(browser.run("return document.getElementById('legend-rotor').hidden;"), true);
+  EXPECT_EQ(browser.run("return document.getElementById('torque-plot').title;"), "τ1: joint1\nτ2: joint2");
+  expectNoConsoleError(browser);
 }
 
 TEST(View, FollowsARunningScenarioLive) {

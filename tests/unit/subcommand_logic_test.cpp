@@ -111,6 +111,87 @@ TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {
   EXPECT_TRUE(has(plotScript(chain).pngs, "chain_error.png"));
 }
 
+// A torque history whose t = 0 spike is 60 times its later swing: the plot
+// keeps the start-up at full range in one panel and draws the whole run
+// clipped to the later range in another, naming the peak it cut. The same
+// history without the spike is one plain panel.
+TEST_F(SubcommandLogic, ReportClipsAStartUpSpikeAndSaysSo) {
+  const auto torques = [&](bool spike) {
+    std::string csv = "tick,sim_time,q[1],qdot[1],tau_applied[1]\n";
+    for (int k = 0; k <= 1000; ++k) {
+      const double t = k * 0.01, tau = (spike && k < 5) ? -300.0 + k : 5.0 * std::sin(t);
+      csv += std::to_string(k) + "," + util::exactText(t) + ",0,0," + util::exactText(tau) + "\n";
+    }
+    writeFile("PLANT_TRUTH.csv", csv);
+  };
+  torques(true);
+  PlotSpec spec = specFromCsv(dir_, "spike");
+  EXPECT_EQ(spec.end_time, 10.0) << "the last row's time";
+  spec.convergence_time = 2.0;  // the transient ends there (in the first half of the run)
+  const auto torquePart = [](const PlotScript& script) {
+    for (size_t i = 0; i < script.pngs.size(); ++i)
+      if (script.pngs[i] == "torques.png") return script.sections[i];
+    return std::string();
+  };
+  const std::string clipped = torquePart(plotScript(spec));
+  EXPECT_NE(clipped.find("set multiplot layout 2,1"), std::string::npos) << clipped;
+  EXPECT_NE(clipped.find("peak τ = -300 N m (tau_applied[1]) at t = 0 s"), std::string::npos) << clipped;
+  EXPECT_NE(clipped.find("set xrange [0:2]"), std::string::npos) << "the start-up panel ends at convergence";
+  // The later range is the samples' over t >= 2 s, with 5 % of its span on each side.
+  double lo = 5.0, hi = -5.0;
+  for (int k = 200; k <= 1000; ++k)
+    lo = std::min(lo, 5.0 * std::sin(k * 0.01)), hi = std::max(hi, 5.0 * std::sin(k * 0.01));
+  const double margin = 0.05 * (hi - lo);
+  EXPECT_NE(
+      clipped.find("set yrange [" + util::exactText(lo - margin) + ":" + util::exactText(hi + margin) + "]"),
+      std::string::npos)
+      << clipped;
+  EXPECT_NE(clipped.find("the start-up peaks above are cut"), std::string::npos);
+
+  torques(false);
+  const std::string plain = torquePart(plotScript(specFromCsv(dir_, "no spike")));
+  EXPECT_EQ(plain.find("multiplot layout"), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("cut"), std::string::npos) << plain;
+  EXPECT_EQ(plain.find("set yrange"), std::string::npos) << plain;
+}
+
+// The error plots mark summary.json's convergence time (a line where it is,
+// a word when there is none) only when TRACKING.csv -- the truth against the
+// reference -- is there; the rate plots draw a URDF's limits only for joints
+// that have one.
+TEST_F(SubcommandLogic, ReportMarksConvergenceAndLimitsOnlyWhereTheyExist) {
+  writeFile("PLANT_TRUTH.csv", "tick,sim_time,q[1],q[2],qdot[1],qdot[2],tau_applied[1],tau_applied[2]\n");
+  writeFile("CONTROL_COMMAND.csv", "tick,sim_time,u[1],u[2],q_error[1],q_error[2]\n");
+  PlotSpec spec = specFromCsv(dir_, "marks");
+  spec.tolerance = 1e-3;
+  spec.convergence_time = 0.915;
+  spec.velocity_limits = {2.5, std::numeric_limits<double>::infinity()};
+  PlotScript script = plotScript(spec);
+  EXPECT_FALSE(has(script.pngs, "joint_errors.png")) << "per-joint errors need TRACKING.csv";
+  EXPECT_EQ(script.text.find("converged at"), std::string::npos) << "no TRACKING.csv, no marker";
+  EXPECT_NE(script.text.find("the controller's view"), std::string::npos)
+      << "the norm says whose error it is";
+  EXPECT_TRUE(has(script.pngs, "velocities.png"));
+  size_t limits = 0;
+  for (size_t at = 0; (at = script.text.find("velocity limit ±", at)) != std::string::npos; ++at) ++limits;
+  EXPECT_EQ(limits, 1u) << "joint 2 has no limit";
+  EXPECT_NE(script.text.find("velocity limit ±2.5 rad/s (URDF)"), std::string::npos);
+
+  writeFile("TRACKING.csv",
+            "tick,sim_time,q_error_norm,q_error[1],q_error[2],qdot_desired[1],qdot_desired[2]\n");
+  script = plotScript(spec);
+  EXPECT_TRUE(has(script.pngs, "joint_errors.png"));
+  EXPECT_NE(script.text.find("set arrow from 0.915, graph 0 to 0.915, graph 1"), std::string::npos);
+  EXPECT_NE(script.text.find("converged at t = 0.915 s"), std::string::npos);
+  EXPECT_NE(script.text.find("PLANT_TRUTH against the reference"), std::string::npos);
+  spec.convergence_time.reset();
+  script = plotScript(spec);
+  EXPECT_EQ(script.text.find("converged at"), std::string::npos);
+  EXPECT_NE(script.text.find("not within the tolerance at the end of the run"), std::string::npos);
+  spec.velocity_limits.clear();
+  EXPECT_EQ(plotScript(spec).text.find("velocity limit"), std::string::npos) << "a planar arm has none";
+}
+
 // CSV and table numbers: the shortest text that reads back as the same
 // double, bit for bit ("0.1", not "0.10000000000000001").
 TEST(NumberText, IsTheShortestTextThatRoundTrips) {

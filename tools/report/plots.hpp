@@ -7,6 +7,7 @@
 /// (plots.gp, kept next to the PNGs) is a readable starting point for a
 /// user's own figures.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +33,14 @@ struct PlotSpec {
   /// The robot's joint names, base to tip (a URDF arm's), shown next to the
   /// joint numbers; empty, or the planar chain's "joint1".., for numbers alone.
   std::vector<std::string> joint_names;
+  /// The run's convergence time (tracking_table.hpp, as summary.json's),
+  /// marked on the error plots; when TRACKING.csv exists and this is empty,
+  /// the plots say the run did not converge.
+  std::optional<double> convergence_time;
+  double end_time = 0.0;  ///< the last sample's time [s] (0: unknown)
+  /// Per joint [rad/s], +inf where none: a URDF's <limit velocity>, drawn on
+  /// the rate plots (empty: no limits).
+  std::vector<double> velocity_limits;
 };
 
 /// What the CSV files in `dir` say about the run, for a log without a scenario.

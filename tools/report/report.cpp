@@ -2,8 +2,10 @@
 
 #include <filesystem>
 #include <iostream>
+#include <limits>
 
 #include "config/scenario.hpp"
+#include "tools/report/tracking_table.hpp"
 #include "transport/channels.hpp"
 
 namespace lagrange::tools {
@@ -34,6 +36,10 @@ PlotSpec specOf(const CsvExport& csv, const std::string& log_path, const std::st
   spec.flexible = s.flexible.has_value();
   spec.tolerance = s.metrics.tolerance;
   spec.joint_names = s.robotModel()->jointNames();
+  if (s.urdf_model)
+    for (const auto& joint : s.urdf_model->jointProperties())
+      spec.velocity_limits.push_back(joint.velocity ? *joint.velocity
+                                                    : std::numeric_limits<double>::infinity());
   return spec;
 }
 }  // namespace
@@ -48,7 +54,18 @@ Report writeReport(const std::string& log_path, const std::string& out_dir) {
         " (expected PLANT_TRUTH, PLANT_POSITION, PLANT_MOTOR, CONTROL_COMMAND, ACTUATOR_STATE: a log "
         "of a lagrange run)");
   std::optional<config::Scenario> scenario;
-  const PlotSpec spec = specOf(report.csv, log_path, out_dir, scenario, report.warnings);
+  PlotSpec spec = specOf(report.csv, log_path, out_dir, scenario, report.warnings);
+  const std::filesystem::path tracking_csv =
+      std::filesystem::path(out_dir) / (std::string(kTrackingChannel) + ".csv");
+  std::filesystem::remove(tracking_csv);  // a table of another log must not be plotted with this one
+  if (scenario) {
+    const TrackingTable tracking = exportTracking(*scenario, out_dir);
+    report.tracking_rows = tracking.rows;
+    if (tracking.rows > 0) {
+      spec.convergence_time = tracking.convergence_time;
+      spec.end_time = tracking.end_time;
+    }
+  }
   if (scenario) {
     const long long samples =
         report.csv.rows.count(transport::kPlantTruth) ? report.csv.rows.at(transport::kPlantTruth) : 0;
@@ -79,6 +96,9 @@ void printReport(const Report& report, const std::string& out_dir, const std::st
   namespace fs = std::filesystem;
   for (const auto& [channel, n] : report.csv.rows)
     std::cout << prefix << n << " rows -> " << (fs::path(out_dir) / (channel + ".csv")).string() << "\n";
+  if (report.tracking_rows > 0)
+    std::cout << prefix << report.tracking_rows << " rows -> "
+              << (fs::path(out_dir) / (std::string(kTrackingChannel) + ".csv")).string() << "\n";
   if (report.timing_rows > 0)
     std::cout << prefix << report.timing_rows << " rows -> "
               << (fs::path(out_dir) / (std::string(kTimingChannel) + ".csv")).string() << "\n";

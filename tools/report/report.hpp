@@ -15,6 +15,7 @@ namespace lagrange::tools {
 struct Report {
   CsvExport csv;
   long long timing_rows = 0;          ///< TIMING.csv rows (realtime runs)
+  long long tracking_rows = 0;        ///< TRACKING.csv rows (a log with its scenario)
   Plots plots;                        ///< PNGs written, and those gnuplot could not draw
   std::vector<std::string> warnings;  ///< what was not read, or not drawn, and why
 };

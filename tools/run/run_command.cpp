@@ -222,7 +222,7 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
     if (opt.quiet) {
       for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
     } else {
-      std::cout << "report: " << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) << " CSV files, "
+      std::cout << "report: " << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) + (report.tracking_rows > 0 ? 1 : 0) << " CSV files, "
                 << report.plots.written.size() << " plots in " << report_dir << "\n";
       for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
     }

@@ -141,13 +141,17 @@ std::string logJson(const ViewLog& log) {
   // Every k-th frame and the last one, at most kMaxLogFrames.
   const size_t n = log.frames.size();
   const size_t stride = std::max<size_t>(1, (n + kMaxLogFrames - 1) / kMaxLogFrames);
-  std::vector<ViewFrame> sent;
-  for (size_t i = 0; i < n; i += stride) sent.push_back(log.frames[i]);
-  if ((n - 1) % stride != 0) sent.push_back(log.frames.back());
+  std::vector<size_t> sent;
+  for (size_t i = 0; i < n; i += stride) sent.push_back(i);
+  if (n > 0 && (n - 1) % stride != 0) sent.push_back(n - 1);
+  std::vector<ViewFrame> frames;
+  for (const size_t i : sent) frames.push_back(log.frames[i]);
   nlohmann::json j = {{"description", descriptionJson(log.description)},
-                      {"frames", framesJson(sent)},
+                      {"frames", framesJson(frames)},
                       {"stride", stride},
                       {"warnings", warnings(log)}};
+  // The plots' peaks between the frames sent (view_frames.hpp).
+  if (stride > 1) j["envelope"] = envelopeJson(log.frames, sent);
   return j.dump();
 }
 

@@ -1,6 +1,8 @@
 #include "tools/view/view_frames.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lagrange::tools {
 
@@ -143,6 +145,28 @@ nlohmann::json framesJson(const std::vector<ViewFrame>& frames) {
   }
   return {{"t", t},         {"q", q},     {"q_desired", q_desired},
           {"motor", motor}, {"tau", tau}, {"error_norm", error_norm}};
+}
+
+nlohmann::json envelopeJson(const std::vector<ViewFrame>& frames, const std::vector<size_t>& sent) {
+  nlohmann::json tau_min = nlohmann::json::array(), tau_max = nlohmann::json::array(),
+                 error_min = nlohmann::json::array(), error_max = nlohmann::json::array();
+  for (size_t i = 0; i < sent.size(); ++i) {
+    const size_t end = i + 1 < sent.size() ? sent[i + 1] : sent[i] + 1;
+    std::vector<double> lo = frames[sent[i]].tau, hi = lo;
+    double e_lo = std::numeric_limits<double>::infinity(), e_hi = -e_lo;
+    for (size_t k = sent[i]; k < end && k < frames.size(); ++k) {
+      const ViewFrame& f = frames[k];
+      for (size_t j = 0; j < lo.size() && j < f.tau.size(); ++j)
+        lo[j] = std::min(lo[j], f.tau[j]), hi[j] = std::max(hi[j], f.tau[j]);
+      if (std::isfinite(f.error_norm))
+        e_lo = std::min(e_lo, f.error_norm), e_hi = std::max(e_hi, f.error_norm);
+    }
+    tau_min.push_back(lo);
+    tau_max.push_back(hi);
+    error_min.push_back(std::isfinite(e_lo) ? nlohmann::json(e_lo) : nlohmann::json());
+    error_max.push_back(std::isfinite(e_hi) ? nlohmann::json(e_hi) : nlohmann::json());
+  }
+  return {{"tau_min", tau_min}, {"tau_max", tau_max}, {"error_min", error_min}, {"error_max", error_max}};
 }
 
 }  // namespace lagrange::tools

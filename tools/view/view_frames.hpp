@@ -66,5 +66,11 @@ nlohmann::json descriptionJson(const lagrange::robot_description_t& d);
 /// Frames as columns: {"t": [...], "q": [[...], ...], "q_desired", "motor",
 /// "tau", "error_norm"}; a missing value is null.
 nlohmann::json framesJson(const std::vector<ViewFrame>& frames);
+/// For a log sent as every k-th frame: per frame sent (`sent`, ascending
+/// indices into `frames`), the min and max of each torque and of the error
+/// norm over the frames it stands for (up to the next one sent), so the
+/// page's plots keep every peak: {"tau_min": [[per joint] per frame sent],
+/// "tau_max", "error_min", "error_max" (null where no reference)}.
+nlohmann::json envelopeJson(const std::vector<ViewFrame>& frames, const std::vector<size_t>& sent);
 
 }  // namespace lagrange::tools

@@ -17,6 +17,7 @@ const view = {
   description: null,
   frames: {t: [], q: [], q_desired: [], motor: [], tau: [], error_norm: []},
   torques: [],           // frames.tau by joint, for the plot
+  envelope: null,        // a strided log's min/max between the frames sent (plots.js)
   t: 0,                  // the time drawn [s]
   index: -1,             // the frame drawn: the last with frames.t <= t
   playing: false,
@@ -176,6 +177,10 @@ function describe(d) {
   view.dirty = true;
   const names = d.joint_names.join(', ');
   document.getElementById('legend').title = d.kind + ': ' + names;
+  // The legend names only what this arm has: rotors on elastic joints alone.
+  document.getElementById('legend-rotor').hidden = !d.flexible;
+  document.getElementById('torque-plot').title =
+      d.joint_names.map((name, k) => 'τ' + (k + 1) + ': ' + name).join('\n');
 }
 
 // --- frames and time -----------------------------------------------------------
@@ -203,8 +208,10 @@ function appendFrames(f) {
   if (n === 0) return;
   seek.min = all.t[0];
   seek.max = all.t[n - 1];
-  errorPlot.setData(all.t, [all.error_norm], ['|q~|']);
-  torquePlot.setData(all.t, view.torques, view.description ? view.description.joint_names : []);
+  const env = view.envelope;  // a log sent as every k-th frame: the peaks between them
+  errorPlot.setData(all.t, [all.error_norm], ['|q~|'], env ? {lo: [env.error_min], hi: [env.error_max]} : null);
+  torquePlot.setData(all.t, view.torques, view.torques.map((_, k) => 'τ' + (k + 1)),
+                     env ? {lo: env.tauMin, hi: env.tauMax} : null);
   view.dirty = true;
 }
 
@@ -308,6 +315,11 @@ async function start() {
   document.getElementById('source').textContent = (session.mode === 'live' ? 'live: ' : 'log: ') + session.source;
   if (session.mode === 'log') {
     const log = await (await fetch('api/log')).json();
+    if (log.envelope) {
+      const byJoint = (rows) => rows.length ? rows[0].map((_, k) => rows.map((r) => r[k])) : [];
+      view.envelope = {error_min: log.envelope.error_min, error_max: log.envelope.error_max,
+                       tauMin: byJoint(log.envelope.tau_min), tauMax: byJoint(log.envelope.tau_max)};
+    }
     describe(log.description);
     appendFrames(log.frames);
     setTime(view.frames.t[0]);
@@ -338,6 +350,10 @@ window.lagrangeViewer = {
             q: view.index >= 0 ? view.frames.q[view.index] : null,
             q_desired: view.index >= 0 ? view.frames.q_desired[view.index] : null,
             motor: view.index >= 0 ? view.frames.motor[view.index] : null};
+  },
+  // The range each plot draws, in its data's units ([lo, hi]; null before data).
+  plotExtents() {
+    return {error: errorPlot.extent(), torque: torquePlot.extent()};
   },
   // A base-frame point in the page's CSS pixels, through the camera drawn.
   project(p) {

@@ -1,0 +1,55 @@
+#include "tools/report/tracking_table.hpp"
+
+#include <filesystem>
+
+#include "logger/tracking_metrics.hpp"
+#include "model/reference.hpp"
+#include "tools/report/csv_rows.hpp"
+#include "transport/channels.hpp"
+#include "util/number_text.hpp"
+#include "util/output_stream.hpp"
+
+namespace lagrange::tools {
+
+TrackingTable exportTracking(const config::Scenario& s, const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  TrackingTable table;
+  CsvRows truth((fs::path(out_dir) / (std::string(transport::kPlantTruth) + ".csv")).string());
+  const int n = s.dof();
+  const int tick = truth.column("tick"), time = truth.column("sim_time");
+  std::vector<int> q(n), qdot(n);
+  for (int j = 0; j < n; ++j) {
+    q[j] = truth.column("q[" + std::to_string(j + 1) + "]");
+    qdot[j] = truth.column("qdot[" + std::to_string(j + 1) + "]");
+    if (q[j] < 0 || qdot[j] < 0) return table;  // not this scenario's arm: nothing derived
+  }
+  if (tick < 0 || time < 0) return table;
+
+  const model::Reference reference(s.reference);
+  logger::TrackingMetrics metrics(reference, s.metrics.tolerance);
+  util::OutputStream out((fs::path(out_dir) / (std::string(kTrackingChannel) + ".csv")).string());
+  out << "tick,sim_time,q_error_norm";
+  for (const char* field : {"q_error", "qdot_desired", "qdot_error"})
+    for (int j = 1; j <= n; ++j) out << "," << field << "[" << j << "]";
+  out << "\n";
+  std::vector<double> row;
+  Eigen::VectorXd position(n), rate(n);
+  while (truth.next(row)) {
+    for (int j = 0; j < n; ++j) position(j) = row[q[j]], rate(j) = row[qdot[j]];
+    const double t = row[time];
+    const model::ReferenceSample desired = reference.evaluate(t, 1);
+    const Eigen::VectorXd error = position - desired.q(), rate_error = rate - desired.qd();
+    metrics.addSample(static_cast<long long>(row[tick]), t, position);
+    out << util::exactText(row[tick]) << "," << util::exactText(t) << "," << util::exactText(error.norm());
+    for (const Eigen::VectorXd* v : {&error, &desired.qd(), &rate_error})
+      for (int j = 0; j < n; ++j) out << "," << util::exactText((*v)(j));
+    out << "\n";
+    ++table.rows;
+    table.end_time = t;
+  }
+  out.close();
+  table.convergence_time = metrics.summary().convergence_time;
+  return table;
+}
+
+}  // namespace lagrange::tools
