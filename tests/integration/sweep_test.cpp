@@ -45,6 +45,30 @@ size_t tableRows(const std::string& out) {
   return n - 1;
 }
 
+// A sweep of one axis: no heat map (it needs two), no margin map (the gains
+// do not vary, so neither does the margin) -- each named with its reason in
+// the output and in maps.gp, rather than left out without a word.
+TEST(Sweep, SaysWhichMapsItDidNotDrawAndWhy) {
+  const std::string dir = freshDir("sweep-maps-not-drawn");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/sweep.yaml") << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
+                                     << "set: {duration: 0.3}\n"
+                                     << "axes:\n  - {key: initial_state.q, norm: {from: 0.01, to: 1, count: 3}}\n";
+  const RunResult r = lagrange("sweep " + quote(dir + "/sweep.yaml") + " -o " + quote(dir + "/out"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("map not drawn: heat_map.png: the sweep has 1 axis; a heat map needs two"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("map not drawn: margin.png: every run has the same gain margin"), std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(dir + "/out/maps/convergence_time.png"));
+  EXPECT_FALSE(fs::exists(dir + "/out/maps/heat_map.png"));
+  EXPECT_FALSE(fs::exists(dir + "/out/maps/margin.png"));
+  const std::string maps = readText(dir + "/out/maps/maps.gp");
+  EXPECT_NE(maps.find("# not drawn: heat_map.png"), std::string::npos) << maps;
+  EXPECT_NE(maps.find("# not drawn: margin.png"), std::string::npos) << maps;
+}
+
 TEST(Sweep, TheSameSweepGivesTheSameTableOnOneCoreOrTwo) {
   const std::string dir = freshDir("sweep-determinism");
   const std::string sweep = writeSweep(dir);
@@ -63,6 +87,13 @@ TEST(Sweep, TheSameSweepGivesTheSameTableOnOneCoreOrTwo) {
   EXPECT_TRUE(fs::exists(dir + "/two/rows/shard-1-of-2.jsonl"));
   for (const std::string png : {"convergence_time.png", "heat_map.png", "margin.png"})
     EXPECT_GT(fs::file_size(dir + "/one/maps/" + png), 5000u) << png;
+  // The convergence map is drawn against the axis swept over the most values
+  // (the initial error's norm), not ||x(0)||.
+  const std::string maps = readText(dir + "/one/maps/maps.gp");
+  EXPECT_NE(maps.find("set xlabel 'initial_state.q.norm"), std::string::npos) << maps;
+  EXPECT_NE(one.output.find("map not drawn: region_vs_rate.png: plant.publish_rate is not swept"),
+            std::string::npos)
+      << one.output;
 
   // A row is the run: `lagrange run --mode inproc` with the row's overrides
   // (plan.json) ends with the same error, to the last bit.

@@ -100,11 +100,13 @@ long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const
               << static_cast<long>(rows.size()) - converged - diverged << " neither\n";
   }
   try {
-    const Plots maps = drawSweepMaps(out_dir, plan, rows);
-    if (!quiet)
-      for (const std::string& png : maps.written) std::cout << who << "wrote " << png << "\n";
-    for (const std::string& png : maps.failed)
-      std::cerr << who << "gnuplot could not draw " << png << " (see " << maps.log << ")\n";
+    const SweepMaps maps = drawSweepMaps(out_dir, plan, rows);
+    if (!quiet) {
+      for (const std::string& png : maps.plots.written) std::cout << who << "wrote " << png << "\n";
+      for (const std::string& why : maps.not_drawn) std::cout << who << "map not drawn: " << why << "\n";
+    }
+    for (const std::string& png : maps.plots.failed)
+      std::cerr << who << "gnuplot could not draw " << png << " (see " << maps.plots.log << ")\n";
   } catch (const PlotError& e) {
     std::cerr << who << "no maps: " << e.what() << "\n";
   }

@@ -54,35 +54,49 @@ struct Picture {
   std::string png, script;
 };
 
+// What a swept column means on an axis: an initial-state norm axis is the
+// size of that part of x(0); any other is the key it sets.
+std::string axisTitle(const std::string& column) {
+  if (column == "x0_norm") return "||x(0)|| = ||(q~(0), dq~(0), qc(0))||";
+  if (column.size() > 5 && column.compare(column.size() - 5, 5, ".norm") == 0)
+    return column + " (the norm of " + column.substr(0, column.size() - 5) + " - its reference value)";
+  return column;
+}
+
 std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& title,
-                                      const std::map<long, Row>& rows, const std::string& group) {
-  // One curve per value of `group` (the first axis, when it has few values).
-  // By the group's value, numbers in numeric order.
+                                      const std::map<long, Row>& rows, const std::string& xcol,
+                                      const std::string& group) {
+  // Against the swept axis `xcol`, one set of points per value of `group`
+  // (another axis, when it has few values), by the group's value in numeric order.
   std::map<std::pair<double, std::string>, std::vector<std::pair<double, double>>> converged;
   std::vector<std::pair<double, std::string>> others;
-  double top = 0;
+  std::vector<double> xs, times;
   for (const auto& [i, r] : rows) {
-    const auto x = numberOf(r, "x0_norm");
+    const auto x = numberOf(r, xcol);
     const auto t = numberOf(r, "convergence_time");
-    if (!x || *x <= 0) continue;
+    if (!x) continue;
+    xs.push_back(*x);
     const bool grouped = !group.empty() && r.contains(group);
     const std::pair<double, std::string> g = {grouped ? numberOf(r, group).value_or(0.0) : 0.0,
                                               grouped ? label(r.at(group)) : ""};
-    if (t && *t > 0) {
+    if (t) {  // 0 too: a run that started within the tolerance converged at once
       converged[g].push_back({*x, *t});
-      top = std::max(top, *t);
+      times.push_back(*t);
     } else {
       others.push_back({*x, r.value("diverged", false) ? "diverged" : "not converged"});
     }
   }
   if (converged.empty() && others.empty()) return std::nullopt;
-  top = top > 0 ? top * 3 : 10;
+  // Times on a log axis when they span a decade; those that did not converge above them.
+  const bool log_y = wantsLog(times);
+  const double longest = times.empty() ? 0.0 : *std::max_element(times.begin(), times.end());
+  const double top = longest > 0 ? longest * (log_y ? 3.0 : 1.25) : 10.0;
   std::string plot = "plot ";
   int k = 0;
   for (const auto& [g, points] : converged) {
     const std::string file = "convergence_" + std::to_string(k) + ".csv";
     util::OutputStream out(dir / file);
-    out << "x0_norm,convergence_time\n";
+    out << "x,convergence_time\n";
     for (const auto& [x, t] : points) out << num(x) << "," << num(t) << "\n";
     plot += std::string(k ? ", \\\n     " : "") + "'" + file +
             "' skip 1 using 1:2 with points pt 7 ps 0.6 title '" +
@@ -90,21 +104,25 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
     ++k;
   }
   for (const std::string kind : {"not converged", "diverged"}) {
-    std::vector<double> xs;
+    std::vector<double> at;
     for (const auto& [x, what] : others)
-      if (what == kind) xs.push_back(x);
-    if (xs.empty()) continue;
+      if (what == kind) at.push_back(x);
+    if (at.empty()) continue;
     const std::string file = kind == "diverged" ? "diverged.csv" : "not_converged.csv";
     util::OutputStream out(dir / file);
-    out << "x0_norm,y\n";
-    for (double x : xs) out << num(x) << "," << num(top * (kind == "diverged" ? 1.5 : 1.0)) << "\n";
+    out << "x,y\n";
+    const double y = kind == "diverged" ? (log_y ? top * 1.5 : top * 1.1) : top;
+    for (double x : at) out << num(x) << "," << num(y) << "\n";
     plot += std::string(k++ ? ", \\\n     " : "") + "'" + file + "' skip 1 using 1:2 with points pt " +
             (kind == "diverged" ? "2" : "6") + " ps 0.8 title '" + kind + " (drawn above)'";
   }
+  const bool log_x = wantsLog(xs);
   return Picture{"convergence_time.png",
-                 header("convergence_time.png", title + ": convergence time against the initial state") +
-                     "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
-                     "set xlabel '||x(0)|| = ||(q~(0), dq~(0), qc(0))||' noenhanced\n"
+                 header("convergence_time.png", title + ": convergence time against " + xcol) +
+                     (log_x ? "set logscale x\nset format x '10^{%L}'\n" : "") +
+                     (log_y ? "set logscale y\nset format y '10^{%L}'\n" : "set yrange [0:*]\n") +
+                     "set offsets graph 0.03, graph 0.03, 0, 0\n"
+                     "set xlabel '" + axisTitle(xcol) + "' noenhanced\n"
                      "set ylabel 'convergence time [s]'\nset key outside right\n" +
                      plot + "\n"};
 }
@@ -163,12 +181,14 @@ std::optional<Picture> marginMap(const fs::path& dir, const std::string& title,
           "plot 'margin.csv' skip 1 using 1:2 with points pt 7 ps 1.2\n"};
 }
 
-std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
-                                 const std::map<long, Row>& rows) {
+// Per rate, over `size` (the swept initial-state norm, or ||x(0)||): the
+// largest below which every run converged, and the largest that converged.
+std::optional<Picture> regionMap(const fs::path& dir, const std::string& title, const std::map<long, Row>& rows,
+                                 const std::string& size) {
   const std::string rate = "plant.publish_rate";
   std::map<double, std::vector<std::pair<double, bool>>> by_rate;
   for (const auto& [i, r] : rows) {
-    const auto f = numberOf(r, rate), x = numberOf(r, "x0_norm");
+    const auto f = numberOf(r, rate), x = numberOf(r, size);
     if (f && x) by_rate[*f].push_back({*x, r.value("converged", false)});
   }
   if (by_rate.size() < 2) return std::nullopt;
@@ -205,7 +225,7 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
       "region_vs_rate.png",
       header("region_vs_rate.png", title + ": region of convergence against the controller rate") +
           "set logscale xy\nset xlabel 'controller rate, plant.publish_rate [Hz]' noenhanced\n"
-          "set ylabel '||x(0)||'\nset key top left box opaque\n"
+          "set ylabel '" + axisTitle(size) + "' noenhanced\nset key top left box opaque\n"
           "plot 'region_vs_rate.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title "
           "'every run from below converged', \\\n"
           "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that converged'" +
@@ -214,37 +234,80 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
 
 }  // namespace
 
-Plots drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const std::map<long, Row>& rows) {
+SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const std::map<long, Row>& rows) {
   const fs::path dir = fs::path(out_dir) / "maps";
   util::makeOutputDirectories(dir.string());
   const std::string title = fs::path(plan.spec.file).stem().string();
+  SweepMaps maps;
   // Parameter columns a map can use: not a norm axis's direction index.
   std::vector<std::string> axes;
   for (const std::string& c : plan.param_columns)
     if (c.size() < 10 || c.compare(c.size() - 10, 10, ".direction") != 0) axes.push_back(c);
-  std::string group;
-  if (!axes.empty() && axes[0].find(".norm") == std::string::npos) {
-    std::set<std::string> values;
+  std::map<std::string, size_t> distinct;  // numeric values per axis
+  for (const std::string& a : axes) {
+    std::set<double> values;
     for (const auto& [i, r] : rows)
-      if (r.contains(axes[0])) values.insert(r.at(axes[0]).dump());
-    if (values.size() <= 8) group = axes[0];
+      if (const auto v = numberOf(r, a)) values.insert(*v);
+    distinct[a] = values.size();
   }
+  // The convergence map's x: the axis swept over the most values (the first
+  // of equals); its points grouped by the first other axis of 2 to 8 values.
+  // A sweep of no numeric axis falls back on ||x(0)||.
+  std::string xcol = "x0_norm", group;
+  for (const std::string& a : axes)
+    if (distinct[a] > 1 && (xcol == "x0_norm" || distinct[a] > distinct[xcol])) xcol = a;
+  for (const std::string& a : axes)
+    if (a != xcol && distinct[a] >= 2 && distinct[a] <= 8) {
+      group = a;
+      break;
+    }
   std::vector<Picture> pictures;
-  if (auto p = convergenceMap(dir, title, rows, group)) pictures.push_back(*p);
+  if (auto p = convergenceMap(dir, title, rows, xcol, group))
+    pictures.push_back(*p);
+  else
+    maps.not_drawn.push_back("convergence_time.png: no finished run has a value of " + xcol);
   const std::vector<std::string> heat = plan.spec.heat_map.size() == 2 ? plan.spec.heat_map : axes;
-  if (heat.size() >= 2)
-    if (auto p = heatMap(dir, title, rows, heat[0], heat[1])) pictures.push_back(*p);
-  if (auto p = marginMap(dir, title, rows)) pictures.push_back(*p);
-  if (auto p = regionMap(dir, title, rows)) pictures.push_back(*p);
+  if (heat.size() < 2)
+    maps.not_drawn.push_back("heat_map.png: the sweep has " + std::to_string(axes.size()) +
+                             " axis; a heat map needs two (maps.heat_map names them)");
+  else if (auto p = heatMap(dir, title, rows, heat[0], heat[1]))
+    pictures.push_back(*p);
+  else
+    maps.not_drawn.push_back("heat_map.png: no finished run has numbers in both " + heat[0] + " and " + heat[1]);
+  std::set<double> margins;
+  for (const auto& [i, r] : rows)
+    if (const auto m = numberOf(r, "gain_margin")) margins.insert(*m);
+  if (margins.size() >= 2) {
+    if (auto p = marginMap(dir, title, rows)) pictures.push_back(*p);
+  } else {
+    maps.not_drawn.push_back(
+        margins.empty() ? "margin.png: no run has an evaluated gain condition (gain_margin)"
+                        : "margin.png: every run has the same gain margin (" + num(*margins.begin()) +
+                              "): the sweep does not vary what the condition depends on");
+  }
+  // The region's size: the first initial-state norm swept (over every other
+  // axis and direction), else ||x(0)||.
+  std::string size = "x0_norm";
+  for (const std::string& a : axes)
+    if (a.size() > 5 && a.compare(a.size() - 5, 5, ".norm") == 0 && distinct[a] > 1) {
+      size = a;
+      break;
+    }
+  if (auto p = regionMap(dir, title, rows, size))
+    pictures.push_back(*p);
+  else
+    maps.not_drawn.push_back("region_vs_rate.png: plant.publish_rate is not swept over two values or more");
   std::vector<std::string> pngs, sections;
   std::string all;
+  for (const std::string& why : maps.not_drawn) all += "# not drawn: " + why + "\n";
   for (const Picture& p : pictures) {
     pngs.push_back(p.png);
     sections.push_back(p.script);
     all += p.script + "\n";
   }
   util::writeOutputFile((dir / "maps.gp").string(), all);
-  return drawPictures(dir.string(), pngs, sections);
+  maps.plots = drawPictures(dir.string(), pngs, sections);
+  return maps;
 }
 
 }  // namespace lagrange::tools
