@@ -51,9 +51,10 @@ size_t tableRows(const std::string& out) {
 TEST(Sweep, SaysWhichMapsItDidNotDrawAndWhy) {
   const std::string dir = freshDir("sweep-maps-not-drawn");
   fs::create_directories(dir);
-  std::ofstream(dir + "/sweep.yaml") << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
-                                     << "set: {duration: 0.3}\n"
-                                     << "axes:\n  - {key: initial_state.q, norm: {from: 0.01, to: 1, count: 3}}\n";
+  std::ofstream(dir + "/sweep.yaml")
+      << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
+      << "set: {duration: 0.3}\n"
+      << "axes:\n  - {key: initial_state.q, norm: {from: 0.01, to: 1, count: 3}}\n";
   const RunResult r = lagrange("sweep " + quote(dir + "/sweep.yaml") + " -o " + quote(dir + "/out"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("map not drawn: heat_map.png: the sweep has 1 axis; a heat map needs two"),

@@ -122,7 +122,9 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
                      (log_x ? "set logscale x\nset format x '10^{%L}'\n" : "") +
                      (log_y ? "set logscale y\nset format y '10^{%L}'\n" : "set yrange [0:*]\n") +
                      "set offsets graph 0.03, graph 0.03, 0, 0\n"
-                     "set xlabel '" + axisTitle(xcol) + "' noenhanced\n"
+                     "set xlabel '" +
+                     axisTitle(xcol) +
+                     "' noenhanced\n"
                      "set ylabel 'convergence time [s]'\nset key outside right\n" +
                      plot + "\n"};
 }
@@ -183,8 +185,8 @@ std::optional<Picture> marginMap(const fs::path& dir, const std::string& title,
 
 // Per rate, over `size` (the swept initial-state norm, or ||x(0)||): the
 // largest below which every run converged, and the largest that converged.
-std::optional<Picture> regionMap(const fs::path& dir, const std::string& title, const std::map<long, Row>& rows,
-                                 const std::string& size) {
+std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
+                                 const std::map<long, Row>& rows, const std::string& size) {
   const std::string rate = "plant.publish_rate";
   std::map<double, std::vector<std::pair<double, bool>>> by_rate;
   for (const auto& [i, r] : rows) {
@@ -195,13 +197,16 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title, 
   util::OutputStream out(dir / "region_vs_rate.csv");
   out << "rate,all_converged_below,largest_converged,runs\n";
   // A rate where no run converged has no region: drawn as a cross below the
-  // smallest initial state swept, so that it is not silently missing.
+  // smallest initial state swept, so that it is not silently missing; one
+  // where some run of the smallest size failed has no "every run below":
+  // drawn as a triangle there.
   double smallest = 0;
   for (const auto& [f, runs] : by_rate)
     for (const auto& [x, ok] : runs) smallest = smallest > 0 ? std::min(smallest, x) : x;
-  util::OutputStream none(dir / "region_none.csv");
+  util::OutputStream none(dir / "region_none.csv"), partial(dir / "region_smallest_failed.csv");
   none << "rate,y\n";
-  bool any_none = false;
+  partial << "rate,y\n";
+  bool any_none = false, any_partial = false;
   for (auto& [f, runs] : by_rate) {
     std::sort(runs.begin(), runs.end());
     double all_below = 0, largest = 0;
@@ -216,16 +221,27 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title, 
       any_none = true;
       continue;
     }
-    out << num(f) << "," << num(all_below) << "," << num(largest) << "," << runs.size() << "\n";
+    if (all_below == 0) {
+      partial << num(f) << "," << num(smallest / 2) << "\n";
+      any_partial = true;
+    }
+    out << num(f) << "," << (all_below > 0 ? num(all_below) : "") << "," << num(largest) << "," << runs.size()
+        << "\n";
   }
-  const std::string crosses = any_none ? ", \\\n     'region_none.csv' skip 1 using 1:2 with points pt 2 ps "
-                                         "2 lw 2 title 'no run converged'"
-                                       : "";
+  std::string crosses = any_none ? ", \\\n     'region_none.csv' skip 1 using 1:2 with points pt 2 ps "
+                                   "2 lw 2 title 'no run converged'"
+                                 : "";
+  if (any_partial)
+    crosses +=
+        ", \\\n     'region_smallest_failed.csv' skip 1 using 1:2 with points pt 11 ps 2 lw 2 title "
+        "'a run of the smallest size did not converge'";
   return Picture{
       "region_vs_rate.png",
       header("region_vs_rate.png", title + ": region of convergence against the controller rate") +
           "set logscale xy\nset xlabel 'controller rate, plant.publish_rate [Hz]' noenhanced\n"
-          "set ylabel '" + axisTitle(size) + "' noenhanced\nset key top left box opaque\n"
+          "set ylabel '" +
+          axisTitle(size) +
+          "' noenhanced\nset key top left box opaque\n"
           "plot 'region_vs_rate.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title "
           "'every run from below converged', \\\n"
           "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that converged'" +
@@ -273,7 +289,8 @@ SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const
   else if (auto p = heatMap(dir, title, rows, heat[0], heat[1]))
     pictures.push_back(*p);
   else
-    maps.not_drawn.push_back("heat_map.png: no finished run has numbers in both " + heat[0] + " and " + heat[1]);
+    maps.not_drawn.push_back("heat_map.png: no finished run has numbers in both " + heat[0] + " and " +
+                             heat[1]);
   std::set<double> margins;
   for (const auto& [i, r] : rows)
     if (const auto m = numberOf(r, "gain_margin")) margins.insert(*m);

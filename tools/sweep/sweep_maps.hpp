@@ -32,6 +32,6 @@ struct SweepMaps {
 
 /// @throws PlotError when gnuplot is missing (the table is written regardless).
 SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan,
-                    const std::map<long, nlohmann::ordered_json>& rows);
+                        const std::map<long, nlohmann::ordered_json>& rows);
 
 }  // namespace lagrange::tools
