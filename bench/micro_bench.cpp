@@ -67,6 +67,13 @@ void BM_Coriolis(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(c->coriolis(q, v));
   label(state);
 }
+// C(q, v) w as the baselines need it every tick, without the matrix.
+void BM_CoriolisTimes(benchmark::State& state) {
+  const RobotModelPtr c = arm(state.range(0));
+  const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(c->dof(), 0.1, 1.0), v = q, w = 0.5 * q;
+  for (auto _ : state) benchmark::DoNotOptimize(c->coriolisTimes(q, v, w));
+  label(state);
+}
 void BM_Gravity(benchmark::State& state) {
   const RobotModelPtr c = arm(state.range(0));
   const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(c->dof(), 0.1, 1.0);
@@ -112,6 +119,7 @@ void arms(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_Inertia)->Apply(arms);
 BENCHMARK(BM_Coriolis)->Apply(arms);
+BENCHMARK(BM_CoriolisTimes)->Apply(arms);
 BENCHMARK(BM_Gravity)->Apply(arms);
 BENCHMARK(BM_InverseDynamics)->Apply(arms);
 BENCHMARK(BM_FeedforwardFromMatrices)->Apply(arms);

@@ -64,8 +64,9 @@ std::optional<double> TrackingMetrics::addSample(long long tick, double t, const
       c.largest = std::max(c.largest, rate);
       ++c.samples;
     }
-  Eigen::VectorXd qd(reference_.dof());
-  for (int i = 0; i < reference_.dof(); ++i) qd(i) = reference_.jointDerivative(i, 0, t);
+  // All joints at once: a free_motion reference integrates one step per
+  // evaluation, so asking joint by joint cost n of them (the same values).
+  const Eigen::VectorXd qd = reference_.evaluate(t, 0).q();
   const double e = (q - qd).norm();
   samples_.emplace(tick, Sample{t, e});
   while (samples_.count(contiguous_tick_ + 1) > 0) ++contiguous_tick_;

@@ -139,6 +139,28 @@ std::optional<std::vector<CoriolisTerm>> PlanarChain::coriolisTerms() const {
   return terms;
 }
 
+Eigen::VectorXd PlanarChain::coriolisTimes(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                           const Eigen::VectorXd& w) const {
+  checkSize(q, "q");
+  checkSize(v, "v");
+  checkSize(w, "w");
+  const int n = dof();
+  // The velocity terms of inverseDynamics below, in absolute angles, are the
+  // quadratic form h(om)_a = sum_b h_ab sin(phi_a - phi_b) om_b^2. Christoffel
+  // symbols are symmetric in their two velocity indices, so C(om) nu is the
+  // symmetric bilinear form of h: om_b^2 becomes om_b nu_b. The coordinates
+  // are linear in q (phi = L q), so C in joint angles is L^T C(L v) L w.
+  const Eigen::VectorXd phi = absoluteAngles(q);
+  const Eigen::ArrayXd c = phi.array().cos(), s = phi.array().sin(),
+                       product = absoluteAngles(v).array() * absoluteAngles(w).array();
+  const Eigen::ArrayXd tau =
+      s * (h_ * (c * product).matrix()).array() - c * (h_ * (s * product).matrix()).array();
+  Eigen::VectorXd out(n);
+  double suffix = 0.0;
+  for (int i = n - 1; i >= 0; --i) out(i) = (suffix += tau(i));
+  return out;
+}
+
 Eigen::VectorXd PlanarChain::inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                              const Eigen::VectorXd& a) const {
   checkSize(q, "q");

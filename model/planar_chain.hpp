@@ -72,6 +72,11 @@ class PlanarChain : public RobotModel {
 
   Eigen::VectorXd gravity(const Eigen::VectorXd& q) const override;
 
+  /// C(q, v) w (Christoffel C) in closed form, O(n^2), without forming C:
+  /// the baselines' C(q, q') q_r' every tick (the matrix is O(n^3) to build).
+  Eigen::VectorXd coriolisTimes(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                const Eigen::VectorXd& w) const override;
+
   /// D(q) a + C(q, v) v + g(q) in closed form, O(n^2), without forming C:
   /// the controllers' feedforward every tick.
   Eigen::VectorXd inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,

@@ -178,7 +178,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   // Publish times of recent position samples, for the end-to-end latency.
   constexpr int64_t kRing = 4096;
   std::array<int64_t, kRing> published_utime{};
-  std::vector<double> latencies, ages;
+  transport::SampleHistogram latencies, ages;  // fixed memory: nothing allocated per cycle
 
   const int torque_steps = s.torqueStepsPerTick();
   std::optional<lagrange::actuator_state_t> latest;
@@ -189,7 +189,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
         if (latest && m.header.tick <= latest->header.tick) return;
         latest = m;
         if (m.header.tick >= 0 && published_utime[m.header.tick % kRing] != 0)
-          latencies.push_back(
+          latencies.add(
               static_cast<double>(node.lastReceiveUtime() - published_utime[m.header.tick % kRing]) * 1e-6);
       });
   std::map<std::string, lagrange::status_t> peers;
@@ -208,7 +208,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
   auto stats = [&] {
     lagrange::loop_stats_t st = loop.stats();
     transport::setInputStats(st, ages, missing, held + zeroed);
-    const auto l = transport::percentiles(latencies);
+    const auto l = latencies.percentiles();
     st.torque_held = held;
     st.torque_zeroed = zeroed;
     st.latency_p50 = l.p50;
@@ -238,7 +238,7 @@ int runRealtime(const config::Scenario& s, transport::LcmNode& node, PlantSim& s
       tau = transport::toEigen(latest->tau_applied);
       applied = {latest->header.tick, lagrange::plant_truth_t::TORQUE_COMMANDED};
       if (latest->header.tick > used_tick)
-        ages.push_back(static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6);
+        ages.add(static_cast<double>(transport::nowUtime() - latest->header.publish_utime) * 1e-6);
       used_tick = latest->header.tick;
     } else if (latest && age <= hold_limit) {
       // Policy "hold": the newest torque, late, its final step held flat. Never

@@ -42,7 +42,7 @@ int serveRealtime(Node& node, const std::string& in_channel, const std::string& 
 
   BasicStatusReporter<Node> status(node);
   Progress progress;
-  std::vector<double> ages;
+  transport::SampleHistogram ages;  // fixed memory: nothing allocated per cycle
   int64_t missing = 0, stale = 0;
   auto stats = [&](const transport::FixedRateLoop& loop) {
     lagrange::loop_stats_t s = loop.stats();
@@ -65,7 +65,7 @@ int serveRealtime(Node& node, const std::string& in_channel, const std::string& 
         ++stale;  // never act on an old sample
       } else {
         if (const std::optional<Out> out = compute(*latest)) {
-          ages.push_back(age);
+          ages.add(age);
           node.publish(out_channel, *out);
         } else {
           ++missing;

@@ -13,13 +13,11 @@
 #include <vector>
 
 #include "lagrange/loop_stats_t.hpp"
+#include "transport/sample_histogram.hpp"
 
 namespace lagrange::transport {
 
-/// Median, 99th percentile and maximum of a sample (zeros when empty).
-struct Percentiles {
-  double p50 = 0.0, p99 = 0.0, max = 0.0;
-};
+/// Median, 99th percentile and maximum of a sample, exactly (by sorting it).
 Percentiles percentiles(std::vector<double> samples);
 
 class FixedRateLoop {
@@ -41,7 +39,7 @@ class FixedRateLoop {
   int64_t period_ns_, phase_ns_;
   int64_t start_ns_ = 0, next_ns_ = 0;
   int64_t cycles_ = 0, misses_ = 0, miss_run_ = 0, longest_miss_run_ = 0;
-  std::vector<double> lateness_;
+  SampleHistogram lateness_;  ///< wake-up lateness [s]: fixed memory, however long the run
   std::string scheduler_;
 };
 
@@ -50,7 +48,7 @@ int64_t monotonicNs();
 /// Fills the input-side fields of loop statistics: the age at use of the
 /// inputs acted on [s], and the counts of cycles without a new input and with
 /// a stale one.
-void setInputStats(lagrange::loop_stats_t& stats, const std::vector<double>& ages, int64_t missing,
+void setInputStats(lagrange::loop_stats_t& stats, const SampleHistogram& ages, int64_t missing,
                    int64_t stale);
 
 /// Asks for SCHED_FIFO at `priority` for this process and locks its memory
