@@ -47,6 +47,41 @@ const Fields<RealtimeConfig>& realtimeFields() {
       positive("max_input_age", &RealtimeConfig::max_input_age),
       integer("priority", &RealtimeConfig::priority, 0, 99,
               "expected a SCHED_FIFO priority from 1 to 99, or 0 for the normal scheduler"),
+      {"cpus",
+       [](MapReader& rt, RealtimeConfig& c) {
+         if (!rt.has("cpus")) return;
+         MapReader cpus = rt.map("cpus");
+         std::set<std::string> names;
+         for (const std::string& name : cpus.keys()) {
+           if (name != "plant" && name != "controller" && name != "actuator" && name != "logger")
+             cpus.fail(name, "unknown process; expected plant, controller, actuator or logger");
+           const YAML::Node list = cpus.child(name);
+           const std::string expected = "expected a list of CPU numbers from 0 to 1023, e.g. [1]";
+           if (!list.IsSequence() || list.size() == 0) cpus.fail(name, expected);
+           std::vector<int> ids;
+           for (const auto& item : list) {
+             const std::string text = item.IsScalar() ? item.Scalar() : "";
+             size_t used = 0;
+             int id = -1;
+             try {
+               id = std::stoi(text, &used);
+             } catch (const std::exception&) {
+               used = 0;
+             }
+             if (text.empty() || used != text.size() || id < 0 || id > 1023) cpus.fail(name, expected);
+             ids.push_back(id);
+           }
+           c.cpus[name] = ids;
+           names.insert(name);
+         }
+         cpus.finish(names);
+       },
+       [](YAML::Emitter& out, const RealtimeConfig& c) {
+         if (c.cpus.empty()) return;
+         out << YAML::Key << "cpus" << YAML::Value << YAML::BeginMap;
+         for (const auto& [name, ids] : c.cpus) out << YAML::Key << name << YAML::Value << YAML::Flow << ids;
+         out << YAML::EndMap;
+       }},
   };
   return fields;
 }

@@ -143,6 +143,9 @@ struct RealtimeConfig {
   int hold_periods = 20;
   double max_input_age = 0.005;  ///< controller and actuator skip inputs older than this [s]
   int priority = 50;             ///< SCHED_FIFO priority of the loops, 0 for the normal scheduler
+  /// CPUs each process may run on (realtime.cpus.PROCESS), by process name;
+  /// a process not named runs where the scheduler puts it.
+  std::map<std::string, std::vector<int>> cpus;
 };
 
 /// What may happen to a datagram on one channel (faults.channels.NAME),

@@ -80,6 +80,10 @@ int runProcess(const std::string& name, const std::string& description, int argc
     const config::Scenario scenario = config::loadScenario(config_path, overrides);
     if (prepare) prepare(scenario);
     // Before LCM starts its receive thread, so that the thread inherits it.
+    // CPUs first: the policy, the memory and every thread stay where they are put.
+    if (scenario.mode == config::Mode::kRealtime)
+      if (const auto it = scenario.realtime.cpus.find(name); it != scenario.realtime.cpus.end())
+        transport::pinToCpus(it->second, "realtime.cpus." + name);
     if (scenario.mode == config::Mode::kRealtime &&
         transport::enterRealtimeScheduling(scenario.realtime.priority) == "other" &&
         scenario.realtime.priority > 0)

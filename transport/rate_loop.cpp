@@ -6,12 +6,16 @@
 #include <sys/mman.h>
 #include <sys/prctl.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
+
+#include "util/error.hpp"
 
 namespace lagrange::transport {
 
@@ -89,10 +93,54 @@ std::string enterRealtimeScheduling(int priority) {
   return "fifo:" + std::to_string(priority);
 }
 
+namespace {
+// "0,2-3" for the CPUs of `set`.
+std::string cpuList(const cpu_set_t& set) {
+  std::string out;
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (!CPU_ISSET(c, &set) || (c > 0 && CPU_ISSET(c - 1, &set))) continue;
+    int last = c;
+    while (last + 1 < CPU_SETSIZE && CPU_ISSET(last + 1, &set)) ++last;
+    out += (out.empty() ? "" : ",") + std::to_string(c) + (last > c ? "-" + std::to_string(last) : "");
+  }
+  return out;
+}
+}  // namespace
+
+void checkCpus(const std::vector<int>& cpus, const std::string& key) {
+  cpu_set_t online;
+  CPU_ZERO(&online);
+  const long count = sysconf(_SC_NPROCESSORS_ONLN);
+  for (long c = 0; c < count && c < CPU_SETSIZE; ++c) CPU_SET(static_cast<int>(c), &online);
+  for (const int c : cpus)
+    if (c < 0 || c >= CPU_SETSIZE || !CPU_ISSET(c, &online))
+      throw BadInput(key + ": CPU " + std::to_string(c) + " is not among this machine's CPUs " +
+                     cpuList(online) + "; expected CPU numbers it has");
+}
+
+void pinToCpus(const std::vector<int>& cpus, const std::string& key) {
+  checkCpus(cpus, key);
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  for (const int c : cpus) CPU_SET(c, &set);
+  if (sched_setaffinity(0, sizeof set, &set) != 0)
+    throw BadInput(key + ": the kernel refused CPUs " + cpuList(set) + " (" + std::strerror(errno) +
+                   "; a container's cpuset may allow fewer); expected CPUs this process may use");
+}
+
+std::string cpuRestriction() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return "";
+  const long online = sysconf(_SC_NPROCESSORS_ONLN);
+  return CPU_COUNT(&set) >= online ? "" : cpuList(set);
+}
+
 void FixedRateLoop::start() {
   sched_param param{};
   sched_getparam(0, &param);
   scheduler_ = sched_getscheduler(0) == SCHED_FIFO ? "fifo:" + std::to_string(param.sched_priority) : "other";
+  if (const std::string cpus = cpuRestriction(); !cpus.empty()) scheduler_ += " cpus " + cpus;
   // The kernel's default 50 us timer slack would show up as 50 us of jitter
   // on every wake-up; a realtime loop asks for none.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);

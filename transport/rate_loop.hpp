@@ -59,4 +59,17 @@ void setInputStats(lagrange::loop_stats_t& stats, const SampleHistogram& ages, i
 /// CAP_SYS_NICE) or priority is 0.
 std::string enterRealtimeScheduling(int priority);
 
+/// @throws BadInput naming `key` and the machine's CPUs when one of `cpus` is
+///         not among its online CPUs.
+void checkCpus(const std::vector<int>& cpus, const std::string& key);
+
+/// Keeps this process (and the threads it starts after) on `cpus` (checkCpus first).
+/// @throws BadInput naming `key` and the machine's CPUs when one is not
+///         among them, or the kernel refuses the set.
+void pinToCpus(const std::vector<int>& cpus, const std::string& key);
+
+/// The CPUs this thread may run on, "0,2-3"; empty when it may run on every
+/// online CPU.
+std::string cpuRestriction();
+
 }  // namespace lagrange::transport

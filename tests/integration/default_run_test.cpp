@@ -203,5 +203,31 @@ TEST_F(DefaultRun, RealtimeConvergesLikeLockstepAndReportsTiming) {
   EXPECT_TRUE(j["messages"]["stale"]["plant"].contains("torque_zeroed"));
 }
 
+// realtime.cpus keeps a process on the CPUs it names: each loop reports the
+// CPUs it ran on. A CPU the machine does not have is refused before anything
+// starts, naming the key and the machine's CPUs.
+TEST(RealtimeCpus, PinEachProcessWhereTheKeySaysAndRefuseACpuTheMachineLacks) {
+  if (sysconf(_SC_NPROCESSORS_ONLN) < 2) GTEST_SKIP() << "one CPU: nothing to pin apart";
+  const std::string dir = freshDir("realtime-cpus");
+  const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir,
+                                  "-q --mode realtime --set duration=0.5 --set "
+                                  "'realtime.cpus={plant: [0], controller: [1]}'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto loops = readSummary(dir)["timing"]["loops"];
+  const auto scheduler = [&](const char* p) { return loops[p]["scheduler"].get<std::string>(); };
+  EXPECT_NE(scheduler("plant").find(" cpus 0"), std::string::npos) << scheduler("plant");
+  EXPECT_NE(scheduler("controller").find(" cpus 1"), std::string::npos) << scheduler("controller");
+  EXPECT_EQ(scheduler("actuator").find("cpus"), std::string::npos) << "not named: anywhere";
+
+  const std::string bad = freshDir("realtime-cpus-bad");
+  const RunResult refused = runScenario(kConfigs + "/rigid_2dof.yaml", bad,
+                                        "--mode realtime --set 'realtime.cpus={actuator: [1023]}'");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("realtime.cpus.actuator: CPU 1023 is not among this machine's CPUs 0-"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(std::filesystem::exists(bad + "/run.lcm")) << "nothing was started";
+}
+
 }  // namespace
 }  // namespace lagrange::testing

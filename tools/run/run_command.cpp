@@ -31,6 +31,7 @@
 #include "tools/spy/spy.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "transport/rate_loop.hpp"
 #include "transport/run_clock.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
@@ -222,8 +223,10 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
     if (opt.quiet) {
       for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
     } else {
-      std::cout << "report: " << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) + (report.tracking_rows > 0 ? 1 : 0) << " CSV files, "
-                << report.plots.written.size() << " plots in " << report_dir << "\n";
+      std::cout << "report: "
+                << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) +
+                       (report.tracking_rows > 0 ? 1 : 0)
+                << " CSV files, " << report.plots.written.size() << " plots in " << report_dir << "\n";
       for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
     }
   } catch (const std::exception& e) {
@@ -450,6 +453,11 @@ int runScenarioLocked(const RunOptions& opt) {
   try {
     scenario = config::loadScenario(opt.config_path, opt.overrides);
     if (!opt.key_file.empty()) runtime::readKeyFile(opt.key_file);  // a bad key file stops nothing half-way
+    // A CPU this machine lacks: refused here rather than by a process half-started
+    // (each process checks again on its own host, for runs spread with --processes).
+    if (scenario.mode == config::Mode::kRealtime)
+      for (const auto& [process, cpus] : scenario.realtime.cpus)
+        transport::checkCpus(cpus, "realtime.cpus." + process);
     out_dir = prepareOutDir(opt.out_dir);
   } catch (const std::exception& e) {
     return failWith("lagrange run", e);
