@@ -117,6 +117,7 @@ struct Spread {
   double median = 0, min = 0, max = 0;
 };
 Spread spreadOf(const std::vector<double>& v) {
+  if (v.empty()) return {};
   return {median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())};
 }
 json toJson(const Spread& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }

@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < loops.size(); ++i) {
     const auto& s = stats[i];
     out[loops[i].first] = {
-        {"on_time_fraction", 1.0 - static_cast<double>(s.deadline_misses) / static_cast<double>(s.cycles)},
+        {"on_time_fraction",
+         s.cycles > 0 ? 1.0 - static_cast<double>(s.deadline_misses) / static_cast<double>(s.cycles) : 0.0},
         {"longest_miss_run", s.longest_miss_run},
         {"cycles", s.cycles},
         {"jitter_p99", s.jitter_p99},

@@ -87,9 +87,12 @@ std::string enterRealtimeScheduling(int priority) {
   if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) return "other";
   // No page faults inside the loops: memory locked, the stack and a heap
   // reserve mapped now (8 MiB: a loop's messages and Eigen temporaries).
-  mlockall(MCL_CURRENT | MCL_FUTURE);
-  prefaultStack(512 * 1024);
-  prefaultHeap(8 * 1024 * 1024);
+  // Only with the memory locked: under a tight RLIMIT_MEMLOCK, growing the
+  // stack by half a megabyte could fail where it stands.
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) == 0) {
+    prefaultStack(512 * 1024);
+    prefaultHeap(8 * 1024 * 1024);
+  }
   return "fifo:" + std::to_string(priority);
 }
 
@@ -107,15 +110,20 @@ std::string cpuList(const cpu_set_t& set) {
 }
 }  // namespace
 
+// Set once this process pinned itself: its loops then report where.
+bool g_pinned = false;
+
 void checkCpus(const std::vector<int>& cpus, const std::string& key) {
-  cpu_set_t online;
-  CPU_ZERO(&online);
-  const long count = sysconf(_SC_NPROCESSORS_ONLN);
-  for (long c = 0; c < count && c < CPU_SETSIZE; ++c) CPU_SET(static_cast<int>(c), &online);
+  // The CPUs this process may use: the online ones, less what a container's
+  // cpuset or a taskset took away (offline CPUs are never in the set).
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0)
+    throw BadInput(key + ": cannot read this process's CPUs (" + std::strerror(errno) + ")");
   for (const int c : cpus)
-    if (c < 0 || c >= CPU_SETSIZE || !CPU_ISSET(c, &online))
+    if (c < 0 || c >= CPU_SETSIZE || !CPU_ISSET(c, &allowed))
       throw BadInput(key + ": CPU " + std::to_string(c) + " is not among this machine's CPUs " +
-                     cpuList(online) + "; expected CPU numbers it has");
+                     cpuList(allowed) + " (those this process may use); expected CPU numbers it has");
 }
 
 void pinToCpus(const std::vector<int>& cpus, const std::string& key) {
@@ -126,14 +134,14 @@ void pinToCpus(const std::vector<int>& cpus, const std::string& key) {
   if (sched_setaffinity(0, sizeof set, &set) != 0)
     throw BadInput(key + ": the kernel refused CPUs " + cpuList(set) + " (" + std::strerror(errno) +
                    "; a container's cpuset may allow fewer); expected CPUs this process may use");
+  g_pinned = true;
 }
 
 std::string cpuRestriction() {
   cpu_set_t set;
   CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) != 0) return "";
-  const long online = sysconf(_SC_NPROCESSORS_ONLN);
-  return CPU_COUNT(&set) >= online ? "" : cpuList(set);
+  if (!g_pinned || sched_getaffinity(0, sizeof set, &set) != 0) return "";
+  return cpuList(set);
 }
 
 void FixedRateLoop::start() {

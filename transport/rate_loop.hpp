@@ -68,8 +68,8 @@ void checkCpus(const std::vector<int>& cpus, const std::string& key);
 ///         among them, or the kernel refuses the set.
 void pinToCpus(const std::vector<int>& cpus, const std::string& key);
 
-/// The CPUs this thread may run on, "0,2-3"; empty when it may run on every
-/// online CPU.
+/// The CPUs this process pinned itself to (pinToCpus), "0,2-3"; empty when
+/// it did not pin itself.
 std::string cpuRestriction();
 
 }  // namespace lagrange::transport

@@ -6,7 +6,8 @@
 namespace lagrange::transport {
 
 void SampleHistogram::add(double seconds) {
-  int bin = 0;  // zero, negative (and NaN): the zero bin
+  if (!(seconds > 0)) seconds = 0.0;  // zero, negative (a clock skew) and NaN: the zero bin
+  int bin = 0;
   if (seconds > 0) {
     const double decades = std::log10(seconds / kLowest);
     bin = decades <= 0 ? 1 : 1 + static_cast<int>(std::ceil(decades * kBinsPerDecade));

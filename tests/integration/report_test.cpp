@@ -84,7 +84,7 @@ TEST(Report, EveryKindOfRunGetsItsPlotsTitledByItsScenario) {
     expectPlots(out, expected, log);
     std::ifstream script(out + "/plots.gp");
     const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
-    EXPECT_NE(text.find("\"" + title + ": tracking error norm"), std::string::npos) << log;
+    EXPECT_NE(text.find("'" + title + ": tracking error norm"), std::string::npos) << log;
   }
 }
 
@@ -100,8 +100,8 @@ TEST(Report, AUrdfArmsPlotsNameItsJoints) {
   const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
   for (int j = 1; j <= 7; ++j) {
     const std::string n = std::to_string(j);
-    EXPECT_NE(text.find("set ylabel \"q" + n + " (panda_joint" + n + ") [rad]\""), std::string::npos) << j;
-    EXPECT_NE(text.find("title \"τ" + n + " (panda_joint" + n + ")\""), std::string::npos) << j;
+    EXPECT_NE(text.find("set ylabel 'q" + n + " (panda_joint" + n + ") [rad]'"), std::string::npos) << j;
+    EXPECT_NE(text.find("title 'τ" + n + " (panda_joint" + n + ")'"), std::string::npos) << j;
   }
   EXPECT_GE(pngSize(out + "/joints.png").second, 7u * 260u);
   const std::string planar = freshDir("report-planar");
@@ -111,7 +111,7 @@ TEST(Report, AUrdfArmsPlotsNameItsJoints) {
   std::ifstream planar_script(planar + "/plots.gp");
   const std::string planar_text((std::istreambuf_iterator<char>(planar_script)),
                                 std::istreambuf_iterator<char>());
-  EXPECT_NE(planar_text.find("set ylabel \"q1 [rad]\""), std::string::npos);
+  EXPECT_NE(planar_text.find("set ylabel 'q1 [rad]'"), std::string::npos);
   EXPECT_EQ(planar_text.find("(joint1)"), std::string::npos);
 }
 

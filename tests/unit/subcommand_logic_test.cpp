@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -99,7 +100,7 @@ TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {
   EXPECT_NE(script.text.find("metrics.tolerance = 0.001"), std::string::npos)
       << "the tolerance line is drawn";
   EXPECT_NE(script.text.find("elbow"), std::string::npos) << "joint names label the panels";
-  EXPECT_NE(script.text.find("rigid \\\"2dof\\\""), std::string::npos) << "a quote in the title is escaped";
+  EXPECT_NE(script.text.find("'rigid \"2dof\": "), std::string::npos) << "a title in single quotes, as it is";
 
   // A chain's CONTROL_COMMAND has xi_error columns per stage: its stages are drawn.
   writeFile("CONTROL_COMMAND.csv",
@@ -109,6 +110,21 @@ TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {
   const PlotSpec chain = specFromCsv(dir_, "chain");
   EXPECT_EQ(chain.chain_order, 2);
   EXPECT_TRUE(has(plotScript(chain).pngs, "chain_error.png"));
+}
+
+// A log's scenario and joint names are not ours: a title that would run a
+// shell command in a double-quoted gnuplot string (`...`), or end a
+// single-quoted one (a quote) or the command (a newline), is drawn as text.
+TEST_F(SubcommandLogic, ReportTitlesFromALogRunNothing) {
+  const std::string marker = dir_ + "/ran";
+  writeFile("PLANT_TRUTH.csv", "tick,sim_time,q[1],qdot[1],tau_applied[1]\n0,0,0,0,1\n1,0.001,0.1,0,2\n");
+  PlotSpec spec = specFromCsv(dir_, "x`touch " + marker + "`' ; system('touch " + marker +
+                                        "') ; '\nsystem(\"touch " + marker + "\")");
+  spec.joint_names = {"j`touch " + marker + "`'"};
+  const Plots plots = drawPlots(spec);
+  EXPECT_FALSE(std::filesystem::exists(marker)) << "a title ran a command";
+  EXPECT_TRUE(plots.failed.empty()) << "gnuplot rejected a picture; see " << plots.log;
+  EXPECT_FALSE(plots.written.empty());
 }
 
 // A torque history whose t = 0 spike is 60 times its later swing: the plot
@@ -169,7 +185,7 @@ TEST_F(SubcommandLogic, ReportMarksConvergenceAndLimitsOnlyWhereTheyExist) {
   PlotScript script = plotScript(spec);
   EXPECT_FALSE(has(script.pngs, "joint_errors.png")) << "per-joint errors need TRACKING.csv";
   EXPECT_EQ(script.text.find("converged at"), std::string::npos) << "no TRACKING.csv, no marker";
-  EXPECT_NE(script.text.find("the controller's view"), std::string::npos)
+  EXPECT_NE(script.text.find("the controller''s view"), std::string::npos)
       << "the norm says whose error it is";
   EXPECT_TRUE(has(script.pngs, "velocities.png"));
   size_t limits = 0;

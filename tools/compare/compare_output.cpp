@@ -88,7 +88,9 @@ std::string writeComparison(const ComparisonTables& t, const std::string& out_di
 
 Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir) {
   std::vector<std::string> pngs, sections;
-  const std::string title = "set title '" + t.scenario + "' noenhanced\n";
+  // Every name in the script through gnuplotString: scenario and controller
+  // names are the user's, a quote in one would end the string.
+  const std::string title = "set title " + gnuplotString(t.scenario) + " noenhanced\n";
   std::string error = std::string(kGnuplotPreamble) +
                       "set terminal pngcairo size 1000,600\nset output 'error.png'\n" + title +
                       "set logscale y\nset format y '%.0e'\nset xlabel 't [s]'\n"
@@ -96,22 +98,23 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
   std::string torque = std::string(kGnuplotPreamble) + "set terminal pngcairo size 1000," +
                        std::to_string(250 * std::max(2, t.dof)) +
                        "\nset output 'torque.png'\nset multiplot layout " + std::to_string(t.dof) +
-                       ",1 title '" + t.scenario + ": applied torques' noenhanced\n";
+                       ",1 title " + gnuplotString(t.scenario + ": applied torques") + " noenhanced\n";
   std::vector<const RunNumbers*> nominal;
   for (const RunNumbers& n : t.runs)
     if (!n.value) nominal.push_back(&n);
   for (size_t i = 0; i < nominal.size(); ++i) {
-    const std::string file = "'" + relativeDir(nominal[i]->dir, out_dir) + "/series.csv'";
-    error += std::string(i ? ", \\\n     " : "") + file + " skip 1 using 1:2 with lines lw 2 title '" +
-             nominal[i]->type + "' noenhanced";
+    const std::string file = gnuplotString(relativeDir(nominal[i]->dir, out_dir) + "/series.csv");
+    error += std::string(i ? ", \\\n     " : "") + file + " skip 1 using 1:2 with lines lw 2 title " +
+             gnuplotString(nominal[i]->type) + " noenhanced";
   }
   error += "\n";
   for (int j = 0; j < t.dof; ++j) {
     torque += "set xlabel 't [s]'\nset ylabel 'tau_" + std::to_string(j + 1) + " [N m]' noenhanced\nplot ";
     for (size_t i = 0; i < nominal.size(); ++i)
-      torque += std::string(i ? ", \\\n     " : "") + "'" + relativeDir(nominal[i]->dir, out_dir) +
-                "/series.csv' skip 1 using 1:" + std::to_string(3 + j) + " with lines title '" +
-                nominal[i]->type + "' noenhanced";
+      torque += std::string(i ? ", \\\n     " : "") +
+                gnuplotString(relativeDir(nominal[i]->dir, out_dir) + "/series.csv") +
+                " skip 1 using 1:" + std::to_string(3 + j) + " with lines title " +
+                gnuplotString(nominal[i]->type) + " noenhanced";
     torque += "\n";
   }
   torque += "unset multiplot\n";
@@ -140,8 +143,8 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
                           (powers_of_two ? "set logscale x 2\nset format x '2^{%L}'\n"
                            : positive    ? "set logscale x\nset format x '%.0e'\n"
                                          : "") +
-                          "set xlabel '" + t.sweep_key +
-                          "' noenhanced\n"
+                          "set xlabel " + gnuplotString(t.sweep_key) +
+                          " noenhanced\n"
                           "set ylabel 'RMS ||q - q_d|| over the last second [rad]' noenhanced\nplot ";
       for (size_t i = 0; i < types.size(); ++i) {
         const std::string file = "sweep_" + types[i] + ".csv";
@@ -151,8 +154,8 @@ Plots drawComparisonPlots(const ComparisonTables& t, const std::string& out_dir)
           if (n.value && n.type == types[i])
             data << full(*plotPosition(*n.value)) << "," << full(n.rms_last_second) << ","
                  << full(n.final_error) << "\n";
-        sweep += std::string(i ? ", \\\n     " : "") + "'" + file +
-                 "' skip 1 using 1:2 with linespoints lw 2 title '" + types[i] + "' noenhanced";
+        sweep += std::string(i ? ", \\\n     " : "") + gnuplotString(file) +
+                 " skip 1 using 1:2 with linespoints lw 2 title " + gnuplotString(types[i]) + " noenhanced";
       }
       pngs.push_back("sweep.png");
       sections.push_back(sweep + "\n");

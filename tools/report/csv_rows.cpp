@@ -11,7 +11,10 @@ CsvRows::CsvRows(const std::string& path) : in_(path) {
   if (!std::getline(in_, header)) return;
   std::istringstream fields(header);
   std::string name;
-  for (int i = 0; std::getline(fields, name, ','); ++i) columns_[name] = i;
+  for (int i = 0; std::getline(fields, name, ','); ++i) {
+    columns_.emplace(name, i);  // a repeated name: its first column
+    fields_ = static_cast<size_t>(i) + 1;
+  }
 }
 
 int CsvRows::column(const std::string& name) const {
@@ -21,7 +24,7 @@ int CsvRows::column(const std::string& name) const {
 
 bool CsvRows::next(std::vector<double>& row) {
   if (!std::getline(in_, line_)) return false;
-  row.assign(columns_.size(), std::nan(""));
+  row.assign(fields_, std::nan(""));
   const char* p = line_.c_str();
   for (size_t i = 0; i < row.size(); ++i) {
     char* end = nullptr;

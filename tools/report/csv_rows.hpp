@@ -26,6 +26,7 @@ class CsvRows {
  private:
   std::ifstream in_;
   std::map<std::string, int> columns_;
+  size_t fields_ = 0;  ///< the header's fields (more than columns_ when a name repeats)
   std::string line_;
 };
 

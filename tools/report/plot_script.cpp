@@ -34,14 +34,7 @@ std::map<std::string, int> columnsOf(const std::string& dir, const std::string& 
   return columns;
 }
 
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
+std::string quoted(const std::string& text) { return gnuplotString(text); }
 
 // The CSV column of element i (0-based here) of a field: numbered from 1 there.
 std::string indexed(const std::string& field, int i) { return field + "[" + std::to_string(i + 1) + "]"; }
@@ -434,6 +427,19 @@ double lastTime(const std::string& dir, const std::string& channel) {
 }
 
 }  // namespace
+
+std::string gnuplotString(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) {
+    if (c == '\'')
+      out += "''";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      out += ' ';
+    else
+      out += c;
+  }
+  return out + "'";
+}
 
 PlotSpec specFromCsv(const std::string& dir, const std::string& title) {
   PlotSpec spec;

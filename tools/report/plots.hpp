@@ -64,6 +64,12 @@ struct Plots {
 /// @throws PlotError when gnuplot is not installed or plots.gp cannot be written.
 Plots drawPlots(const PlotSpec& spec);
 
+/// `text` as a gnuplot string: single-quoted, a quote doubled, control
+/// characters (a newline would end the command) as spaces. Never double
+/// quotes: gnuplot runs `backquoted` shell commands inside those, and a log's
+/// scenario and joint names, a sweep's values, are not ours to trust.
+std::string gnuplotString(const std::string& text);
+
 /// The start of every picture's script: CSV input, a grid, a boxed key.
 inline constexpr const char* kGnuplotPreamble =
     "set datafile separator \",\"\nset grid\nset key top right box opaque\n";

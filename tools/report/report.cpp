@@ -58,9 +58,16 @@ Report writeReport(const std::string& log_path, const std::string& out_dir) {
   const std::filesystem::path tracking_csv =
       std::filesystem::path(out_dir) / (std::string(kTrackingChannel) + ".csv");
   std::filesystem::remove(tracking_csv);  // a table of another log must not be plotted with this one
-  if (scenario) {
+  // Only from this log's truth: a PLANT_TRUTH.csv of an earlier report in
+  // the same folder is not this log's.
+  if (scenario && report.csv.rows.count(transport::kPlantTruth) > 0) {
     const TrackingTable tracking = exportTracking(*scenario, out_dir);
     report.tracking_rows = tracking.rows;
+    if (!tracking.problem.empty()) report.warnings.push_back(tracking.problem);
+    if (tracking.skipped > 0)
+      report.warnings.push_back(
+          std::to_string(tracking.skipped) +
+          " PLANT_TRUTH rows without a finite tick and time are left out of TRACKING.csv");
     if (tracking.rows > 0) {
       spec.convergence_time = tracking.convergence_time;
       spec.end_time = tracking.end_time;

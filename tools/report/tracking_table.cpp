@@ -1,6 +1,8 @@
 #include "tools/report/tracking_table.hpp"
 
+#include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "logger/tracking_metrics.hpp"
 #include "model/reference.hpp"
@@ -34,18 +36,33 @@ TrackingTable exportTracking(const config::Scenario& s, const std::string& out_d
   out << "\n";
   std::vector<double> row;
   Eigen::VectorXd position(n), rate(n);
-  while (truth.next(row)) {
-    for (int j = 0; j < n; ++j) position(j) = row[q[j]], rate(j) = row[qdot[j]];
-    const double t = row[time];
-    const model::ReferenceSample desired = reference.evaluate(t, 1);
-    const Eigen::VectorXd error = position - desired.q(), rate_error = rate - desired.qd();
-    metrics.addSample(static_cast<long long>(row[tick]), t, position);
-    out << util::exactText(row[tick]) << "," << util::exactText(t) << "," << util::exactText(error.norm());
-    for (const Eigen::VectorXd* v : {&error, &desired.qd(), &rate_error})
-      for (int j = 0; j < n; ++j) out << "," << util::exactText((*v)(j));
-    out << "\n";
-    ++table.rows;
-    table.end_time = t;
+  try {
+    while (truth.next(row)) {
+      const double t = row[time];
+      // A row a damaged log left without a tick or time is not a sample.
+      if (!std::isfinite(t) || !std::isfinite(row[tick]) || row[tick] < 0 || row[tick] > 9e15) {
+        ++table.skipped;
+        continue;
+      }
+      for (int j = 0; j < n; ++j) position(j) = row[q[j]], rate(j) = row[qdot[j]];
+      const model::ReferenceSample desired = reference.evaluate(t, 1);
+      const Eigen::VectorXd error = position - desired.q(), rate_error = rate - desired.qd();
+      metrics.addSample(static_cast<long long>(row[tick]), t, position);
+      out << util::exactText(row[tick]) << "," << util::exactText(t) << "," << util::exactText(error.norm());
+      for (const Eigen::VectorXd* v : {&error, &desired.qd(), &rate_error})
+        for (int j = 0; j < n; ++j) out << "," << util::exactText((*v)(j));
+      out << "\n";
+      ++table.rows;
+      table.end_time = t;
+    }
+  } catch (const std::invalid_argument& e) {
+    // A time the reference does not reach (a free_motion reference past its
+    // horizon, in a log whose times were tampered with): no table, said why.
+    out.close();
+    fs::remove(out.path());
+    TrackingTable none;
+    none.problem = std::string("TRACKING.csv not derived: ") + e.what();
+    return none;
   }
   out.close();
   table.convergence_time = metrics.summary().convergence_time;

@@ -21,6 +21,10 @@ struct TrackingTable {
   long long rows = 0;                      ///< 0: no PLANT_TRUTH.csv to derive it from
   std::optional<double> convergence_time;  ///< first time after which ‖q~‖ < tolerance to the end [s]
   double end_time = 0.0;                   ///< the last sample's time [s]
+  /// Why the table was not derived, when rows is 0 and PLANT_TRUTH.csv had
+  /// rows (a sample the reference cannot be evaluated at; the file is removed).
+  std::string problem;
+  long long skipped = 0;  ///< rows without a finite tick and time, left out
 };
 
 /// Reads OUT_DIR/PLANT_TRUTH.csv, writes OUT_DIR/TRACKING.csv.

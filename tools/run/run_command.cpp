@@ -457,7 +457,7 @@ int runScenarioLocked(const RunOptions& opt) {
     // (each process checks again on its own host, for runs spread with --processes).
     if (scenario.mode == config::Mode::kRealtime)
       for (const auto& [process, cpus] : scenario.realtime.cpus)
-        transport::checkCpus(cpus, "realtime.cpus." + process);
+        if (runsHere(opt, process)) transport::checkCpus(cpus, "realtime.cpus." + process);
     out_dir = prepareOutDir(opt.out_dir);
   } catch (const std::exception& e) {
     return failWith("lagrange run", e);

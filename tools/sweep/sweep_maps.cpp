@@ -39,8 +39,8 @@ std::string label(const Row& v) {
 }
 
 std::string header(const std::string& png, const std::string& title) {
-  return std::string(kGnuplotPreamble) + "set terminal pngcairo size 1000,650\nset output '" + png +
-         "'\nset title '" + title + "' noenhanced\n";
+  return std::string(kGnuplotPreamble) + "set terminal pngcairo size 1000,650\nset output " +
+         gnuplotString(png) + "\nset title " + gnuplotString(title) + " noenhanced\n";
 }
 
 // Values spread over a decade or more, all positive: a log axis.
@@ -99,8 +99,8 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
     out << "x,convergence_time\n";
     for (const auto& [x, t] : points) out << num(x) << "," << num(t) << "\n";
     plot += std::string(k ? ", \\\n     " : "") + "'" + file +
-            "' skip 1 using 1:2 with points pt 7 ps 0.6 title '" +
-            (g.second.empty() ? "converged" : group + " = " + g.second) + "' noenhanced";
+            "' skip 1 using 1:2 with points pt 7 ps 0.6 title " +
+            gnuplotString(g.second.empty() ? "converged" : group + " = " + g.second) + " noenhanced";
     ++k;
   }
   for (const std::string kind : {"not converged", "diverged"}) {
@@ -122,9 +122,9 @@ std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& ti
                      (log_x ? "set logscale x\nset format x '10^{%L}'\n" : "") +
                      (log_y ? "set logscale y\nset format y '10^{%L}'\n" : "set yrange [0:*]\n") +
                      "set offsets graph 0.03, graph 0.03, 0, 0\n"
-                     "set xlabel '" +
-                     axisTitle(xcol) +
-                     "' noenhanced\n"
+                     "set xlabel " +
+                     gnuplotString(axisTitle(xcol)) +
+                     " noenhanced\n"
                      "set ylabel 'convergence time [s]'\nset key outside right\n" +
                      plot + "\n"};
 }
@@ -148,9 +148,9 @@ std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, co
   for (const auto& [xy, c] : cells)
     out << num(xy.first) << "," << num(xy.second) << "," << num(double(c.first) / c.second) << "," << c.second
         << "\n";
-  std::string script = header("heat_map.png", title + ": fraction of runs that converged") + "set xlabel '" +
-                       xcol + "' noenhanced\nset ylabel '" + ycol +
-                       "' noenhanced\nset cbrange [0:1]\nset cblabel 'converged fraction'\n"
+  std::string script = header("heat_map.png", title + ": fraction of runs that converged") + "set xlabel " +
+                       gnuplotString(xcol) + " noenhanced\nset ylabel " + gnuplotString(ycol) +
+                       " noenhanced\nset cbrange [0:1]\nset cblabel 'converged fraction'\n"
                        "set palette defined (0 '#b2182b', 0.5 '#fdae61', 1 '#2166ac')\nset key off\n";
   if (wantsLog(xs)) script += "set logscale x\n";
   if (wantsLog(ys)) script += "set logscale y\n";
@@ -239,9 +239,9 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
       "region_vs_rate.png",
       header("region_vs_rate.png", title + ": region of convergence against the controller rate") +
           "set logscale xy\nset xlabel 'controller rate, plant.publish_rate [Hz]' noenhanced\n"
-          "set ylabel '" +
-          axisTitle(size) +
-          "' noenhanced\nset key top left box opaque\n"
+          "set ylabel " +
+          gnuplotString(axisTitle(size)) +
+          " noenhanced\nset key top left box opaque\n"
           "plot 'region_vs_rate.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title "
           "'every run from below converged', \\\n"
           "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that converged'" +
@@ -285,7 +285,8 @@ SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const
   const std::vector<std::string> heat = plan.spec.heat_map.size() == 2 ? plan.spec.heat_map : axes;
   if (heat.size() < 2)
     maps.not_drawn.push_back("heat_map.png: the sweep has " + std::to_string(axes.size()) +
-                             " axis; a heat map needs two (maps.heat_map names them)");
+                             (axes.size() == 1 ? " axis" : " axes") +
+                             "; a heat map needs two (maps.heat_map names them)");
   else if (auto p = heatMap(dir, title, rows, heat[0], heat[1]))
     pictures.push_back(*p);
   else

@@ -157,7 +157,7 @@ nlohmann::json envelopeJson(const std::vector<ViewFrame>& frames, const std::vec
     for (size_t k = sent[i]; k < end && k < frames.size(); ++k) {
       const ViewFrame& f = frames[k];
       for (size_t j = 0; j < lo.size() && j < f.tau.size(); ++j)
-        lo[j] = std::min(lo[j], f.tau[j]), hi[j] = std::max(hi[j], f.tau[j]);
+        lo[j] = std::fmin(lo[j], f.tau[j]), hi[j] = std::fmax(hi[j], f.tau[j]);  // a NaN is passed over
       if (std::isfinite(f.error_norm))
         e_lo = std::min(e_lo, f.error_norm), e_hi = std::max(e_hi, f.error_norm);
     }

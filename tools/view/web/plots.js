@@ -14,11 +14,14 @@ const SUPERSCRIPT = {'-': '⁻', '0': '⁰', '1': '¹', '2': '²', '3': '³', '4
 
 // Round ticks in [lo, hi]: steps of 1, 2 or 5 times a power of ten, about `count` of them.
 function linearTicks(lo, hi, count) {
+  if (!(hi > lo) || !isFinite(lo) || !isFinite(hi)) return isFinite(lo) ? [lo] : [];
   const raw = (hi - lo) / Math.max(count, 1);
   const power = Math.pow(10, Math.floor(Math.log10(raw)));
   const step = [1, 2, 5, 10].map((m) => m * power).find((s) => s >= raw) || 10 * power;
   const ticks = [];
-  for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) ticks.push(Math.abs(v) < step * 1e-9 ? 0 : v);
+  // At most 50: a span below the values' own resolution must not loop forever.
+  for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9 && ticks.length < 50; v += step)
+    ticks.push(Math.abs(v) < step * 1e-9 ? 0 : v);
   return ticks;
 }
 
@@ -63,7 +66,7 @@ class TimePlot {
   columns(width) {
     if (this.cache && this.cache.width === width) return this.cache;
     const n = this.t.length;
-    const t0 = this.t[0], t1 = Math.max(this.t[n - 1], t0 + 1e-9);
+    const t0 = this.t[0], t1 = Math.max(this.t[n - 1], t0 + Math.max(1e-9, Math.abs(t0) * 1e-9));
     let lo = Infinity, hi = -Infinity;
     const all = this.series.map((s, k) => {
       const cols = new Array(width).fill(null);
