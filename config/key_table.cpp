@@ -358,8 +358,9 @@ std::vector<KeyInfo> judgementKeys() {
           "periods: the limit robot interfaces such as Franka's allow before they stop).",
           {0.0, 1e6, false, "periods", ""}),
       row("realtime.priority", "integer 0–99", "`50`",
-          "realtime: SCHED_FIFO priority of the plant, controller and actuator (memory locked with "
-          "mlockall); 0 for the normal scheduler. Without root or CAP_SYS_NICE the processes warn and "
+          "realtime: SCHED_FIFO priority of the plant, controller, actuator and logger (memory locked "
+          "with mlockall, the stack and a heap reserve faulted in before the loops); 0 for the normal "
+          "scheduler. Without root or CAP_SYS_NICE the processes warn and "
           "run under the normal scheduler; `timing.loops.NAME.scheduler` says which.",
           {0.0, 99.0, false, "", ""}),
       row("realtime.cpus.PROCESS", "list of CPU numbers 0–1023", "none: where the scheduler puts it",
