@@ -110,8 +110,10 @@ std::string cpuList(const cpu_set_t& set) {
 }
 }  // namespace
 
+namespace {
 // Set once this process pinned itself: its loops then report where.
 bool g_pinned = false;
+}  // namespace
 
 void checkCpus(const std::vector<int>& cpus, const std::string& key) {
   // The CPUs this process may use: the online ones, less what a container's
