@@ -139,12 +139,18 @@ std::optional<std::vector<CoriolisTerm>> PlanarChain::coriolisTerms() const {
   return terms;
 }
 
+Eigen::VectorXd PlanarChain::jointTorques(const Eigen::ArrayXd& absolute) {
+  Eigen::VectorXd out(absolute.size());
+  double suffix = 0.0;
+  for (Eigen::Index i = absolute.size() - 1; i >= 0; --i) out(i) = (suffix += absolute(i));
+  return out;
+}
+
 Eigen::VectorXd PlanarChain::coriolisTimes(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                            const Eigen::VectorXd& w) const {
   checkSize(q, "q");
   checkSize(v, "v");
   checkSize(w, "w");
-  const int n = dof();
   // The velocity terms of inverseDynamics below, in absolute angles, are the
   // quadratic form h(om)_a = sum_b h_ab sin(phi_a - phi_b) om_b^2. Christoffel
   // symbols are symmetric in their two velocity indices, so C(om) nu is the
@@ -155,10 +161,7 @@ Eigen::VectorXd PlanarChain::coriolisTimes(const Eigen::VectorXd& q, const Eigen
                        product = absoluteAngles(v).array() * absoluteAngles(w).array();
   const Eigen::ArrayXd tau =
       s * (h_ * (c * product).matrix()).array() - c * (h_ * (s * product).matrix()).array();
-  Eigen::VectorXd out(n);
-  double suffix = 0.0;
-  for (int i = n - 1; i >= 0; --i) out(i) = (suffix += tau(i));
-  return out;
+  return jointTorques(tau);
 }
 
 Eigen::VectorXd PlanarChain::inverseDynamics(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -181,10 +184,7 @@ Eigen::VectorXd PlanarChain::inverseDynamics(const Eigen::VectorXd& q, const Eig
                              s * (h_ * (s * al.array()).matrix()).array() +
                              s * (h_ * (c * w2).matrix()).array() - c * (h_ * (s * w2).matrix()).array() +
                              params_.gravity * s_.array() * s;
-  Eigen::VectorXd out(n);
-  double suffix = 0.0;
-  for (int i = n - 1; i >= 0; --i) out(i) = (suffix += tau(i));
-  return out;
+  return jointTorques(tau);
 }
 
 Eigen::VectorXd PlanarChain::gravity(const Eigen::VectorXd& q) const {

@@ -92,6 +92,8 @@ class PlanarChain : public RobotModel {
 
  private:
   Eigen::VectorXd absoluteAngles(const Eigen::VectorXd& q) const;
+  /// L^T f: generalised forces in absolute angles to joint torques (suffix sums).
+  static Eigen::VectorXd jointTorques(const Eigen::ArrayXd& absolute);
 
   ChainParams params_;
   Eigen::MatrixXd h_;  ///< h_ab = sum_i m_i c_ia c_ib
