@@ -343,6 +343,15 @@ std::vector<KeyInfo> judgementKeys() {
           "kernel caps at `net.core.rmem_max`, 208 kB on a stock Debian, where each small datagram "
           "costs about 1 kB of it).",
           {1.0, 1e4, false, "ticks", ""}),
+      row("lockstep.logger_nice", "integer 0–19", "`5`",
+          "the logger's nice value in a lockstep run (at least this; the logger sets it before its "
+          "threads start; summary.json `timing.logger_nice` shows what it ran at). The logger is off "
+          "the tick's critical path -- the plant waits for it only `logger_window` ticks ahead -- so "
+          "where four processes share fewer cores it should give way to the three that are on it: on "
+          "2 cores, 5 gave 8 % more ticks/s than 0 (median of 8 alternating pairs, 4 to 24 %; "
+          "docs/performance.md). 0 runs it as the others, for a machine loaded by other work, where a "
+          "niced logger falls behind that work and holds the plant back.",
+          {0.0, 19.0, false, "", ""}),
       row("realtime.max_torque_age", "integer ≥ 1", "`2`",
           "realtime: a torque is fresh while the position it answers is at most this many periods old; "
           "the plant normally applies the answer to the previous tick (age 1).",

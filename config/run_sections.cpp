@@ -33,6 +33,7 @@ const Fields<LockstepConfig>& lockstepFields() {
       positive("retransmit_timeout", &LockstepConfig::retransmit_timeout),
       integer("logger_window", &LockstepConfig::logger_window, 1, kNoLimit, "expected a whole number >= 1"),
       positive("stall_timeout", &LockstepConfig::stall_timeout),
+      integer("logger_nice", &LockstepConfig::logger_nice, 0, 19, "expected a nice value from 0 to 19"),
   };
   return fields;
 }

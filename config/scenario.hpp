@@ -132,6 +132,11 @@ struct LockstepConfig {
   /// -- before the plant stops the run, naming whom it waited for and what
   /// it saw instead (plant/stall_diagnosis.hpp).
   double stall_timeout = 10.0;
+  /// The logger's nice value in lockstep (at least this; 0: as the others).
+  /// It is off the tick's critical path -- the plant waits for it only
+  /// logger_window ticks ahead -- so it yields the cores to the three
+  /// processes on it (docs/performance.md).
+  int logger_nice = 5;
 };
 
 /// Realtime mode: every process on its own fixed-rate loop.

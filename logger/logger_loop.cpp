@@ -65,6 +65,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   RunFacts facts;
   facts.log_path = log_path;
   facts.run_id = node.runId();
+  facts.nice = runtime::niceValue();
   const std::vector<std::string> per_tick =
       transport::perTickChannels({s.flexible.has_value(), s.velocitySensor()});
   TickConfirmation confirmation(per_tick, s.lastTick(), s.mode == config::Mode::kLockstep,

@@ -41,6 +41,9 @@ int DoMain(int argc, char** argv) {
       // The gain report goes into summary.json; read (or computed) here,
       // under the normal scheduler (runtime/process.hpp).
       [&](const config::Scenario& s) {
+        // Before any thread starts (LCM's receive thread inherits it).
+        if (s.mode == config::Mode::kLockstep)
+          runtime::niceAtLeast(s.lockstep.logger_nice, "lockstep.logger_nice");
         controller::ProcessGainReport handed = controller::processGainReport(s, gains_path);
         if (!handed.note.empty()) spdlog::warn(fmt::format("{}", handed.note));
         gains = std::move(handed.report);

@@ -186,6 +186,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       {"wall_time", f.wall_time},
       {"realtime_factor", f.wall_time > 0.0 ? t.sim_time / f.wall_time : 0.0},
   };
+  if (s.mode == config::Mode::kLockstep) j["timing"]["logger_nice"] = f.nice;
   json messages = json::object();
   json processes = json::object();
   for (const auto& [name, st] : f.final_status) {

@@ -20,6 +20,7 @@ struct RunFacts {
   long long log_events = 0;
   std::map<std::string, lagrange::status_t> final_status;  ///< by process name
   int64_t run_id = 0;                                      ///< the run's identity (header.run_id)
+  int nice = 0;                                            ///< the logger's nice value (lockstep.logger_nice)
   /// Per per-tick channel: ticks up to the newest sample with no intact message in the log.
   std::map<std::string, long long> missing_ticks;
   /// Per channel: messages of the run's processes the log lacks (logger::RecordGaps).

@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <optional>
 
 #include "runtime/key_file.hpp"
@@ -26,6 +29,19 @@ void onContinueSignal(int) { resumed_flag = true; }
 }  // namespace
 
 bool stopRequested() { return stop_flag.load(); }
+
+int niceValue() {
+  errno = 0;
+  const int nice = getpriority(PRIO_PROCESS, 0);
+  return errno == 0 ? nice : 0;
+}
+
+void niceAtLeast(int nice, const std::string& key) {
+  if (nice <= niceValue()) return;
+  if (setpriority(PRIO_PROCESS, 0, nice) != 0)
+    spdlog::warn(fmt::format("{}: cannot set nice {}: {}; running at nice {}", key, nice,
+                             std::strerror(errno), niceValue()));
+}
 bool takeResumeNotice() { return resumed_flag.exchange(false); }
 
 std::string withReceiveBuffer(const std::string& url, int bytes) {

@@ -23,6 +23,13 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 /// True once SIGINT or SIGTERM arrived.
 bool stopRequested();
 
+/// Raises the calling thread's nice value to `nice` unless it is already at
+/// least that (threads it starts later inherit it); warns, naming `key`, if
+/// the system refuses. Lowering priority needs no privilege.
+void niceAtLeast(int nice, const std::string& key);
+/// The calling thread's nice value.
+int niceValue();
+
 /// True once per SIGCONT received since the last call: the process was
 /// stopped and resumed, or the launcher restarted one of its peers (it sends
 /// SIGCONT to the plant then). Either way the wall time since the plant's

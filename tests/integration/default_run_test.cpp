@@ -7,6 +7,7 @@
 #include <lcm/lcm.h>
 #include <sched.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -74,6 +75,8 @@ TEST_F(DefaultRun, ConvergesAndLeavesEveryOutput) {
   EXPECT_EQ(std::count(channels.begin(), channels.end(), "LCM_SELF_TEST"), 0);
   EXPECT_EQ(readTruth(dir_ + "/run.lcm").size(), 10001u);
   EXPECT_EQ(j["messages"]["PLANT_POSITION"]["rejected"], 0);
+  // The logger gave way to the three processes on the tick's path (lockstep.logger_nice: 5).
+  EXPECT_EQ(j["timing"]["logger_nice"], std::max(5, getpriority(PRIO_PROCESS, 0)));
   // Every tick's command reached both of its subscribers, the actuator and the
   // logger. Copies are counted, and the controller publishes one per tick plus
   // one per position the plant re-sent; a lost copy is sent again by that same
@@ -89,6 +92,19 @@ TEST_F(DefaultRun, ConvergesAndLeavesEveryOutput) {
   for (const auto& [channel, tick] : readTicks(dir_ + "/run.lcm"))
     if (channel == "ACTUATOR_STATE") answered.insert(tick);
   EXPECT_EQ(answered.size(), 10001u) << "ticks the actuator answered";
+}
+
+// lockstep.logger_nice: the logger runs at the nice value the key asks for
+// (or the one it inherited, if higher), and says so in summary.json.
+TEST(LockstepLogger, RunsAtTheNiceValueOfTheKey) {
+  const int own = getpriority(PRIO_PROCESS, 0);
+  for (const int nice : {0, 12}) {
+    const std::string dir = freshDir("logger_nice_" + std::to_string(nice));
+    const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", dir,
+                                    "--set duration=0.2 --set lockstep.logger_nice=" + std::to_string(nice));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(readSummary(dir)["timing"]["logger_nice"], std::max(nice, own)) << nice;
+  }
 }
 
 // (a) The analytic model integrated by RK4 under the same sampled controller
