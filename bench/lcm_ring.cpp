@@ -3,6 +3,12 @@
 /// messages of the sizes a lockstep tick exchanges (PLANT_POSITION,
 /// CONTROL_COMMAND, ACTUATOR_STATE), with no computation. Prints rounds per
 /// second. Run it inside a private network namespace (bench/run.sh does).
+///
+/// With --origin-work-us and --listener it is the floor of a lockstep tick
+/// rather than of bare messaging: the origin (the plant's place) works that
+/// long before each round's first message -- the plant's physics, which is
+/// on the tick's path -- and a fourth process receives every message, as
+/// the logger does, doing nothing with them.
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,12 +26,22 @@
 
 namespace {
 
+// Busy for `us` microseconds, as a computation would be (not asleep).
+void work(double us) {
+  if (us <= 0) return;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double, std::micro>(us);
+  while (std::chrono::steady_clock::now() < end) {
+  }
+}
+
 struct Forwarder {
   lcm::LCM* lcm;
   std::string out_channel;
   std::vector<uint8_t> payload;
   long long remaining;
+  double work_us = 0;
   void onMessage(const lcm::ReceiveBuffer*, const std::string&) {
+    work(work_us);
     lcm->publish(out_channel, payload.data(), static_cast<unsigned>(payload.size()));
     --remaining;
   }
@@ -48,6 +64,13 @@ int main(int argc, char** argv) {
   app.add_option("--rounds", rounds, "Round trips to time")->capture_default_str();
   app.add_option("--joints", joints, "Joint count the message sizes correspond to")->capture_default_str();
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
+  double origin_work_us = 0;
+  bool listener = false;
+  app.add_option("--origin-work-us", origin_work_us,
+                 "Microseconds of busy work at the origin before each round (the plant's physics)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_flag("--listener", listener, "A fourth process receives every message (as the logger does)");
   CLI11_PARSE(app, argc, argv);
 
   // Real messages of this joint count give the real sizes.
@@ -76,9 +99,22 @@ int main(int argc, char** argv) {
     }
     children.push_back(pid);
   }
+  if (listener) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      lcm::LCM lcm(url);
+      lcm.subscribeFunction(
+             ".*", +[](const lcm::ReceiveBuffer*, const std::string&, void*) {}, static_cast<void*>(nullptr))
+          ->setQueueCapacity(100000);
+      while (lcm.handleTimeout(1000) > 0) {
+      }
+      _exit(0);  // a second without messages: the ring has ended
+    }
+    children.push_back(pid);
+  }
   // The origin: ACT -> next POS.
   lcm::LCM lcm(url);
-  Forwarder origin{&lcm, "RING_POS", pos, rounds};
+  Forwarder origin{&lcm, "RING_POS", pos, rounds, origin_work_us};
   lcm.subscribe("RING_ACT", &Forwarder::onMessage, &origin)->setQueueCapacity(1000);
   usleep(200000);  // let the forwarders subscribe
   const auto start = std::chrono::steady_clock::now();
