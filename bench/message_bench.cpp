@@ -1,8 +1,9 @@
 // Google Benchmark of one message's way through transport::LcmNode in user
 // space: publish (stamp, checksum, encode, MAC) then receive (MAC check,
 // decode, checksum, run/publisher/sequence admission, validation, handler),
-// on LCM's in-process memq:// provider so no kernel time is counted. The
-// lockstep tick makes four of these per hop's process (docs/performance.md).
+// on LCM's in-process memq:// provider so no kernel time is counted. Each
+// hop of a lockstep tick has one of these on its path: its input received,
+// its output published (docs/performance.md, "What limits lockstep").
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>

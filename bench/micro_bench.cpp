@@ -96,6 +96,15 @@ void BM_FeedforwardFromMatrices(benchmark::State& state) {
     benchmark::DoNotOptimize(Eigen::VectorXd(c->inertia(q) * a + c->coriolis(q, v) * v + c->gravity(q)));
   label(state);
 }
+// Forward dynamics D(q)^-1 (u - C v - g), per tick of a free_motion
+// reference and of the Nicosia-Tomei observer: D, the bias from the inverse
+// dynamics, and the Cholesky solve (the one O(n^3) step left on a tick).
+void BM_ForwardDynamics(benchmark::State& state) {
+  const RobotModelPtr c = arm(state.range(0));
+  const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(c->dof(), 0.1, 1.0), v = q, u = -q;
+  for (auto _ : state) benchmark::DoNotOptimize(c->acceleration(q, v, u));
+  label(state);
+}
 void BM_ControllerStep(benchmark::State& state) {
   const RobotModelPtr c = arm(state.range(0));
   const int n = c->dof();
@@ -123,6 +132,7 @@ BENCHMARK(BM_CoriolisTimes)->Apply(arms);
 BENCHMARK(BM_Gravity)->Apply(arms);
 BENCHMARK(BM_InverseDynamics)->Apply(arms);
 BENCHMARK(BM_FeedforwardFromMatrices)->Apply(arms);
+BENCHMARK(BM_ForwardDynamics)->Apply(arms);
 BENCHMARK(BM_ControllerStep)->Apply(arms);
 BENCHMARK(BM_ActuatorStep)->Arg(2)->Arg(20);
 

@@ -38,10 +38,13 @@ int niceValue() {
 
 void niceAtLeast(int nice, const std::string& key) {
   if (nice <= niceValue()) return;
-  if (setpriority(PRIO_PROCESS, 0, nice) != 0)
+  if (setpriority(PRIO_PROCESS, 0, nice) != 0) {
+    const int error = errno;  // before niceValue(), which resets errno
     spdlog::warn(fmt::format("{}: cannot set nice {}: {}; running at nice {}", key, nice,
-                             std::strerror(errno), niceValue()));
+                             std::strerror(error), niceValue()));
+  }
 }
+
 bool takeResumeNotice() { return resumed_flag.exchange(false); }
 
 std::string withReceiveBuffer(const std::string& url, int bytes) {

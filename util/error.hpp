@@ -20,7 +20,7 @@ enum class ErrorKind {
 /// what was expected), and its kind. Throw BadInput or RuntimeFault, or a
 /// component's own kind derived from them: config::ConfigError, tools::LogError,
 /// tools::ReplayError, util::UnsafeOutputPath (bad input); plant::PlantStopped,
-/// plant::PlantStalled, tools::PlotError (runtime faults). Code that must tell
+/// plant::PlantStalled, tools::PlotError, wiring::SimulationStopped (runtime faults). Code that must tell
 /// a component's kind apart catches that kind.
 ///
 /// The cores (model, controller, actuator, plant) also throw

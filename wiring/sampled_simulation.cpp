@@ -1,6 +1,8 @@
 #include "wiring/sampled_simulation.hpp"
 
+#include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -166,6 +168,7 @@ std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, do
 // normalise) counts as a loop that diverged.
 class Children {
  public:
+  explicit Children(bool (*stop_requested)()) : stop_requested_(stop_requested) {}
   ~Children() {  // on an error midway: no child outlives the check
     for (const Child& c : running_) {
       kill(c.pid, SIGKILL);
@@ -189,6 +192,8 @@ class Children {
       throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
     }
     if (pid == 0) {
+      // Ends with its parent, however that ends (a SIGKILLed sweep shard).
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
       close(fds[0]);
       double record[4] = {1.0, 0.0, 0.0, 0.0};  // status (0 completed), has_time, time, error
       try {
@@ -207,8 +212,17 @@ class Children {
   }
 
   /// Waits for the oldest child; its index and loop.
+  /// @throws SimulationStopped if the stop check turns true meanwhile (the destructor ends every child).
   std::pair<size_t, Loop> finishOldest() {
     const Child c = running_.front();
+    // A child inherits its parent's signal handlers (a sweep shard's only
+    // note a stop), so the parent asks, and ends it (~Children).
+    while (stop_requested_) {
+      if (stop_requested_()) throw SimulationStopped();
+      pollfd ready{c.fd, POLLIN, 0};
+      const int polled = poll(&ready, 1, 100);
+      if (polled > 0 || (polled < 0 && errno != EINTR)) break;  // its result, its end, or a poll error
+    }
     running_.erase(running_.begin());
     double record[4] = {1.0, 0.0, 0.0, 0.0};
     size_t got = 0;
@@ -238,11 +252,13 @@ class Children {
     }
   }
   std::vector<Child> running_;
+  bool (*stop_requested_)() = nullptr;
 };
 
-std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int processes) {
+std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int processes,
+                              bool (*stop_requested)() = nullptr) {
   std::vector<Loop> out(scenarios.size());
-  Children children;
+  Children children(stop_requested);
   for (size_t i = 0; i < scenarios.size(); ++i) {
     if (children.full(processes)) {
       const auto [index, loop] = children.finishOldest();
@@ -262,7 +278,8 @@ std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, in
 // x the rate, then each start's sampled loop (the first one's given as
 // `known_first` when already run) against its fine loop.
 SampledSimulation check(const config::Scenario& s, const std::vector<StartState>& starts, int max_refinement,
-                        int processes, const std::optional<Loop>& known_first) {
+                        int processes, const std::optional<Loop>& known_first,
+                        bool (*stop_requested)() = nullptr) {
   const auto wall_start = std::chrono::steady_clock::now();
   SampledSimulation out;
   out.rate = s.plant.publish_rate;
@@ -274,8 +291,9 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
   double fine = 8.0 * out.rate;
   Loop fine_initial;
   for (;;) {
-    const std::vector<Loop> pair = simulateAll(
-        {fineScenario(s, starts[0].state, fine), fineScenario(s, starts[0].state, 2.0 * fine)}, processes);
+    const std::vector<Loop> pair =
+        simulateAll({fineScenario(s, starts[0].state, fine), fineScenario(s, starts[0].state, 2.0 * fine)},
+                    processes, stop_requested);
     fine_initial = pair[0];
     if (agree(pair[0], pair[1], s.metrics.tolerance, 1.0 / fine)) {
       out.confirmed_at = 2.0 * fine;
@@ -292,7 +310,7 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
   for (size_t i = known_first ? 1 : 0; i < starts.size(); ++i)
     runs.push_back(sampledScenario(s, starts[i].state));
   for (size_t i = 1; i < starts.size(); ++i) runs.push_back(fineScenario(s, starts[i].state, fine));
-  const std::vector<Loop> loops = simulateAll(runs, processes);
+  const std::vector<Loop> loops = simulateAll(runs, processes, stop_requested);
   std::vector<Loop> sampled_loops;
   if (known_first) sampled_loops.push_back(*known_first);
   const size_t simulated_sampled = starts.size() - sampled_loops.size();
@@ -353,12 +371,12 @@ SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
   return check(s, startsOf(s), kMaxRefinement, processes, std::nullopt);
 }
 
-SampledSimulation judgeRun(const config::Scenario& s, const LoopOutcome& run) {
+SampledSimulation judgeRun(const config::Scenario& s, const LoopOutcome& run, bool (*stop_requested)()) {
   if (s.controller.type == "external") return notAssessedExternal(s);
   config::Scenario in_process = s;
   in_process.mode = config::Mode::kInproc;
   const std::vector<StartState> start = {startsOf(in_process).front()};
-  return check(in_process, start, kRunRefinement, 1, run);
+  return check(in_process, start, kRunRefinement, 1, run, stop_requested);
 }
 
 }  // namespace lagrange::wiring

@@ -35,6 +35,7 @@
 
 #include "config/scenario.hpp"
 #include "controller/sampled_data.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::wiring {
 
@@ -52,6 +53,12 @@ struct LoopOutcome {
   double error = 0.0;
 };
 
+/// Thrown by judgeRun when its stop check turns true: the children are
+/// killed and no verdict is made (a sweep runs the row again on a restart).
+struct SimulationStopped : lagrange::RuntimeFault {
+  SimulationStopped() : lagrange::RuntimeFault("the sampled-data simulation was stopped") {}
+};
+
 /// The refinement cap of judgeRun: the fine loop at 8 x the rate, confirmed
 /// at 16 x and no further, so that a row costs a bounded 24 x its own run.
 inline constexpr int kRunRefinement = 16;
@@ -61,7 +68,10 @@ inline constexpr int kRunRefinement = 16;
 /// against the fine-rate loop from the same start: 8 x the rate, confirmed at
 /// 16 x (else "not assessed"), in one child process at a time. No seeded
 /// starts: the row is the start. A realtime scenario is judged as the
-/// in-process loop it ran, without the one-period delay.
-controller::SampledSimulation judgeRun(const config::Scenario& scenario, const LoopOutcome& run);
+/// in-process loop it ran, without the one-period delay. `stop_requested`,
+/// if given, is asked every 100 ms while a child simulates.
+/// @throws SimulationStopped once `stop_requested` returns true.
+controller::SampledSimulation judgeRun(const config::Scenario& scenario, const LoopOutcome& run,
+                                       bool (*stop_requested)() = nullptr);
 
 }  // namespace lagrange::wiring

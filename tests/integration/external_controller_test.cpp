@@ -249,6 +249,8 @@ TEST(ExternalController, SweepRunsAnExternalProgramPerRow) {
   std::getline(rows, line);  // row 1: from (1, 1)
   const auto row = nlohmann::json::parse(line);
   EXPECT_EQ(row.at("status"), "completed") << line;
+  // Each completed row's run directory is removed, and OUT/external/ with them.
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/external")) << "left behind, empty";
   const std::string direct = freshDir("external-sweep-direct");
   ASSERT_EQ(runScenario(scenario("lockstep", pythonCommand()), direct,
                         "-q --set duration=2 --set 'initial_state.q=[1.0, 1.0]'")

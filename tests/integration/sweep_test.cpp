@@ -160,6 +160,33 @@ TEST(Sweep, JudgesEachRowAgainstTheFineRateLoopWhenAsked) {
       << "the plan keeps the choice, so that shards and Slurm tasks make it too";
 }
 
+// A stop while a row is being judged: the fine-rate loops run in children
+// of the shard, which inherit its handler and would only note the signal;
+// the shard ends them and stops within moments (the judgement takes about
+// half a minute here), and records no row, so a restart runs it.
+TEST(Sweep, AStopWhileARowIsJudgedEndsItsSimulationsAtOnce) {
+  const std::string dir = freshDir("sweep-stop-judging"), out = dir + "/out";
+  fs::create_directories(dir);
+  std::ofstream(dir + "/sweep.yaml") << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
+                                     << "set: {duration: 60}\nsimulate_sampled_data: true\n"
+                                     << "axes:\n  - {key: plant.publish_rate, values: [1000]}\n";
+  Child sweeping({kBin + "/lagrange", "sweep", dir + "/sweep.yaml", "-o", out, "-j", "1"},
+                 dir + "/sweep.log");
+  // "[s]": the pattern does not match the shell that runs pgrep. The
+  // fine-rate loops are forks of the shard, with its command line: two or
+  // more matches mean the row's own run is done and its judgement runs.
+  const std::string shard = "pgrep -f " + quote("[s]weep-shard " + out);
+  const auto matches = [&] { return std::stoi("0" + shell(shard + " -c").output); };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (matches() < 2 && sweeping.running() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_GE(matches(), 2) << "no fine-rate loop ran: " << readText(dir + "/sweep.log");
+  sweeping.signal(SIGINT);
+  EXPECT_EQ(sweeping.wait(10), 130) << "the stop waited for the judgement: " << readText(dir + "/sweep.log");
+  EXPECT_TRUE(rowLines(out).empty()) << "a row judged halfway was recorded";
+  EXPECT_EQ(matches(), 0) << "the shard or a fine-rate loop outlived the sweep: " << shell(shard).output;
+}
+
 TEST(Sweep, ShowsABarWithTheRateAndTheTimeLeftOnATerminal) {
   const std::string dir = freshDir("sweep-tty");
   const std::string sweep = writeSweep(dir, "", 2.0);

@@ -246,6 +246,23 @@ TEST(RunCheck, AMissedMetricExits3AndNamesIt) {
   EXPECT_FALSE(readSummary(missed)["tracking"]["met"].get<bool>());  // the claim the exit code makes
 }
 
+// --check takes an optional value, so `--check SCENARIO.yaml` hands it the
+// scenario's path: the run takes it back as the scenario, and that --check as
+// the stated metric (exit 3 here: missed). Without any scenario: exit 2, named.
+TEST(RunCheck, CheckBeforeTheScenarioStillRunsItAndChecksTheStatedMetric) {
+  const std::string out = freshDir("check-first");
+  const RunResult late = lagrange("run --check " + quote(kConfigs + "/rigid_2dof.yaml") + " -o " +
+                                  quote(out) + " -q --mode inproc --set metrics.convergence_deadline=0.5");
+  EXPECT_EQ(late.exit_code, 3) << late.output;
+  EXPECT_NE(late.output.find("metric MISSED"), std::string::npos) << late.output;
+  EXPECT_FALSE(readSummary(out)["tracking"]["met"].get<bool>());
+  const RunResult none = lagrange("run -o " + quote(freshDir("check-none")) + " --check");
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("lagrange run: no scenario given; expected `lagrange run SCENARIO.yaml -o OUT"),
+            std::string::npos)
+      << none.output;
+}
+
 TEST(RunCheck, NamedChecksAndJUnitXml) {
   const std::string out = freshDir("check-named"), junit = out + "-junit.xml";
   const RunResult r = runScenario(kConfigs + "/rigid_2dof.yaml", out,

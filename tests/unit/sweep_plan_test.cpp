@@ -213,5 +213,26 @@ TEST(SweepStore, AnOldRowsSampledVerdictIsReadAsTheLinearisedOne) {
   EXPECT_EQ(rows.at(1).at("sampled_verdict"), "diverges");
 }
 
+// A plan.json of before 2026-11-27 wrote 17 significant digits; the same
+// plan written now, with shortest numbers, is the same plan (a resume of
+// that sweep is accepted), and one number changed is another plan.
+TEST(SweepPlan, APlanWrittenWithSeventeenDigitsIsTheSamePlan) {
+  const std::string now =
+      "{\"sweep_file\":\"run2/s.yaml\",\"rows\":1}\n"
+      "{\"index\":0,\"params\":[\"0.1\",\"1e-05\"],\"overrides\":[\"initial_state.q=[0.1, -0.3]\"]}\n";
+  const std::string before =
+      "{\"sweep_file\":\"run2/s.yaml\",\"rows\":1}\n"
+      "{\"index\":0,\"params\":[\"0.10000000000000001\",\"1.0000000000000001e-05\"],"
+      "\"overrides\":[\"initial_state.q=[0.10000000000000001, -0.29999999999999999]\"]}\n";
+  ASSERT_NE(now, before);
+  EXPECT_TRUE(samePlanText(now, before));
+  std::string other = before;
+  other.replace(other.find("-0.29999999999999999"), 20, "-0.29999999999999993");
+  EXPECT_FALSE(samePlanText(now, other));
+  EXPECT_FALSE(samePlanText(now, "{\"sweep_file\":\"run3/s.yaml\",\"rows\":1}\n"));
+  // Whole numbers are compared as written: two seeds above 2^53 one apart
+  // are the same double, not the same plan.
+  EXPECT_FALSE(samePlanText("{\"seed\":9007199254740993}", "{\"seed\":9007199254740992}"));
+}
 }  // namespace
 }  // namespace lagrange::tools

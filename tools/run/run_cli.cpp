@@ -4,7 +4,9 @@
 #include <memory>
 #include <sstream>
 
+#include "tools/command_error.hpp"
 #include "tools/run/run_command.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
@@ -15,6 +17,25 @@ struct RunCommandLine {
   bool no_netns = false;
   CLI::Option* check_option = nullptr;
 };
+
+// `lagrange run --check SCENARIO.yaml -o OUT`: --check's value is optional,
+// so the parser gave it the scenario's path. A value ending in .yaml or .yml
+// is no check (those are `met` or KEY OP NUMBER): it is the scenario (a
+// missing file is then named as such), and that --check stands alone (the
+// stated metric).
+bool scenarioFromCheck(RunOptions& options) {
+  for (std::string& value : options.checks) {
+    const auto endsWith = [&value](const std::string& suffix) {
+      return value.size() > suffix.size() &&
+             value.compare(value.size() - suffix.size(), suffix.size(), suffix) == 0;
+    };
+    if (!endsWith(".yaml") && !endsWith(".yml")) continue;
+    options.config_path = value;
+    value.clear();
+    return true;
+  }
+  return false;
+}
 }  // namespace
 
 Subcommand addRunCommand(CLI::App& app) {
@@ -22,7 +43,9 @@ Subcommand addRunCommand(CLI::App& app) {
   RunOptions& run = o->run;
   CLI::App* cmd =
       app.add_subcommand("run", "Run a scenario: plant, actuator, controller and logger as LCM processes");
-  cmd->add_option("config", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml")->required();
+  // Not ->required(): `--check SCENARIO.yaml` hands the path to --check,
+  // whose value is optional; the callback takes it back (scenarioFromCheck).
+  cmd->add_option("config", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml (required)");
   cmd->add_option("-o,--out", run.out_dir, "Output directory (created if missing)")->required();
   cmd->add_option(
       "--set", run.overrides,
@@ -73,6 +96,10 @@ Subcommand addRunCommand(CLI::App& app) {
                 "At the end of the run, write CSV files and PNG plots to OUT/report (as lagrange report)");
   return {cmd, [o](const Invocation& inv) {
             RunOptions options = o->run;
+            if (options.config_path.empty() && !scenarioFromCheck(options))
+              return failWith("lagrange run",
+                              BadInput("no scenario given; expected `lagrange run SCENARIO.yaml -o OUT "
+                                       "[OPTIONS]`, e.g. lagrange run configs/rigid_2dof.yaml -o out"));
             options.private_netns = !o->no_netns;
             // Each --check's comma-separated list; --check alone stores an empty value.
             std::vector<std::string> checks;

@@ -55,7 +55,7 @@ void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
   const std::string text = planJson(plan);
   if (fs::exists(plan_path)) {
-    if (readFile(plan_path) != text)
+    if (!samePlanText(readFile(plan_path), text))
       throw ConfigError("--out " + out_dir + " holds another sweep (its plan.json differs from the plan of " +
                         plan.spec.file +
                         " as it is now); expected the same sweep file and scenario to resume it, or a new "
@@ -87,6 +87,11 @@ long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const
             bool collecting = false) {
   const auto rows = readFinishedRows(out_dir);
   writeSweepTable(out_dir, plan, rows);
+  // OUT/external/ keeps only the external-controller rows that did not
+  // complete or were stopped midway (sweep_runner.cpp): gone when none
+  // left anything (remove() leaves a directory that is not empty).
+  std::error_code ec;
+  fs::remove(fs::path(out_dir) / "external", ec);
   long diverged = 0, converged = 0;
   for (const auto& [i, r] : rows) {
     diverged += r.value("diverged", false);

@@ -3,8 +3,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -308,6 +310,44 @@ SweepPlan planSweep(const SweepSpec& spec) {
     plan.rows.push_back(std::move(row));
   }
   return plan;
+}
+
+namespace {
+// `text` with every decimal fraction (digits with a point or an exponent,
+// signed, not inside a word) written as util::exactText writes its double.
+// Whole numbers stay as written: a seed above 2^53 is not a double.
+std::string shortestNumbers(const std::string& text) {
+  const auto digit = [&text](size_t i) {
+    return i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]));
+  };
+  const auto word = [&text](size_t i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    return std::isalnum(c) || c == '_' || c == '.';
+  };
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size();) {
+    const bool starts = digit(i) || ((text[i] == '-' || text[i] == '.') && digit(i + 1));
+    if (starts && (i == 0 || !word(i - 1))) {
+      char* end = nullptr;
+      const double value = std::strtod(text.c_str() + i, &end);
+      const size_t length = static_cast<size_t>(end - (text.c_str() + i));
+      const std::string token = text.substr(i, length);
+      const bool fraction = token.find_first_of(".eE") != std::string::npos;
+      if (length > 0 && fraction && !(i + length < text.size() && word(i + length))) {
+        out += util::exactText(value);
+        i += length;
+        continue;
+      }
+    }
+    out += text[i++];
+  }
+  return out;
+}
+}  // namespace
+
+bool samePlanText(const std::string& a, const std::string& b) {
+  return a == b || shortestNumbers(a) == shortestNumbers(b);
 }
 
 std::string planJson(const SweepPlan& plan) {

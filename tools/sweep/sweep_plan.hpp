@@ -88,4 +88,10 @@ std::string planJson(const SweepPlan& plan);
 /// @throws config::ConfigError when `text` is not a plan.
 SweepPlan planFromJson(const std::string& text, const std::string& source);
 
+/// Whether two plan.json texts are the same plan: equal but for how their
+/// numbers are written (plans before 2026-11-27 wrote 17 significant digits,
+/// "0.10000000000000001", where the shortest text that reads back as the
+/// same double, "0.1", is written now), so a sweep started then resumes.
+bool samePlanText(const std::string& a, const std::string& b);
+
 }  // namespace lagrange::tools

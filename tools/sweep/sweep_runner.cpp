@@ -141,9 +141,15 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
        {"sampled_verdict", "fine_rate", "fine_convergence_time", "fine_error_last_second"})
     j[column] = nullptr;                   // in the table's order
   if (plan_.spec.simulate_sampled_data) {  // this run against the same loop at a fine rate
-    const controller::SampledSimulation check =
-        wiring::judgeRun(s, {o.status == "completed" ? "completed" : "diverged", o.tracking.convergence_time,
-                             o.tracking.rms_last_second});
+    controller::SampledSimulation check;
+    try {
+      check = wiring::judgeRun(s,
+                               {o.status == "completed" ? "completed" : "diverged",
+                                o.tracking.convergence_time, o.tracking.rms_last_second},
+                               stop_requested);
+    } catch (const wiring::SimulationStopped&) {
+      return std::nullopt;  // stopped midway: the row is run again on a restart
+    }
     if (stop_requested && stop_requested()) return std::nullopt;
     j["sampled_verdict"] = check.verdict;
     if (!check.starts.empty()) {
@@ -165,7 +171,10 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
         "an external controller's row runs through lagrange run; this sweep runner has no binary");
   const fs::path dir = fs::path(out_dir_) / "external" / ("row-" + std::to_string(row.index));
   fs::remove_all(dir);
-  fs::create_directories(dir);
+  // Twice at most: finishing the sweep removes an empty OUT/external/,
+  // which another shard may do between this one's two mkdirs.
+  std::error_code ec;
+  if (!fs::create_directories(dir, ec) && ec) fs::create_directories(dir);
   std::vector<std::string> args = {
       self_exe_, "run", plan_.spec.scenario_path, "--mode", "lockstep", "-q", "--out", dir.string()};
   for (const std::string& ov : row.overrides) args.insert(args.end(), {"--set", ov});
