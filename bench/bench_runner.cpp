@@ -275,7 +275,7 @@ int main(int argc, char** argv) {
   const std::string at_default_step = "--set plant.physics_step=1.0e-4 --set duration=10";
 
   std::vector<double> ring, lockstep, unsigned_lockstep, signed_vs_unsigned, inproc, ode;
-  std::vector<double> hop_controller, hop_actuator, hop_plant, ring_floor;
+  std::vector<double> hop_controller, hop_actuator, hop_plant, hop_tick, ring_floor;
   if (want("ring")) {
     std::fprintf(stderr, "1/7 lockstep (signed and unsigned) vs bare LCM ring ...\n");
     // At least nine pairs: one pair's ratio swings by +-10 % on a shared
@@ -293,6 +293,7 @@ int main(int argc, char** argv) {
         hop_controller.push_back(hops->controller);
         hop_actuator.push_back(hops->actuator);
         hop_plant.push_back(hops->plant);
+        hop_tick.push_back(hops->tick);
       }
       unsigned_lockstep.push_back(
           ticksPerSecond(run(rigid, "--mode lockstep " + at_default_step, g_unsigned_lagrange), 1000));
@@ -337,7 +338,8 @@ int main(int argc, char** argv) {
     if (!hop_plant.empty()) {
       results["lockstep_hops_us"] = {{"controller", median(hop_controller)},
                                      {"actuator", median(hop_actuator)},
-                                     {"plant", median(hop_plant)}};
+                                     {"plant", median(hop_plant)},
+                                     {"tick", median(hop_tick)}};
       rows.push_back({"lockstep hops controller / actuator / plant [us] (medians); the ring's hop",
                       fmt(median(hop_controller), "%.0f") + " / " + fmt(median(hop_actuator), "%.0f") +
                           " / " + fmt(median(hop_plant), "%.0f") + "; ring " +
