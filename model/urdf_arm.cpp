@@ -154,12 +154,17 @@ struct UrdfArm::Impl {
 
   // KDL's dynamics solvers keep scratch space, so one serves one call at a
   // time; building one per call was a fifth of the gain check's time (it
-  // samples C and h at thousands of states). A call borrows a pair from this
+  // samples C and h at thousands of states). A call borrows a set from this
   // pool and gives it back, which keeps the model safe to share between
   // threads (model/robot_model.hpp's contract). Each call overwrites all the
   // scratch it reads, so a reused solver computes what a fresh one would.
+  // The set has its own copy of the chain: a KDL::Joint caches its last pose
+  // in mutable members (joint_pose, q_previous) that every pose(q) writes, so
+  // one chain read from two threads returned one thread's rotation to the
+  // other. `chain` above is only copied after the build, never posed.
   struct Solvers {
-    Solvers(const KDL::Chain& c, const KDL::Vector& g) : dynamics(c, g), rne(c, g) {}
+    Solvers(const KDL::Chain& c, const KDL::Vector& g) : chain(c), dynamics(chain, g), rne(chain, g) {}
+    KDL::Chain chain;  // first: the solvers keep a reference to it
     KDL::ChainDynParam dynamics;
     KDL::ChainIdSolver_RNE rne;
   };
@@ -361,7 +366,8 @@ const UrdfChainSpec& UrdfArm::spec() const { return impl_->spec; }
 RobotGeometry UrdfArm::geometry() const {
   RobotGeometry g;
   int joint = 0;
-  for (const KDL::Segment& segment : impl_->chain.segments) {
+  const Impl::Borrowed solvers = impl_->borrowSolvers();  // getFrameToTip poses the joint at 0
+  for (const KDL::Segment& segment : solvers->chain.segments) {
     GeometryFrame f;
     f.parent = static_cast<int>(g.frames.size()) - 1;
     // The segment's pose at q = 0 is the URDF joint's origin; KDL keeps the
@@ -387,7 +393,8 @@ Eigen::Vector3d UrdfArm::tipPosition(const Eigen::VectorXd& q) const { return ti
 
 Eigen::Isometry3d UrdfArm::tipFrame(const Eigen::VectorXd& q) const {
   checkSize(q, "q");
-  KDL::ChainFkSolverPos_recursive fk(impl_->chain);
+  const Impl::Borrowed solvers = impl_->borrowSolvers();
+  KDL::ChainFkSolverPos_recursive fk(solvers->chain);
   KDL::Frame tip;
   fk.JntToCart(toKdl(q), tip);
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
@@ -461,7 +468,8 @@ double UrdfArm::potentialEnergy(const Eigen::VectorXd& q) const {
   KDL::Frame frame = KDL::Frame::Identity();
   double u = 0.0;
   int j = 0;
-  for (const KDL::Segment& segment : impl_->chain.segments) {
+  const Impl::Borrowed solvers = impl_->borrowSolvers();
+  for (const KDL::Segment& segment : solvers->chain.segments) {
     const bool moves = segment.getJoint().getType() != KDL::Joint::None;
     frame = frame * segment.pose(moves ? q(j++) : 0.0);
     const KDL::RigidBodyInertia& inertia = segment.getInertia();

@@ -6,9 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 #include "model/planar_chain.hpp"
 #include "support/geometry_pose.hpp"
@@ -138,6 +141,67 @@ TEST(UrdfArm, EveryShippedArmHasTheRobotModelProperties) {
 
 // What ROBOT_DESCRIPTION carries for the viewer: its frames, composed as the
 // message says, put the tip where KDL's forward kinematics does.
+// robot_model.hpp's contract: safe to call from several threads at once.
+// Four threads share one Panda and recompute its terms at 100 states, 20
+// times over, each from a different state than the others at the same
+// moment; every value equals the one computed alone, bit for bit. (KDL's
+// joints cache their last pose in mutable members: a chain shared by the
+// threads handed one thread's rotation to another.)
+TEST(UrdfArm, FourThreadsSharingOneArmComputeWhatOneThreadDoes) {
+  const std::shared_ptr<const UrdfArm> arm = build(kPanda);
+  const int n = arm->dof();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(-2.5, 2.5);
+  struct State {
+    Eigen::VectorXd q, v, a;
+  };
+  std::vector<State> states(100);
+  for (State& x : states) {
+    x.q = Eigen::VectorXd::NullaryExpr(n, [&] { return angle(rng); });
+    x.v = Eigen::VectorXd::NullaryExpr(n, [&] { return angle(rng); });
+    x.a = Eigen::VectorXd::NullaryExpr(n, [&] { return angle(rng); });
+  }
+  // Every term, as one vector: D, C(q, v) v, g, inverse dynamics, the tip, U.
+  const auto terms = [&](const State& x) {
+    const Eigen::MatrixXd d = arm->inertia(x.q);
+    Eigen::VectorXd all(n * n + 3 * n + 4);
+    all << Eigen::Map<const Eigen::VectorXd>(d.data(), n * n), arm->coriolisTimes(x.q, x.v, x.v),
+        arm->gravity(x.q), arm->inverseDynamics(x.q, x.v, x.a), arm->tipPosition(x.q),
+        arm->potentialEnergy(x.q);
+    return all;
+  };
+  std::vector<Eigen::VectorXd> alone;
+  for (const State& x : states) alone.push_back(terms(x));
+  std::atomic<int> differing{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      for (int round = 0; round < 20; ++round)
+        for (size_t k = 0; k < states.size(); ++k) {
+          const size_t i = (k + 29 * static_cast<size_t>(t)) % states.size();
+          if (terms(states[i]) != alone[i]) ++differing;
+        }
+    });
+  for (std::thread& thread : threads) thread.join();
+  EXPECT_EQ(differing.load(), 0) << "of " << 4 * 20 * states.size() << " evaluations";
+  // The geometry, read while the others compute, is the one read alone.
+  const RobotGeometry before = arm->geometry();
+  std::thread busy([&] {
+    for (int round = 0; round < 50; ++round)
+      for (const State& x : states) terms(x);
+  });
+  for (int round = 0; round < 200; ++round) {
+    const RobotGeometry g = arm->geometry();
+    for (size_t f = 0; f < g.frames.size(); ++f)
+      if (g.frames[f].origin_xyz != before.frames[f].origin_xyz ||
+          g.frames[f].origin_quat.coeffs() != before.frames[f].origin_quat.coeffs() ||
+          g.frames[f].axis != before.frames[f].axis)
+        ++differing;
+  }
+  busy.join();
+  EXPECT_EQ(differing.load(), 0) << "geometry frames differed while another thread computed";
+}
+
 TEST(UrdfArm, TheGeometryPutsTheTipWhereKdlDoes) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> angle(-3.0, 3.0);
