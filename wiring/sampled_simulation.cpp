@@ -185,6 +185,7 @@ class Children {
       throw lagrange::RuntimeFault(std::string("sampled-data simulation: pipe: ") + strerror(errno));
     std::cout.flush();
     std::cerr.flush();
+    const pid_t parent = getpid();
     const pid_t pid = fork();
     if (pid < 0) {
       close(fds[0]);
@@ -192,8 +193,10 @@ class Children {
       throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
     }
     if (pid == 0) {
-      // Ends with its parent, however that ends (a SIGKILLed sweep shard).
+      // Ends with its parent, however that ends (a SIGKILLed sweep shard),
+      // including before this line (the parent is then another process).
       prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (getppid() != parent) _exit(1);
       close(fds[0]);
       double record[4] = {1.0, 0.0, 0.0, 0.0};  // status (0 completed), has_time, time, error
       try {
