@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "config/scenario.hpp"
+#include "median.hpp"
 #include "plant/plant_sim.hpp"
 #include "plant/scenario_plant.hpp"
 #include "tick_hops.hpp"
@@ -42,10 +43,7 @@ std::string capture(const std::string& cmd, int* exit_code = nullptr) {
   return out;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using lagrange::bench::median;
 
 // A `lagrange run` (by default the real front end; the bench's unsigned
 // build to measure the MAC's cost); returns its summary.json.

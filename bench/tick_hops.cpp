@@ -5,17 +5,11 @@
 #include <map>
 #include <vector>
 
+#include "median.hpp"
 #include "transport/channels.hpp"
 #include "transport/safe_decode.hpp"
 
 namespace lagrange::bench {
-
-namespace {
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-}  // namespace
 
 std::optional<TickHops> tickHops(const std::string& log_path) {
   lcm::LogFile log(log_path, "r");
