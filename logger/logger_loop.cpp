@@ -13,6 +13,7 @@
 #include "controller/gain_report.hpp"
 #include "logger/event_log.hpp"
 #include "logger/metrics_lcm.hpp"
+#include "logger/record_filter.hpp"
 #include "logger/record_gaps.hpp"
 #include "logger/run_end.hpp"
 #include "logger/summary.hpp"
@@ -73,6 +74,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   RunEnd end(
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.finish_grace)));
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
+  RecordFilter record_filter(node.runId());  // only what the run's processes would accept
 
   // Record first, then interpret: the log keeps every message, even ones
   // the validators below reject. Every channel but LCM's own self-test:
@@ -81,9 +83,13 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   // then silently skips the next counted message -- the first samples of
   // a run went missing from run.lcm that way (one run in ~50).
   // SCENARIO too is left out: the log starts with it (above), and the
-  // copies this logger publishes for stock loggers need no recording.
-  node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$).*",
+  // copies this logger publishes for stock loggers need no recording; and
+  // RUN_JOIN, the launchers' agreement before the run (signed with another key).
+  // Of the project's channels, only what the run's processes would accept
+  // by its header is recorded (logger/record_filter.hpp).
+  node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$|RUN_JOIN$).*",
                     [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+                      if (!record_filter.admit(channel, rbuf->data, rbuf->data_size)) return;
                       log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
                       gaps.recorded(channel, rbuf->data, rbuf->data_size, node.runId());
                     });
@@ -183,6 +189,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   facts.final_status["logger"] = own;
   facts.wall_time = std::chrono::duration<double>(Clock::now() - wall_start).count();
   facts.missing_records = gaps.missing(facts.final_status);
+  facts.not_recorded = record_filter.notRecorded();
 
   if (gains.sampled.verdict.empty()) gains.sampled = controller::checkSampledData(s);
   const auto summary = makeSummary(s, metrics.summary(), gains, facts);

@@ -269,6 +269,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   long long missing = 0;
   for (const auto& [channel, n] : f.missing_records) missing += n;
   j["log"]["missing_records"] = f.missing_records;
+  j["log"]["not_recorded"] = f.not_recorded;
   j["log"]["complete"] = missing == 0;
   j["log"]["incomplete_because"] =
       missing == 0 ? json(nullptr)

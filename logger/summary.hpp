@@ -25,6 +25,10 @@ struct RunFacts {
   std::map<std::string, long long> missing_ticks;
   /// Per channel: messages of the run's processes the log lacks (logger::RecordGaps).
   std::map<std::string, long long> missing_records;
+  /// Per channel and reason: authenticated datagrams the logger did not
+  /// record because no process of the run would accept their header
+  /// (logger/record_filter.hpp).
+  std::map<std::string, std::map<std::string, long long>> not_recorded;
 };
 
 /// Makes `metrics` watch the joints' rates against the URDF's <limit

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// A run's secret key on disk (docs/reliability.md, "Keys"): 64 hex digits
+/// A secret key on disk (docs/reliability.md, "Threat model"): 64 hex digits
 /// and a newline, in a regular file only its owner can read or write, as
 /// ssh wants of a private key. The launcher writes one per run (OUT/run.key)
 /// and hands its path -- never the key -- to the processes (--key-file) and

@@ -22,6 +22,10 @@ inline constexpr const char* kActuatorState = "ACTUATOR_STATE";
 inline constexpr const char* kStatus = "STATUS";
 inline constexpr const char* kScenario = "SCENARIO";
 inline constexpr const char* kRobotDescription = "ROBOT_DESCRIPTION";
+/// The launchers of a run spread over hosts agreeing on the run's fresh
+/// value before its processes start (lagrange/run_join_t.hpp); signed with
+/// the shared key, never with the run's, and never recorded.
+inline constexpr const char* kRunJoin = "RUN_JOIN";
 
 /// What the project knows of each of its channels besides the message type
 /// (withChannelMessage below): who publishes it, and whether it carries one
@@ -53,6 +57,7 @@ inline constexpr ChannelInfo kChannelTable[] = {
     {kStatus, "", false, ChannelInfo::Only::kAlways},
     {kScenario, "logger", false, ChannelInfo::Only::kAlways},
     {kRobotDescription, "logger", false, ChannelInfo::Only::kAlways},
+    {kRunJoin, "launcher", false, ChannelInfo::Only::kAlways},
 };
 
 /// The only process that publishes on `channel`, or "" for STATUS (every

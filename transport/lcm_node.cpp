@@ -13,7 +13,12 @@
 namespace lagrange::transport {
 
 LcmNode::LcmNode(const std::string& process_name, const std::string& url, int64_t run_id)
-    : process_name_(process_name), lcm_(url), run_id_(run_id), pid_(static_cast<int32_t>(getpid())) {
+    : process_name_(process_name),
+      lcm_(url),
+      run_id_(run_id),
+      pid_(static_cast<int32_t>(getpid())),
+      newest_only_(run_id),
+      reordered_(run_id) {
   if (!lcm_.good())
     throw lagrange::RuntimeFault(process_name + ": cannot open LCM at '" + url +
                                  "'; expected a working LCM URL such as udpm://239.255.76.67:7667?ttl=0 "
@@ -123,43 +128,10 @@ void LcmNode::stamp(const std::string& channel, lagrange::header_t& header) cons
 }
 
 bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h, Order order) {
-  if (run_id_ != 0 && h.run_id != run_id_) {
-    reject(channel, RejectReason::kOtherRun,
-           "from another run (run_id " + std::to_string(h.run_id) + ", this run is " +
-               std::to_string(run_id_) + "; publisher '" + h.publisher + "')");
-    return false;
-  }
-  const std::string expected = publisherOf(channel);
-  if (!expected.empty() && h.publisher != expected) {
-    reject(channel, RejectReason::kWrongPublisher,
-           "published by '" + h.publisher + "', expected '" + expected + "'");
-    return false;
-  }
-  const std::string source = channel + "\n" + h.publisher + "\n" + std::to_string(h.publisher_pid);
-  if (order == Order::kAcceptReordered) {
-    // A window of the newest kSequenceWindow numbers: inside it a number
-    // counts once, in any order; below it nothing counts (it is older than
-    // any reordering -- a replay).
-    SequenceWindow& w = windows_[source];
-    if (h.seq <= 0 || h.seq <= w.newest - kSequenceWindow || !w.seen.insert(h.seq).second) {
-      reject(channel, RejectReason::kOldOrRepeated,
-             "sequence number " + std::to_string(h.seq) + " of '" + h.publisher +
-                 "' seen before or older than the window (a duplicate or a replay)");
-      return false;
-    }
-    w.newest = std::max(w.newest, h.seq);
-    while (*w.seen.begin() <= w.newest - kSequenceWindow) w.seen.erase(w.seen.begin());
-    return true;
-  }
-  int64_t& last = last_seq_[source];
-  if (h.seq <= last) {
-    reject(channel, RejectReason::kOldOrRepeated,
-           "sequence number " + std::to_string(h.seq) + " of '" + h.publisher + "' not newer than " +
-               std::to_string(last) + " (a duplicate or reordered datagram)");
-    return false;
-  }
-  last = h.seq;
-  return true;
+  HeaderAdmission& admission = order == Order::kNewestOnly ? newest_only_ : reordered_;
+  const std::optional<Refusal> refused = admission.admit(channel, h, order);
+  if (refused) reject(channel, refused->reason, refused->detail);
+  return !refused;
 }
 
 void LcmNode::noteError(const std::string& channel, const std::string& what) {

@@ -20,6 +20,7 @@
 #include "lagrange/header_t.hpp"
 #include "transport/checksum.hpp"
 #include "transport/fault_injector.hpp"
+#include "transport/header_admission.hpp"
 #include "transport/message_auth.hpp"
 #include "transport/safe_decode.hpp"
 
@@ -27,18 +28,6 @@ namespace lagrange::transport {
 
 /// Why a message was rejected (empty string: accepted).
 using Rejection = std::string;
-
-/// Why a message was rejected (channel_stats_t's rejected_* counters).
-enum class RejectReason {
-  kUndecodable,
-  kOtherRun,
-  kWrongPublisher,
-  kOldOrRepeated,
-  kInvalid,
-  kCorrupt,
-  kUnauthenticated  ///< no valid MAC with the run's key: forged, altered, or from a program without the key
-};
-inline constexpr int kRejectReasons = 7;
 
 struct ChannelCounters {
   long long published = 0;
@@ -71,11 +60,9 @@ class LcmNode {
   /// neither signs nor checks (a process on its own, tests).
   void authenticate(const MessageKey& key);
 
-  /// What a subscription does with a datagram older than the newest one of its publisher.
-  enum class Order {
-    kNewestOnly,      ///< reject it (old_or_repeated): inputs of the mathematics, where late means stale
-    kAcceptReordered  ///< accept it unless it is a repeat: records, where a late sample is still a sample
-  };
+  /// What a subscription does with a datagram older than the newest one of
+  /// its publisher (HeaderAdmission::Order: refuse it, or accept it once).
+  using Order = HeaderAdmission::Order;
 
   /// Subscribe to a channel with type Msg. `validate` returns an empty string
   /// to accept, or the reason to reject; `handle` sees accepted messages only.
@@ -116,9 +103,6 @@ class LcmNode {
                     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> handle);
 
   static constexpr int kQueueCapacity = 100000;
-  /// Order::kAcceptReordered: how far behind its publisher's newest a
-  /// sequence number may be and still count (once).
-  static constexpr int64_t kSequenceWindow = 100000;
 
   /// Process incoming messages for up to timeout_ms; returns false on an LCM error.
   bool handle(int timeout_ms);
@@ -155,8 +139,9 @@ class LcmNode {
   bool authentic(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void reject(const std::string& channel, RejectReason why, const std::string& detail);
   void stamp(const std::string& channel, lagrange::header_t& header) const;
-  /// Whether a received header belongs here: this run, the channel's
-  /// publisher, a newer sequence number. Rejects (and returns false) if not.
+  /// Whether a received header belongs here (HeaderAdmission: this run, the
+  /// channel's publisher, a newer sequence number of its current process).
+  /// Rejects (and returns false) if not.
   bool admit(const std::string& channel, const lagrange::header_t& header, Order order);
   void noteError(const std::string& channel, const std::string& what);
 
@@ -178,12 +163,9 @@ class LcmNode {
   const lcm::ReceiveBuffer* last_lost_ = nullptr;  ///< the datagram counted last (one per handler pass)
   int64_t last_lost_utime_ = -1;
   bool lostOnReceive(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  std::map<std::string, int64_t> last_seq_;  ///< per channel, publisher and pid
-  struct SequenceWindow {
-    int64_t newest = 0;
-    std::set<int64_t> seen;  ///< the numbers accepted within kSequenceWindow of the newest
-  };
-  std::map<std::string, SequenceWindow> windows_;  ///< the same, for Order::kAcceptReordered
+  /// One per order: a channel is read one way, but a test may read a channel both ways.
+  HeaderAdmission newest_only_;
+  HeaderAdmission reordered_;
 
   struct RawHandler {
     std::function<void(const lcm::ReceiveBuffer*, const std::string&)> fn;

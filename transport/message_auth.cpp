@@ -7,6 +7,7 @@
 #include <mutex>
 #include <new>
 #include <stdexcept>
+#include <vector>
 
 #include "util/error.hpp"
 
@@ -40,6 +41,31 @@ MessageKey randomMessageKey() {
   MessageKey key;
   randombytes_buf(key.data(), key.size());
   return key;
+}
+
+std::array<uint8_t, 32> randomNonce() {
+  initSodium();
+  std::array<uint8_t, 32> nonce;
+  randombytes_buf(nonce.data(), nonce.size());
+  return nonce;
+}
+
+MessageKey deriveRunKey(const MessageKey& shared, const std::array<uint8_t, 32>& run_value) {
+  // The label keeps this HMAC apart from every other use of the shared key
+  // (the launchers sign their RUN_JOIN messages with it: those are LCM
+  // encodings, which start with a type's fingerprint, never with this text).
+  static const char kLabel[] = "lagrange run key v1";
+  std::vector<uint8_t> input(kLabel, kLabel + sizeof kLabel);  // with its NUL: a separator
+  input.insert(input.end(), run_value.begin(), run_value.end());
+  return MessageAuthenticator(shared).mac(input.data(), input.size());
+}
+
+std::array<uint8_t, 32> sha256(const uint8_t* data, std::size_t size) {
+  std::array<uint8_t, 32> out{};
+  unsigned int written = 0;
+  if (EVP_Digest(data, size, out.data(), &written, EVP_sha256(), nullptr) != 1 || written != out.size())
+    throw std::bad_alloc();  // OpenSSL fails only without memory
+  return out;
 }
 
 std::string toHex(const MessageKey& key) {

@@ -32,6 +32,20 @@ inline constexpr std::size_t kMacBytes = 32;
 /// (libsodium's randombytes_buf: getrandom(2)).
 MessageKey randomMessageKey();
 
+/// 32 fresh bytes from the same source: a run's own value (below).
+std::array<uint8_t, 32> randomNonce();
+
+/// The key a run's processes sign with when several runs share a key (a key
+/// file reused across runs, the hosts of a run spread with --processes):
+/// HMAC-SHA256 under the shared key of a label and a value fresh for this
+/// run. Traffic recorded from another run under the same shared key carries
+/// MACs under another run key, and fails. Without the shared key nobody
+/// can compute it; with the run key alone nobody can recover the shared one.
+MessageKey deriveRunKey(const MessageKey& shared, const std::array<uint8_t, 32>& run_value);
+
+/// SHA-256 of `size` bytes (OpenSSL's libcrypto).
+std::array<uint8_t, 32> sha256(const uint8_t* data, std::size_t size);
+
 /// The key as 64 lowercase hex digits (the key file's format).
 std::string toHex(const MessageKey& key);
 /// 64 hex digits (either case) as a key; false if `text` is anything else.

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -98,16 +99,17 @@ std::vector<uint8_t> fromPublisher(Msg m, const std::string& publisher, int64_t 
 // Runs a scenario on the machine's network (inside the test's namespace) at
 // `url` with run id kTestRunId while publishing, every 5 ms for the whole run,
 // the payloads `make(n)` returns for the n-th round on `channel` -- signed
-// with the run's key (given with --key-file), as a program holding the key
-// would send them: the MAC lets them through to the checks under test
-// (forgeries without the key: tests/integration/forgery_test.cpp).
-// Returns the run's result and how many bad messages were sent.
+// with the run's key (OUT/run.key, which the launcher derives from the key
+// file given with --key-file), as a program holding it would send them: the
+// MAC lets them through to the checks under test (forgeries without the key:
+// tests/integration/forgery_test.cpp; another run's traffic under the same
+// key file: cross_run_test.cpp). Returns the run's result and how many bad
+// messages were sent.
 std::pair<RunResult, int> runUnderBadTraffic(
     const std::string& config, const std::string& dir, const std::string& url, const std::string& channel,
     const std::function<std::vector<std::vector<uint8_t>>(int64_t)>& make, const std::string& extra = "") {
   const std::string key_file = freshDir("bad-traffic-key") + ".key";
   if (lagrange("keygen " + quote(key_file)).exit_code != 0) return {{1, "lagrange keygen failed"}, 0};
-  const transport::MessageAuthenticator key(runtime::readKeyFile(key_file));
   std::atomic<bool> done{false};
   RunResult r;
   std::thread runner([&] {
@@ -116,11 +118,20 @@ std::pair<RunResult, int> runUnderBadTraffic(
                         "' --key-file " + quote(key_file) + " " + extra);
     done = true;
   });
+  // The run's own key, once the launcher has written it whole (64 digits and a newline).
+  std::optional<transport::MessageAuthenticator> key;
+  while (!done && !key) {
+    std::ifstream in(dir + "/run.key");
+    std::string hex;
+    transport::MessageKey k;
+    if (std::getline(in, hex) && transport::fromHex(hex, k)) key.emplace(k);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
   lcm_t* lcm = lcm_create(url.c_str());
   int sent = 0;
-  for (int64_t round = 1; !done && lcm; ++round) {
+  for (int64_t round = 1; !done && lcm && key; ++round) {
     for (std::vector<uint8_t> p : make(round)) {
-      key.sign(p);
+      key->sign(p);
       lcm_publish(lcm, channel.c_str(), p.data(), static_cast<unsigned>(p.size()));
     }
     sent += static_cast<int>(make(round).size());

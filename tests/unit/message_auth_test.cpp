@@ -191,7 +191,7 @@ TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
     while (node.drain() > 0) {
     }
   };
-  const int64_t w = LcmNode::kSequenceWindow;
+  const int64_t w = HeaderAdmission::kSequenceWindow;
   for (const int64_t seq : {int64_t{5}, 3 * w, 2 * w + 1, 3 * w, 2 * w, int64_t{5}, 3 * w - 1}) send(seq);
   EXPECT_EQ(seqs, (std::vector<int64_t>{5, 3 * w, 2 * w + 1, 3 * w - 1}));
   EXPECT_EQ(node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kOldOrRepeated)],

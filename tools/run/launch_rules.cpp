@@ -11,9 +11,14 @@ bool runsHere(const RunOptions& opt, const std::string& process) {
 
 // A run spread over hosts: each launcher starts its share, on a URL they all use.
 std::string checkProcesses(const RunOptions& opt) {
-  for (const auto& p : opt.processes)
+  for (size_t i = 0; i < opt.processes.size(); ++i) {
+    const std::string& p = opt.processes[i];
     if (std::find(kProcesses.begin(), kProcesses.end(), p) == kProcesses.end())
       return "--processes: unknown process '" + p + "'; expected some of logger, controller, actuator, plant";
+    if (std::find(opt.processes.begin(), opt.processes.begin() + static_cast<long>(i), p) !=
+        opt.processes.begin() + static_cast<long>(i))
+      return "--processes: '" + p + "' given twice; expected each process once";
+  }
   if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) return "";
   if (opt.private_netns)
     return "--processes starts part of a run here and the rest runs elsewhere, which a private network "

@@ -69,15 +69,21 @@ Subcommand addRunCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
   cmd->add_option("--run-id", run.run_id,
                   "The run's identity stamped on every message (default: random; with --processes, derived "
-                  "from the LCM URL and the scenario so every host agrees)");
+                  "from the value the hosts' launchers agree on before the run)");
   cmd->add_option("--processes", run.processes,
                   "Start only these processes here (comma-separated: logger, controller, actuator, plant), "
                   "for a run spread over several hosts; needs --no-netns and --lcm-url")
       ->delimiter(',');
   cmd->add_option("--key-file", run.key_file,
-                  "The run's secret key (from `lagrange keygen`, mode 600) instead of a fresh one in "
-                  "OUT/run.key; every host of a run spread with --processes needs the same one")
+                  "A secret key shared by runs or hosts (from `lagrange keygen`, mode 600): the run's key, "
+                  "in OUT/run.key, is derived from it and a value fresh for this run, so no run accepts "
+                  "another's traffic; every host of a run spread with --processes needs the same one")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--join-timeout", run.join_timeout,
+                  "With --processes: seconds this host's launcher waits for the other hosts' launchers to "
+                  "agree on the run before it gives up (exit 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 86400.0));
   CLI::Option* check =
       cmd->add_option("--check", run.checks,
                       "Exit 3, naming each one missed with its value, when the run completes but misses a "

@@ -28,8 +28,11 @@
 #include "tools/run/progress_reader.hpp"
 #include "tools/run/run_key.hpp"
 #include "tools/run/run_outcome.hpp"
+#include "tools/run/session_handshake.hpp"
 #include "tools/spy/spy.hpp"
 #include "transport/channels.hpp"
+#include "transport/checksum.hpp"
+#include "transport/message_auth.hpp"
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
 #include "transport/run_clock.hpp"
@@ -234,18 +237,74 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
   }
 }
 
-// A run's identity. One launcher: random. Several (--processes): they must
-// agree without talking, so it is derived from what they share -- the URL and
-// the resolved scenario (FNV-1a) -- unless --run-id gives it.
-int64_t runIdFor(const RunOptions& opt, const std::string& url, const std::string& resolved_path) {
-  if (opt.run_id) return *opt.run_id;
-  if (opt.processes.empty() || opt.processes.size() == kProcesses.size()) {
-    std::random_device rd;
-    const uint64_t r = (static_cast<uint64_t>(rd()) << 32) ^ rd();
-    return static_cast<int64_t>(r >> 1) | 1;  // positive, never 0 ("any run")
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A random run id: positive, never 0 ("any run").
+int64_t randomRunId() {
+  std::random_device rd;
+  const uint64_t r = (static_cast<uint64_t>(rd()) << 32) ^ rd();
+  return static_cast<int64_t>(r >> 1) | 1;
+}
+
+// A run spread over hosts: this launcher starts part of it.
+bool partialLaunch(const RunOptions& opt) {
+  return !opt.processes.empty() && opt.processes.size() != kProcesses.size();
+}
+
+// The run's key and identity, decided before any process starts.
+struct RunIdentity {
+  transport::MessageKey key{};  ///< meaningless when unsigned
+  int64_t run_id = 0;
+  std::vector<std::string> members;  ///< the other hosts' launchers (--processes)
+};
+
+// The key and run id of this run (docs/reliability.md "Threat model"):
+// - no --key-file: a fresh random key; the run id random (or --run-id);
+// - --key-file on one host: a key derived from it and 32 fresh random bytes;
+// - --processes: the launchers agree on a fresh value over the URL first
+//   (tools/run/session_handshake.hpp) and derive the key from it; the run id
+//   from it too, unless --run-id. Unsigned (the bench's build of the front
+//   end): the run id as before, derived from URL and scenario on several hosts.
+// Nothing when Ctrl-C came during the agreement.
+std::optional<RunIdentity> decideIdentity(const RunOptions& opt, const std::string& url,
+                                          const std::string& resolved_path) {
+  RunIdentity id;
+  const std::string resolved_text = readText(resolved_path);
+  if (!opt.sign) {
+    id.run_id = opt.run_id           ? *opt.run_id
+                : partialLaunch(opt) ? sharedRunId(url, resolved_text)
+                                     : randomRunId();
+    return id;
   }
-  std::ifstream in(resolved_path);
-  return sharedRunId(url, std::string(std::istreambuf_iterator<char>(in), {}));
+  if (opt.key_file.empty()) {
+    id.key = transport::randomMessageKey();
+    id.run_id = opt.run_id ? *opt.run_id : randomRunId();
+    return id;
+  }
+  const transport::MessageKey shared = runtime::readKeyFile(opt.key_file);
+  if (!partialLaunch(opt)) {
+    id.key = transport::deriveRunKey(shared, transport::randomNonce());
+    id.run_id = opt.run_id ? *opt.run_id : randomRunId();
+    return id;
+  }
+  HandshakeOptions handshake;
+  handshake.lcm_url = url;
+  handshake.meeting_id = opt.run_id ? *opt.run_id : sharedRunId(url, resolved_text);
+  handshake.processes = opt.processes;
+  handshake.scenario_digest = static_cast<int64_t>(
+      transport::fnv1a(reinterpret_cast<const uint8_t*>(resolved_text.data()), resolved_text.size()));
+  handshake.timeout = opt.join_timeout;
+  handshake.quiet = opt.quiet;
+  const std::optional<AgreedRun> agreed =
+      agreeWithOtherLaunchers(handshake, shared, [] { return launcher_signal != 0; });
+  if (!agreed) return std::nullopt;
+  id.key = transport::deriveRunKey(shared, agreed->value);
+  id.run_id = opt.run_id ? *opt.run_id : runIdFromValue(agreed->value);
+  id.members = agreed->members;
+  return id;
 }
 
 // CPU time of a process, summed over its restarts.
@@ -268,12 +327,26 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                        const HandedFiles& handed) {
   const std::string& resolved = handed.resolved;
   const std::string url = opt.lcm_url.empty() ? wiring::freshLcmUrl() : opt.lcm_url;
-  const int64_t run_id = runIdFor(opt, url, resolved);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  std::signal(SIGPIPE, SIG_IGN);
   // The run's secret (docs/reliability.md): the processes get the file's
-  // path, never the key itself, and a key made here ends with the run.
+  // path, never the key itself, and the key ends with the run.
   std::optional<RunKey> key;
+  int64_t run_id = 0;
   try {
-    if (opt.sign) key.emplace(opt.key_file, out_dir);
+    const std::optional<RunIdentity> id = decideIdentity(opt, url, resolved);
+    if (!id) {
+      std::cerr << "lagrange run: interrupted before the launchers agreed; nothing was started\n";
+      return kExitInterrupted;
+    }
+    run_id = id->run_id;
+    if (opt.sign) key.emplace(id->key, out_dir);
+    if (!opt.quiet && partialLaunch(opt)) {
+      std::cout << "lagrange run: the launchers agreed on this run's key and id (" << run_id << "):";
+      for (const std::string& m : id->members) std::cout << " " << m << ";";
+      std::cout << " starting " << joinProcesses(opt.processes) << " here\n";
+    }
   } catch (const std::exception& e) {
     return failWith("lagrange run", e);
   }
@@ -287,9 +360,6 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   } catch (const std::exception& e) {
     return failWith("lagrange run", e);
   }
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
-  std::signal(SIGPIPE, SIG_IGN);
 
   // Progress comes from the logger through a pipe (its --progress-fd), not
   // over LCM: a launcher on the LCM URL would receive every message of the
@@ -459,6 +529,14 @@ int runScenarioLocked(const RunOptions& opt) {
       for (const auto& [process, cpus] : scenario.realtime.cpus)
         if (runsHere(opt, process)) transport::checkCpus(cpus, "realtime.cpus." + process);
     out_dir = prepareOutDir(opt.out_dir);
+    // The run writes its own key there, in place of whatever is there.
+    std::error_code ec;
+    if (!opt.key_file.empty() &&
+        fs::weakly_canonical(opt.key_file, ec) == fs::weakly_canonical(fs::path(out_dir) / "run.key", ec))
+      throw config::ConfigError(
+          "--key-file '" + opt.key_file +
+          "' is the run's own key file OUT/run.key, which every run replaces with a key "
+          "of its own; expected a key file outside the output directory");
   } catch (const std::exception& e) {
     return failWith("lagrange run", e);
   }

@@ -37,9 +37,14 @@ struct RunOptions {
   /// The run's identity on every message; unset: random, or for --processes
   /// derived from the LCM URL and the resolved scenario (the same on every host).
   std::optional<int64_t> run_id;
-  /// The run's secret key file (runtime/key_file.hpp); empty: a fresh key in
-  /// OUT/run.key, removed when the run ends. Required with --processes.
+  /// A secret key file shared by runs or hosts (runtime/key_file.hpp): the
+  /// run's key is derived from it and a value fresh for this run (with
+  /// --processes, agreed between the launchers). Empty: a fresh random key.
+  /// Either way the processes get OUT/run.key, removed when the run ends.
+  /// Required with --processes.
   std::string key_file;
+  /// --processes: how long [s] the launchers wait for each other before the run.
+  double join_timeout = 60.0;
   /// False only in the benchmark's build of the front end
   /// (LAGRANGE_BENCH_UNSIGNED, bench/CMakeLists.txt), which measures what the
   /// MAC costs: no key, nothing signed or checked. Never a user option.

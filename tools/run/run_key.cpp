@@ -8,19 +8,12 @@
 
 namespace lagrange::tools {
 
-RunKey::RunKey(const std::string& key_file, const std::string& out_dir) {
-  if (!key_file.empty()) {
-    path_ = std::filesystem::absolute(key_file).string();
-    return;
-  }
+RunKey::RunKey(const transport::MessageKey& key, const std::string& out_dir) {
   path_ = std::filesystem::absolute(std::filesystem::path(out_dir) / "run.key").string();
   unlink(path_.c_str());  // a killed run's key; unlink removes a link itself, not its target
-  runtime::writeKeyFile(path_, transport::randomMessageKey());
-  owned_ = true;
+  runtime::writeKeyFile(path_, key);
 }
 
-RunKey::~RunKey() {
-  if (owned_) unlink(path_.c_str());
-}
+RunKey::~RunKey() { unlink(path_.c_str()); }
 
 }  // namespace lagrange::tools

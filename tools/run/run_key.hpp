@@ -1,21 +1,27 @@
 #pragma once
 /// @file
-/// The secret key of one `lagrange run` (docs/reliability.md, "Keys"): the
-/// user's --key-file, or a fresh random key in OUT/run.key that lives as long
-/// as this object -- the processes read it at start and on a restart, and
-/// nothing needs it once the run has ended.
+/// The secret key of one `lagrange run` (docs/reliability.md, "Threat
+/// model"), in OUT/run.key for as long as this object lives -- the processes
+/// read it at start and on a restart, and nothing needs it once the run has
+/// ended. It is always this run's own: a fresh random key, or, when the user
+/// gives a key file (shared by runs, or by the hosts of a run spread with
+/// --processes), a key derived from it and a value fresh for this run
+/// (transport::deriveRunKey). A key file given by the user is never handed to
+/// the processes itself, so nothing recorded from another run under it is
+/// accepted by this one.
 
 #include <string>
+
+#include "transport/message_auth.hpp"
 
 namespace lagrange::tools {
 
 class RunKey {
  public:
-  /// `key_file` non-empty: that file (already checked by readKeyFile).
-  /// Empty: a fresh key in OUT/run.key (a leftover of a killed run is
+  /// Writes `key` to OUT/run.key, mode 600 (a leftover of a killed run is
   /// replaced; a link there is removed, never followed). config::ConfigError
   /// if the file cannot be written.
-  RunKey(const std::string& key_file, const std::string& out_dir);
+  RunKey(const transport::MessageKey& key, const std::string& out_dir);
   ~RunKey();
   RunKey(const RunKey&) = delete;
   RunKey& operator=(const RunKey&) = delete;
@@ -25,7 +31,6 @@ class RunKey {
 
  private:
   std::string path_;
-  bool owned_ = false;  ///< made here: removed at the end
 };
 
 }  // namespace lagrange::tools

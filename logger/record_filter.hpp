@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// What the logger records: every authenticated datagram of the run's own
+/// processes, once -- the same header checks its processes make
+/// (transport::HeaderAdmission: this run's id, the channel's publisher, a
+/// sequence number its current process has not used), so that a message of
+/// another run or a re-sent copy never lands in run.lcm where `report`,
+/// `export` and the Python reader would take it for the run's. What the
+/// processes refuse for its content (a NaN, a wrong joint count) is still
+/// recorded: it is what the run's processes sent, and the log is their
+/// record. Datagrams on channels the project does not know are recorded as
+/// before (they passed the MAC when the run has a key).
+
+#include <map>
+#include <string>
+
+#include "transport/channels.hpp"
+#include "transport/header_admission.hpp"
+
+namespace lagrange::logger {
+
+class RecordFilter {
+ public:
+  explicit RecordFilter(int64_t run_id) : admission_(run_id) {}
+
+  /// True when the datagram is to be recorded; else counted by reason.
+  bool admit(const std::string& channel, const void* data, std::size_t size) {
+    lagrange::header_t h;
+    if (!transport::peekHeader(channel, data, size, h))
+      return !transport::carriesHeader(channel) || refuse(channel, transport::RejectReason::kUndecodable);
+    const auto refused = admission_.admit(channel, h, transport::HeaderAdmission::Order::kAcceptReordered);
+    return !refused || refuse(channel, refused->reason);
+  }
+
+  /// Per channel and reason (summary.json log.not_recorded).
+  const std::map<std::string, std::map<std::string, long long>>& notRecorded() const { return not_recorded_; }
+
+ private:
+  bool refuse(const std::string& channel, transport::RejectReason why) {
+    ++not_recorded_[channel][transport::reasonName(why)];
+    return false;
+  }
+
+  transport::HeaderAdmission admission_;
+  std::map<std::string, std::map<std::string, long long>> not_recorded_;
+};
+
+}  // namespace lagrange::logger
