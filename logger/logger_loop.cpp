@@ -22,6 +22,7 @@
 #include "runtime/process.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
+#include "util/error.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::logger {
@@ -71,8 +72,11 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       transport::perTickChannels({s.flexible.has_value(), s.velocitySensor()});
   TickConfirmation confirmation(per_tick, s.lastTick(), s.mode == config::Mode::kLockstep,
                                 s.lockstep.logger_window);
-  RunEnd end(
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.finish_grace)));
+  RunEnd end(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.finish_grace)),
+             Clock::now());
+  // The plant never waits longer than this without sending anything (it
+  // re-sends what is unanswered meanwhile): past it, it is gone.
+  const double plant_silence_limit = 4.0 * s.lockstep.stall_timeout;
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
   RecordFilter record_filter(node.runId());  // only what the run's processes would accept
 
@@ -103,6 +107,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       node.subscribe<Msg>(
           channel, [&s](const Msg& m) { return validateFor(s, m); },
           [&, channel](const Msg& m) {
+            if (m.header.publisher == "plant") end.plantHeard(Clock::now());
             observe(metrics, m);
             confirmation.record(channel, m.header.tick, metrics.lastTick());
           },
@@ -114,6 +119,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       transport::kStatus, [](const auto& m) { return transport::validate(m); },
       [&](const lagrange::status_t& m) {
         if (m.process == "logger") return;
+        if (m.process == "plant") end.plantHeard(Clock::now());
         facts.final_status[m.process] = m;
         // validate() admitted only known states
         end.processState(m.process, *util::enumFrom(transport::kProcessStateNames, m.state), Clock::now());
@@ -154,6 +160,14 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       next_status = now + std::chrono::milliseconds(100);
     }
     if (end.due(now, confirmation.confirmed(metrics.lastTick()) >= s.lastTick())) break;
+    if (const auto silent = end.plantGone(now, std::chrono::duration_cast<Clock::duration>(
+                                                   std::chrono::duration<double>(plant_silence_limit))))
+      throw RuntimeFault(fmt::format(
+          "the plant has not been heard for {:.0f} s (at most 4 x lockstep.stall_timeout = {:g} s is "
+          "allowed: it "
+          "re-sends or reports well within that); its process or its host is gone, or never started "
+          "(last tick recorded: {}). The log so far is kept in {}",
+          std::chrono::duration<double>(*silent).count(), plant_silence_limit, metrics.lastTick(), log_path));
   }
   // Drain what is still queued, then close the log before the summary.
   // Bounded in time: other traffic on the URL (another publisher, a

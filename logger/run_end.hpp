@@ -4,8 +4,11 @@
 /// reported "finished" and so have the controller and the actuator, or a
 /// grace period after the plant finished -- or, since the plant's final
 /// STATUS can be lost like any datagram, a grace period after every tick of
-/// the run was confirmed.
+/// the run was confirmed. And when the plant has gone: a run spread over
+/// hosts whose plant's host died leaves nobody to stop the logger, so
+/// silence from the plant past a limit is an end too (a failed one).
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <optional>
@@ -19,7 +22,8 @@ class RunEnd {
  public:
   using Clock = std::chrono::steady_clock;
 
-  explicit RunEnd(Clock::duration grace) : grace_(grace) {}
+  /// @param start when the logger started listening: the plant's silence counts from there.
+  RunEnd(Clock::duration grace, Clock::time_point start) : grace_(grace), plant_heard_at_(start) {}
 
   using State = transport::ProcessState;
 
@@ -27,6 +31,15 @@ class RunEnd {
   void processState(const std::string& process, State state, Clock::time_point now) {
     states_[process] = state;
     if (process == "plant" && state == State::kFinished && !plant_finished_at_) plant_finished_at_ = now;
+  }
+
+  /// A message of the plant (any channel) received at `now`.
+  void plantHeard(Clock::time_point now) { plant_heard_at_ = std::max(plant_heard_at_, now); }
+  /// How long the plant has been silent at `now`, when that is longer than
+  /// `limit` and it has not finished; else nothing.
+  std::optional<Clock::duration> plantGone(Clock::time_point now, Clock::duration limit) const {
+    if (plant_finished_at_ || now - plant_heard_at_ <= limit) return std::nullopt;
+    return now - plant_heard_at_;
   }
 
   /// True when plant, controller and actuator have all reported `state`.
@@ -62,6 +75,7 @@ class RunEnd {
   Clock::duration grace_;
   std::map<std::string, State> states_;
   std::optional<Clock::time_point> plant_finished_at_, all_ticks_at_;
+  Clock::time_point plant_heard_at_;
 };
 
 }  // namespace lagrange::logger

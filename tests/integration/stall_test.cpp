@@ -58,6 +58,24 @@ TEST(Stall, AControllerThatNeverAnswersStopsTheRunNamingIt) {
 // The project's own controller in the external slot, but signing with a key
 // of its own: every command it sends fails the MAC at the actuator, and the
 // diagnosis says so with the count.
+// A run spread over hosts whose plant's host is gone (or never came): the
+// logger's host had nobody to stop it, and waited forever (seen: 17 minutes).
+// Now the logger stops, naming the plant's silence, and keeps its log.
+TEST(Stall, ALoggerWhosePlantIsNeverHeardStopsNamingIt) {
+  const std::string out = freshDir("stall-no-plant");
+  std::filesystem::create_directories(out);
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r = shell(
+      kBin + "/lagrange-logger --config " + quote(kRigid) +
+      " --set lockstep.stall_timeout=0.5 --lcm-url 'udpm://239.255.76.67:7695?ttl=0' --out " + quote(out));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_LT(seconds, 15.0) << r.output;
+  EXPECT_GE(seconds, 2.0) << "before 4 x lockstep.stall_timeout";
+  EXPECT_TRUE(has(r.output, "the plant has not been heard for 2 s")) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(out + "/run.lcm"));
+}
+
 TEST(Stall, AControllerWithTheWrongKeyIsNamedWithItsRejectedCommands) {
   const std::string dir = freshDir("stall-wrong-key");
   std::filesystem::create_directories(dir);

@@ -63,7 +63,7 @@ const RunEnd::Clock::time_point t0{};
 using State = RunEnd::State;
 
 TEST(RunEnd, EndsWhenEveryProcessFinished) {
-  RunEnd end(milliseconds(2000));
+  RunEnd end(milliseconds(2000), t0);
   end.processState("plant", State::kFinished, t0);
   EXPECT_FALSE(end.due(t0, false)) << "controller and actuator have not finished yet";
   end.processState("controller", State::kFinished, t0);
@@ -74,22 +74,37 @@ TEST(RunEnd, EndsWhenEveryProcessFinished) {
 }
 
 TEST(RunEnd, EndsAGraceAfterThePlantWhenOthersAreSilent) {
-  RunEnd end(milliseconds(2000));
+  RunEnd end(milliseconds(2000), t0);
   end.processState("plant", State::kFinished, t0);
   EXPECT_FALSE(end.due(t0 + milliseconds(2000), false));
   EXPECT_TRUE(end.due(t0 + milliseconds(2001), false));
 }
 
 TEST(RunEnd, EndsAGraceAfterEveryTickWhenThePlantsStatusIsLost) {
-  RunEnd end(milliseconds(2000));
+  RunEnd end(milliseconds(2000), t0);
   EXPECT_FALSE(end.due(t0, false));
   EXPECT_FALSE(end.due(t0 + milliseconds(500), true)) << "the grace starts when every tick is confirmed";
   EXPECT_FALSE(end.due(t0 + milliseconds(2500), true));
   EXPECT_TRUE(end.due(t0 + milliseconds(2501), true));
 }
 
+// A run spread over hosts whose plant's host died: the logger must not wait forever.
+TEST(RunEnd, APlantSilentPastTheLimitIsGoneUnlessItFinished) {
+  RunEnd end(milliseconds(2000), t0);
+  EXPECT_FALSE(end.plantGone(t0 + milliseconds(4000), milliseconds(4000)))
+      << "silent since the start, not past it";
+  EXPECT_EQ(end.plantGone(t0 + milliseconds(4001), milliseconds(4000)), milliseconds(4001));
+  end.plantHeard(t0 + milliseconds(3000));
+  EXPECT_FALSE(end.plantGone(t0 + milliseconds(6000), milliseconds(4000)));
+  EXPECT_TRUE(end.plantGone(t0 + milliseconds(7001), milliseconds(4000)));
+  end.plantHeard(t0 + milliseconds(1000));  // a late message does not move it back
+  EXPECT_TRUE(end.plantGone(t0 + milliseconds(7001), milliseconds(4000)));
+  end.processState("plant", State::kFinished, t0 + milliseconds(7500));
+  EXPECT_FALSE(end.plantGone(t0 + milliseconds(60000), milliseconds(4000))) << "finished is not gone";
+}
+
 TEST(RunEnd, AllEndedMeansEveryoneFinishedOrWasInterrupted) {
-  RunEnd end(milliseconds(2000));
+  RunEnd end(milliseconds(2000), t0);
   end.processState("plant", State::kInterrupted, t0);
   end.processState("controller", State::kFinished, t0);
   EXPECT_FALSE(end.allEnded());

@@ -62,12 +62,6 @@ std::optional<JoinMessage> fromMessage(const lagrange::run_join_t& m) {
   return out;
 }
 
-std::string joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& i : items) out += (out.empty() ? "" : "; ") + i;
-  return out;
-}
-
 }  // namespace
 
 int64_t runIdFromValue(const Nonce& value) {
@@ -101,7 +95,8 @@ std::optional<AgreedRun> agreeWithOtherLaunchers(const HandshakeOptions& options
 
   const std::string self = joinProcesses(options.processes);
   double next_send = 0.0, next_note = 5.0;
-  std::optional<double> agreed_at, conflict_since;
+  std::optional<double> agreed_at;
+  double conflict_since = -1.0;  // when the conflict now seen began (-1: none)
   while (!stopped()) {
     const double now = seconds();
     if (now >= next_send) {
@@ -113,11 +108,11 @@ std::optional<AgreedRun> agreeWithOtherLaunchers(const HandshakeOptions& options
     if (state == SessionAgreement::State::kConflict) {
       // Lasting: a launcher restarted on another host is heard beside its
       // predecessor for up to kLiveSeconds.
-      if (!conflict_since) conflict_since = now;
-      if (now - *conflict_since > 1.5 * SessionAgreement::kLiveSeconds)
+      if (conflict_since < 0.0) conflict_since = now;
+      if (now - conflict_since > 1.5 * SessionAgreement::kLiveSeconds)
         throw BadInput("the launchers of this run cannot agree: " + agreement.conflict(seconds()));
     } else {
-      conflict_since.reset();
+      conflict_since = -1.0;
     }
     if (state == SessionAgreement::State::kAgreed && !agreed_at) {
       agreed_at = now;
