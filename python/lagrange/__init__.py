@@ -26,5 +26,6 @@ from .plant_position_t import plant_position_t
 from .plant_rate_t import plant_rate_t
 from .plant_truth_t import plant_truth_t
 from .robot_description_t import robot_description_t
+from .run_join_t import run_join_t
 from .scenario_t import scenario_t
 from .status_t import status_t
