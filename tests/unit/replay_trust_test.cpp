@@ -20,6 +20,7 @@
 #include "support/log_events.hpp"
 #include "support/temp_dir.hpp"
 #include "tools/replay/replay.hpp"
+#include "tools/replay/shell_words.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -200,6 +201,19 @@ TEST_F(ReplayTrust, RandomBitFlipsAreNamedNeverTakenForADivergence) {
     }
   }
   EXPECT_GT(refusals_naming_damage, 0) << "no flip hit a message replay needed: the test tests nothing";
+}
+
+// A command read from a log is shown as a shell reads it back, and no byte of
+// it reaches the terminal as a control character.
+TEST(ShellWords, QuoteEveryWordAndEscapeControlBytes) {
+  EXPECT_EQ(tools::shellWord("python3"), "'python3'");
+  EXPECT_EQ(tools::shellWord("a b"), "'a b'");
+  EXPECT_EQ(tools::shellWord("it's"), "'it'\\''s'");
+  EXPECT_EQ(tools::shellWord(""), "''");
+  EXPECT_EQ(tools::shellWord("\x1b[2J"), "$'\\x1b[2J'");
+  EXPECT_EQ(tools::shellWord("caf\xc3\xa9 'x'\\"), "$'caf\\xc3\\xa9 \\'x\\'\\\\'");
+  EXPECT_EQ(tools::shellWords({"sh", "-c", "touch x"}), "'sh' '-c' 'touch x'");
+  EXPECT_EQ(tools::shellWords({std::string(30, 'a')}, 10), "'aaaaaaaaa... (22 more characters)");
 }
 
 }  // namespace
