@@ -77,7 +77,7 @@ namespace {
 
 // A directory only this user can enter (mkdtemp: mode 0700, a name nobody
 // can guess or plant beforehand) for the replay's key and the program's
-// output. The key goes with the replay; the output stays when the program
+// output. Both go with the replay, but the output stays when the program
 // failed, so that its messages can be read.
 class ScratchDirectory {
  public:
@@ -101,12 +101,15 @@ class ScratchDirectory {
 
   std::string keyFile() const { return path_ + "/run.key"; }
   std::string outputFile() const { return path_ + "/controller.log"; }
-  /// Everything is removed at the end (the replay ran to its result).
-  void discardOutput() { keep_output_ = false; }
+  /// The program failed: its output stays, and the error names it; else all goes.
+  std::string keepOutput() {
+    keep_output_ = true;
+    return outputFile();
+  }
 
  private:
   std::string path_;
-  bool keep_output_ = true;
+  bool keep_output_ = false;
 };
 
 }  // namespace
@@ -186,13 +189,14 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
         resend = Clock::now() + std::chrono::milliseconds(50);
       }
       for (const wiring::ChildExit& e : supervisor.reap())
-        throw ReplayError(
-            "the external controller " + e.describe() + " after " + std::to_string(result.commands) + " of " +
-                std::to_string(o.rec.commands.size()) + " commands (its output: " + output + ")",
-            {}, ErrorKind::kRuntimeFault);
+        throw ReplayError("the external controller " + e.describe() + " after " +
+                              std::to_string(result.commands) + " of " +
+                              std::to_string(o.rec.commands.size()) +
+                              " commands (its output: " + scratch.keepOutput() + ")",
+                          {}, ErrorKind::kRuntimeFault);
       if (Clock::now() > deadline)
         throw ReplayError("the external controller did not answer PLANT_POSITION tick " + std::to_string(k) +
-                              " within 10 s (its output: " + output + ")",
+                              " within 10 s (its output: " + scratch.keepOutput() + ")",
                           {}, ErrorKind::kRuntimeFault);
       node.handle(5);
     }
@@ -207,7 +211,6 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
   for (int copy = 0; copy < 3; ++copy) status.publish(transport::ProcessState::kFinished, 0, 0.0);
   supervisor.waitAll(2.0);
   supervisor.stopAll(2.0);
-  scratch.discardOutput();
 }
 
 }  // namespace lagrange::tools

@@ -111,13 +111,9 @@ void parseScenarios(Opened& o, const std::string& log_path, const std::vector<st
   } catch (const config::ConfigError& e) {
     throw ReplayError(std::string("the log's SCENARIO is not a valid scenario: ") + e.what());
   }
-  if (overrides.empty()) {
-    o.shape = o.logged_shape;
-    return;
-  }
+  if (overrides.empty()) return;
   try {
     o.scenario = config::parseScenario(*o.rec.scenario, source, overrides);
-    o.shape = shapeOf(o.scenario);
   } catch (const config::ConfigError& e) {
     throw ReplayError(std::string("the log's SCENARIO changed by --set is not a valid scenario: ") +
                       e.what());

@@ -46,12 +46,12 @@ struct Recorded {
   bool truncated = false;  ///< the log ended inside an event (a run killed while writing, or a cut file)
 };
 
-/// The log, its scenario as recorded and as replayed (with --set), and the warnings so far.
+/// The log, its scenario as replayed (with --set), what its own SCENARIO
+/// gives its messages, and the warnings so far.
 struct Opened {
   Recorded rec;
   config::Scenario scenario;                           ///< as replayed: the log's, changed by --set
   MessageShape logged_shape;                           ///< what the log's own SCENARIO gives its messages
-  MessageShape shape;                                  ///< what the replayed scenario gives them
   config::Mode logged_mode = config::Mode::kLockstep;  ///< how the run that wrote the log ran
   ReplayResult result;
 };
