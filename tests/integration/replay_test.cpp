@@ -128,7 +128,7 @@ TEST_F(Recorded, ATruncatedLogReplaysWhatWasRecorded) {
   const bool nearly_all = std::regex_search(c.output, replayed, std::regex("reproduced all ([0-9]+)")) &&
                           std::stoll(replayed[1]) >= 1001 - 3;
   EXPECT_TRUE(nearly_all || (c.exit_code == 2 && c.output.find("the log lacks") != std::string::npos &&
-                              c.output.find("corrupt bytes skipped at byte") != std::string::npos))
+                             c.output.find("corrupt bytes skipped at byte") != std::string::npos))
       << c.output;
   EXPECT_EQ(c.output.find("DIVERGED"), std::string::npos) << c.output;
   const std::string report_dir = freshDir("corrupt-report");
