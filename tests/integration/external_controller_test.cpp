@@ -2,8 +2,9 @@
 // PD of examples/external_controller/, compiled here with javac and never by
 // CMake, takes the controller's place over the LCM contract of
 // docs/external_controllers.md -- in lockstep and in realtime -- and its runs
-// replay: `lagrange replay --component controller` runs it again on the
-// recorded positions and gets every recorded command back bit for bit.
+// replay: `lagrange replay LOG -- COMMAND` runs the program named after --
+// (never the command the log holds) on the recorded positions and gets every
+// recorded command back bit for bit.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -43,6 +44,16 @@ std::string javaCommand() { return "java, -cp, \"" + pdClasses() + ":" + kClassP
 std::string pythonCommand() {
   return "env, \"PYTHONPATH=" + std::string(LAGRANGE_SOURCE_DIR) + "/python\", python3, -S, \"" +
          LAGRANGE_SOURCE_DIR + "/examples/external_controller/pd_controller.py\"";
+}
+// The same commands as replay takes them, after -- (argv words, shell-quoted).
+std::string javaReplayCommand(const std::string& kp = "20,5") {
+  return " -- java -cp " + quote(pdClasses() + ":" + kClassPath) + " PdController --kp " + quote(kp) +
+         " --kd 4,1 --qd 0.5,-0.2";
+}
+std::string pythonReplayCommand() {
+  return " -- env " + quote("PYTHONPATH=" + std::string(LAGRANGE_SOURCE_DIR) + "/python") + " python3 -S " +
+         quote(std::string(LAGRANGE_SOURCE_DIR) + "/examples/external_controller/pd_controller.py") +
+         " --kp 20,5 --kd 4,1 --qd 0.5,-0.2";
 }
 std::string scenario(const std::string& mode, const std::string& command = javaCommand()) {
   const std::string path = freshDir("external-config") + ".yaml";
@@ -114,14 +125,13 @@ TEST(ExternalController, AJavaPdTakesTheControllersPlaceInLockstepAndItsRunRepla
   EXPECT_EQ(readCommands(out + "/run.lcm").size(), 3001u);
   expectThePdLaw(out + "/run.lcm");
   for (const std::string component : {"controller", "actuator", "plant"}) {
-    const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component " + component);
+    const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component " + component +
+                                      (component == "controller" ? javaReplayCommand() : ""));
     EXPECT_EQ(replay.exit_code, 0) << component << ": " << replay.output;
     EXPECT_NE(replay.output.find("reproduced all 3001 recorded outputs"), std::string::npos) << replay.output;
   }
-  // A changed gain is caught: the replayed controller is the program, with the log's scenario.
-  const RunResult changed = lagrange(
-      "replay " + quote(out + "/run.lcm") + " --set 'controller.command=[java, -cp, \"" + pdClasses() + ":" +
-      kClassPath + "\", PdController, --kp, \"21,5\", --kd, \"4,1\", --qd, \"0.5,-0.2\"]'");
+  // A changed gain is caught: the replayed controller is the program named after --.
+  const RunResult changed = lagrange("replay " + quote(out + "/run.lcm") + javaReplayCommand("21,5"));
   EXPECT_EQ(changed.exit_code, 1) << changed.output;
   EXPECT_NE(changed.output.find("DIVERGED after 1 outputs at tick 0"), std::string::npos) << changed.output;
 }
@@ -135,7 +145,8 @@ TEST(ExternalController, AJavaPdRunsInRealtimeAndItsRunReplays) {
   // ticks it answered depends on the machine's load, so no count is asserted.
   EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
   expectLatenciesNeverNegative(out);
-  const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
+  const RunResult replay =
+      lagrange("replay " + quote(out + "/run.lcm") + " --component controller" + javaReplayCommand());
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
 }
@@ -163,7 +174,7 @@ TEST(ExternalController, APythonPdMatchesTheJavaOneBitForBitInLockstepAndReplays
   }
   EXPECT_EQ(readCommands(java + "/run.lcm"), readCommands(python + "/run.lcm"));
   expectThePdLaw(python + "/run.lcm");
-  const RunResult replay = lagrange("replay " + quote(python + "/run.lcm") + " --component controller");
+  const RunResult replay = lagrange("replay " + quote(python + "/run.lcm") + pythonReplayCommand());
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all 3001 recorded outputs bit for bit"), std::string::npos)
       << replay.output;
@@ -193,7 +204,7 @@ TEST(ExternalController, APythonPdRunsInRealtimeAndItsRunReplays) {
   EXPECT_TRUE(readSummary(out)["tracking"]["met"].get<bool>());
   expectLatenciesNeverNegative(out);
   expectThePdLaw(out + "/run.lcm");
-  const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + " --component controller");
+  const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + pythonReplayCommand());
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("reproduced all"), std::string::npos) << replay.output;
 }
@@ -290,7 +301,8 @@ TEST(ExternalController, ACppPdBuiltAgainstTheInstalledPackageMatchesTheJavaOne)
   EXPECT_TRUE(readSummary(cpp)["tracking"]["met"].get<bool>());
   EXPECT_EQ(readCommands(java + "/run.lcm"), readCommands(cpp + "/run.lcm"));
   expectThePdLaw(cpp + "/run.lcm");
-  const RunResult replay = lagrange("replay " + quote(cpp + "/run.lcm") + " --component controller");
+  const RunResult replay = lagrange("replay " + quote(cpp + "/run.lcm") + " -- " +
+                                    quote(build + "/pd_controller") + " --kp 20,5 --kd 4,1 --qd 0.5,-0.2");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
 }
 

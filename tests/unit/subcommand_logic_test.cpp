@@ -250,16 +250,35 @@ TEST(ReplayCompare, IsBitForBit) {
 }
 
 TEST(ReplayCompare, AMissingInputIsNamedWithTheOutputItFeeds) {
-  const std::map<int64_t, int> positions = {{1, 10}, {2, 20}};
-  EXPECT_EQ(replay_log::input(positions, 2, "PLANT_POSITION", "CONTROL_COMMAND", 2), 20);
+  replay_log::Opened o;
+  o.logged_shape.joints = 1;
+  lagrange::plant_position_t position{};
+  position.header.tick = 2;
+  position.num_joints = 1;
+  position.q = {0.5};
+  o.rec.positions = {{2, position}};
+  EXPECT_EQ(replay_log::input(o, o.rec.positions, 2, "PLANT_POSITION", "CONTROL_COMMAND", 2).q[0], 0.5);
   try {
-    replay_log::input(positions, 3, "PLANT_POSITION", "CONTROL_COMMAND", 3);
+    replay_log::input(o, o.rec.positions, 3, "PLANT_POSITION", "CONTROL_COMMAND", 3);
     FAIL() << "a missing tick was found";
   } catch (const ReplayError& e) {
     EXPECT_EQ(
         std::string(e.what()),
         "the log lacks PLANT_POSITION tick 3, an input of CONTROL_COMMAND tick 3; outputs before it were "
         "replayed");
+  }
+  // A copy of it that failed its checksum is named, with its byte offset.
+  o.rec.damage.events.push_back(
+      {"PLANT_POSITION", 4321, 3, "fails its checksum (its bytes changed after it was sent)"});
+  try {
+    replay_log::input(o, o.rec.positions, 3, "PLANT_POSITION", "CONTROL_COMMAND", 3);
+    FAIL() << "a missing tick was found";
+  } catch (const ReplayError& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "the log lacks PLANT_POSITION tick 3, an input of CONTROL_COMMAND tick 3 (the copy of "
+        "PLANT_POSITION tick 3 it holds is corrupt: the event at byte 4321 fails its checksum (its bytes "
+        "changed after it was sent)); outputs before it were replayed");
   }
 }
 

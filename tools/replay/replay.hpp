@@ -21,8 +21,10 @@
 namespace lagrange::tools {
 
 /// A replay that could not be made. Bad input (the default): the log is
-/// unreadable, has no SCENARIO, or an input a command names is missing, and
-/// the message says what was still read. A runtime fault: what replays an
+/// unreadable, has no SCENARIO, lacks an output or an input a command names
+/// (a gap, or a copy that is corrupt), holds a message its own SCENARIO does
+/// not give, or names an external controller no command was given for; the
+/// message says what was still read. A runtime fault: what replays an
 /// external controller failed (its network, its key, the program itself died
 /// or went silent).
 class ReplayError : public lagrange::Error {
@@ -45,7 +47,11 @@ struct ReplayResult {
 };
 
 /// @param overrides "key=value" applied to the logged scenario (to test the test).
-ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides = {});
+/// @param external_command the program that replays an external controller
+/// (tools/replay/replay_external.hpp): named by the user, never read from the
+/// log; must be empty for any other controller.
+ReplayResult replayController(const std::string& log_path, const std::vector<std::string>& overrides = {},
+                              const std::vector<std::string>& external_command = {});
 
 /// The actuator: each recorded ACTUATOR_STATE from the CONTROL_COMMAND it
 /// names (input_command_tick), through a fresh IntegratorChain; compares

@@ -1,6 +1,6 @@
 #include "tools/replay/replay_external.hpp"
 
-#include <unistd.h>
+#include <stdlib.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
@@ -15,9 +15,12 @@
 #include "logs/log_reader.hpp"
 #include "runtime/key_file.hpp"
 #include "runtime/status_reporter.hpp"
+#include "tools/replay/replay_gaps.hpp"
+#include "tools/replay/shell_words.hpp"
 #include "transport/channels.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
+#include "util/output_file.hpp"
 #include "wiring/netns.hpp"
 #include "wiring/supervisor.hpp"
 
@@ -41,28 +44,86 @@ controller::Theorem1Output asOutput(const lagrange::control_command_t& m) {
 
 }  // namespace
 
-bool isExternalControllerLog(const std::string& log_path) {
+LoggedController loggedController(const std::string& log_path) {
+  LoggedController logged;
   try {
     logs::LogEventReader log(log_path);
     for (int i = 0; i < 16; ++i) {
       const lcm::LogEvent* ev = log.next();
-      if (ev == nullptr) return false;
+      if (ev == nullptr) return logged;
       if (ev->channel != transport::kScenario) continue;
       const std::optional<std::string> yaml = logs::scenarioYaml(*ev);
-      if (!yaml) return false;
+      if (!yaml) return logged;
       const YAML::Node controller = YAML::Load(*yaml)["controller"];
-      return controller && controller["type"] && controller["type"].as<std::string>() == "external";
+      if (!controller || !controller.IsMap() || !controller["type"] || !controller["type"].IsScalar())
+        return logged;
+      logged.type = controller["type"].as<std::string>();
+      if (logged.type != "external") return logged;
+      const YAML::Node command = controller["command"];
+      if (command && command.IsSequence())
+        for (const YAML::Node& word : command)
+          logged.command.push_back(word.IsScalar() ? word.as<std::string>() : YAML::Dump(word));
+      return logged;
     }
   } catch (const logs::LogError&) {
-    return false;  // openLog names what is wrong with the log
+    return logged;  // openLog names what is wrong with the log
   } catch (const YAML::Exception&) {
-    return false;  // and with its scenario
+    return logged;  // and with its scenario
   }
-  return false;
+  return logged;
 }
 
-void replayExternalController(const replay_log::Opened& o, ReplayResult& result) {
+namespace {
+
+// A directory only this user can enter (mkdtemp: mode 0700, a name nobody
+// can guess or plant beforehand) for the replay's key and the program's
+// output. Both go with the replay, but the output stays when the program
+// failed, so that its messages can be read.
+class ScratchDirectory {
+ public:
+  ScratchDirectory() {
+    const std::filesystem::path temp = std::filesystem::temp_directory_path();
+    std::string pattern = (temp / "lagrange-replay-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr)
+      throw ReplayError(
+          "cannot create a private directory for the replay's key and the controller's output in " +
+              temp.string() + ": " + std::strerror(errno),
+          {}, ErrorKind::kRuntimeFault);
+    path_ = pattern;
+  }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove(keyFile(), ignored);
+    if (!keep_output_) std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+
+  std::string keyFile() const { return path_ + "/run.key"; }
+  std::string outputFile() const { return path_ + "/controller.log"; }
+  /// The program failed: its output stays, and the error names it; else all goes.
+  std::string keepOutput() {
+    keep_output_ = true;
+    return outputFile();
+  }
+
+ private:
+  std::string path_;
+  bool keep_output_ = false;
+};
+
+}  // namespace
+
+void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
+                              const std::vector<std::string>& command) {
   const config::Scenario& s = o.scenario;
+  if (command.empty())
+    throw ReplayError(
+        "the log's controller is external, and replay runs no program a log names: its "
+        "command is " +
+        shellWords(s.controller.command) +
+        "; to replay it, name the program yourself after -- (lagrange replay LOG -- "
+        "COMMAND ARGS...)");
   if (!wiring::insidePrivateNetns())
     throw ReplayError(
         "replaying an external controller runs it on a bus of its own, in a private network "
@@ -80,44 +141,45 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   transport::LcmNode node("plant", url, run_id);
   // The program gets a key of this bus, as in a run: it signs its commands
   // and checks the positions (docs/external_controllers.md).
-  std::string key_dir = (std::filesystem::temp_directory_path() / "lagrange-replay-key-XXXXXX").string();
-  if (mkdtemp(key_dir.data()) == nullptr)
-    throw ReplayError("cannot create a private directory for the replay's key in " +
-                          std::filesystem::temp_directory_path().string() + ": " + std::strerror(errno),
-                      {}, ErrorKind::kRuntimeFault);
-  const std::string key_file = key_dir + "/run.key";
+  ScratchDirectory scratch;
   const transport::MessageKey key = transport::randomMessageKey();
-  runtime::writeKeyFile(key_file, key);
+  runtime::writeKeyFile(scratch.keyFile(), key);
   node.authenticate(key);
-  struct RemoveKey {
-    std::string dir;
-    ~RemoveKey() { std::filesystem::remove_all(dir); }
-  } remove_key{key_dir};
   std::optional<lagrange::control_command_t> answer;
   node.subscribe<lagrange::control_command_t>(
       transport::kControlCommand, [&](const auto& m) { return transport::validate(m, s.dof()); },
       [&](const lagrange::control_command_t& m) { answer = m; });
 
-  const std::string log = (std::filesystem::temp_directory_path() /
-                           ("lagrange-replay-external-" + std::to_string(getpid()) + ".log"))
-                              .string();
+  // Its output: created here, private (0600) and never through a link, then
+  // appended to by the child.
+  const std::string output = scratch.outputFile();
+  util::writeOutputFile(output, "", 0600);
   wiring::Supervisor supervisor;
   wiring::ChildSpec spec;
   spec.name = "controller";
-  spec.argv = s.controller.command;
-  spec.working_directory = s.controller.working_directory;
-  spec.log_path = log;
+  spec.argv = command;  // the user's, never the log's; it starts where the user is
+  spec.log_path = output;
+  spec.append_log = true;
   spec.env = {"LAGRANGE_LCM_URL=" + url, "LAGRANGE_RUN_ID=" + std::to_string(run_id),
-              "LAGRANGE_KEY_FILE=" + key_file, "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
+              "LAGRANGE_KEY_FILE=" + scratch.keyFile(), "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
               "LAGRANGE_MODE=lockstep"};
   supervisor.start(spec);
 
   // As the lockstep plant: each position until its answer comes, re-sent
   // every 50 ms; a controller silent for 10 s (or gone) ends the replay.
+  const replay_log::OutputSequence sequence =
+      replay_log::outputSequence(transport::kControlCommand, o.logged_mode);
+  const lagrange::header_t* previous = nullptr;
   for (const lagrange::control_command_t& recorded : o.rec.commands) {
+    replay_log::requireNoGap(o.rec, transport::kControlCommand, sequence, previous, recorded.header,
+                             result.commands);
+    previous = &recorded.header;
+    replay_log::fitting(o, recorded, transport::kControlCommand);
     const int64_t k = recorded.input_position_tick;
     const lagrange::plant_position_t& position = replay_log::input(
-        o.rec.positions, k, transport::kPlantPosition, transport::kControlCommand, recorded.header.tick);
+        o, o.rec.positions, k, transport::kPlantPosition, transport::kControlCommand, recorded.header.tick);
+    replay_log::requireTaken(static_cast<Eigen::Index>(position.q.size()), 1, s.dof(), 1,
+                             "PLANT_POSITION tick " + std::to_string(k) + "'s q");
     answer.reset();
     const auto deadline = Clock::now() + std::chrono::seconds(10);
     auto resend = Clock::now();
@@ -129,11 +191,12 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
       for (const wiring::ChildExit& e : supervisor.reap())
         throw ReplayError("the external controller " + e.describe() + " after " +
                               std::to_string(result.commands) + " of " +
-                              std::to_string(o.rec.commands.size()) + " commands (its output: " + log + ")",
+                              std::to_string(o.rec.commands.size()) +
+                              " commands (its output: " + scratch.keepOutput() + ")",
                           {}, ErrorKind::kRuntimeFault);
       if (Clock::now() > deadline)
         throw ReplayError("the external controller did not answer PLANT_POSITION tick " + std::to_string(k) +
-                              " within 10 s (its output: " + log + ")",
+                              " within 10 s (its output: " + scratch.keepOutput() + ")",
                           {}, ErrorKind::kRuntimeFault);
       node.handle(5);
     }
@@ -148,7 +211,6 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result)
   for (int copy = 0; copy < 3; ++copy) status.publish(transport::ProcessState::kFinished, 0, 0.0);
   supervisor.waitAll(2.0);
   supervisor.stopAll(2.0);
-  std::filesystem::remove(log);
 }
 
 }  // namespace lagrange::tools

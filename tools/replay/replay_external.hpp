@@ -1,24 +1,41 @@
 #pragma once
 /// @file
 /// Replay of a controller from outside the project (controller.type external,
-/// docs/external_controllers.md): there is no core to step, so its command
-/// is started again, in a private network namespace on a bus of its own, and
-/// fed the recorded PLANT_POSITION of each recorded command, in order, as the
-/// plant would in lockstep; every answer is compared with the recorded one
-/// bit for bit. A controller that keeps state sees the positions it answered
-/// in the run, so lockstep logs replay; a realtime log does too when the
-/// controller answered every position it received.
+/// docs/external_controllers.md): there is no core to step, so a program is
+/// started, in a private network namespace on a bus of its own, and fed the
+/// recorded PLANT_POSITION of each recorded command, in order, as the plant
+/// would in lockstep; every answer is compared with the recorded one bit for
+/// bit. A controller that keeps state sees the positions it answered in the
+/// run, so lockstep logs replay; a realtime log does too when the controller
+/// answered every position it received.
+///
+/// The program is the one the user names on replay's command line, never the
+/// command the log's SCENARIO holds: a log is a file from anywhere, and
+/// running what it says would let it run anything as the user replaying it.
+
+#include <string>
+#include <vector>
 
 #include "tools/replay/replay.hpp"
 #include "tools/replay/replay_log.hpp"
 
 namespace lagrange::tools {
 
-/// @throws ReplayError when the command cannot start or stops answering.
-void replayExternalController(const replay_log::Opened& o, ReplayResult& result);
+/// Runs `command` (argv; its program a path or a name on PATH, started in the
+/// current directory) as the log's controller. @throws ReplayError (bad input)
+/// when `command` is empty -- naming the log's command, which is not run --,
+/// (a runtime fault) when the program cannot start or stops answering.
+void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
+                              const std::vector<std::string>& command);
 
-/// Whether the log's scenario names an external controller (its SCENARIO,
-/// the log's first event, is all that is read): its replay needs a bus.
-bool isExternalControllerLog(const std::string& log_path);
+/// The controller a log's SCENARIO names, read as the YAML stands (nothing
+/// resolved, nothing run): its type ("" when the log has no readable
+/// SCENARIO) and, for an external one, its command.
+struct LoggedController {
+  std::string type;
+  std::vector<std::string> command;
+  bool external() const { return type == "external"; }
+};
+LoggedController loggedController(const std::string& log_path);
 
 }  // namespace lagrange::tools

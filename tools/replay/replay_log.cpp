@@ -4,10 +4,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
+#include <limits>
 #include <set>
 
 #include "logs/log_reader.hpp"
 #include "transport/channels.hpp"
+#include "transport/message_auth.hpp"
+#include "transport/safe_decode.hpp"
 #include "util/number_text.hpp"
 
 namespace lagrange::tools::replay_log {
@@ -20,38 +24,70 @@ struct FirstCopies {
 };
 
 // Where each message type goes: every position, rate and motor sample by tick; the
-// first copy of each truth, actuator state and command in order too.
-void keep(const lagrange::plant_position_t& m, Recorded& r, FirstCopies&) {
-  r.positions.emplace(m.header.tick, m);
+// first copy of each truth, actuator state and command in order too. True if kept.
+bool keep(const lagrange::plant_position_t& m, Recorded& r, FirstCopies&) {
+  return r.positions.emplace(m.header.tick, m).second;
 }
-void keep(const lagrange::plant_truth_t& m, Recorded& r, FirstCopies& seen) {
-  if (seen.truths.insert(m.header.tick).second) r.truths.push_back(m);
+bool keep(const lagrange::plant_truth_t& m, Recorded& r, FirstCopies& seen) {
+  if (!seen.truths.insert(m.header.tick).second) return false;
+  r.truths.push_back(m);
+  return true;
 }
-void keep(const lagrange::actuator_state_t& m, Recorded& r, FirstCopies& seen) {
-  if (seen.states.insert(m.header.tick).second) {
-    r.actuator.emplace(m.header.tick, m);
-    r.states.push_back(m);
-  }
+bool keep(const lagrange::actuator_state_t& m, Recorded& r, FirstCopies& seen) {
+  if (!seen.states.insert(m.header.tick).second) return false;
+  r.actuator.emplace(m.header.tick, m);
+  r.states.push_back(m);
+  return true;
 }
-void keep(const lagrange::plant_motor_t& m, Recorded& r, FirstCopies&) { r.motor.emplace(m.header.tick, m); }
-void keep(const lagrange::plant_rate_t& m, Recorded& r, FirstCopies&) { r.rates.emplace(m.header.tick, m); }
-void keep(const lagrange::control_command_t& m, Recorded& r, FirstCopies& seen) {
-  if (seen.commands.insert(m.input_position_tick).second) {
-    r.commands.push_back(m);
-    r.commands_by_tick.emplace(m.header.tick, m);
-  }
+bool keep(const lagrange::plant_motor_t& m, Recorded& r, FirstCopies&) {
+  return r.motor.emplace(m.header.tick, m).second;
+}
+bool keep(const lagrange::plant_rate_t& m, Recorded& r, FirstCopies&) {
+  return r.rates.emplace(m.header.tick, m).second;
+}
+bool keep(const lagrange::control_command_t& m, Recorded& r, FirstCopies& seen) {
+  if (!seen.commands.insert(m.input_position_tick).second) return false;
+  r.commands.push_back(m);
+  r.commands_by_tick.emplace(m.header.tick, m);
+  return true;
 }
 
-// false if the event is on a channel of this project but does not decode.
-bool record(const lcm::LogEvent& ev, Recorded& r, FirstCopies& seen) {
+// What is wrong with an event that logs::decodeEvent refused: it decodes
+// (with or without a stock logger's MAC trailer) but fails its checksum, or
+// it does not decode at all.
+template <class Msg>
+DamagedEvent diagnose(const lcm::LogEvent& ev, long long offset, Msg& m) {
+  DamagedEvent d{ev.channel, offset, std::nullopt, ""};
+  const auto size = static_cast<std::size_t>(std::max<int32_t>(ev.datalen, 0));
+  if (transport::safeDecode(ev.data, size, m) ||
+      (size > transport::kMacBytes && transport::safeDecode(ev.data, size - transport::kMacBytes, m))) {
+    d.tick = m.header.tick;
+    d.why = "fails its checksum (its bytes changed after it was sent)";
+  } else {
+    d.why = "does not decode as " + std::string(Msg::getTypeName()) + " (" + std::to_string(size) + " bytes)";
+  }
+  return d;
+}
+
+// false if the event is on a channel of this project but cannot be used.
+bool record(const lcm::LogEvent& ev, long long offset, Recorded& r, FirstCopies& seen) {
   if (ev.channel == transport::kScenario) {
     if (r.scenario) return true;
     r.scenario = logs::scenarioYaml(ev);
     return r.scenario.has_value();
   }
+  if (const std::string meant = channelOneByteFrom(ev.channel); !meant.empty()) {
+    r.damage.events.push_back(
+        {meant, offset, std::nullopt,
+         "is on channel '" + ev.channel + "', one byte from " + meant + " (a damaged channel name)"});
+    return false;
+  }
   return transport::withChannelMessage(ev.channel, true, [&](auto m) {
-    if (!logs::decodeEvent(ev, m)) return false;
-    keep(m, r, seen);
+    if (!logs::decodeEvent(ev, m)) {
+      r.damage.events.push_back(diagnose(ev, offset, m));
+      return false;
+    }
+    if (keep(m, r, seen)) r.offsets[ev.channel].emplace(m.header.tick, offset);
     return true;
   });
 }
@@ -64,6 +100,26 @@ size_t outputCount(const Recorded& r, const std::string& outputs) {
   return r.commands.size();
 }
 
+// The log's SCENARIO, parsed as recorded and as --set changes it.
+void parseScenarios(Opened& o, const std::string& log_path, const std::vector<std::string>& overrides) {
+  const std::string source = log_path + ":SCENARIO";
+  try {
+    const config::Scenario logged = config::parseScenario(*o.rec.scenario, source);
+    o.logged_shape = shapeOf(logged);
+    o.logged_mode = logged.mode;
+    if (overrides.empty()) o.scenario = logged;
+  } catch (const config::ConfigError& e) {
+    throw ReplayError(std::string("the log's SCENARIO is not a valid scenario: ") + e.what());
+  }
+  if (overrides.empty()) return;
+  try {
+    o.scenario = config::parseScenario(*o.rec.scenario, source, overrides);
+  } catch (const config::ConfigError& e) {
+    throw ReplayError(std::string("the log's SCENARIO changed by --set is not a valid scenario: ") +
+                      e.what());
+  }
+}
+
 }  // namespace
 
 Opened openLog(const std::string& log_path, const std::vector<std::string>& overrides,
@@ -72,13 +128,26 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
   Recorded& rec = o.rec;
   FirstCopies seen;
   long long undecodable = 0;
-  logs::LogScan scan;
   try {
-    scan = logs::readLog(log_path,
-                         [&](const lcm::LogEvent& ev) { undecodable += record(ev, rec, seen) ? 0 : 1; });
+    logs::LogEventReader reader(log_path);
+    long long whole_events_bytes = 0;  // of the events before this one: with the bytes skipped, its offset
+    long long skipped = 0;
+    while (const lcm::LogEvent* ev = reader.next()) {
+      const long long offset = whole_events_bytes + reader.scan().skipped_bytes;
+      if (reader.scan().skipped_bytes > skipped) {  // a stretch ending where this event starts
+        const long long bytes = reader.scan().skipped_bytes - skipped;
+        rec.damage.skipped.push_back({offset - bytes, bytes});
+        skipped = reader.scan().skipped_bytes;
+      }
+      whole_events_bytes +=
+          logs::log_format::kHeaderBytes + static_cast<long long>(ev->channel.size()) + ev->datalen;
+      undecodable += record(*ev, offset, rec, seen) ? 0 : 1;
+    }
+    rec.scan = reader.scan();
   } catch (const logs::LogError& e) {
     throw ReplayError(e.what());
   }
+  const logs::LogScan& scan = rec.scan;
   // In tick order, which is the order each process computed them in: a copy
   // the logger lacked and the plant had re-sent is in the log a few ticks late.
   const auto by_tick = [](const auto& a, const auto& b) { return a.header.tick < b.header.tick; };
@@ -89,12 +158,9 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
   result.events = rec.events = scan.events;
   rec.undecodable = undecodable;
   result.warnings = scan.problems();
-  if (undecodable > 0)
-    result.warnings.push_back(
-        std::to_string(undecodable) +
-        " events on this project's channels could not be decoded as its messages, or failed "
-        "their checksum (corrupted on the way -- the intact copy is re-sent in lockstep -- or "
-        "another version's types), and were skipped");
+  if (!rec.damage.events.empty()) result.warnings.push_back(describe(rec.damage));
+  if (undecodable > static_cast<long long>(rec.damage.events.size()))
+    result.warnings.push_back("the SCENARIO event does not decode as lagrange.scenario_t");
   std::string also;  // what else is wrong with the log, for an error message
   for (const auto& w : result.warnings) also += "; " + w;
   if (!rec.scenario)
@@ -102,15 +168,39 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
                       "; expected a log of a lagrange run (lagrange run writes the scenario first; a stock "
                       "lcm-logger must be started before the scenario to record it)" +
                       also);
-  try {
-    o.scenario = config::parseScenario(*rec.scenario, log_path + ":SCENARIO", overrides);
-  } catch (const config::ConfigError& e) {
-    throw ReplayError(std::string("the log's SCENARIO is not a valid scenario: ") + e.what());
-  }
+  parseScenarios(o, log_path, overrides);
   if (outputCount(rec, outputs) == 0)
     throw ReplayError(log_path + ": no " + outputs + " among its " + scan.describe() +
-                      ": nothing to compare");
+                      ": nothing to compare" + also);
   return o;
+}
+
+std::string whyLacking(const Recorded& rec, const std::string& channel, int64_t from, int64_t to) {
+  // Where the ticks would be: after the copy of the tick before them, and
+  // before the copies a few ticks after (a re-sent copy lands a few ticks late).
+  long long lower = 0, upper = std::numeric_limits<long long>::max();
+  if (const auto it = rec.offsets.find(channel); it != rec.offsets.end()) {
+    const std::map<int64_t, long long>& offsets = it->second;
+    if (auto below = offsets.lower_bound(from); below != offsets.begin()) lower = std::prev(below)->second;
+    if (auto above = offsets.upper_bound(to + 3); above != offsets.end()) upper = above->second;
+  }
+  return whatMayHaveHeld(rec.damage, channel, from, to, lower, upper);
+}
+
+std::string whereIs(const Recorded& rec, const std::string& channel, int64_t tick) {
+  const auto by_channel = rec.offsets.find(channel);
+  if (by_channel == rec.offsets.end()) return "";
+  const auto it = by_channel->second.find(tick);
+  return it == by_channel->second.end() ? "" : "the event at byte " + std::to_string(it->second);
+}
+
+void requireTaken(Eigen::Index rows, Eigen::Index columns, Eigen::Index expected_rows,
+                  Eigen::Index expected_columns, const std::string& what) {
+  if (rows == expected_rows && columns == expected_columns) return;
+  throw ReplayError(what + " is " + std::to_string(rows) + " x " + std::to_string(columns) +
+                    ", as the log's SCENARIO gives it; the scenario changed by --set takes " +
+                    std::to_string(expected_rows) + " x " + std::to_string(expected_columns) +
+                    ": the log's inputs do not fit the changed scenario");
 }
 
 std::string compare(const std::string& field, const std::vector<double>& recorded,

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Reading a log for replay (tools/replay/replay.hpp): the recorded messages by
-/// channel and tick, the scenario it carries, and the helpers that compare
-/// recorded with replayed values bit for bit.
+/// channel and tick, the scenario it carries, what could not be used and
+/// where it was, and the helpers that compare recorded with replayed values
+/// bit for bit.
 
 #include <Eigen/Dense>
 #include <map>
@@ -18,7 +19,10 @@
 #include "lagrange/plant_position_t.hpp"
 #include "lagrange/plant_rate_t.hpp"
 #include "lagrange/plant_truth_t.hpp"
+#include "logs/log_event_reader.hpp"
+#include "tools/replay/log_damage.hpp"
 #include "tools/replay/replay.hpp"
+#include "tools/replay/replay_fit.hpp"
 
 namespace lagrange::tools::replay_log {
 
@@ -34,14 +38,21 @@ struct Recorded {
   std::vector<lagrange::actuator_state_t> states;     // likewise
   std::vector<lagrange::plant_truth_t> truths;        // likewise
   std::map<int64_t, lagrange::control_command_t> commands_by_tick;
+  /// Byte offset of the event each kept message came from, by channel and tick.
+  std::map<std::string, std::map<int64_t, long long>> offsets;
+  LogDamage damage;    ///< what could not be used, and where
+  logs::LogScan scan;  ///< what the reader skipped or could not read
   long long events = 0, undecodable = 0;
   bool truncated = false;  ///< the log ended inside an event (a run killed while writing, or a cut file)
 };
 
-/// The log, its scenario (with overrides) and the warnings so far.
+/// The log, its scenario as replayed (with --set), what its own SCENARIO
+/// gives its messages, and the warnings so far.
 struct Opened {
   Recorded rec;
-  config::Scenario scenario;
+  config::Scenario scenario;                           ///< as replayed: the log's, changed by --set
+  MessageShape logged_shape;                           ///< what the log's own SCENARIO gives its messages
+  config::Mode logged_mode = config::Mode::kLockstep;  ///< how the run that wrote the log ran
   ReplayResult result;
 };
 
@@ -61,7 +72,7 @@ ReplayResult replayWith(const std::string& log_path, const std::vector<std::stri
   try {
     body(o, result);
   } catch (const ReplayError& e) {
-    throw ReplayError(e.what(), result.warnings);
+    throw ReplayError(e.what(), result.warnings, e.kind());
   }
   return result;
 }
@@ -77,18 +88,51 @@ std::string compare(const std::string& field, const std::vector<double>& recorde
                     const Eigen::VectorXd& replayed);
 std::string compare(const std::string& field, double recorded, double replayed);
 
-/// The message of `tick` in `m`. @throws ReplayError naming the missing input
-/// of `output_channel` tick `output_tick`.
+/// What the log says of `channel` ticks `from`..`to` it holds no usable copy
+/// of, "" when nothing (log_damage.hpp): a copy of them that is corrupt, or
+/// damage between the copies it holds before and after them.
+std::string whyLacking(const Recorded& rec, const std::string& channel, int64_t from, int64_t to);
+
+/// "the event at byte N" of the kept `channel` message of `tick`, or "".
+std::string whereIs(const Recorded& rec, const std::string& channel, int64_t tick);
+
+/// `m`, the message of `channel` tick `tick` replay is about to use.
+/// @throws ReplayError (bad input) if it does not hold what the log's own
+/// SCENARIO gives (replay_fit.hpp): the log contradicts itself.
+template <class Msg>
+const Msg& fitting(const Opened& o, const Msg& m, const char* channel) {
+  const std::string why = misfit(m, o.logged_shape);
+  if (!why.empty()) {
+    const std::string at = whereIs(o.rec, channel, m.header.tick);
+    throw ReplayError("the log's " + std::string(channel) + " tick " + std::to_string(m.header.tick) +
+                      (at.empty() ? "" : " (" + at + ")") + " does not fit the log's own SCENARIO: it " +
+                      why + "; it is not used, and outputs before it were replayed");
+  }
+  return m;
+}
+
+/// The message of `tick` in `m`, checked (fitting). @throws ReplayError
+/// naming the missing input of `output_channel` tick `output_tick`, and what
+/// the log says of it (whyLacking).
 template <class Map>
-const typename Map::mapped_type& input(const Map& m, int64_t tick, const char* channel,
+const typename Map::mapped_type& input(const Opened& o, const Map& m, int64_t tick, const char* channel,
                                        const char* output_channel, int64_t output_tick) {
   const auto it = m.find(tick);
-  if (it == m.end())
+  if (it == m.end()) {
+    const std::string why = whyLacking(o.rec, channel, tick, tick);
     throw ReplayError(std::string("the log lacks ") + channel + " tick " + std::to_string(tick) +
                       ", an input of " + output_channel + " tick " + std::to_string(output_tick) +
-                      "; outputs before it were replayed");
-  return it->second;
+                      (why.empty() ? "" : " (" + why + ")") + "; outputs before it were replayed");
+  }
+  return fitting(o, it->second, channel);
 }
+
+/// Checks that an input read from the log, `rows` x `columns` as the log's
+/// own SCENARIO gives it, is what the replayed scenario takes: --set can
+/// change the arm or the chain the log's inputs were made for.
+/// @throws ReplayError (bad input) naming `what` and both sizes.
+void requireTaken(Eigen::Index rows, Eigen::Index columns, Eigen::Index expected_rows,
+                  Eigen::Index expected_columns, const std::string& what);
 
 /// "tick K (t = T s): " -- where a divergence is.
 std::string at(int64_t tick, double t);
