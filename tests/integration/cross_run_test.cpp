@@ -137,9 +137,14 @@ void expectUnmovedByTheReplay(const std::string& a_dir, const std::string& b_dir
   EXPECT_EQ(summary["tracking"], readSummary(a_dir)["tracking"]);
   EXPECT_EQ(summary["status"], "completed");
   // Counted by every process that listens to the channel.
-  for (const char* channel : {"PLANT_POSITION", "PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS"})
+  std::cout << "re-sent " << resent << " datagrams of run A; rejected as unauthenticated:";
+  for (const char* channel :
+       {"PLANT_POSITION", "PLANT_TRUTH", "CONTROL_COMMAND", "ACTUATOR_STATE", "STATUS"}) {
     EXPECT_GT(rejected(summary, channel, "unauthenticated"), 50)
         << channel << " " << summary["messages"].dump();
+    std::cout << " " << channel << " " << rejected(summary, channel, "unauthenticated");
+  }
+  std::cout << "\n";
   // The log holds B's own messages only: not one from a process of A.
   const auto of_a = publishersIn(a_dir + "/run.lcm"), of_b = publishersIn(b_dir + "/run.lcm");
   ASSERT_EQ(of_a.size(), 3u);  // plant, controller, actuator
