@@ -75,6 +75,7 @@ class InputFile {
     (void)fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
     f.fd_ = fd;
     f.size_ = static_cast<long long>(st.st_size);
+    f.owner_ = st.st_uid;
     return f;
   }
 
@@ -83,12 +84,16 @@ class InputFile {
     if (fd_ >= 0) ::close(fd_);
   }
   InputFile(InputFile&& other) noexcept
-      : fd_(std::exchange(other.fd_, -1)), size_(other.size_), error_(std::move(other.error_)) {}
+      : fd_(std::exchange(other.fd_, -1)),
+        size_(other.size_),
+        owner_(other.owner_),
+        error_(std::move(other.error_)) {}
   InputFile& operator=(InputFile&& other) noexcept {
     if (this != &other) {
       if (fd_ >= 0) ::close(fd_);
       fd_ = std::exchange(other.fd_, -1);
       size_ = other.size_;
+      owner_ = other.owner_;
       error_ = std::move(other.error_);
     }
     return *this;
@@ -102,12 +107,15 @@ class InputFile {
   int fd() const { return fd_; }
   /// Its size when it was opened [bytes].
   long long size() const { return size_; }
+  /// The user owning it.
+  uid_t owner() const { return owner_; }
   /// The descriptor, now the caller's to close (e.g. for fdopen).
   int release() { return std::exchange(fd_, -1); }
 
  private:
   int fd_ = -1;
   long long size_ = 0;
+  uid_t owner_ = 0;
   std::string error_;
 };
 
