@@ -12,10 +12,10 @@
 /// steps a tick (rows of tau_applied). An event larger than its
 /// channel's message can be with those is not one of the run's messages.
 ///
-/// The bounds are the messages' encoded sizes (the formulas below, which a
-/// unit test holds to lcm-gen's getEncodedSize) with every count at the
-/// shape's value, a publisher name of up to kMaxPublisherBytes and the MAC
-/// trailer a stock lcm-logger recording keeps. Without a scenario (a stock
+/// The bounds are the messages' encoded sizes (transport/message_size.hpp)
+/// with every count at the shape's value, a publisher name of up to
+/// transport::kMaxPublisherBytes and the MAC trailer a stock lcm-logger
+/// recording keeps. Without a scenario (a stock
 /// recording started late, a SCENARIO that does not parse) the shape is the
 /// project's own limits: the most joints, order and torque steps any
 /// scenario may ask for. SCENARIO, ROBOT_DESCRIPTION and STATUS have fixed
@@ -25,25 +25,20 @@
 #include <map>
 #include <string>
 
+#include "transport/message_size.hpp"
+
 namespace lagrange::logs {
 
-/// The counts that size a run's per-tick messages.
-struct MessageShape {
-  int joints = 0;        ///< num_joints of every per-tick message (and num_rates of PLANT_MOTOR at most)
-  int chain_order = 0;   ///< actuator.order: rows of ACTUATOR_STATE.xi
-  int torque_steps = 1;  ///< actuator.rate / plant.publish_rate: rows of ACTUATOR_STATE.tau_applied
+using transport::MessageShape;
 
-  /// The most any scenario may ask for (config/work_bounds.hpp and the
-  /// actuator's order 0..4): the shape of a log without a usable scenario.
-  static MessageShape projectLimits();
-  /// "2 joints, actuator order 0, 1 torque step a tick"
-  std::string describe() const;
-};
+/// The most any scenario may ask for (config/work_bounds.hpp: 16 joints,
+/// actuator order 4, 100 000 torque steps a tick; any controller reports at
+/// most 4 stages of xi_error): the shape of a log without a usable scenario.
+MessageShape projectLimits();
+/// The shape of a scenario's per-tick messages: its joints, actuator order
+/// and torque steps a tick, and the most stages of xi_error any controller reports.
+MessageShape shapeOf(int joints, int actuator_order, int torque_steps);
 
-/// Longest publisher name allowed in a message's header: the project's are
-/// "plant", "controller", "actuator", "logger"; an external controller's
-/// messages carry "controller" too.
-inline constexpr long long kMaxPublisherBytes = 64;
 /// SCENARIO: a scenario file (at most 1 MiB, config/input_file.hpp) resolved
 /// with its URDF inline (at most 16 MiB, written escaped: at most twice that),
 /// and room for the name and the trailer.
@@ -52,17 +47,6 @@ long long maxScenarioEventBytes();
 inline constexpr long long kMaxDescriptionEventBytes = 1 << 20;
 /// STATUS: 64 KiB, a few hundred channels' counters and a long message (the golden logs' are under 1.5 kB).
 inline constexpr long long kMaxStatusEventBytes = 64 << 10;
-
-/// The encoded size of the largest honest message of each per-tick type with
-/// `shape`'s counts and a publisher of kMaxPublisherBytes (no MAC trailer);
-/// CONTROL_COMMAND with the most stages of xi_error any controller reports.
-namespace encoded_size {
-long long plantPosition(const MessageShape& shape);  ///< also PLANT_RATE (the same layout)
-long long plantTruth(const MessageShape& shape);
-long long plantMotor(const MessageShape& shape);
-long long controlCommand(const MessageShape& shape);
-long long actuatorState(const MessageShape& shape);
-}  // namespace encoded_size
 
 /// Per channel, the largest data an event may have in one log.
 class EventBounds {

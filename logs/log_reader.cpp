@@ -31,7 +31,7 @@ EventBounds boundsOfLog(const std::string& path) {
     if (!yaml) continue;  // not a scenario_t: the next SCENARIO may be (as replay reads them)
     try {
       const config::Scenario s = config::parseScenario(*yaml, path + ":SCENARIO");
-      const MessageShape shape{s.dof(), s.actuator.order, s.torqueStepsPerTick()};
+      const MessageShape shape = shapeOf(s.dof(), s.actuator.order, s.torqueStepsPerTick());
       return EventBounds(shape, "the log's scenario (" + shape.describe() + ")");
     } catch (const std::exception&) {
       return EventBounds::projectLimits("the log's SCENARIO is not a valid scenario");

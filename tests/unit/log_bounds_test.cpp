@@ -1,6 +1,6 @@
 // Every event of a log is bounded by what its channel's messages can be in
 // the log's own scenario (logs/event_bounds.hpp): the bounds are lcm-gen's
-// encoded sizes, an event over its bound is skipped unread -- no reader
+// encoded sizes (transport/message_size.hpp), an event over its bound is skipped unread -- no reader
 // ever gets it to decode -- and named, a SCENARIO larger than any scenario
 // refuses the log, and the golden logs read whole as before.
 #include <gtest/gtest.h>
@@ -22,6 +22,7 @@
 #include "logs/event_bounds.hpp"
 #include "logs/log_reader.hpp"
 #include "support/configs.hpp"
+#include "transport/message_size.hpp"
 
 namespace lagrange::logs {
 namespace {
@@ -29,6 +30,9 @@ namespace {
 namespace fs = std::filesystem;
 
 // A message with every count at the shape's value and the longest publisher.
+using transport::kMaxPublisherBytes;
+namespace encoded_size = transport::encoded_size;
+
 template <class Msg>
 Msg withLongestPublisher(Msg m) {
   m.header.publisher = std::string(static_cast<std::size_t>(kMaxPublisherBytes), 'p');
@@ -41,7 +45,7 @@ std::vector<std::vector<double>> rows(int count, int n) {
 }
 
 TEST(EventBounds, TheFormulasAreTheEncodedSizesLcmGenComputes) {
-  for (const MessageShape shape : {MessageShape{1, 0, 1}, MessageShape{2, 2, 3}, MessageShape{7, 4, 5}}) {
+  for (const MessageShape shape : {shapeOf(1, 0, 1), shapeOf(2, 2, 3), shapeOf(7, 4, 5)}) {
     SCOPED_TRACE(shape.describe());
     const int n = shape.joints;
     lagrange::plant_position_t position;
@@ -156,7 +160,7 @@ TEST_F(LogBoundsTest, AnEventLargerThanItsScenarioAllowsIsSkippedUnreadAndNamed)
   EXPECT_EQ(scan.events, 3);
   EXPECT_EQ(scan.oversized_events, 1);
   EXPECT_EQ(scan.oversized_bytes, static_cast<long long>(crafted.size()));
-  const long long bound = encoded_size::actuatorState(MessageShape{2, 0, 1}) + 32;
+  const long long bound = encoded_size::actuatorState(shapeOf(2, 0, 1)) + 32;
   const std::string warnings = joined(scan.problems());
   EXPECT_NE(warnings.find("1 event was larger than its channel's messages can be and skipped unread, never "
                           "decoded (ACTUATOR_STATE at byte " +
@@ -172,7 +176,7 @@ TEST_F(LogBoundsTest, AnEventLargerThanItsScenarioAllowsIsSkippedUnreadAndNamed)
 // A log without a SCENARIO (a stock lcm-logger started late) is bounded by
 // the project's limits: 16 joints, order 4, 100 000 torque steps a tick.
 TEST_F(LogBoundsTest, WithoutAScenarioEventsAreBoundedByTheProjectsLimits) {
-  const long long largest = encoded_size::actuatorState(MessageShape::projectLimits()) + 32;
+  const long long largest = encoded_size::actuatorState(projectLimits()) + 32;
   const std::string fits =
       logEvent(0, "ACTUATOR_STATE", std::string(static_cast<std::size_t>(largest), '\0'));
   const std::string over =
