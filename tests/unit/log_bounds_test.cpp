@@ -48,25 +48,25 @@ TEST(EventBounds, TheFormulasAreTheEncodedSizesLcmGenComputes) {
   for (const MessageShape shape : {shapeOf(1, 0, 1), shapeOf(2, 2, 3), shapeOf(7, 4, 5)}) {
     SCOPED_TRACE(shape.describe());
     const int n = shape.joints;
-    lagrange::plant_position_t position;
+    lagrange::plant_position_t position{};
     position.num_joints = n;
     position.q = zeros(n);
     EXPECT_EQ(encoded_size::plantPosition(shape), withLongestPublisher(position).getEncodedSize());
-    lagrange::plant_truth_t truth;
+    lagrange::plant_truth_t truth{};
     truth.num_joints = n;
     truth.q = truth.qdot = truth.tau_applied = zeros(n);
     EXPECT_EQ(encoded_size::plantTruth(shape), withLongestPublisher(truth).getEncodedSize());
-    lagrange::plant_motor_t motor;
+    lagrange::plant_motor_t motor{};
     motor.num_joints = motor.num_rates = n;
     motor.q = motor.qdot = zeros(n);
     EXPECT_EQ(encoded_size::plantMotor(shape), withLongestPublisher(motor).getEncodedSize());
-    lagrange::control_command_t command;
+    lagrange::control_command_t command{};
     command.num_joints = n;
     command.u = command.q_desired = command.q_error = command.theta = command.filter_state = zeros(n);
     command.chain_order = 4;  // the most stages any controller reports
     command.xi_error = rows(4, n);
     EXPECT_EQ(encoded_size::controlCommand(shape), withLongestPublisher(command).getEncodedSize());
-    lagrange::actuator_state_t state;
+    lagrange::actuator_state_t state{};
     state.num_joints = n;
     state.order = shape.chain_order;
     state.u_commanded = zeros(n);
@@ -102,7 +102,7 @@ std::string encoded(const Msg& m) {
 
 // The default scenario's SCENARIO event: 2 joints, actuator order 0, 1 torque step a tick.
 std::string scenarioEvent() {
-  lagrange::scenario_t m;
+  lagrange::scenario_t m{};
   m.name = "rigid_2dof";
   m.yaml = config::toYaml(config::loadScenario(testing::kRigid));
   return logEvent(0, "SCENARIO", encoded(m));
@@ -110,7 +110,7 @@ std::string scenarioEvent() {
 
 // An ACTUATOR_STATE whose lengths are all consistent: `steps` rows of `joints` joints.
 std::string actuatorStateEvent(int64_t number, int64_t tick, int joints, int steps) {
-  lagrange::actuator_state_t m;
+  lagrange::actuator_state_t m{};
   m.header.tick = tick;
   m.header.publisher = "actuator";
   m.num_joints = joints;
