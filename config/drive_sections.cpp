@@ -13,6 +13,7 @@
 #include "config/controller_params.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
+#include "config/work_bounds.hpp"
 #include "model/urdf_arm.hpp"
 
 namespace lagrange::config::sections {
@@ -126,9 +127,9 @@ void readActuatorSection(MapReader& root, Scenario& s) {
       act.fail("rate", "the actuator period 1/rate must be a whole multiple of plant.physics_step (" +
                            std::to_string(s.plant.physics_step) +
                            " s), so that the torque changes on a physics step");
-    if (s.actuator.order < 0 || s.actuator.order > 4)
-      act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to 4, got " +
-                            std::to_string(s.actuator.order));
+    if (s.actuator.order < 0 || s.actuator.order > kMaxActuatorOrder)
+      act.fail("order", "expected an integrator-chain order from 0 (torque passes through) to " +
+                            std::to_string(kMaxActuatorOrder) + ", got " + std::to_string(s.actuator.order));
     s.actuator.initial_state = Eigen::MatrixXd::Zero(s.actuator.order, n);
     if (saysUrdf(act, "saturation")) s.actuator.saturation = urdfEfforts(act, s);
     readFieldsAmongOthers(act, s.actuator, actuatorDriveFields());

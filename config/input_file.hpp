@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// Reading a file a user named (the scenario, a URDF) without trusting it:
-/// only a regular file of bounded size is read, and it is looked at (stat)
-/// before it is opened, so a directory, a FIFO or /dev/zero is refused at
-/// once instead of blocking or filling the memory.
+/// only a regular file of bounded size is read, and it is looked at (opened
+/// without blocking, then fstat: util/input_file.hpp) before a byte is read,
+/// so a directory, a FIFO or /dev/zero is refused at once instead of blocking
+/// or filling the memory.
 
 #include <cstdint>
 #include <string>

@@ -26,6 +26,10 @@ inline constexpr double kMaxPhysicsSteps = 1e9;
 /// search for the largest ratio O(n^4) an evaluation (model/bounds.hpp); the
 /// longest real arms have 7 to 9 joints.
 inline constexpr int kMaxJoints = 16;
+/// The highest integrator-chain order of an actuator (actuator.order 0..4):
+/// the paper's chains go to 4; it sizes ACTUATOR_STATE's xi and
+/// CONTROL_COMMAND's xi_error (logs/event_bounds.hpp bounds them by it).
+inline constexpr int kMaxActuatorOrder = 4;
 /// The estimated size of run.lcm.
 inline constexpr double kMaxLogBytes = 16.0 * (1u << 30);
 /// The estimated memory of the series a process keeps for the whole run (the

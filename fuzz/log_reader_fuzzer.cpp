@@ -4,8 +4,8 @@
 /// replay`, `report` and `view` do with a log before anything decodes a
 /// message. A crash, a sanitizer report (ASan, UBSan), an exception other
 /// than LogError escaping, or bytes unaccounted for is a finding: every byte
-/// of the file must be read as an event, skipped as corrupt, or counted as
-/// the unreadable end.
+/// of the file must be read as an event, skipped as corrupt or as an event
+/// over its channel's bound, or counted as the unreadable end.
 ///
 /// Run: bash scripts/fuzz.sh [SECONDS]   (corpus: fuzz/corpus/logs)
 
@@ -33,7 +33,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           lagrange::logs::log_format::kHeaderBytes + static_cast<long long>(ev->channel.size()) + ev->datalen;
     }
     const lagrange::logs::LogScan& scan = reader.scan();
-    if (event_bytes + scan.skipped_bytes + scan.unreadable_tail_bytes != total) std::abort();
+    if (event_bytes + scan.skipped_bytes + scan.oversized_bytes + scan.unreadable_tail_bytes != total)
+      std::abort();
+    if ((scan.oversized_events > 0) != !scan.first_oversized.empty()) std::abort();
     if ((scan.skipped_bytes > 0) != (scan.first_skipped_at >= 0)) std::abort();
     (void)scan.problems();
     (void)sum;

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
-#include <system_error>
+
+#include "transport/channels.hpp"
+#include "util/input_file.hpp"
 
 namespace lagrange::logs {
 
@@ -24,6 +25,15 @@ uint64_t bigEndian64(const unsigned char* p) { return (uint64_t{bigEndian32(p)} 
 // As people read it in a hex dump of the file.
 constexpr const char* kSyncWordText = "0xEDA1DA01";
 
+// Oversized events named in the warning; the rest are counted.
+constexpr std::size_t kOversizedNamed = 3;
+
+bool isPerTick(const std::string& channel) {
+  for (const transport::ChannelInfo& info : transport::kChannelTable)
+    if (channel == info.name) return info.per_tick;
+  return false;
+}
+
 }  // namespace
 
 std::vector<std::string> LogScan::problems() const {
@@ -38,6 +48,17 @@ std::vector<std::string> LogScan::problems() const {
     out.push_back("the log ends with " + std::to_string(unreadable_tail_bytes) +
                   " bytes that are not a whole event (cut short, e.g. a run killed while writing); " +
                   std::to_string(events) + " whole events before them were read");
+  if (oversized_events > 0) {
+    std::string named;
+    for (const OversizedEvent& e : first_oversized)
+      named += std::string(named.empty() ? "" : "; ") + e.channel + " at byte " + std::to_string(e.offset) +
+               (e.tick >= 0 ? " (tick " + std::to_string(e.tick) + ")" : "") + ": " +
+               std::to_string(e.bytes) + " bytes, at most " + std::to_string(e.bound) + " expected";
+    out.push_back(std::to_string(oversized_events) + (oversized_events == 1 ? " event was" : " events were") +
+                  " larger than its channel's messages can be and skipped unread, never decoded (" + named +
+                  (oversized_events > static_cast<long long>(first_oversized.size()) ? "; ..." : "") +
+                  "); the bound is the message with the counts of " + bounds_origin);
+  }
   return out;
 }
 
@@ -57,18 +78,38 @@ std::string LogScan::describe() const {
 }
 
 LogEventReader::LogEventReader(const std::string& path) : owned_(true), name_(path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw LogError("cannot read " + path + ": " + (ec ? ec.message() : std::string("not a regular file")) +
-                   "; expected an LCM log file");
-  size_ = static_cast<long long>(std::filesystem::file_size(path, ec));
-  if (ec) throw LogError("cannot read " + path + ": " + ec.message());
-  file_ = std::fopen(path.c_str(), "rb");
-  if (file_ == nullptr) throw LogError("cannot open " + path + ": " + std::strerror(errno));
+  util::InputFile input = util::InputFile::open(path, "an LCM log file");
+  if (!input.ok()) throw LogError(input.error());
+  size_ = input.size();
+  file_ = fdopen(input.fd(), "rb");
+  if (file_ == nullptr) throw LogError("cannot open '" + path + "': " + std::strerror(errno));
+  input.release();  // the stream closes it now
+  scan_.bounds_origin = bounds_.origin();
 }
 
 LogEventReader::LogEventReader(std::FILE* file, long long size, std::string name)
-    : file_(file), size_(size), name_(std::move(name)) {}
+    : file_(file), size_(size), name_(std::move(name)) {
+  scan_.bounds_origin = bounds_.origin();
+}
+
+void LogEventReader::limitEvents(EventBounds bounds) {
+  bounds_ = std::move(bounds);
+  scan_.bounds_origin = bounds_.origin();
+}
+
+void LogEventReader::skipOversized(long long offset, const std::string& channel, long long bytes,
+                                   long long bound) {
+  ++scan_.oversized_events;
+  scan_.oversized_bytes += kHeaderBytes + static_cast<long long>(channel.size()) + bytes;
+  if (scan_.first_oversized.size() >= kOversizedNamed) return;
+  OversizedEvent e{channel, offset, bytes, bound, -1};
+  // The tick its header claims, for the warning: after the 8-byte fingerprint (header_t.tick first).
+  unsigned char tick[8];
+  if (isPerTick(channel) && bytes >= 16 &&
+      readAt(offset + kHeaderBytes + static_cast<long long>(channel.size()) + 8, tick, sizeof tick))
+    e.tick = static_cast<long long>(bigEndian64(tick));
+  scan_.first_oversized.push_back(std::move(e));
+}
 
 LogEventReader::~LogEventReader() {
   if (owned_ && file_ != nullptr) std::fclose(file_);
@@ -134,7 +175,7 @@ long long LogEventReader::nextEventStart(long long from) {
 
 void LogEventReader::finish() {
   done_ = true;
-  if (scan_.events == 0 && size_ > 0)
+  if (scan_.events == 0 && scan_.oversized_events == 0 && size_ > 0)
     throw LogError(name_ + " is not an LCM log: no event in its " + std::to_string(size_) +
                    " bytes (expected events starting with the LCM sync word " + kSyncWordText + ")");
 }
@@ -166,15 +207,29 @@ const lcm::LogEvent* LogEventReader::next() {
     event_.eventnum = header.event_number;
     event_.timestamp = header.timestamp;
     event_.channel.assign(static_cast<std::size_t>(header.channel_bytes), '\0');
-    data_.resize(static_cast<std::size_t>(header.data_bytes) + 1);  // + 1: never a zero-size buffer
-    if (!readAt(position_ + kHeaderBytes, event_.channel.data(), event_.channel.size()) ||
-        !readAt(position_ + kHeaderBytes + header.channel_bytes, data_.data(),
-                static_cast<std::size_t>(header.data_bytes)))
+    if (!readAt(position_ + kHeaderBytes, event_.channel.data(), event_.channel.size()))
       throw LogError("cannot read " + name_ + " at byte " + std::to_string(position_) + ": " +
+                     std::strerror(errno));
+    const long long event_start = position_;
+    position_ += kHeaderBytes + header.channel_bytes + header.data_bytes;
+    if (!only_channel_.empty() && event_.channel != only_channel_) {
+      ++scan_.events;
+      ++scan_.channels[event_.channel];
+      continue;
+    }
+    // Larger than its channel's messages can be: not one of them, and never read.
+    const long long bound = bounds_.largestData(event_.channel);
+    if (bound >= 0 && header.data_bytes > bound) {
+      skipOversized(event_start, event_.channel, header.data_bytes, bound);
+      continue;
+    }
+    data_.resize(static_cast<std::size_t>(header.data_bytes) + 1);  // + 1: never a zero-size buffer
+    if (!readAt(event_start + kHeaderBytes + header.channel_bytes, data_.data(),
+                static_cast<std::size_t>(header.data_bytes)))
+      throw LogError("cannot read " + name_ + " at byte " + std::to_string(event_start) + ": " +
                      std::strerror(errno));
     event_.datalen = header.data_bytes;
     event_.data = data_.data();
-    position_ += kHeaderBytes + header.channel_bytes + header.data_bytes;
     ++scan_.events;
     ++scan_.channels[event_.channel];
     return &event_;

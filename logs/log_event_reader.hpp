@@ -22,7 +22,14 @@
 ///   word that starts a whole, sane event, and counted (LogScan::skipped_bytes);
 /// - an event that runs past the end of the file (a logger killed while
 ///   writing): the end; the log reads up to its last whole event, and the
-///   rest is counted (LogScan::unreadable_tail_bytes).
+///   rest is counted (LogScan::unreadable_tail_bytes);
+/// - a whole event larger than its channel's messages can be in this log
+///   (logs/event_bounds.hpp): skipped without reading its data, and named
+///   (LogScan::oversized), so that nothing ever decodes it.
+///
+/// The file is opened without blocking and refused unless it is a regular
+/// file (util/input_file.hpp): a FIFO, /dev/zero or a directory is named and
+/// refused before a byte is read.
 
 #include <cstdint>
 #include <cstdio>
@@ -31,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "logs/event_bounds.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::logs {
@@ -52,13 +60,26 @@ constexpr int32_t kMaxChannelBytes = 999;
 constexpr int32_t kMaxDataBytes = 1 << 28;
 }  // namespace log_format
 
+/// A whole event skipped unread: larger than its channel's messages can be.
+struct OversizedEvent {
+  std::string channel;
+  long long offset = 0;  ///< of the event in the file [bytes]
+  long long bytes = 0;   ///< its data
+  long long bound = 0;   ///< the most its channel's data can be in this log
+  long long tick = -1;   ///< the tick its header claims (per-tick channels), -1: not read
+};
+
 /// What a pass over a log read.
 struct LogScan {
-  long long events = 0;                       ///< events read whole
-  long long skipped_bytes = 0;                ///< corrupt bytes between events, jumped over
-  long long first_skipped_at = -1;            ///< byte offset of the first corrupt stretch, -1: none
-  long long unreadable_tail_bytes = 0;        ///< bytes after the last whole event
-  std::map<std::string, long long> channels;  ///< events per channel
+  long long events = 0;                         ///< events read whole
+  long long skipped_bytes = 0;                  ///< corrupt bytes between events, jumped over
+  long long first_skipped_at = -1;              ///< byte offset of the first corrupt stretch, -1: none
+  long long unreadable_tail_bytes = 0;          ///< bytes after the last whole event
+  std::map<std::string, long long> channels;    ///< events per channel (oversized ones not counted)
+  long long oversized_events = 0;               ///< whole events skipped unread: over their bound
+  long long oversized_bytes = 0;                ///< their bytes, headers and channels included
+  std::vector<OversizedEvent> first_oversized;  ///< the first few of them, for the warning
+  std::string bounds_origin;                    ///< whose shape bounded the events (EventBounds::origin)
 
   /// Warnings for a person, empty when the log was read whole.
   std::vector<std::string> problems() const;
@@ -69,8 +90,9 @@ struct LogScan {
 /// Reads a log's events in file order, checking each before it allocates.
 class LogEventReader {
  public:
-  /// Opens the log at `path`.
-  /// @throws LogError if it cannot be opened or is not a regular file.
+  /// Opens the log at `path`, without blocking and without reading it.
+  /// @throws LogError naming the file if it cannot be opened or is not a
+  /// regular file (a directory, a FIFO, a device).
   explicit LogEventReader(const std::string& path);
   /// Reads `size` bytes of an open stream (not closed here), named `name` in
   /// messages: a log in memory (fmemopen) for the fuzzer and the unit tests.
@@ -87,6 +109,15 @@ class LogEventReader {
 
   /// What has been read so far (complete once next() returned nullptr).
   const LogScan& scan() const { return scan_; }
+
+  /// From the next event on, an event whose data is larger than `bounds`
+  /// allow for its channel is skipped unread and counted in the scan. By
+  /// default the project's limits bound every event (EventBounds::projectLimits).
+  void limitEvents(EventBounds bounds);
+  /// From the next event on, hands out only the events on `channel`: the
+  /// others are passed over without reading their data (and counted as
+  /// events). For a reader that looks for one channel, e.g. the SCENARIO.
+  void readOnly(std::string channel) { only_channel_ = std::move(channel); }
 
  private:
   // What stands at an offset where an event should start.
@@ -107,6 +138,9 @@ class LogEventReader {
   long long position_ = 0;  // where the next event should start
   bool done_ = false;
   LogScan scan_;
+  EventBounds bounds_ = EventBounds::projectLimits();
+  std::string only_channel_;  // "": every channel
+  void skipOversized(long long offset, const std::string& channel, long long bytes, long long bound);
   lcm::LogEvent event_{};
   std::vector<char> data_;
 };

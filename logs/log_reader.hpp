@@ -20,10 +20,22 @@
 
 namespace lagrange::logs {
 
-/// Calls on_event for every event of the log at `path`, in file order.
-/// @throws LogError if the file cannot be opened, holds no event in a nonzero
-/// length, or holds a malformed event (named with its byte offset).
+/// Calls on_event for every event of the log at `path`, in file order, but
+/// those larger than their channel's messages can be in this log (boundsOfLog):
+/// each is skipped unread and named in the scan's problems().
+/// @throws LogError if the file cannot be opened or is not a regular file,
+/// holds no event in a nonzero length, holds a malformed event (named with
+/// its byte offset), or a SCENARIO larger than any scenario can be.
 LogScan readLog(const std::string& path, const std::function<void(const lcm::LogEvent&)>& on_event);
+
+/// How large each channel's events can be in the log at `path`: its per-tick
+/// messages have the counts its first SCENARIO that decodes gives (joints,
+/// actuator order, torque steps a tick); without one, or with one that is not
+/// a valid scenario, the project's limits (logs/event_bounds.hpp). Reads the
+/// events' headers up to that SCENARIO, and no other event's data.
+/// @throws LogError as readLog, and when the first SCENARIO is larger than
+/// any scenario can be (named with its byte offset, its size and the bound).
+EventBounds boundsOfLog(const std::string& path);
 
 /// Decodes an event as Msg; false (never a throw, never a huge allocation)
 /// if it is not one whole, intact Msg: a message whose checksum does not

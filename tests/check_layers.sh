@@ -21,7 +21,7 @@ config     : util model transport/fault_rule.hpp
 scenario   : util model core config
 lcm        : util model core config scenario transport messages
 runtime    : util model config transport messages
-logs       : util transport messages
+logs       : util model config transport messages
 wiring     : util model core config scenario lcm runtime transport messages
 process    : util model core config scenario lcm runtime transport messages logs wiring
 test       : util model core config scenario lcm runtime transport messages logs wiring process

@@ -9,6 +9,10 @@ per-channel arrays, with summary.json and the resolved scenario beside them.
     truth["q"][k][1]      # joint 2's angle at sample k
     run.summary["tracking"]["final_error"]
 
+Every event is first held to the largest its channel's message can be in the
+log's scenario (lagrange/log_bounds.py): a larger one is skipped unread and
+named in `run.scan.problems()`, never decoded.
+
 Each channel is a dict of field name to column: scalars as a list (or a 1-D
 numpy array), per-joint fields as a list of lists (or a 2-D numpy array, one
 row per sample), header fields as "header.tick", ... and "t" for
@@ -24,7 +28,7 @@ import json
 import os
 import struct
 
-from . import contract, logfile
+from . import contract, log_bounds, logfile
 from .actuator_state_t import actuator_state_t
 from .control_command_t import control_command_t
 from .plant_motor_t import plant_motor_t
@@ -98,6 +102,26 @@ def _columns(messages, use_numpy):
     return out
 
 
+def bounds_of_log(path):
+    """How large each channel's events can be in the log at `path`: from its
+    first SCENARIO that decodes (no other event's data is read), or the
+    project's limits. Raises LogError when that SCENARIO is larger than any
+    scenario can be."""
+    with logfile.LogReader(path, only_channel="SCENARIO") as reader:
+        for event in reader:
+            if reader.scan.first_oversized:
+                break
+            message = decode(event.channel, event.data)
+            if message is not None:
+                return log_bounds.bounds_of_scenario(message.yaml)
+        if reader.scan.first_oversized:
+            _, offset, size, bound, _ = reader.scan.first_oversized[0]
+            raise logfile.LogError("%s: the SCENARIO at byte %d holds %d bytes; a scenario is at most %d (a scenario "
+                                   "file of at most 1 MiB resolved with its URDF inline); expected the log of a "
+                                   "lagrange run" % (path, offset, size, bound))
+    return log_bounds.bounds_of_scenario(None)
+
+
 class Run:
     """A run's outputs (see the module's text)."""
 
@@ -133,7 +157,7 @@ def load(run_dir, numpy=None, verify=True):
         except ImportError:
             numpy = False
     decoded = {}
-    with logfile.LogReader(path) as reader:
+    with logfile.LogReader(path, bounds=bounds_of_log(path)) as reader:
         for event in reader:
             if event.channel not in CHANNEL_TYPES:
                 run.unknown_channels[event.channel] = run.unknown_channels.get(event.channel, 0) + 1

@@ -15,11 +15,20 @@ should start:
 - no sync word (a corrupt stretch): skipped up to the next sync word that
   starts a whole, sane event, and counted (scan.skipped_bytes);
 - an event running past the end of the file (a logger killed while writing):
-  the end; the rest is counted (scan.unreadable_tail_bytes).
+  the end; the rest is counted (scan.unreadable_tail_bytes);
+- a whole event larger than its channel's messages can be in this log
+  (`bounds`, lagrange/log_bounds.py): skipped without reading its data, and
+  named (scan.oversized_events, scan.first_oversized).
+
+The file is opened without blocking and refused unless it is a regular file:
+a FIFO, /dev/zero or a directory is named and refused before a byte is read.
 """
 
 import os
+import stat
 import struct
+
+from . import log_bounds
 
 SYNC_WORD = 0xEDA1DA01
 HEADER_BYTES = 4 + 8 + 8 + 4 + 4
@@ -44,6 +53,11 @@ class Event:
         self.offset = offset  # the event's byte offset in the file
 
 
+# Oversized events named in the warning; the rest are counted.
+_OVERSIZED_NAMED = 3
+_PER_TICK = ("PLANT_POSITION", "PLANT_TRUTH", "PLANT_MOTOR", "PLANT_RATE", "CONTROL_COMMAND", "ACTUATOR_STATE")
+
+
 class Scan:
     """What a pass over a log read."""
 
@@ -53,6 +67,10 @@ class Scan:
         self.first_skipped_at = -1
         self.unreadable_tail_bytes = 0
         self.channels = {}
+        self.oversized_events = 0  # whole events skipped unread: over their channel's bound
+        self.oversized_bytes = 0
+        self.first_oversized = []  # (channel, offset, data bytes, bound, tick or None), the first few
+        self.bounds_origin = ""
 
     def problems(self):
         """Warnings for a person; empty when the log was read whole."""
@@ -65,26 +83,55 @@ class Scan:
             out.append("the log ends with %d bytes that are not a whole event (cut short, e.g. a run killed "
                        "while writing); %d whole events before them were read"
                        % (self.unreadable_tail_bytes, self.events))
+        if self.oversized_events:
+            named = "; ".join(
+                "%s at byte %d%s: %d bytes, at most %d expected"
+                % (channel, offset, "" if tick is None else " (tick %d)" % tick, size, bound)
+                for channel, offset, size, bound, tick in self.first_oversized)
+            more = "; ..." if self.oversized_events > len(self.first_oversized) else ""
+            out.append("%d %s larger than its channel's messages can be and skipped unread, never decoded "
+                       "(%s%s); the bound is the message with the counts of %s"
+                       % (self.oversized_events, "event was" if self.oversized_events == 1 else "events were",
+                          named, more, self.bounds_origin))
         return out
 
 
 _EVENT, _NO_SYNC, _CUT_SHORT, _MALFORMED = range(4)
 
 
+def _kind(mode):
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
 class LogReader:
     """Reads a log's events in file order: `for event in LogReader(path)`.
-    `scan` holds what was read once the iteration ends."""
+    `scan` holds what was read once the iteration ends. `bounds`
+    (log_bounds.Bounds; default: the project's limits) bounds each channel's
+    events; `only_channel` hands out only that channel's events, passing the
+    others over unread."""
 
-    def __init__(self, path):
+    def __init__(self, path, bounds=None, only_channel=None):
         self.path = str(path)
-        if not os.path.isfile(self.path):
-            raise LogError("cannot read %s: not a regular file; expected an LCM log file" % self.path)
-        try:
-            self._file = open(self.path, "rb")
+        try:  # without blocking (a FIFO), then looked at through the descriptor that will be read
+            fd = os.open(self.path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
         except OSError as e:
-            raise LogError("cannot open %s: %s" % (self.path, e.strerror)) from None
+            raise LogError("cannot read '%s' (%s); expected an LCM log file" % (self.path, e.strerror)) from None
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            os.close(fd)
+            raise LogError("'%s' is %s; expected an LCM log file (a regular file)" % (self.path, _kind(mode)))
+        os.set_blocking(fd, True)
+        self._file = os.fdopen(fd, "rb")
         self._size = os.fstat(self._file.fileno()).st_size
+        self.bounds = bounds if bounds is not None else log_bounds.project_limits()
+        self.only_channel = only_channel
         self.scan = Scan()
+        self.scan.bounds_origin = self.bounds.origin
 
     def close(self):
         self._file.close()
@@ -94,6 +141,16 @@ class LogReader:
 
     def __exit__(self, *exc):
         self.close()
+
+    def _skip_oversized(self, offset, channel, channel_bytes, data_bytes, bound):
+        self.scan.oversized_events += 1
+        self.scan.oversized_bytes += HEADER_BYTES + channel_bytes + data_bytes
+        if len(self.scan.first_oversized) >= _OVERSIZED_NAMED:
+            return
+        tick = None  # the tick its header claims: after the 8-byte fingerprint
+        if channel in _PER_TICK and data_bytes >= 16:
+            tick = struct.unpack(">q", self._read_at(offset + HEADER_BYTES + channel_bytes + 8, 8))[0]
+        self.scan.first_oversized.append((channel, offset, data_bytes, bound, tick))
 
     def _read_at(self, offset, n):
         self._file.seek(offset)
@@ -164,12 +221,20 @@ class LogReader:
                 position = following
                 continue
             eventnum, timestamp, channel_bytes, data_bytes = header
-            body = self._read_at(position + HEADER_BYTES, channel_bytes + data_bytes)
-            channel = body[:channel_bytes].decode("utf-8", "replace")
+            channel = self._read_at(position + HEADER_BYTES, channel_bytes).decode("utf-8", "replace")
+            start, position = position, position + HEADER_BYTES + channel_bytes + data_bytes
+            if self.only_channel is not None and channel != self.only_channel:
+                self.scan.events += 1
+                self.scan.channels[channel] = self.scan.channels.get(channel, 0) + 1
+                continue
+            bound = self.bounds.largest_data(channel)
+            if bound is not None and data_bytes > bound:  # not one of the run's messages: never read
+                self._skip_oversized(start, channel, channel_bytes, data_bytes, bound)
+                continue
+            data = self._read_at(start + HEADER_BYTES + channel_bytes, data_bytes)
             self.scan.events += 1
             self.scan.channels[channel] = self.scan.channels.get(channel, 0) + 1
-            yield Event(eventnum, timestamp, channel, body[channel_bytes:], position)
-            position += HEADER_BYTES + channel_bytes + data_bytes
-        if self.scan.events == 0 and self._size > 0:
+            yield Event(eventnum, timestamp, channel, data, start)
+        if self.scan.events == 0 and self.scan.oversized_events == 0 and self._size > 0:
             raise LogError("%s is not an LCM log: no event in its %d bytes (expected events starting with the LCM "
                            "sync word 0xEDA1DA01)" % (self.path, self._size))

@@ -21,6 +21,7 @@ import lagrange.contract  # noqa: E402
 import lagrange.external  # noqa: E402
 import lagrange.lcm  # noqa: E402
 import lagrange.log  # noqa: E402
+import lagrange.log_bounds  # noqa: E402
 import lagrange.logfile  # noqa: E402
 
 
@@ -180,8 +181,107 @@ class LogFile(unittest.TestCase):
         with self.assertRaisesRegex(lagrange.logfile.LogError, "is not an LCM log: no event in its 11 bytes"):
             with lagrange.logfile.LogReader(self.write(b"hello world")) as r:
                 list(r)
-        with self.assertRaisesRegex(lagrange.logfile.LogError, "not a regular file"):
+        with self.assertRaisesRegex(lagrange.logfile.LogError, "is a directory; expected an LCM log file"):
             lagrange.logfile.LogReader(tempfile.gettempdir())
+
+    def test_a_fifo_or_a_device_is_refused_by_what_it_is_before_a_byte_is_read(self):
+        with tempfile.TemporaryDirectory() as d:
+            fifo = os.path.join(d, "fifo.lcm")
+            os.mkfifo(fifo)
+            link = os.path.join(d, "zero.lcm")
+            os.symlink("/dev/zero", link)
+            for path, kind in ((fifo, "a FIFO (named pipe)"), ("/dev/urandom", "a character device"),
+                               (link, "a character device")):
+                with self.assertRaises(lagrange.logfile.LogError) as caught:
+                    lagrange.logfile.LogReader(path)
+                self.assertEqual(str(caught.exception),
+                                 "'%s' is %s; expected an LCM log file (a regular file)" % (path, kind))
+
+
+GOLDEN = os.path.join(ROOT, "tests", "data", "golden")
+
+
+def with_longest_publisher(message):
+    message.header = lagrange.header_t()
+    message.header.publisher = "p" * lagrange.log_bounds.MAX_PUBLISHER_BYTES
+    return message
+
+
+def actuator_state(tick, joints, steps):
+    """An ACTUATOR_STATE whose lengths are all consistent: `steps` rows of `joints` joints."""
+    m = lagrange.actuator_state_t()
+    m.header = lagrange.header_t()
+    m.header.tick, m.header.publisher = tick, "actuator"
+    m.num_joints, m.order, m.u_commanded = joints, 0, [0.0] * joints
+    m.torque_steps, m.tau_applied = steps, [[0.0] * joints for _ in range(steps)]
+    m.saturated, m.xi = [False] * joints, []
+    return m.encode()
+
+
+class LogBounds(unittest.TestCase):
+    def test_the_bounds_are_the_encoded_sizes_of_the_largest_messages(self):
+        for n, m, steps in ((1, 0, 1), (2, 2, 3), (7, 4, 5)):
+            sizes = lagrange.log_bounds.encoded_sizes(lagrange.log_bounds.Shape(n, m, steps))
+            position = with_longest_publisher(lagrange.plant_position_t())
+            position.num_joints, position.q = n, [0.0] * n
+            truth = with_longest_publisher(lagrange.plant_truth_t())
+            truth.num_joints, truth.q, truth.qdot, truth.tau_applied = n, [0.0] * n, [0.0] * n, [0.0] * n
+            motor = with_longest_publisher(lagrange.plant_motor_t())
+            motor.num_joints, motor.q, motor.num_rates, motor.qdot = n, [0.0] * n, n, [0.0] * n
+            command = with_longest_publisher(lagrange.control_command_t())
+            command.num_joints = n
+            command.u = command.q_desired = command.q_error = command.theta = command.filter_state = [0.0] * n
+            command.chain_order, command.xi_error = 4, [[0.0] * n for _ in range(4)]
+            state = with_longest_publisher(lagrange.actuator_state_t())
+            state.num_joints, state.order, state.u_commanded = n, m, [0.0] * n
+            state.torque_steps, state.tau_applied = steps, [[0.0] * n for _ in range(steps)]
+            state.saturated, state.xi = [False] * n, [[0.0] * n for _ in range(m)]
+            for channel, message in (("PLANT_POSITION", position), ("PLANT_TRUTH", truth), ("PLANT_MOTOR", motor),
+                                     ("CONTROL_COMMAND", command), ("ACTUATOR_STATE", state)):
+                self.assertEqual(sizes[channel], len(message.encode()), (channel, n, m, steps))
+
+    def test_every_golden_log_loads_whole_within_its_scenarios_bounds(self):
+        shapes = {"rigid_2dof_lockstep": "2 joints, actuator order 0, 1 torque step a tick",
+                  "chain_m2_lockstep": "2 joints, actuator order 2, 1 torque step a tick",
+                  "panda_theorem1_lockstep": "7 joints, actuator order 0, 1 torque step a tick"}
+        for name, shape in shapes.items():
+            path = os.path.join(GOLDEN, name + ".lcm")
+            self.assertEqual(lagrange.log.bounds_of_log(path).origin, "the log's scenario (%s)" % shape)
+        for name in sorted(os.listdir(GOLDEN)):
+            with lagrange.logfile.LogReader(os.path.join(GOLDEN, name),
+                                            lagrange.log.bounds_of_log(os.path.join(GOLDEN, name))) as r:
+                list(r)
+                self.assertEqual(r.scan.oversized_events, 0, name)
+
+    # The issue's attack, smaller: 200 000 one-joint rows (1.6 MB; 30 million
+    # took load to 3.3 GB) in a log of a 2-joint scenario with 1 torque step a tick.
+    def test_an_event_larger_than_its_scenario_allows_is_skipped_unread_and_named(self):
+        with lagrange.logfile.LogReader(os.path.join(GOLDEN, "rigid_2dof_lockstep.lcm")) as r:
+            scenario = next(iter(r)).data
+        head = event("SCENARIO", scenario, 0) + event("ACTUATOR_STATE", actuator_state(0, 2, 1), 1)
+        crafted = event("ACTUATOR_STATE", actuator_state(7, 1, 200000), 2)
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "run.lcm"), "wb") as f:
+                f.write(head + crafted + event("ACTUATOR_STATE", actuator_state(1, 2, 1), 3))
+            run = lagrange.log.load(d, numpy=False)
+        self.assertEqual(run.channels["ACTUATOR_STATE"]["header.tick"], [0, 1])
+        self.assertEqual(run.scan.oversized_events, 1)
+        problems = "\n".join(run.scan.problems())
+        bound = lagrange.log_bounds.encoded_sizes(lagrange.log_bounds.Shape(2, 0, 1))["ACTUATOR_STATE"] + 32
+        self.assertIn("1 event was larger than its channel's messages can be and skipped unread, never decoded "
+                      "(ACTUATOR_STATE at byte %d (tick 7): %d bytes, at most %d expected); the bound is the "
+                      "message with the counts of the log's scenario (2 joints, actuator order 0, 1 torque step "
+                      "a tick)" % (len(head), len(crafted) - 42, bound), problems)
+
+    def test_a_scenario_larger_than_any_scenario_refuses_the_log(self):
+        size = lagrange.log_bounds.MAX_SCENARIO_EVENT_BYTES + 1
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, "run.lcm"), "wb") as f:
+                f.write(event("SCENARIO", bytes(size)))
+            with self.assertRaisesRegex(lagrange.logfile.LogError,
+                                        "the SCENARIO at byte 0 holds %d bytes; a scenario is at most %d"
+                                        % (size, size - 1)):
+                lagrange.log.load(d)
 
 
 class Lcm(unittest.TestCase):

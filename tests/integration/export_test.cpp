@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "support/configs.hpp"
 #include "support/launch.hpp"
@@ -78,7 +79,11 @@ TEST(Export, H5pyReadsEverySampleBitForBitWithUnitsAndJointNames) {
   std::filesystem::create_directories(empty);
   const RunResult none = lagrange("export " + quote(empty) + " -o " + quote(out + "/x.h5"));
   EXPECT_EQ(none.exit_code, 2) << none.output;
-  EXPECT_NE(none.output.find("no run log at"), std::string::npos) << none.output;
+  EXPECT_NE(none.output.find("cannot read '" + empty +
+                             "/run.lcm' (No such file or directory); expected a run directory (lagrange run "
+                             "--out) or its run.lcm"),
+            std::string::npos)
+      << none.output;
   EXPECT_FALSE(std::filesystem::exists(out + "/x.h5"));
 }
 
@@ -91,6 +96,32 @@ TEST(Export, AnActuatorChainsStatesAreThreeDimensional) {
   const RunResult r = compareWithH5py(out, h5);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("(501, 2, 2)"), std::string::npos) << r.output;
+}
+
+// The files beside the log are read only when they are regular files of a
+// sane size: a summary.json of 64 MiB (sparse: no run writes one) and a
+// config.resolved.yaml that is a link to /dev/zero are left out, each named
+// in a warning, and the log is exported from its own scenario.
+TEST(Export, ARunFileThatIsNotARegularFileOrTooLargeIsLeftOutAndNamed) {
+  const std::string out = freshDir("export-files"), h5 = out + "/run.h5";
+  std::filesystem::create_directories(out);
+  std::filesystem::copy_file(kGoldenRigidLockstep, out + "/run.lcm");
+  { std::ofstream(out + "/summary.json") << "{}"; }
+  std::filesystem::resize_file(out + "/summary.json", 64u << 20);
+  std::filesystem::create_symlink("/dev/zero", out + "/config.resolved.yaml");
+  const RunResult r = lagrange("export " + quote(out) + " -o " + quote(h5));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: '" + out +
+                          "/summary.json' is larger than 64 MiB; expected the run's "
+                          "summary.json of at most 16 MiB; left out of the export"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("warning: '" + out +
+                          "/config.resolved.yaml' is a character device; expected the "
+                          "run's resolved scenario (a regular file); left out of the export"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(std::filesystem::is_regular_file(h5));
 }
 
 }  // namespace

@@ -179,7 +179,7 @@ TEST(SweepStore, APartialLineAKilledShardLeftIsDroppedAndCutBeforeTheNextRow) {
   fs::create_directories(dir / "rows");
   const fs::path file = dir / "rows" / "shard-0-of-1.jsonl";
   std::ofstream(file) << "{\"index\":0,\"status\":\"completed\"}\n{\"index\":1,\"sta";
-  auto rows = readFinishedRows(dir.string());
+  auto rows = readFinishedRows(dir.string(), 2).rows;
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows.begin()->first, 0);
   {
@@ -189,7 +189,7 @@ TEST(SweepStore, APartialLineAKilledShardLeftIsDroppedAndCutBeforeTheNextRow) {
     row["status"] = "completed";
     writer.append(row);
   }
-  rows = readFinishedRows(dir.string());
+  rows = readFinishedRows(dir.string(), 2).rows;
   ASSERT_EQ(rows.size(), 2u);
   std::ifstream in(file);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -205,7 +205,7 @@ TEST(SweepStore, AnOldRowsSampledVerdictIsReadAsTheLinearisedOne) {
   std::ofstream(dir / "rows" / "shard-0-of-1.jsonl")
       << "{\"index\":0,\"sampled_verdict\":\"slow\",\"spectral_radius\":0.99}\n"
          "{\"index\":1,\"linearised_verdict\":\"adequate\",\"sampled_verdict\":\"diverges\"}\n";
-  const auto rows = readFinishedRows(dir.string());
+  const auto rows = readFinishedRows(dir.string(), 2).rows;
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows.at(0).at("linearised_verdict"), "slow");
   EXPECT_TRUE(rows.at(0).at("sampled_verdict").is_null());

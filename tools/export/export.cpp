@@ -6,17 +6,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 
+#include "config/input_file.hpp"
 #include "config/scenario.hpp"
+#include "logs/event_bounds.hpp"
 #include "transport/channels.hpp"
 #include "transport/message_fields.hpp"
 #include "util/error.hpp"
+#include "util/input_file.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {
@@ -176,13 +177,22 @@ void flush(ChannelTable& c) {
   }
 }
 
-std::optional<std::string> fileText(const fs::path& p) {
+// summary.json: a few kB of metrics; 16 MiB is far beyond any run's.
+constexpr std::uintmax_t kMaxSummaryBytes = 16u << 20;
+
+// A file next to the log, when there is one: read only if it is a regular
+// file of at most max_bytes (a FIFO there would block the export, /dev/zero
+// fill its memory), else left out with a warning naming it.
+std::optional<std::string> runFileText(const fs::path& p, std::uintmax_t max_bytes,
+                                       const std::string& expected, std::vector<std::string>& warnings) {
   std::error_code ec;
-  if (!fs::is_regular_file(p, ec)) return std::nullopt;
-  std::ifstream in(p);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  if (!fs::exists(fs::symlink_status(p, ec))) return std::nullopt;
+  const config::FileText file = config::readRegularFile(p.string(), max_bytes, expected);
+  if (!file.error.empty()) {
+    warnings.push_back(file.error + "; left out of the export");
+    return std::nullopt;
+  }
+  return file.text;
 }
 
 }  // namespace
@@ -190,9 +200,10 @@ std::optional<std::string> fileText(const fs::path& p) {
 HdfExport exportHdf5(const std::string& target, const std::string& out_file, bool force) {
   std::error_code ec;
   const fs::path log = fs::is_directory(target, ec) ? fs::path(target) / "run.lcm" : fs::path(target);
-  if (!fs::is_regular_file(log, ec))
-    throw BadInput("no run log at " + log.string() +
-                   "; expected a run directory (lagrange run --out) or its run.lcm");
+  if (const util::InputFile file =
+          util::InputFile::open(log.string(), "a run directory (lagrange run --out) or its run.lcm");
+      !file.ok())
+    throw BadInput(file.error());
   const fs::path dir = log.parent_path();
   if (fs::exists(fs::symlink_status(out_file)) && !force)
     throw BadInput(out_file + " exists; expected a new file name (or --force to replace it)");
@@ -223,9 +234,12 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
     c.written.assign(c.ticks.size(), false);
   }
 
-  const std::optional<std::string> resolved = fileText(dir / "config.resolved.yaml");
+  const std::optional<std::string> resolved =
+      runFileText(dir / "config.resolved.yaml", static_cast<std::uintmax_t>(logs::maxScenarioEventBytes()),
+                  "the run's resolved scenario", result.warnings);
   const std::optional<std::string> scenario_text = resolved ? resolved : logged_scenario;
-  const std::optional<std::string> summary = fileText(dir / "summary.json");
+  const std::optional<std::string> summary =
+      runFileText(dir / "summary.json", kMaxSummaryBytes, "the run's summary.json", result.warnings);
   std::vector<std::string> joint_names;
   if (scenario_text) {
     try {

@@ -21,6 +21,7 @@
 
 #include "logs/out_dir_lock.hpp"
 #include "tools/command_error.hpp"
+#include "tools/sweep/sweep_files.hpp"
 #include "tools/sweep/sweep_maps.hpp"
 #include "tools/sweep/sweep_plan.hpp"
 #include "tools/sweep/sweep_progress.hpp"
@@ -48,14 +49,26 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
+// OUT/plan.json as it is on disk, read as any file of OUT (sweep_files.hpp):
+// a regular file, not a link, of at most max_bytes. @throws ConfigError.
+std::string readPlanFile(const fs::path& plan_path, long long max_bytes) {
+  std::string error;
+  const std::optional<std::string> text =
+      readSweepFile(plan_path.string(), "the plan.json lagrange sweep wrote", max_bytes, error);
+  if (!text) throw ConfigError(error);
+  return *text;
+}
+
 // OUT/plan.json: written on the first start; on a restart it must be the
 // plan the sweep file makes now, or OUT is another sweep's.
 void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
   fs::create_directories(fs::path(out_dir) / "rows");
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
   const std::string text = planJson(plan);
-  if (fs::exists(plan_path)) {
-    if (!samePlanText(readFile(plan_path), text))
+  if (fs::exists(fs::symlink_status(plan_path))) {
+    // The same plan written with 17 digits a number (before 2026-11-27) is
+    // longer, never 8 times as long.
+    if (!samePlanText(readPlanFile(plan_path, 8 * static_cast<long long>(text.size()) + 65536), text))
       throw ConfigError("--out " + out_dir + " holds another sweep (its plan.json differs from the plan of " +
                         plan.spec.file +
                         " as it is now); expected the same sweep file and scenario to resume it, or a new "
@@ -73,7 +86,7 @@ SweepPlan loadPlan(const std::string& out_dir) {
     throw ConfigError(out_dir +
                       " is not a sweep's output directory: it has no plan.json; expected the --out "
                       "directory of lagrange sweep");
-  return planFromJson(readFile(plan_path), plan_path.string());
+  return planFromJson(readPlanFile(plan_path, kMaxPlanBytes), plan_path.string());
 }
 
 std::string exitText(int wstatus) {
@@ -82,10 +95,33 @@ std::string exitText(int wstatus) {
          strsignal(WTERMSIG(wstatus)) + ")";
 }
 
-// Table and maps from what is in OUT/rows; returns the rows missing.
-long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who,
-            bool collecting = false) {
-  const auto rows = readFinishedRows(out_dir);
+// What finish found: rows of the plan not in OUT/rows, and lines or files
+// there refused (not this sweep's).
+struct Finished {
+  long missing = 0;
+  long refused = 0;
+  int exitCode(bool failed) const {
+    if (refused > 0) return kExitBadInput;
+    return failed || missing > 0 ? kExitFailed : kExitOk;
+  }
+};
+
+// Table and maps from what is in OUT/rows.
+Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who,
+                bool collecting = false) {
+  const FinishedRows finished = readFinishedRows(out_dir, static_cast<long>(plan.rows.size()));
+  const auto& rows = finished.rows;
+  if (finished.refused > 0) {
+    std::cerr << who << finished.refused
+              << (finished.refused == 1 ? " line or file in " : " lines or files in ")
+              << (fs::path(out_dir) / "rows").string() << (finished.refused == 1 ? " was" : " were")
+              << " refused, not rows of this sweep's plan, and left out of the table:\n";
+    for (const std::string& why : finished.refusals) std::cerr << who << "  " << why << "\n";
+    if (finished.refused > static_cast<long>(finished.refusals.size()))
+      std::cerr << who << "  ... and " << finished.refused - static_cast<long>(finished.refusals.size())
+                << " more\n";
+  }
+
   writeSweepTable(out_dir, plan, rows);
   // OUT/external/ keeps only the external-controller rows that did not
   // complete or were stopped midway (sweep_runner.cpp): gone when none
@@ -102,7 +138,9 @@ long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const
     std::cout << who << rows.size() << " of " << plan.rows.size() << " runs in "
               << (fs::path(out_dir) / "sweep.csv").string() << " (and sweep.jsonl): " << converged
               << " converged, " << diverged << " diverged, "
-              << static_cast<long>(rows.size()) - converged - diverged << " neither\n";
+              << static_cast<long>(rows.size()) - converged - diverged << " neither"
+              << (finished.refused > 0 ? "; " + std::to_string(finished.refused) + " refused (above)" : "")
+              << "\n";
   }
   try {
     const SweepMaps maps = drawSweepMaps(out_dir, plan, rows);
@@ -127,7 +165,7 @@ long finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const
                         "the same lagrange sweep command runs what is missing\n"
                       : "run the same lagrange sweep command again to run them\n");
   }
-  return missing;
+  return {missing, finished.refused};
 }
 
 // Local: shards as processes, one per core; progress from the rows files.
@@ -172,9 +210,9 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   }
   const RowCount end = counter.count();
   progress.finish(end.rows, end.diverged);
-  const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
+  const Finished done = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
   if (sweep_signal) return kExitInterrupted;
-  return failed || missing > 0 ? kExitFailed : kExitOk;
+  return done.exitCode(failed);
 }
 
 // The job id sbatch --parsable prints ("ID" or "ID;CLUSTER") on a line of its
@@ -272,8 +310,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
   if (!sbatch_ok)  // sbatch --wait exits non-zero when a task did
     std::cerr << "lagrange sweep: a task of job " << job << " failed (sbatch --wait " << exitText(wstatus)
               << "); see " << (slurm / "shard-*.out").string() << "\n";
-  const long missing = finish(o.out_dir, plan, o.quiet, "lagrange sweep: ");
-  return missing > 0 ? kExitFailed : kExitOk;
+  return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ").exitCode(false);
 }
 
 }  // namespace
@@ -303,13 +340,13 @@ int runSweep(const SweepOptions& o) {
   std::signal(SIGTERM, onSignal);
   try {
     const long remaining =
-        static_cast<long>(plan.rows.size()) - static_cast<long>(readFinishedRows(o.out_dir).size());
+        static_cast<long>(plan.rows.size()) -
+        static_cast<long>(readFinishedRows(o.out_dir, static_cast<long>(plan.rows.size())).rows.size());
     if (!o.quiet)
       std::cout << "lagrange sweep: " << plan.rows.size() << " runs of " << plan.spec.scenario_path << ", "
                 << remaining << " to run" << (o.slurm ? " on Slurm" : "") << "\n"
                 << std::flush;
-    if (remaining == 0)
-      return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ") > 0 ? kExitFailed : kExitOk;
+    if (remaining == 0) return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ").exitCode(false);
     return o.slurm ? runSlurm(o, plan, remaining) : runLocal(o, plan, remaining);
   } catch (const std::exception& e) {
     return failWith("lagrange sweep", e);
@@ -319,8 +356,7 @@ int runSweep(const SweepOptions& o) {
 int collectSweep(const std::string& out_dir, bool quiet) {
   try {
     const SweepPlan plan = loadPlan(out_dir);
-    return finish(out_dir, plan, quiet, "lagrange sweep collect: ", /*collecting=*/true) > 0 ? kExitFailed
-                                                                                             : kExitOk;
+    return finish(out_dir, plan, quiet, "lagrange sweep collect: ", /*collecting=*/true).exitCode(false);
   } catch (const std::exception& e) {
     return failWith("lagrange sweep collect", e);
   }
@@ -344,7 +380,7 @@ int runSweepShard(const std::string& out_dir, int shard, int of, int parent, con
       throw ConfigError(plan.spec.scenario_path +
                         " has changed since the sweep was planned; expected it as it was (its rows would "
                         "mix two scenarios), or a new sweep in a new --out directory");
-    const auto finished = readFinishedRows(out_dir);
+    const auto finished = readFinishedRows(out_dir, static_cast<long>(plan.rows.size())).rows;
     RowWriter writer((fs::path(out_dir) / "rows" /
                       ("shard-" + std::to_string(shard) + "-of-" + std::to_string(of) + ".jsonl"))
                          .string());

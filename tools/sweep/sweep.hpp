@@ -29,12 +29,15 @@ struct SweepOptions {
 
 /// Plans (exit 2 naming what is wrong, before any run), runs what is not yet
 /// in OUT/rows, then writes the table and maps. 0: every row is in the table;
-/// 1: rows are missing (a shard failed, or --no-wait); 130: interrupted.
+/// 1: rows are missing (a shard failed, or --no-wait); 2: also when lines or
+/// files in OUT/rows were refused (sweep_store.hpp: named on stderr, left
+/// out of the table); 130: interrupted.
 int runSweep(const SweepOptions& options);
 
 /// `lagrange sweep collect OUT`: the table and maps from what the shards
 /// wrote. 0 when every row is there, 1 when some are missing (the table then
-/// has the others), 2 when OUT is not a sweep.
+/// has the others), 2 when OUT is not a sweep or something in OUT/rows was
+/// refused (not this plan's rows: named on stderr; the table has the rest).
 int collectSweep(const std::string& out_dir, bool quiet);
 
 /// One shard (`lagrange sweep-shard OUT --shard K --of N`, what the local

@@ -16,6 +16,7 @@
 
 #include "config/yaml_reader.hpp"
 #include "model/reference.hpp"
+#include "tools/sweep/sweep_files.hpp"
 #include "tools/sweep/sweep_random.hpp"
 #include "util/error.hpp"
 #include "util/fnv1a.hpp"
@@ -372,10 +373,17 @@ std::string planJson(const SweepPlan& plan) {
 
 SweepPlan planFromJson(const std::string& text, const std::string& source) {
   SweepPlan plan;
+  // A line parsed with its nesting bounded (sweep_files.hpp), or why not.
+  const auto line = [](const std::string& at, const std::string& line_text) {
+    std::string why;
+    std::optional<nlohmann::ordered_json> j = parseSweepJson(line_text, why);
+    if (!j) throw BadInput(at + ": " + why);
+    return std::move(*j);
+  };
   try {
     size_t pos = text.find('\n');
     if (pos == std::string::npos) throw BadInput("no header line");
-    const auto head = nlohmann::json::parse(text.substr(0, pos));
+    const auto head = line("its header", text.substr(0, pos));
     plan.spec.file = head.at("sweep_file").get<std::string>();
     plan.spec.scenario_path = head.at("scenario").get<std::string>();
     plan.spec.scenario_digest = head.at("scenario_digest").get<std::string>();
@@ -384,12 +392,21 @@ SweepPlan planFromJson(const std::string& text, const std::string& source) {
     plan.spec.simulate_sampled_data =
         head.value("simulate_sampled_data", false);  // a plan from before the key: off
     const auto rows = head.at("rows").get<size_t>();
+    if (rows > static_cast<size_t>(kMaxRows))
+      throw BadInput("its header gives " + std::to_string(rows) + " rows; a sweep has at most " +
+                     std::to_string(kMaxRows));
     while (plan.rows.size() < rows) {
       const size_t start = pos + 1;
       pos = text.find('\n', start);
       if (pos == std::string::npos) throw BadInput("fewer rows than its header says");
-      const auto j = nlohmann::json::parse(text.substr(start, pos - start));
-      plan.rows.push_back({j.at("index").get<long>(), j.at("params").get<std::vector<std::string>>(),
+      const std::string at = "row line " + std::to_string(plan.rows.size() + 2);
+      const auto j = line(at, text.substr(start, pos - start));
+      const auto& index = j.at("index");
+      // Row i is the plan's row i: an index is a place in the table, nothing else.
+      if (!index.is_number_integer() || index.get<long long>() != static_cast<long long>(plan.rows.size()))
+        throw BadInput(at + ": index " + index.dump() + "; expected " + std::to_string(plan.rows.size()));
+      plan.rows.push_back({static_cast<long>(plan.rows.size()),
+                           j.at("params").get<std::vector<std::string>>(),
                            j.at("overrides").get<std::vector<std::string>>()});
     }
   } catch (const std::exception& e) {

@@ -2,10 +2,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
+
+#include "tools/sweep/sweep_files.hpp"
+#include "util/input_file.hpp"
 
 namespace lagrange::tools {
 
@@ -30,15 +33,31 @@ RowCount RowCounter::count() {
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     if (e.path().extension() != ".jsonl") continue;
+    // As the table reads them (sweep_files.hpp): a link, a FIFO or a device
+    // is not counted, and never blocks or fills the progress loop.
+    const util::InputFile file =
+        util::InputFile::open(e.path().string(), "a rows file of lagrange sweep", util::Links::kRefuse);
+    if (!file.ok()) continue;
     long long& offset = offsets_[e.path().string()];
-    std::ifstream in(e.path(), std::ios::binary);
-    in.seekg(offset);
+    // Whole lines only, read from where the last count stopped: a line
+    // still being written is read next time; an over-long one only counted.
     std::string line;
-    // Whole lines only: a line still being written is read next time.
-    while (std::getline(in, line) && !in.eof()) {
-      offset += static_cast<long long>(line.size()) + 1;
-      ++total_.rows;
-      if (line.find("\"diverged\":true") != std::string::npos) ++total_.diverged;
+    char buf[65536];
+    for (long long at = offset; at < file.size();) {
+      const ssize_t got = pread(
+          file.fd(), buf, static_cast<std::size_t>(std::min<long long>(sizeof buf, file.size() - at)), at);
+      if (got <= 0) break;
+      for (ssize_t i = 0; i < got; ++i) {
+        if (buf[i] != '\n') {
+          if (line.size() < kMaxSweepLineBytes) line.push_back(buf[i]);
+          continue;
+        }
+        offset = at + i + 1;
+        ++total_.rows;
+        if (line.find("\"diverged\":true") != std::string::npos) ++total_.diverged;
+        line.clear();
+      }
+      at += got;
     }
   }
   return total_;

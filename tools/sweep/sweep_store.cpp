@@ -1,17 +1,21 @@
 #include "tools/sweep/sweep_store.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <optional>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
+#include "tools/sweep/sweep_files.hpp"
 #include "tools/sweep/sweep_runner.hpp"
 #include "util/error.hpp"
+#include "util/input_file.hpp"
 #include "util/number_text.hpp"
 #include "util/output_file.hpp"
 
@@ -41,36 +45,135 @@ void writeAtomically(const fs::path& path, const std::string& text) {
 
 }  // namespace
 
-std::map<long, nlohmann::ordered_json> readFinishedRows(const std::string& out_dir) {
-  std::map<long, nlohmann::ordered_json> rows;
+namespace {
+
+// Refusals named in full; the rest are counted.
+constexpr std::size_t kRefusalsNamed = 10;
+
+// The shard a rows file's name says wrote it: rows/shard-K-of-N.jsonl, with
+// 0 <= K < N <= the plan's rows (there are never more shards than rows).
+struct ShardOfFile {
+  long k = 0, n = 0;
+};
+std::optional<ShardOfFile> shardOf(const std::string& file_name, long plan_rows) {
+  static const std::regex pattern(R"(shard-([0-9]{1,9})-of-([0-9]{1,9})\.jsonl)");
+  std::smatch m;
+  if (!std::regex_match(file_name, m, pattern)) return std::nullopt;
+  const ShardOfFile s{std::stol(m[1]), std::stol(m[2])};
+  if (s.n < 1 || s.k >= s.n || s.n > std::max(1L, plan_rows)) return std::nullopt;
+  return s;
+}
+
+// Why a parsed line is not a row of the plan that shard `shard` may have written, or "".
+std::string rowProblem(const nlohmann::ordered_json& j, long plan_rows, const ShardOfFile& shard) {
+  const std::string expected = "; expected a whole number from 0 to " + std::to_string(plan_rows - 1) +
+                               " (the plan has " + std::to_string(plan_rows) + " rows)";
+  if (!j.is_object())
+    return "a JSON " + std::string(j.type_name()) + ", not a row; expected an object with an index";
+  const auto index = j.find("index");
+  if (index == j.end()) return "no index; expected a row with its index";
+  if (!index->is_number_integer()) return "index " + index->dump() + " is not a whole number" + expected;
+  const bool inside = index->is_number_unsigned()
+                          ? index->get<std::uint64_t>() < static_cast<std::uint64_t>(plan_rows)
+                          : index->get<std::int64_t>() >= 0 && index->get<std::int64_t>() < plan_rows;
+  if (!inside) return "index " + index->dump() + " is outside the plan" + expected;
+  if (const long i = static_cast<long>(index->get<std::int64_t>()); i % shard.n != shard.k)
+    return "index " + std::to_string(i) + " is not a row of shard " + std::to_string(shard.k) + " of " +
+           std::to_string(shard.n) + "; expected an index whose remainder by " + std::to_string(shard.n) +
+           " is " + std::to_string(shard.k);
+  return "";
+}
+
+// A row written before the simulated verdict existed: its sampled_verdict
+// was the linearised one (now linearised_verdict).
+void upgradeOldRow(nlohmann::ordered_json& row) {
+  if (!row.contains("linearised_verdict") && row.contains("sampled_verdict")) {
+    row["linearised_verdict"] = row["sampled_verdict"];
+    row["sampled_verdict"] = nullptr;
+  }
+}
+
+}  // namespace
+
+FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows) {
+  FinishedRows out;
+  const auto refuse = [&out](const std::string& why) {
+    if (out.refusals.size() < kRefusalsNamed) out.refusals.push_back(why);
+    ++out.refused;
+  };
   const fs::path dir = fs::path(out_dir) / "rows";
-  if (!fs::is_directory(dir)) return rows;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return out;
   std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir))
+  for (const auto& e : fs::directory_iterator(dir, ec))
     if (e.path().extension() == ".jsonl") files.push_back(e.path());
   std::sort(files.begin(), files.end());  // the same row from the same file every time
+  // The sweep's own files belong to whoever planned it; in a shared folder
+  // a file of another user is not one of them.
+  std::optional<uid_t> owner;
+  if (struct stat plan{}; lstat((fs::path(out_dir) / "plan.json").c_str(), &plan) == 0) owner = plan.st_uid;
+  std::map<long, std::string> first_seen;  // index -> "FILE line N"
+  // Every row once, each at most a line's bound, and a partial last line.
+  const long long max_file_bytes =
+      (static_cast<long long>(plan_rows) + 1) * static_cast<long long>(kMaxSweepLineBytes);
   for (const fs::path& f : files) {
-    std::ifstream in(f, std::ios::binary);
-    std::string line;
-    while (std::getline(in, line)) {
-      if (in.eof()) break;  // no newline: a line a killed shard did not finish
-      nlohmann::ordered_json j = nlohmann::ordered_json::parse(line, nullptr, false);
-      if (j.is_discarded() || !j.contains("index")) continue;
-      // A row written before the simulated verdict existed: its
-      // sampled_verdict was the linearised one (now linearised_verdict).
-      if (!j.contains("linearised_verdict") && j.contains("sampled_verdict")) {
-        j["linearised_verdict"] = j["sampled_verdict"];
-        j["sampled_verdict"] = nullptr;
-      }
-      rows.emplace(j["index"].get<long>(), std::move(j));
+    const std::string name = f.string();
+    const std::optional<ShardOfFile> shard = shardOf(f.filename().string(), plan_rows);
+    if (!shard) {
+      refuse("'" + name +
+             "' is not named as a shard of this sweep writes its rows; expected shard-K-of-N.jsonl with " +
+             "0 <= K < N <= " + std::to_string(plan_rows) + "; its rows were not read");
+      continue;
     }
+    const std::string error = forEachLine(
+        name, "a rows file of lagrange sweep", max_file_bytes,
+        [&](const FileLine& line) {
+          const std::string at = name + " line " + std::to_string(line.number) + ": ";
+          if (line.too_long) {
+            refuse(at + "longer than " + std::to_string(kMaxSweepLineBytes) +
+                   " bytes; expected one row of a few hundred");
+            return true;
+          }
+          std::string why;
+          std::optional<nlohmann::ordered_json> j = parseSweepJson(line.text, why);
+          if (j && (why = rowProblem(*j, plan_rows, *shard)).empty()) {
+            const long index = static_cast<long>(j->at("index").get<std::int64_t>());
+            const auto seen = first_seen.find(index);
+            if (seen == first_seen.end()) {
+              first_seen.emplace(index, name + " line " + std::to_string(line.number));
+              upgradeOldRow(*j);
+              out.rows.emplace(index, std::move(*j));
+              return true;
+            }
+            why = "row " + std::to_string(index) + " again (first in " + seen->second +
+                  "); expected each row once";
+          }
+          refuse(at + why);
+          return true;
+        },
+        owner);
+    if (!error.empty()) refuse(error + "; its rows were not read");
   }
-  return rows;
+  return out;
 }
 
 RowWriter::RowWriter(const std::string& path) : path_(path) {
-  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  // Never through a link: a planted rows/shard-K-of-N.jsonl -> ~/.bashrc would have it cut and appended to.
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+  if (fd_ < 0 && errno == ELOOP)
+    throw util::UnsafeOutputPath(
+        "'" + path +
+        "' is a symbolic link; expected a rows file of lagrange sweep or nothing there "
+        "(rows are never written through a link)");
   if (fd_ < 0) throw RuntimeFault("cannot open " + path + ": " + std::strerror(errno));
+  struct stat st {};
+  if (fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw util::UnsafeOutputPath(
+        "'" + path + "' is " + util::fileKindText(st.st_mode) +
+        "; expected a rows file of lagrange sweep (a regular file) or nothing there");
+  }
   // Cut a partial last line (a writer killed mid-write) back to the last newline.
   const off_t size = ::lseek(fd_, 0, SEEK_END);
   off_t keep = size;

@@ -16,15 +16,33 @@
 
 namespace lagrange::tools {
 
-/// Finished rows in OUT/rows/*.jsonl, by index (a row in two files -- a
-/// restart with other shards cannot make one, but a copied file could -- is
-/// taken once).
-std::map<long, nlohmann::ordered_json> readFinishedRows(const std::string& out_dir);
+/// What OUT/rows holds for a plan: the rows of the plan, each once, and what
+/// was refused.
+struct FinishedRows {
+  std::map<long, nlohmann::ordered_json> rows;  ///< by index, each in 0 .. plan rows - 1
+  long refused = 0;                             ///< lines and files refused
+  /// The first few refusals, each naming the file, the line, the value and
+  /// what was expected.
+  std::vector<std::string> refusals;
+};
+
+/// Finished rows in OUT/rows/*.jsonl for a plan of `plan_rows` rows, read
+/// without trusting the folder (tools/sweep/sweep_files.hpp): a file that is
+/// a link, not a regular file, or larger than plan_rows lines of
+/// kMaxSweepLineBytes can be is refused whole; a line too long, not JSON,
+/// nested too deep, not an object, or whose index is not a whole number from
+/// 0 to plan_rows - 1 is refused; a row already read (in this file or an
+/// earlier one, in name order) is refused again. A last line without its
+/// newline (a shard killed mid-write) is dropped, not refused.
+FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows);
 
 /// Appends rows to one shard's file, first cutting a partial last line a
 /// killed writer left.
 class RowWriter {
  public:
+  /// Opens (or creates) the file, never through a link planted in its place
+  /// (its target would be cut and appended to): util::UnsafeOutputPath then,
+  /// naming it, as for a directory or a device there.
   explicit RowWriter(const std::string& path);
   ~RowWriter();
   RowWriter(const RowWriter&) = delete;

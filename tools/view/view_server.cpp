@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 namespace lagrange::tools {
 
@@ -43,13 +44,15 @@ void addressOf(int (*get)(int, sockaddr*, socklen_t*), socket_t sock, std::strin
 }
 
 // One request's view of a connection, as cpp-httplib's own SocketStream
-// (not in Debian's header), but reading only until a deadline: a client that
-// trickles its request a byte at a time loses the connection at it.
+// (not in Debian's header), but reading only until a deadline -- a client
+// that trickles its request a byte at a time loses the connection at it --
+// and at most `max_read` bytes: a flood of header lines ends there (the
+// library answers 400), and no body longer than the limit is ever read.
 class DeadlineSocketStream : public httplib::Stream {
  public:
   DeadlineSocketStream(socket_t sock, Clock::time_point read_deadline,
-                       std::chrono::milliseconds write_timeout)
-      : sock_(sock), read_deadline_(read_deadline), write_timeout_(write_timeout) {}
+                       std::chrono::milliseconds write_timeout, std::size_t max_read)
+      : sock_(sock), read_deadline_(read_deadline), write_timeout_(write_timeout), left_(max_read) {}
 
   bool is_readable() const override {
     return waitFor(sock_, POLLIN,
@@ -57,10 +60,11 @@ class DeadlineSocketStream : public httplib::Stream {
   }
   bool is_writable() const override { return waitFor(sock_, POLLOUT, write_timeout_); }
   ssize_t read(char* ptr, size_t size) override {
-    if (!is_readable()) return -1;
+    if (left_ == 0 || !is_readable()) return -1;
     ssize_t got;
-    while ((got = recv(sock_, ptr, size, 0)) < 0 && errno == EINTR) {
+    while ((got = recv(sock_, ptr, std::min(size, left_), 0)) < 0 && errno == EINTR) {
     }
+    if (got > 0) left_ -= static_cast<std::size_t>(got);
     return got;
   }
   ssize_t write(const char* ptr, size_t size) override {
@@ -82,7 +86,43 @@ class DeadlineSocketStream : public httplib::Stream {
   socket_t sock_;
   Clock::time_point read_deadline_;
   std::chrono::milliseconds write_timeout_;
+  std::size_t left_;
 };
+
+// Why a request's body is refused before a byte of it is read: a status and
+// a reason for the answer, or status 0. The viewer's page sends no body.
+struct BodyRefusal {
+  int status = 0;
+  std::string reason;
+};
+
+BodyRefusal bodyRefusal(const httplib::Request& req, std::size_t max_body_bytes) {
+  const std::string limit = std::to_string(max_body_bytes) + " bytes";
+  if (req.has_header("Transfer-Encoding"))
+    return {411, "a request body without a length (Transfer-Encoding: " +
+                     req.get_header_value("Transfer-Encoding") +
+                     "); the viewer takes a Content-Length of at most " + limit + ", and needs no body"};
+  const std::size_t lengths = req.get_header_value_count("Content-Length");
+  if (lengths == 0) return {};
+  const std::string length = req.get_header_value("Content-Length");
+  bool digits = !length.empty() && length.size() <= 19;
+  for (const char c : length) digits = digits && c >= '0' && c <= '9';
+  for (std::size_t i = 1; i < lengths; ++i)
+    digits = digits && req.get_header_value("Content-Length", i) == length;
+  if (!digits)
+    return {400, "Content-Length '" + length + "'" +
+                     (lengths > 1 ? " (given " + std::to_string(lengths) + " times)" : "") +
+                     " is not one length in bytes; expected a number of at most " + limit};
+  if (std::stoull(length) > max_body_bytes)
+    return {413, "a request body of " + length + " bytes; the viewer takes at most " + limit +
+                     " (its page sends none), and read none of it"};
+  return {};
+}
+
+bool hasBody(const httplib::Request& req) {
+  return req.has_header("Transfer-Encoding") ||
+         (req.has_header("Content-Length") && req.get_header_value("Content-Length") != "0");
+}
 
 // 503 and close, without reading: the client learns at once to come back later.
 void refuse(socket_t sock, int max_connections) {
@@ -112,6 +152,22 @@ GuardedHttpServer::GuardedHttpServer(const ServerLimits& limits) : limits_(limit
   };
   set_read_timeout(ms(limits_.request_timeout));  // the library's, for what it reads itself
   set_write_timeout(ms(limits_.write_timeout));
+  set_payload_max_length(limits_.max_body_bytes);  // what the library reads of a body it routes
+  // Before routing, which would read the body: one too long, or of no length, is refused unread.
+  httplib::Server::set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    const BodyRefusal refusal = bodyRefusal(req, limits_.max_body_bytes);
+    if (refusal.status != 0) {
+      res.status = refusal.status;
+      res.set_content("lagrange view: " + refusal.reason + "\n", "text/plain");
+      return HandlerResponse::Handled;
+    }
+    return request_check_ ? request_check_(req, res) : HandlerResponse::Unhandled;
+  });
+}
+
+GuardedHttpServer& GuardedHttpServer::set_pre_routing_handler(HandlerWithResponse handler) {
+  request_check_ = std::move(handler);
+  return *this;
 }
 
 std::shared_ptr<void> GuardedHttpServer::tryOpenStream() {
@@ -152,10 +208,22 @@ bool GuardedHttpServer::process_and_close_socket(socket_t sock) {
   }
   bool served = false;
   for (size_t left = keep_alive_max_count_; left > 0 && waitForRequest(sock); --left) {
-    DeadlineSocketStream stream(sock, Clock::now() + limits_.request_timeout, limits_.write_timeout);
-    bool closed_by_client = false;
-    served = process_request(stream, left == 1, closed_by_client, nullptr);
-    if (!served || closed_by_client) break;
+    DeadlineSocketStream stream(sock, Clock::now() + limits_.request_timeout, limits_.write_timeout,
+                                limits_.max_head_bytes + limits_.max_body_bytes);
+    bool closed_by_client = false, with_body = false;
+    // Once the line and headers are in, before routing: the library has
+    // parsed the ranges (a copy of the body each), and not read a body yet.
+    const auto setup = [&with_body](httplib::Request& req) {
+      req.ranges.clear();  // every answer whole: a Range header is ignored
+      // A body is never read past the limit, and what is left of it must not
+      // be taken for the next request: the answer closes the connection.
+      if ((with_body = hasBody(req))) {
+        req.headers.erase("Connection");
+        req.set_header("Connection", "close");
+      }
+    };
+    served = process_request(stream, left == 1, closed_by_client, setup);
+    if (!served || closed_by_client || with_body) break;
   }
   shutdown(sock, SHUT_RDWR);
   close(sock);
