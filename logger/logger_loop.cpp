@@ -91,12 +91,13 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   // RUN_JOIN, the launchers' agreement before the run (signed with another key).
   // Of the project's channels, only what the run's processes would accept
   // by its header is recorded (logger/record_filter.hpp).
-  node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$|RUN_JOIN$).*",
-                    [&](const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-                      if (!record_filter.admit(channel, rbuf->data, rbuf->data_size)) return;
-                      log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
-                      gaps.recorded(channel, rbuf->data, rbuf->data_size, node.runId());
-                    });
+  node.subscribeRaw("(?!LCM_SELF_TEST$|SCENARIO$|RUN_JOIN$).*", [&](const lcm::ReceiveBuffer* rbuf,
+                                                                    const std::string& channel) {
+    if (!record_filter.admit(channel, rbuf->data, rbuf->data_size, node.oversized(channel, rbuf->data_size)))
+      return;
+    log.write(channel, rbuf->data, static_cast<int>(rbuf->data_size), rbuf->recv_utime);
+    gaps.recorded(channel, rbuf->data, rbuf->data_size, node.runId());
+  });
   // Every per-tick channel the same way: the metrics take what they need
   // (metrics_lcm.hpp), then the tick counts as recorded. Every copy counts,
   // in any order: one re-sent by the plant, or overtaken by a later one, is

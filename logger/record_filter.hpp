@@ -24,7 +24,10 @@ class RecordFilter {
   explicit RecordFilter(int64_t run_id) : admission_(run_id) {}
 
   /// True when the datagram is to be recorded; else counted by reason.
-  bool admit(const std::string& channel, const void* data, std::size_t size) {
+  /// `oversized`: larger than any message of the channel in this run can be
+  /// (transport::LcmNode::oversized): not a message of the run, not read.
+  bool admit(const std::string& channel, const void* data, std::size_t size, bool oversized = false) {
+    if (oversized) return refuse(channel, transport::RejectReason::kUndecodable);
     lagrange::header_t h;
     if (!transport::peekHeader(channel, data, size, h))
       return !transport::carriesHeader(channel) || refuse(channel, transport::RejectReason::kUndecodable);

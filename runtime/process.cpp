@@ -13,6 +13,7 @@
 #include <cstring>
 #include <optional>
 
+#include "config/work_bounds.hpp"
 #include "runtime/key_file.hpp"
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
@@ -114,6 +115,10 @@ int runProcess(const std::string& name, const std::string& description, int argc
     const std::optional<transport::MessageKey> key =
         key_file.empty() ? std::nullopt : std::optional(readKeyFile(key_file));
     transport::LcmNode node(name, withReceiveBuffer(url, receive_buffer_bytes), run_id);
+    // No per-tick datagram larger than this run's largest honest one is decoded
+    // (the controller's cascade reports at most the highest order's stages).
+    node.boundMessages(
+        {scenario.dof(), scenario.actuator.order, scenario.torqueStepsPerTick(), config::kMaxActuatorOrder});
     if (key)
       node.authenticate(*key);
     else

@@ -134,6 +134,12 @@ bool LcmNode::admit(const std::string& channel, const lagrange::header_t& h, Ord
   return !refused;
 }
 
+bool LcmNode::oversized(const std::string& channel, std::size_t size) const {
+  if (!shape_) return false;
+  const long long largest = largestPerTickMessage(channel, *shape_);
+  return largest >= 0 && static_cast<long long>(size) > largest;
+}
+
 void LcmNode::noteError(const std::string& channel, const std::string& what) {
   if (reported_.insert(channel + "\n" + what).second)
     spdlog::error(fmt::format("{}: {} on {}", process_name_, what, channel));

@@ -10,6 +10,7 @@
 #include <lcm/lcm-cpp.hpp>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,7 @@
 #include "transport/fault_injector.hpp"
 #include "transport/header_admission.hpp"
 #include "transport/message_auth.hpp"
+#include "transport/message_size.hpp"
 #include "transport/safe_decode.hpp"
 
 namespace lagrange::transport {
@@ -59,6 +61,15 @@ class LcmNode {
   /// included, see the payload without the trailer. Without a key a node
   /// neither signs nor checks (a process on its own, tests).
   void authenticate(const MessageKey& key);
+
+  /// From now on a datagram on a per-tick channel larger than the largest
+  /// honest message of `shape` (message_size.hpp) is rejected as
+  /// undecodable before it is decoded: the decoders may allocate 64 bytes
+  /// per byte received, and a holder of the key could send 256 MB.
+  void boundMessages(const MessageShape& shape) { shape_ = shape; }
+  /// True when `size` bytes on `channel` (without the MAC trailer) exceed
+  /// the bound of boundMessages (never without one).
+  bool oversized(const std::string& channel, std::size_t size) const;
 
   /// What a subscription does with a datagram older than the newest one of
   /// its publisher (HeaderAdmission::Order: refuse it, or accept it once).
@@ -151,6 +162,7 @@ class LcmNode {
   std::set<std::string> reported_;  ///< channel/reason pairs already logged
   int64_t last_receive_utime_ = 0;
   std::unique_ptr<MessageAuthenticator> auth_;
+  std::optional<MessageShape> shape_;
   const lcm::ReceiveBuffer* last_checked_rbuf_ = nullptr;  ///< the datagram authentic() checked last:
   int64_t last_checked_utime_ = -1;                        ///< its buffer, receive time,
   std::vector<uint8_t> last_checked_;                      ///< bytes
@@ -182,6 +194,11 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
   counters_[channel];
   auto callback = [this, channel, validate, handle, order](const lcm::ReceiveBuffer* rbuf,
                                                            const std::string&) {
+    if (oversized(channel, rbuf->data_size))
+      return reject(channel, RejectReason::kUndecodable,
+                    std::to_string(rbuf->data_size) + " bytes, more than any " + channel + " of this run (" +
+                        shape_->describe() + ") can be: " +
+                        std::to_string(largestPerTickMessage(channel, *shape_)) + " bytes; not decoded");
     Msg msg;
     if (!safeDecode(rbuf->data, rbuf->data_size, msg))
       return reject(channel, RejectReason::kUndecodable, "undecodable (wrong type, size or corrupt bytes)");

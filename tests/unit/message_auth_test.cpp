@@ -198,6 +198,44 @@ TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
             3);
 }
 
+// Issue #44: a holder of the key sends a position far larger than any of
+// the run's can be (its MAC valid, its checksum intact): a node bounded by
+// the run's shape rejects it unread, as undecodable, and still takes the
+// honest one. (The decoders would allocate up to 64 bytes per byte.)
+TEST(MessageAuth, ADatagramLargerThanAnyOfTheRunsIsRejectedBeforeDecoding) {
+  LcmNode node("controller", "memq://", 42);
+  node.authenticate(keyOf(5));
+  node.boundMessages({2, 0, 1, 4});
+  int handled = 0;
+  node.subscribe<lagrange::plant_position_t>(
+      kPlantPosition, [](const auto&) { return Rejection(); }, [&](const auto&) { ++handled; });
+  const MessageAuthenticator key(keyOf(5));
+  auto send = [&](lagrange::plant_position_t m, int64_t seq) {
+    m.header.run_id = 42;
+    m.header.publisher = "plant";
+    m.header.publisher_pid = 9;
+    m.header.seq = seq;
+    seal(m);
+    std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+    m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    key.sign(bytes);
+    node.raw().publish(kPlantPosition, bytes.data(), static_cast<unsigned>(bytes.size()));
+    while (node.drain() > 0) {
+    }
+  };
+  lagrange::plant_position_t huge = position(1);
+  huge.num_joints = 100000;
+  huge.q.assign(100000, 0.5);
+  EXPECT_TRUE(node.oversized(kPlantPosition, static_cast<size_t>(huge.getEncodedSize())));
+  send(huge, 1);
+  EXPECT_EQ(handled, 0);
+  EXPECT_EQ(node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kUndecodable)],
+            1);
+  send(position(2), 2);
+  EXPECT_EQ(handled, 1);
+  EXPECT_FALSE(node.oversized("SOMEONE_ELSES", 1u << 30));  // not a per-tick channel: not bounded here
+}
+
 class KeyFile : public ::testing::Test {
  protected:
   void SetUp() override {
