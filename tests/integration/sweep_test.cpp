@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -17,6 +18,7 @@
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/sweep_files.hpp"
+#include "transport/message_auth.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -315,6 +317,42 @@ TEST(Sweep, BadSweepFilesAreNamedBeforeAnyRunStarts) {
   const RunResult changed = lagrange("sweep " + quote(edited) + " -o " + quote(dir + "/c/out"));
   EXPECT_EQ(changed.exit_code, 2) << changed.output;
   EXPECT_NE(changed.output.find("holds another sweep"), std::string::npos) << changed.output;
+}
+
+// Issue #44: a sweep folder shared on a cluster is writable by others; a
+// plan.json planted there after the sweep started (Slurm's array tasks start
+// later) names a row whose controller is an external command. Before, the
+// shard ran it (the marker was made). Now a shard runs only the plan whose
+// SHA-256 its sweep gave it on the command line.
+TEST(Sweep, AShardRunsNothingOfAPlanPlantedAfterItsSweepStarted) {
+  const std::string dir = freshDir("sweep-planted-plan");
+  const std::string sweep = writeSweep(dir, "", 0.05);
+  const std::string out = dir + "/out";
+  ASSERT_EQ(lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -q").exit_code, 0);
+  std::ifstream in(out + "/plan.json");
+  const std::string launched((std::istreambuf_iterator<char>(in)), {});
+  const std::array<uint8_t, 32> digest =
+      transport::sha256(reinterpret_cast<const uint8_t*>(launched.data()), launched.size());
+  const std::string marker = dir + "/MARKER";
+  std::string planted =
+      std::regex_replace(launched, std::regex(R"("controller\.kd=5")"),
+                         "\"controller={type: external, command: [sh, -c, \\\"touch " + marker + "\\\"]}\"");
+  ASSERT_NE(planted, launched);
+  fs::remove_all(out + "/rows");
+  fs::create_directories(out + "/rows");
+  std::ofstream(out + "/plan.json", std::ios::trunc) << planted;
+  const RunResult shard =
+      lagrange("sweep-shard " + quote(out) + " --shard 0 --of 1 --plan-digest " + transport::toHex(digest));
+  EXPECT_EQ(shard.exit_code, 2) << shard.output;
+  EXPECT_NE(shard.output.find("is not the plan this shard was started for"), std::string::npos)
+      << shard.output;
+  EXPECT_FALSE(fs::exists(marker)) << "the planted plan's command ran";
+  // The plan as launched runs.
+  std::ofstream(out + "/plan.json", std::ios::trunc) << launched;
+  EXPECT_EQ(
+      lagrange("sweep-shard " + quote(out) + " --shard 0 --of 1 --plan-digest " + transport::toHex(digest))
+          .exit_code,
+      0);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -27,6 +28,7 @@
 #include "tools/sweep/sweep_progress.hpp"
 #include "tools/sweep/sweep_runner.hpp"
 #include "tools/sweep/sweep_store.hpp"
+#include "transport/message_auth.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 #include "wiring/spawn_logged.hpp"
@@ -78,6 +80,18 @@ void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
   util::writeOutputFile(plan_path.string() + ".tmp", text);
   fs::rename(plan_path.string() + ".tmp", plan_path);
   util::writeOutputFile((fs::path(out_dir) / "sweep.yaml").string(), readFile(plan.spec.file));
+}
+
+// What binds a shard to the plan its sweep launched (issue #44): SHA-256 of
+// the plan as planJson writes it, on the shard's command line -- a plan.json
+// planted in a shared folder afterwards (Slurm's array tasks start later,
+// anywhere) names other scenarios, overrides and external commands, and a
+// shard that ran it would start programs nobody named.
+std::string planDigest(const SweepPlan& plan) {
+  const std::string text = planJson(plan);
+  const std::array<uint8_t, 32> digest =
+      transport::sha256(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  return transport::toHex(digest);
 }
 
 SweepPlan loadPlan(const std::string& out_dir) {
@@ -178,9 +192,10 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
     const std::string log =
         (fs::path(o.out_dir) / "logs" / ("shard-" + std::to_string(k) + "-of-" + std::to_string(n) + ".log"))
             .string();
-    running[wiring::spawnLogged({o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of",
-                                 std::to_string(n), "--parent", std::to_string(getpid())},
-                                {log, /*append=*/true})] = k;
+    running[wiring::spawnLogged(
+        {o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of", std::to_string(n),
+         "--parent", std::to_string(getpid()), "--plan-digest", planDigest(plan)},
+        {log, /*append=*/true})] = k;
   }
   RowCounter counter(o.out_dir);
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet);
@@ -243,7 +258,8 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
       script.string(),
       "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " +
           std::to_string(n) + " == K.\nexec " + shellQuote(o.self_exe) + " sweep-shard " +
-          shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) + "\n");
+          shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) +
+          " --plan-digest " + planDigest(plan) + "\n");
   fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                               fs::perms::others_read | fs::perms::others_exec);
   std::vector<std::string> args = {"sbatch",
@@ -362,7 +378,8 @@ int collectSweep(const std::string& out_dir, bool quiet) {
   }
 }
 
-int runSweepShard(const std::string& out_dir, int shard, int of, int parent, const std::string& self_exe) {
+int runSweepShard(const std::string& out_dir, int shard, int of, const std::string& plan_digest, int parent,
+                  const std::string& self_exe) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
   // A local shard ends with its sweep: killed, the sweep leaves no shard
@@ -376,6 +393,12 @@ int runSweepShard(const std::string& out_dir, int shard, int of, int parent, con
       throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +
                         ": expected 0 <= K < N");
     const SweepPlan plan = loadPlan(out_dir);
+    if (planDigest(plan) != plan_digest)
+      throw ConfigError(
+          (fs::path(out_dir) / "plan.json").string() +
+          " is not the plan this shard was started for (its SHA-256 is " + planDigest(plan) + ", expected " +
+          plan_digest +
+          " from lagrange sweep): it was replaced after the sweep started; nothing of it is run");
     if (scenarioDigest(plan.spec.scenario_path) != plan.spec.scenario_digest)
       throw ConfigError(plan.spec.scenario_path +
                         " has changed since the sweep was planned; expected it as it was (its rows would "

@@ -46,9 +46,11 @@ int collectSweep(const std::string& out_dir, bool quiet);
 /// OUT/rows/shard-K-of-N.jsonl as it ends. 0, or 130 when stopped by a signal.
 /// `parent` > 0 (a local shard): the sweep's pid; the shard stops when it dies.
 /// `self_exe`: the lagrange binary, which runs the rows of an external
-/// controller (`lagrange run --mode lockstep`).
-int runSweepShard(const std::string& out_dir, int shard, int of, int parent = 0,
-                  const std::string& self_exe = "");
+/// controller (`lagrange run --mode lockstep`). `plan_digest`: SHA-256 (hex)
+/// of the plan the sweep launched; a plan.json that is not that plan is
+/// refused before anything of it runs (exit 2).
+int runSweepShard(const std::string& out_dir, int shard, int of, const std::string& plan_digest,
+                  int parent = 0, const std::string& self_exe = "");
 
 /// Declares `sweep` (with `sweep collect`) and its options on the front end (tools/sweep/sweep_cli.cpp).
 Subcommand addSweepCommand(CLI::App& app);

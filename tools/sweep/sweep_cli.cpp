@@ -21,6 +21,7 @@ struct SweepCommandLine {
 struct ShardCommandLine {
   std::string out_dir;
   int shard = -1, of = 0, parent = 0;
+  std::string plan_digest;
 };
 }  // namespace
 
@@ -84,8 +85,11 @@ Subcommand addSweepShardCommand(CLI::App& app) {
   cmd->add_option("--shard", o->shard, "This shard, K in 0..N-1")->required();
   cmd->add_option("--of", o->of, "Shards, N")->required();
   cmd->add_option("--parent", o->parent, "The local sweep's pid: stop when it ends");
+  cmd->add_option("--plan-digest", o->plan_digest,
+                  "SHA-256 of the plan the sweep launched: any other plan.json is refused")
+      ->required();
   return {cmd, [o](const Invocation& inv) {
-            return runSweepShard(o->out_dir, o->shard, o->of, o->parent, inv.self_exe);
+            return runSweepShard(o->out_dir, o->shard, o->of, o->plan_digest, o->parent, inv.self_exe);
           }};
 }
 
