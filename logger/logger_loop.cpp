@@ -30,6 +30,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+Clock::duration asDuration(double s) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+}
+
 // The validation of the logger's inputs: the run's joints; PLANT_MOTOR with
 // the rate row the scenario promises.
 template <class Msg>
@@ -75,8 +79,10 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   RunEnd end(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.finish_grace)),
              Clock::now());
   // The plant never waits longer than this without sending anything (it
-  // re-sends what is unanswered meanwhile): past it, it is gone.
+  // re-sends what is unanswered meanwhile): past it, it is gone. At the
+  // start, twice the plant's own start-up allowance (3 x stall_timeout).
   const double plant_silence_limit = 4.0 * s.lockstep.stall_timeout;
+  const double plant_start_limit = 6.0 * s.lockstep.stall_timeout;
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
   RecordFilter record_filter(node.runId());  // only what the run's processes would accept
 
@@ -161,14 +167,18 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       next_status = now + std::chrono::milliseconds(100);
     }
     if (end.due(now, confirmation.confirmed(metrics.lastTick()) >= s.lastTick())) break;
-    if (const auto silent = end.plantGone(now, std::chrono::duration_cast<Clock::duration>(
-                                                   std::chrono::duration<double>(plant_silence_limit))))
+    if (const auto silent =
+            end.plantGone(now, asDuration(plant_silence_limit), asDuration(plant_start_limit)))
       throw RuntimeFault(fmt::format(
-          "the plant has not been heard for {:.0f} s (at most 4 x lockstep.stall_timeout = {:g} s is "
-          "allowed: it "
-          "re-sends or reports well within that); its process or its host is gone, or never started "
-          "(last tick recorded: {}). The log so far is kept in {}",
-          std::chrono::duration<double>(*silent).count(), plant_silence_limit, metrics.lastTick(), log_path));
+          "the plant has not been heard for {:.0f} s ({} is allowed: {}); its process or its host is gone, "
+          "or "
+          "never started (last tick recorded: {}). The log so far is kept in {}",
+          std::chrono::duration<double>(*silent).count(),
+          end.plantEverHeard() ? fmt::format("{:g} s", plant_silence_limit)
+                               : fmt::format("{:g} s at the start", plant_start_limit),
+          end.plantEverHeard() ? "4 x lockstep.stall_timeout; it re-sends or reports well within that"
+                               : "6 x lockstep.stall_timeout, twice the plant's own start-up allowance",
+          metrics.lastTick(), log_path));
   }
   // Drain what is still queued, then close the log before the summary.
   // Bounded in time: other traffic on the URL (another publisher, a

@@ -34,13 +34,20 @@ class RunEnd {
   }
 
   /// A message of the plant (any channel) received at `now`.
-  void plantHeard(Clock::time_point now) { plant_heard_at_ = std::max(plant_heard_at_, now); }
+  void plantHeard(Clock::time_point now) {
+    plant_heard_at_ = std::max(plant_heard_at_, now);
+    plant_ever_heard_ = true;
+  }
   /// How long the plant has been silent at `now`, when that is longer than
-  /// `limit` and it has not finished; else nothing.
-  std::optional<Clock::duration> plantGone(Clock::time_point now, Clock::duration limit) const {
-    if (plant_finished_at_ || now - plant_heard_at_ <= limit) return std::nullopt;
+  /// `limit` (`start_limit` before it was first heard: it loads and checks
+  /// its gains first) and it has not finished; else nothing.
+  std::optional<Clock::duration> plantGone(Clock::time_point now, Clock::duration limit,
+                                           Clock::duration start_limit) const {
+    if (plant_finished_at_ || now - plant_heard_at_ <= (plant_ever_heard_ ? limit : start_limit))
+      return std::nullopt;
     return now - plant_heard_at_;
   }
+  bool plantEverHeard() const { return plant_ever_heard_; }
 
   /// True when plant, controller and actuator have all reported `state`.
   bool allReported(State state) const {
@@ -76,6 +83,7 @@ class RunEnd {
   std::map<std::string, State> states_;
   std::optional<Clock::time_point> plant_finished_at_, all_ticks_at_;
   Clock::time_point plant_heard_at_;
+  bool plant_ever_heard_ = false;
 };
 
 }  // namespace lagrange::logger

@@ -72,6 +72,27 @@ inline int createOutputFile(const std::string& path, mode_t mode = 0644) {
   throw lagrange::RuntimeFault(ioErrorText("creating", path, error));
 }
 
+/// Opens `path` to append to, creating it if missing, never through a link
+/// (O_NOFOLLOW) and never into a file with other names (a hard link to a
+/// user's file): UnsafeOutputPath naming it. Returns the descriptor (close-on-exec).
+inline int openOutputFileToAppend(const std::string& path, mode_t mode = 0644) {
+  const int fd =
+      ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK, mode);
+  if (fd < 0) {
+    const int error = errno;
+    if (error == ELOOP)
+      throw UnsafeOutputPath("'" + path + "' is a symbolic link; refusing to write through it");
+    throw lagrange::RuntimeFault(ioErrorText("opening", path, error));
+  }
+  struct stat st {};
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_nlink > 1) {
+    ::close(fd);
+    throw UnsafeOutputPath("'" + path + "' is not a file of its own (a device, a FIFO or a hard link to " +
+                           "another file); refusing to write into it");
+  }
+  return fd;
+}
+
 /// Writes all of `data` to `fd`; throws naming `path` and the error.
 inline void writeAll(int fd, const std::string& data, const std::string& path) {
   size_t done = 0;

@@ -231,5 +231,31 @@ TEST(CrossRun, ARecordedSpreadRunResentIntoTheNextOneWithTheSameKeyFileChangesNo
   EXPECT_NE(readSummary(base + "/a")["run_id"], readSummary(base + "/b")["run_id"]);
 }
 
+// Launchers of one URL and key file whose scenarios differ (another file, or
+// other --set overrides) meet and refuse each other, naming the other's host
+// and pid -- rather than each waiting out --join-timeout for nobody.
+TEST(CrossRun, LaunchersOfDifferentScenariosRefuseEachOtherNamingTheOther) {
+  const std::string base = freshDir("cross-run-two-scenarios");
+  std::filesystem::create_directories(base);
+  const std::string key = base + "/shared.key";
+  ASSERT_EQ(lagrange("keygen " + quote(key)).exit_code, 0);
+  const std::string options = "-q --no-netns --lcm-url 'udpm://239.255.76.67:7696?ttl=0' --key-file " +
+                              quote(key) + " --join-timeout 20";
+  RunResult plant_side;
+  std::thread other([&] {
+    plant_side = runScenario(kRigid, base + "/p", options + " --set duration=1 --processes plant,actuator");
+  });
+  const RunResult logger_side =
+      runScenario(kRigid, base + "/l", options + " --set duration=2 --processes controller,logger");
+  other.join();
+  for (const RunResult* r : std::vector<const RunResult*>{&plant_side, &logger_side}) {
+    EXPECT_EQ(r->exit_code, 2) << r->output;
+    EXPECT_NE(r->output.find("runs another scenario"), std::string::npos) << r->output;
+  }
+  EXPECT_NE(plant_side.output.find("the launcher of logger,controller on "), std::string::npos)
+      << plant_side.output;
+  EXPECT_FALSE(std::filesystem::exists(base + "/l/run.lcm")) << "a process started";
+}
+
 }  // namespace
 }  // namespace lagrange::testing

@@ -183,7 +183,10 @@ TEST(ReplayBadInput, ALogWithoutScenarioOrNotALogIsNamed) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("no SCENARIO channel among its 1 events on PLANT_POSITION"), std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("1 events on this project's channels could not be decoded"), std::string::npos)
+  EXPECT_NE(
+      r.output.find("1 event of this project's channels cannot be used (1 on PLANT_POSITION; the first, "
+                    "at byte 0, does not decode as plant_position_t"),
+      std::string::npos)
       << r.output;
 
   const std::string text = freshDir("text") + ".lcm";

@@ -355,5 +355,23 @@ TEST(Sweep, AShardRunsNothingOfAPlanPlantedAfterItsSweepStarted) {
       0);
 }
 
+// A link planted as a shard's log in a shared sweep folder: the shard's
+// output was appended to its target (found in review: only the rows files
+// were opened without following links). Now refused, the target untouched.
+TEST(Sweep, AShardsLogPlantedAsALinkIsRefusedAndItsTargetUntouched) {
+  const std::string dir = freshDir("sweep-planted-log");
+  const std::string sweep = writeSweep(dir, "", 0.05);
+  const std::string out = dir + "/out";
+  const std::string victim = dir + "/victim.txt";
+  std::ofstream(victim) << "the user's own\n";
+  fs::create_directories(out + "/logs");
+  fs::create_symlink(victim, out + "/logs/shard-0-of-1.log");
+  const RunResult r = lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -q -j 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("shard-0-of-1.log' is a symbolic link"), std::string::npos) << r.output;
+  std::ifstream in(victim);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), {}), "the user's own\n");
+}
+
 }  // namespace
 }  // namespace lagrange::testing

@@ -91,16 +91,16 @@ TEST(RunEnd, EndsAGraceAfterEveryTickWhenThePlantsStatusIsLost) {
 // A run spread over hosts whose plant's host died: the logger must not wait forever.
 TEST(RunEnd, APlantSilentPastTheLimitIsGoneUnlessItFinished) {
   RunEnd end(milliseconds(2000), t0);
-  EXPECT_FALSE(end.plantGone(t0 + milliseconds(4000), milliseconds(4000)))
-      << "silent since the start, not past it";
-  EXPECT_EQ(end.plantGone(t0 + milliseconds(4001), milliseconds(4000)), milliseconds(4001));
+  const auto limit = milliseconds(4000), start = milliseconds(6000);
+  EXPECT_FALSE(end.plantGone(t0 + milliseconds(6000), limit, start)) << "never heard: the start allowance";
+  EXPECT_EQ(end.plantGone(t0 + milliseconds(6001), limit, start), milliseconds(6001));
   end.plantHeard(t0 + milliseconds(3000));
-  EXPECT_FALSE(end.plantGone(t0 + milliseconds(6000), milliseconds(4000)));
-  EXPECT_TRUE(end.plantGone(t0 + milliseconds(7001), milliseconds(4000)));
+  EXPECT_FALSE(end.plantGone(t0 + milliseconds(7000), limit, start));
+  EXPECT_TRUE(end.plantGone(t0 + milliseconds(7001), limit, start)) << "once heard: the shorter limit";
   end.plantHeard(t0 + milliseconds(1000));  // a late message does not move it back
-  EXPECT_TRUE(end.plantGone(t0 + milliseconds(7001), milliseconds(4000)));
+  EXPECT_TRUE(end.plantGone(t0 + milliseconds(7001), limit, start));
   end.processState("plant", State::kFinished, t0 + milliseconds(7500));
-  EXPECT_FALSE(end.plantGone(t0 + milliseconds(60000), milliseconds(4000))) << "finished is not gone";
+  EXPECT_FALSE(end.plantGone(t0 + milliseconds(60000), limit, start)) << "finished is not gone";
 }
 
 TEST(RunEnd, AllEndedMeansEveryoneFinishedOrWasInterrupted) {

@@ -156,18 +156,37 @@ std::vector<JoinMessage> recordedLaunchers(int count) {
   return flood;
 }
 
-// The recorded launchers of 50 runs re-sent at once: this run's still agree.
-// Past kMaxPeers it is a flood: bounded, though the agreement may then fail
-// (as any flood may stop a run: docs/reliability.md).
-TEST(SessionAgreement, AFloodOfRecordedLaunchersNeitherGrowsWithoutBoundNorHidesTheLiveOne) {
+// Found in review: a second launcher of the logger's processes heard only
+// after the plant's launcher had agreed with the first would be listed by
+// it, count it as live, and settle on a value of its own -- two runs'
+// processes under two keys. Once agreed, a launcher lists its members only.
+TEST(SessionAgreement, ALauncherHeardAfterTheAgreementNeverSettlesWithAMember) {
   Launchers l;
-  for (double t = 0; t < 0.5; t += 0.1) l.exchange(t, recordedLaunchers(200));
-  EXPECT_EQ(l.a.own(0.5).heard.size(), 201u);
+  l.exchange(0.0);
+  l.exchange(0.1);
+  ASSERT_EQ(l.a.state(0.1), SessionAgreement::State::kAgreed);
+  SessionAgreement late{{"logger", "controller"}, "host-c", 99, nonceOf(0xc)};
+  for (double t = 0.2; t < 3.0; t += 0.1) {
+    late.hear(l.a.own(t), 100, t);
+    l.a.hear(late.own(t), 300, t);
+  }
+  EXPECT_EQ(late.state(3.0), SessionAgreement::State::kWaiting);
+  EXPECT_EQ(late.unanswered(3.0), 1u);
+  EXPECT_EQ(l.a.own(3.0).heard, std::vector<Nonce>{nonceOf(0xb)});
+}
+
+// Up to kMaxPeers recorded launchers, the live ones still agree; past it the
+// memory and the message stay bounded (agreement is then not promised).
+TEST(SessionAgreement, AFloodOfRecordedLaunchersIsBoundedAndUpTo256LeaveTheLiveOnesAgreeing) {
+  Launchers l;
+  l.exchange(0.0, recordedLaunchers(200));
+  EXPECT_EQ(l.a.own(0.05).heard.size(), 201u);  // before agreeing: every launcher heard
+  for (double t = 0.1; t < 0.5; t += 0.1) l.exchange(t, recordedLaunchers(200));
   EXPECT_EQ(l.a.state(0.5), SessionAgreement::State::kAgreed);
   EXPECT_EQ(l.a.runValue(), l.b.runValue());
   Launchers flooded;
-  for (double t = 0; t < 0.5; t += 0.1) flooded.exchange(t, recordedLaunchers(2000));
-  EXPECT_EQ(flooded.a.own(0.5).heard.size(), SessionAgreement::kMaxHeard);
+  flooded.exchange(0.0, recordedLaunchers(2000));
+  EXPECT_EQ(flooded.a.own(0.05).heard.size(), SessionAgreement::kMaxHeard);
 }
 
 lagrange::header_t header(int32_t pid, int64_t seq, int64_t utime) {

@@ -130,10 +130,15 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
   long long undecodable = 0;
   try {
     logs::LogEventReader reader(log_path);
+    // No event larger than its channel's messages can be in this log's own
+    // scenario is read (logs/event_bounds.hpp): a 241 MB ACTUATOR_STATE
+    // would take replay to gigabytes.
+    reader.limitEvents(logs::boundsOfLog(log_path));
     long long whole_events_bytes = 0;  // of the events before this one: with the bytes skipped, its offset
     long long skipped = 0;
     while (const lcm::LogEvent* ev = reader.next()) {
-      const long long offset = whole_events_bytes + reader.scan().skipped_bytes;
+      const long long offset =
+          whole_events_bytes + reader.scan().skipped_bytes + reader.scan().oversized_bytes;
       if (reader.scan().skipped_bytes > skipped) {  // a stretch ending where this event starts
         const long long bytes = reader.scan().skipped_bytes - skipped;
         rec.damage.skipped.push_back({offset - bytes, bytes});
@@ -144,6 +149,11 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
       undecodable += record(*ev, offset, rec, seen) ? 0 : 1;
     }
     rec.scan = reader.scan();
+    for (const logs::OversizedEvent& big : rec.scan.first_oversized)
+      rec.damage.events.push_back(
+          {big.channel, big.offset, big.tick >= 0 ? std::optional<int64_t>(big.tick) : std::nullopt,
+           "is " + std::to_string(big.bytes) + " bytes, more than any of its messages can be in this log (" +
+               std::to_string(big.bound) + "): skipped unread"});
   } catch (const logs::LogError& e) {
     throw ReplayError(e.what());
   }
@@ -182,7 +192,10 @@ std::string whyLacking(const Recorded& rec, const std::string& channel, int64_t 
   if (const auto it = rec.offsets.find(channel); it != rec.offsets.end()) {
     const std::map<int64_t, long long>& offsets = it->second;
     if (auto below = offsets.lower_bound(from); below != offsets.begin()) lower = std::prev(below)->second;
-    if (auto above = offsets.upper_bound(to + 3); above != offsets.end()) upper = above->second;
+    // Saturated: a crafted tick near INT64_MAX must not overflow.
+    const int64_t past =
+        to > std::numeric_limits<int64_t>::max() - 3 ? std::numeric_limits<int64_t>::max() : to + 3;
+    if (auto above = offsets.upper_bound(past); above != offsets.end()) upper = above->second;
   }
   return whatMayHaveHeld(rec.damage, channel, from, to, lower, upper);
 }

@@ -292,7 +292,9 @@ std::optional<RunIdentity> decideIdentity(const RunOptions& opt, const std::stri
   }
   HandshakeOptions handshake;
   handshake.lcm_url = url;
-  handshake.meeting_id = opt.run_id ? *opt.run_id : sharedRunId(url, resolved_text);
+  // The meeting point is the URL alone: launchers of different scenarios
+  // meet too, and refuse each other naming both (the digest differs).
+  handshake.meeting_id = opt.run_id ? *opt.run_id : sharedRunId(url, "");
   handshake.processes = opt.processes;
   handshake.scenario_digest = static_cast<int64_t>(
       transport::fnv1a(reinterpret_cast<const uint8_t*>(resolved_text.data()), resolved_text.size()));

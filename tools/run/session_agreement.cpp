@@ -93,6 +93,15 @@ JoinMessage SessionAgreement::own(double now) {
   m.host = host_;
   m.scenario_digest = digest_;
   m.nonce = nonce_;
+  m.agreed = state(now) == State::kAgreed;
+  if (m.agreed) {
+    // Settled: only the members are listed, so a launcher heard after the
+    // agreement (a second one of a member's processes) never finds itself
+    // listed, never counts this one as live, and cannot settle on a value
+    // of its own with it: it waits and times out, naming this one.
+    m.heard = settled_;
+    return m;
+  }
   // The live ones first: a flood of recorded launchers cannot push them out.
   for (const Peer* p : livePeers(now))
     if (m.heard.size() < kMaxHeard) m.heard.push_back(p->said.nonce);
@@ -103,7 +112,6 @@ JoinMessage SessionAgreement::own(double now) {
             [](const Peer* a, const Peer* b) { return a->last_heard > b->last_heard; });
   for (const Peer* p : others)
     if (m.heard.size() < kMaxHeard) m.heard.push_back(p->said.nonce);
-  m.agreed = state(now) == State::kAgreed;
   return m;
 }
 

@@ -63,44 +63,51 @@ std::string readPlanFile(const fs::path& plan_path, long long max_bytes) {
 
 // OUT/plan.json: written on the first start; on a restart it must be the
 // plan the sweep file makes now, or OUT is another sweep's.
-void prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
-  fs::create_directories(fs::path(out_dir) / "rows");
+// Returns the plan's text as it is on disk (what the shards will read).
+std::string prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
+  util::makeOutputDirectory(out_dir + "/rows");  // never a planted link
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
   const std::string text = planJson(plan);
   if (fs::exists(fs::symlink_status(plan_path))) {
     // The same plan written with 17 digits a number (before 2026-11-27) is
     // longer, never 8 times as long.
-    if (!samePlanText(readPlanFile(plan_path, 8 * static_cast<long long>(text.size()) + 65536), text))
+    std::string on_disk = readPlanFile(plan_path, 8 * static_cast<long long>(text.size()) + 65536);
+    if (!samePlanText(on_disk, text))
       throw ConfigError("--out " + out_dir + " holds another sweep (its plan.json differs from the plan of " +
                         plan.spec.file +
                         " as it is now); expected the same sweep file and scenario to resume it, or a new "
                         "--out directory");
-    return;
+    return on_disk;
   }
   util::writeOutputFile(plan_path.string() + ".tmp", text);
   fs::rename(plan_path.string() + ".tmp", plan_path);
   util::writeOutputFile((fs::path(out_dir) / "sweep.yaml").string(), readFile(plan.spec.file));
+  return text;
 }
 
 // What binds a shard to the plan its sweep launched (issue #44): SHA-256 of
-// the plan as planJson writes it, on the shard's command line -- a plan.json
-// planted in a shared folder afterwards (Slurm's array tasks start later,
-// anywhere) names other scenarios, overrides and external commands, and a
-// shard that ran it would start programs nobody named.
-std::string planDigest(const SweepPlan& plan) {
-  const std::string text = planJson(plan);
+// plan.json's bytes, on the shard's command line -- a plan.json planted in a
+// shared folder afterwards (Slurm's array tasks start later, anywhere) names
+// other scenarios, overrides and external commands, and a shard that ran it
+// would start programs nobody named.
+std::string planDigest(const std::string& plan_text) {
   const std::array<uint8_t, 32> digest =
-      transport::sha256(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+      transport::sha256(reinterpret_cast<const uint8_t*>(plan_text.data()), plan_text.size());
   return transport::toHex(digest);
 }
 
-SweepPlan loadPlan(const std::string& out_dir) {
+// OUT/plan.json's text, read once (parsed and hashed from the same bytes).
+std::string loadPlanText(const std::string& out_dir) {
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
-  if (!fs::exists(plan_path))
+  if (!fs::exists(fs::symlink_status(plan_path)))
     throw ConfigError(out_dir +
                       " is not a sweep's output directory: it has no plan.json; expected the --out "
                       "directory of lagrange sweep");
-  return planFromJson(readPlanFile(plan_path, kMaxPlanBytes), plan_path.string());
+  return readPlanFile(plan_path, kMaxPlanBytes);
+}
+
+SweepPlan loadPlan(const std::string& out_dir) {
+  return planFromJson(loadPlanText(out_dir), (fs::path(out_dir) / "plan.json").string());
 }
 
 std::string exitText(int wstatus) {
@@ -183,10 +190,10 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
 }
 
 // Local: shards as processes, one per core; progress from the rows files.
-int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
+int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining, const std::string& plan_digest) {
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const int n = static_cast<int>(std::min<long>(o.jobs > 0 ? o.jobs : cores, remaining));
-  fs::create_directories(fs::path(o.out_dir) / "logs");
+  util::makeOutputDirectory((fs::path(o.out_dir) / "logs").string());  // never a planted link
   std::map<pid_t, int> running;
   for (int k = 0; k < n; ++k) {
     const std::string log =
@@ -194,7 +201,7 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining) {
             .string();
     running[wiring::spawnLogged(
         {o.self_exe, "sweep-shard", o.out_dir, "--shard", std::to_string(k), "--of", std::to_string(n),
-         "--parent", std::to_string(getpid()), "--plan-digest", planDigest(plan)},
+         "--parent", std::to_string(getpid()), "--plan-digest", plan_digest},
         {log, /*append=*/true})] = k;
   }
   RowCounter counter(o.out_dir);
@@ -248,18 +255,18 @@ std::string shellQuote(const std::string& s) {
 }
 
 // --slurm: a job array of shards, then (unless --no-wait) wait for it.
-int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
+int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining, const std::string& plan_digest) {
   const int n = static_cast<int>(std::min<long>(o.shards > 0 ? o.shards : 64, remaining));
   const fs::path dir = fs::absolute(o.out_dir);
   const fs::path slurm = dir / "slurm";
-  fs::create_directories(slurm);
+  util::makeOutputDirectory(slurm.string());  // never a planted link (Slurm writes its outputs there)
   const fs::path script = slurm / "shard.sh";
   util::writeOutputFile(
       script.string(),
       "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " +
           std::to_string(n) + " == K.\nexec " + shellQuote(o.self_exe) + " sweep-shard " +
           shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) +
-          " --plan-digest " + planDigest(plan) + "\n");
+          " --plan-digest " + plan_digest + "\n");
   fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                               fs::perms::others_read | fs::perms::others_exec);
   std::vector<std::string> args = {"sbatch",
@@ -334,6 +341,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining) {
 int runSweep(const SweepOptions& o) {
   std::optional<logs::OutDirLock> lock;
   SweepPlan plan;
+  std::string plan_digest;  // of plan.json as the shards will read it
   try {
     plan = planSweep(readSweepSpec(o.sweep_file));
     if (o.dry_run) {
@@ -348,7 +356,7 @@ int runSweep(const SweepOptions& o) {
     // holder's pid, dies with it).
     fs::create_directories(o.out_dir);
     lock.emplace(o.out_dir, "lagrange sweep");
-    prepareOutDir(o.out_dir, plan);
+    plan_digest = planDigest(prepareOutDir(o.out_dir, plan));
   } catch (const std::exception& e) {
     return failWith("lagrange sweep", e);
   }
@@ -363,7 +371,7 @@ int runSweep(const SweepOptions& o) {
                 << remaining << " to run" << (o.slurm ? " on Slurm" : "") << "\n"
                 << std::flush;
     if (remaining == 0) return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ").exitCode(false);
-    return o.slurm ? runSlurm(o, plan, remaining) : runLocal(o, plan, remaining);
+    return o.slurm ? runSlurm(o, plan, remaining, plan_digest) : runLocal(o, plan, remaining, plan_digest);
   } catch (const std::exception& e) {
     return failWith("lagrange sweep", e);
   }
@@ -392,13 +400,14 @@ int runSweepShard(const std::string& out_dir, int shard, int of, const std::stri
     if (of < 1 || shard < 0 || shard >= of)
       throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +
                         ": expected 0 <= K < N");
-    const SweepPlan plan = loadPlan(out_dir);
-    if (planDigest(plan) != plan_digest)
+    const std::string plan_text = loadPlanText(out_dir);
+    if (planDigest(plan_text) != plan_digest)
       throw ConfigError(
           (fs::path(out_dir) / "plan.json").string() +
-          " is not the plan this shard was started for (its SHA-256 is " + planDigest(plan) + ", expected " +
-          plan_digest +
+          " is not the plan this shard was started for (its SHA-256 is " + planDigest(plan_text) +
+          ", expected " + plan_digest +
           " from lagrange sweep): it was replaced after the sweep started; nothing of it is run");
+    const SweepPlan plan = planFromJson(plan_text, (fs::path(out_dir) / "plan.json").string());
     if (scenarioDigest(plan.spec.scenario_path) != plan.spec.scenario_digest)
       throw ConfigError(plan.spec.scenario_path +
                         " has changed since the sweep was planned; expected it as it was (its rows would "

@@ -16,6 +16,7 @@
 #include "controller/paper_section.hpp"
 #include "model/reference.hpp"
 #include "util/error.hpp"
+#include "util/output_file.hpp"
 #include "wiring/inproc_runner.hpp"
 #include "wiring/sampled_simulation.hpp"
 #include "wiring/spawn_logged.hpp"
@@ -170,11 +171,19 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
     throw RuntimeFault(
         "an external controller's row runs through lagrange run; this sweep runner has no binary");
   const fs::path dir = fs::path(out_dir_) / "external" / ("row-" + std::to_string(row.index));
-  fs::remove_all(dir);
-  // Twice at most: finishing the sweep removes an empty OUT/external/,
-  // which another shard may do between this one's two mkdirs.
-  std::error_code ec;
-  if (!fs::create_directories(dir, ec) && ec) fs::create_directories(dir);
+  // Never through a link planted as OUT/external (a shared sweep folder):
+  // remove_all would follow it. Twice at most: finishing the sweep removes an
+  // empty OUT/external/, which another shard may do between this one's mkdirs.
+  for (int attempt = 0;; ++attempt) {
+    try {
+      util::makeOutputDirectory(dir.parent_path().string());
+      fs::remove_all(dir);  // a link named row-N is removed itself, not followed
+      util::makeOutputDirectory(dir.string());
+      break;
+    } catch (const lagrange::RuntimeFault&) {
+      if (attempt > 0) throw;
+    }
+  }
   std::vector<std::string> args = {
       self_exe_, "run", plan_.spec.scenario_path, "--mode", "lockstep", "-q", "--out", dir.string()};
   for (const std::string& ov : row.overrides) args.insert(args.end(), {"--set", ov});
