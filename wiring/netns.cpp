@@ -112,4 +112,10 @@ std::string freshLcmUrl() {
   return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
 }
 
+int64_t randomRunId() {
+  std::random_device rd;
+  const uint64_t r = (static_cast<uint64_t>(rd()) << 32) ^ rd();
+  return static_cast<int64_t>(r >> 1) | 1;
+}
+
 }  // namespace lagrange::wiring

@@ -4,6 +4,7 @@
 /// loopback of its own namespace, so parallel runs never cross and no packet
 /// leaves the host.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ void joinNetnsOf(long pid);
 
 /// A multicast LCM URL on a random port, TTL 0: a run's own bus.
 std::string freshLcmUrl();
+
+/// A run id drawn at random: positive, never 0 (0 means "any run").
+int64_t randomRunId();
 
 /// Brings up lo with multicast and routes 224.0.0.0/4 to it.
 /// @throws RuntimeFault naming the failed `ip` command.

@@ -88,7 +88,13 @@ int replay(const ReplayCommandLine& o, const std::vector<std::string>& self_argv
               << "\n  the actuator and the plant are replayed instead\n";
     const int actuator = replayComponent(o, "actuator");
     const int plant = replayComponent(o, "plant");
-    return std::max(actuator, plant);  // bad input (2) before a divergence (1)
+    const int worst = std::max(actuator, plant);  // bad input (2) before a divergence (1)
+    if (worst != 0) return worst;
+    // Never 0: a CI job replaying the log to guard its controller must not
+    // pass without the controller having been replayed.
+    std::cerr << "lagrange replay: exit 2: the controller was not replayed (name its program after --, or "
+                 "--component actuator or plant to replay only those)\n";
+    return kExitBadInput;
   }
   return replayComponent(o, o.component);
 }

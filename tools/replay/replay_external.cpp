@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
-#include <random>
 
 #include "lagrange/control_command_t.hpp"
 #include "logs/log_reader.hpp"
@@ -136,8 +135,7 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
         ErrorKind::kRuntimeFault);
   }
   const std::string url = wiring::freshLcmUrl();
-  std::random_device rd;
-  const int64_t run_id = ((static_cast<int64_t>(rd()) << 20) ^ rd()) | 1;  // never 0: 0 accepts any run
+  const int64_t run_id = wiring::randomRunId();
   transport::LcmNode node("plant", url, run_id);
   // The program gets a key of this bus, as in a run: it signs its commands
   // and checks the positions (docs/external_controllers.md).

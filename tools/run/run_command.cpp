@@ -14,7 +14,6 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <random>
 
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
@@ -242,13 +241,6 @@ std::string readText(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// A random run id: positive, never 0 ("any run").
-int64_t randomRunId() {
-  std::random_device rd;
-  const uint64_t r = (static_cast<uint64_t>(rd()) << 32) ^ rd();
-  return static_cast<int64_t>(r >> 1) | 1;
-}
-
 // A run spread over hosts: this launcher starts part of it.
 bool partialLaunch(const RunOptions& opt) {
   return !opt.processes.empty() && opt.processes.size() != kProcesses.size();
@@ -276,18 +268,18 @@ std::optional<RunIdentity> decideIdentity(const RunOptions& opt, const std::stri
   if (!opt.sign) {
     id.run_id = opt.run_id           ? *opt.run_id
                 : partialLaunch(opt) ? sharedRunId(url, resolved_text)
-                                     : randomRunId();
+                                     : wiring::randomRunId();
     return id;
   }
   if (opt.key_file.empty()) {
     id.key = transport::randomMessageKey();
-    id.run_id = opt.run_id ? *opt.run_id : randomRunId();
+    id.run_id = opt.run_id ? *opt.run_id : wiring::randomRunId();
     return id;
   }
   const transport::MessageKey shared = runtime::readKeyFile(opt.key_file);
   if (!partialLaunch(opt)) {
     id.key = transport::deriveRunKey(shared, transport::randomNonce());
-    id.run_id = opt.run_id ? *opt.run_id : randomRunId();
+    id.run_id = opt.run_id ? *opt.run_id : wiring::randomRunId();
     return id;
   }
   HandshakeOptions handshake;
