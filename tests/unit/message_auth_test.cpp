@@ -166,6 +166,22 @@ TEST(MessageAuth, RawHandlersSeeThePayloadOnlyAndEachForgeryIsCountedOnce) {
       node.counters().at(kPlantPosition).rejected_by[static_cast<size_t>(RejectReason::kUnauthenticated)], 1);
 }
 
+// `m` as the plant of run 42 (pid 9) sends it with sequence number `seq`,
+// sealed and signed, handled by `node` at once.
+void sendAsPlant(LcmNode& node, const MessageAuthenticator& key, lagrange::plant_position_t m, int64_t seq) {
+  m.header.run_id = 42;
+  m.header.publisher = "plant";
+  m.header.publisher_pid = 9;
+  m.header.seq = seq;
+  seal(m);
+  std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  key.sign(bytes);
+  node.raw().publish(kPlantPosition, bytes.data(), static_cast<unsigned>(bytes.size()));
+  while (node.drain() > 0) {
+  }
+}
+
 // Records (Order::kAcceptReordered) take a sequence number once, in any order,
 // within a window of the publisher's newest; older is a replay.
 TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
@@ -177,20 +193,7 @@ TEST(MessageAuth, ReorderedRecordsCountOnceAndNothingOlderThanTheWindow) {
       [&](const lagrange::plant_position_t& m) { seqs.push_back(m.header.seq); },
       LcmNode::Order::kAcceptReordered);
   const MessageAuthenticator key(keyOf(5));
-  auto send = [&](int64_t seq) {
-    lagrange::plant_position_t m = position(1);
-    m.header.run_id = 42;
-    m.header.publisher = "plant";
-    m.header.publisher_pid = 9;
-    m.header.seq = seq;
-    seal(m);
-    std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
-    m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    key.sign(bytes);
-    node.raw().publish(kPlantPosition, bytes.data(), static_cast<unsigned>(bytes.size()));
-    while (node.drain() > 0) {
-    }
-  };
+  auto send = [&](int64_t seq) { sendAsPlant(node, key, position(1), seq); };
   const int64_t w = HeaderAdmission::kSequenceWindow;
   for (const int64_t seq : {int64_t{5}, 3 * w, 2 * w + 1, 3 * w, 2 * w, int64_t{5}, 3 * w - 1}) send(seq);
   EXPECT_EQ(seqs, (std::vector<int64_t>{5, 3 * w, 2 * w + 1, 3 * w - 1}));
@@ -210,19 +213,7 @@ TEST(MessageAuth, ADatagramLargerThanAnyOfTheRunsIsRejectedBeforeDecoding) {
   node.subscribe<lagrange::plant_position_t>(
       kPlantPosition, [](const auto&) { return Rejection(); }, [&](const auto&) { ++handled; });
   const MessageAuthenticator key(keyOf(5));
-  auto send = [&](lagrange::plant_position_t m, int64_t seq) {
-    m.header.run_id = 42;
-    m.header.publisher = "plant";
-    m.header.publisher_pid = 9;
-    m.header.seq = seq;
-    seal(m);
-    std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
-    m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    key.sign(bytes);
-    node.raw().publish(kPlantPosition, bytes.data(), static_cast<unsigned>(bytes.size()));
-    while (node.drain() > 0) {
-    }
-  };
+  auto send = [&](const lagrange::plant_position_t& m, int64_t seq) { sendAsPlant(node, key, m, seq); };
   lagrange::plant_position_t huge = position(1);
   huge.num_joints = 100000;
   huge.q.assign(100000, 0.5);
