@@ -8,6 +8,7 @@
 
 #include "config/input_file.hpp"
 #include "config/key_table.hpp"
+#include "config/physics_engines.hpp"
 #include "config/robot_kinds.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
@@ -76,10 +77,51 @@ const Fields<FlexibleConfig>& flexibleFields() {
   return fields;
 }
 
-// plant: the physics step, the sample rate, a limit on the arm's rates, and
-// which of a URDF's joint properties the plant applies.
+namespace {
+// plant.engine: a name config knows (built in or registered); written only
+// when not the default, so that an ODE scenario's resolved file stays as it was.
+Field<PlantConfig> engineField() {
+  return {"engine",
+          [](MapReader& m, PlantConfig& c) {
+            if (!m.has("engine")) return;
+            const std::string name = m.text("engine");
+            const std::vector<std::string> known = physicsEngineKeys();
+            if (std::find(known.begin(), known.end(), name) == known.end()) {
+              std::string list;
+              for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+              m.fail("engine", "no physics engine '" + name + "' in this program; expected one of " + list);
+            }
+            c.engine = name;
+          },
+          [](YAML::Emitter& out, const PlantConfig& c) {
+            if (c.engine != "ode") out << YAML::Key << "engine" << YAML::Value << c.engine;
+          }};
+}
+
+// plant.mujoco_integrator: MuJoCo's own setting, refused beside another engine.
+Field<PlantConfig> mujocoIntegratorField() {
+  return {"mujoco_integrator",
+          [](MapReader& m, PlantConfig& c) {
+            if (!m.has("mujoco_integrator")) return;
+            if (c.engine != "mujoco")
+              m.fail("mujoco_integrator", "is MuJoCo's setting and plant.engine is " + c.engine +
+                                              "; expected it left out, or plant.engine: mujoco");
+            c.mujoco_integrator = m.choice("mujoco_integrator", kMujocoIntegratorNames, "integrator");
+          },
+          [](YAML::Emitter& out, const PlantConfig& c) {
+            if (c.engine == "mujoco")
+              out << YAML::Key << "mujoco_integrator" << YAML::Value
+                  << util::nameOf(kMujocoIntegratorNames, c.mujoco_integrator);
+          }};
+}
+}  // namespace
+
+// plant: the engine, the physics step, the sample rate, a limit on the arm's
+// rates, and which of a URDF's joint properties the plant applies.
 const Fields<PlantConfig>& plantFields() {
   static const Fields<PlantConfig> fields = {
+      engineField(),
+      mujocoIntegratorField(),
       positive("physics_step", &PlantConfig::physics_step),
       positive("publish_rate", &PlantConfig::publish_rate),
       optionalPositive("max_rate", &PlantConfig::max_rate),

@@ -175,8 +175,20 @@ std::vector<KeyInfo> referenceKeys() {
 // The simulation and the actuator chain.
 std::vector<KeyInfo> plantAndActuatorKeys() {
   return {
+      row("plant.engine", "string", "`ode`",
+          "the physics engine that simulates the arm: `ode` (the Open Dynamics Engine, maximal "
+          "coordinates: the design's engine, and the golden logs') or `mujoco` (MuJoCo 2.2, generalized "
+          "coordinates, the model generated from the arm's parameters or its URDF: "
+          "docs/architecture.md, \"Physics engines\"), or one a program registers. Every wiring and "
+          "replay builds the engine the scenario names. Written to config.resolved.yaml only when not "
+          "`ode`."),
+      row("plant.mujoco_integrator", "string", "`rk4`",
+          "with `plant.engine: mujoco` only: MuJoCo's integrator, `rk4` (4th-order Runge-Kutta: the "
+          "springs of flexible joints and the damping explicit), `implicit` (damping implicit, stable "
+          "for any damping and step) or `euler` (semi-implicit Euler, damping implicit). Refused beside "
+          "another engine."),
       row("plant.physics_step", "number > 0", "`1.0e-4`",
-          "ODE step [s]; `1/publish_rate` must be a whole multiple of it.",
+          "the engine's step [s]; `1/publish_rate` must be a whole multiple of it.",
           {1e-7, 1.0, false, "s",
            "a step below 0.1 us only adds rounding; the steps a run asks for are bounded too"}),
       row("plant.publish_rate", "number > 0", "`1000`",
@@ -189,14 +201,17 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "(exit 1, the limit named, the log kept). Unset, nothing but a failing simulation stops a "
           "run: a non-finite state, or a body turning by more than π/2 per physics step (π/(2 "
           "`physics_step`) rad/s, 62 832 rad/s at 2.5e-5 s), past which ODE cannot integrate the "
-          "motion. There is deliberately no default limit: the paper's results are global, and "
+          "motion (the same limit on MuJoCo, which also stops a run at its own alarm: an angle, rate or "
+          "acceleration not finite or beyond 1e10). There is deliberately no default limit: the paper's "
+          "results are global, and "
           "converging runs from large errors pass through fast motion. ODE bleeds speed from fast "
           "links long before that limit (about 14 % in 10 ms at 0.06 rad per step): fast motion wants "
           "a small `physics_step`.",
           {0.0, 1e9, true, "rad/s", ""}),
       row("plant.joint_damping", "vector or scalar ≥ 0", "none",
-          "viscous damping of the arm's joints, D_i [N m s/rad]: a torque −D_i q̇_i in the plant (an ODE "
-          "motor solved with the step, so stable for any D), which the controllers' lossless model "
+          "viscous damping of the arm's joints, D_i [N m s/rad]: a torque −D_i q̇_i in the plant (on ODE a "
+          "motor solved with the step, so stable for any D; on MuJoCo the joint's `damping`, explicit "
+          "under `plant.mujoco_integrator: rk4`), which the controllers' lossless model "
           "(eq. 10) does not know. Overrides the URDF's `<dynamics damping>` under `plant.urdf_dynamics`. "
           "PLANT_TRUTH's energies then fall by what the damping and the friction take: E(t) − E(0) = "
           "∫ τᵀq̇ − ∫ (D q̇² + F |q̇|) dt without stops (a test holds it on a run's log).",
@@ -204,7 +219,8 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
       row("plant.joint_friction", "vector or scalar ≥ 0", "none",
           "Coulomb friction of the arm's joints, F_i [N m]: a torque of at most F_i against the joint's "
           "motion, and a joint at rest stays at rest while the rest of its torque is below F_i "
-          "(stiction; an ODE motor with force limit F_i aiming at zero rate, not a sign() term). "
+          "(stiction; on ODE a motor with force limit F_i aiming at zero rate, not a sign() term; on "
+          "MuJoCo the joint's `frictionloss`, a soft constraint: a rest within 1e-3 rad/s). "
           "Overrides the URDF's `<dynamics friction>` under `plant.urdf_dynamics`.",
           {0.0, 1e6, false, "N m", ""}),
       row("plant.urdf_dynamics", "`true` / `false`", "`false`",
@@ -223,7 +239,9 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
       row("plant.joint_limits", "`true` / `false`", "`false`",
           "a URDF arm: each revolute joint's `<limit lower upper>` is a hard stop in the plant "
           "(inelastic; ODE's hinge stops, placed relative to the joint's turn so that limits beyond ±π "
-          "hold too). The controllers do not know them. Refused for an arm without a URDF, or when "
+          "hold too; on MuJoCo the joint's `range`, a soft constraint that gives about 0.1 rad when a "
+          "light link hits it at 8 rad/s). The controllers do not know them. Refused for an arm without a "
+          "URDF, or when "
           "`initial_state.q` starts outside them."),
       row("plant.payload.mass", "number ≥ 0", "none",
           "a point mass [kg] at the last link that the controllers do not know of (they keep the "

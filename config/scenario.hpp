@@ -63,8 +63,19 @@ struct UrdfRobotConfig {
   std::string base_link, tip_link;
 };
 
+/// MuJoCo's integrators (plant.mujoco_integrator).
+enum class MujocoIntegrator { kRk4, kImplicit, kEuler };
+inline constexpr util::EnumName<MujocoIntegrator> kMujocoIntegratorNames[] = {
+    {MujocoIntegrator::kRk4, "rk4"},
+    {MujocoIntegrator::kImplicit, "implicit"},
+    {MujocoIntegrator::kEuler, "euler"}};
+
 struct PlantConfig {
-  double physics_step = 1e-4;  ///< ODE step [s]
+  /// The physics engine (plant/physics_engine.hpp): "ode" (the design's,
+  /// the default), "mujoco", or one a program registers (config/physics_engines.hpp).
+  std::string engine = "ode";
+  MujocoIntegrator mujoco_integrator = MujocoIntegrator::kRk4;  ///< with engine "mujoco" only
+  double physics_step = 1e-4;                                   ///< the engine's step [s]
   double publish_rate = 1000;  ///< samples per second [Hz]; one tick per sample
   /// A limit on any body's angular rate [rad/s] the user sets: the plant stops
   /// the run when it is crossed. Unset (the default): no limit but the

@@ -124,11 +124,30 @@ class PlanarChainWorld final : public ArmWorld {
 
 }  // namespace
 
+ArmBodies planarChainBodies(const model::ChainParams& params) {
+  // At q = 0 the chain hangs along -y, every hinge on z; gravity -g along y.
+  ArmBodies arm{{}, Eigen::Vector3d(0.0, -params.gravity, 0.0)};
+  double joint_y = 0.0;
+  for (const model::LinkParams& link : params.links) {
+    ChainBody b;
+    b.joint_anchor = Eigen::Vector3d(0.0, joint_y, 0.0);
+    b.joint_axis = Eigen::Vector3d::UnitZ();
+    b.mass = link.mass;
+    b.com = Eigen::Vector3d(0.0, joint_y - link.com, 0.0);
+    b.inertia = link.inertia * Eigen::Matrix3d::Identity();  // as ODE's body: only z matters in the plane
+    arm.bodies.push_back(b);
+    joint_y -= link.length;
+  }
+  return arm;
+}
+
 ArmBuilder planarChainWorld(const model::ChainParams& params) {
   const model::PlanarChain validated(params);  // refuses bad parameters before any ODE call
-  return {validated.dof(), [params](dWorldID world, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot) {
+  return {validated.dof(),
+          [params](dWorldID world, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot) {
             return std::unique_ptr<ArmWorld>(std::make_unique<PlanarChainWorld>(params, world, q, qdot));
-          }};
+          },
+          planarChainBodies(params)};
 }
 
 }  // namespace lagrange::plant

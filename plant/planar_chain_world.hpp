@@ -13,4 +13,9 @@ namespace lagrange::plant {
 /// @throws std::invalid_argument for parameters model::PlanarChain refuses.
 ArmBuilder planarChainWorld(const model::ChainParams& params);
 
+/// The chain as bodies at q = 0 for the other engines: it hangs along -y,
+/// hinges on z, gravity -g along y, each link's inertia I_i about all three
+/// axes (as its ODE body; only z turns in the plane).
+ArmBodies planarChainBodies(const model::ChainParams& params);
+
 }  // namespace lagrange::plant

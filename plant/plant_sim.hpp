@@ -1,27 +1,20 @@
 #pragma once
 /// @file
-/// ODE simulation of an arm: the world of one robot kind's builder
-/// (plant/arm_world.hpp; the planar chain's in plant/planar_chain_world.hpp),
-/// stepped by dWorldStep (the accurate stepper), no damping and no
-/// angular-speed clamp. ODE stays inside the plant (RAII); callers see Eigen
-/// vectors only.
+/// Simulation of an arm in one physics engine (plant/physics_engine.hpp:
+/// ODE by default, MuJoCo, or a registered one): PlantSim validates the
+/// setup, keeps the time, holds a torque profile over its parts, and stops a
+/// failing run; the engine holds the world and steps it. Engines stay inside
+/// the plant (RAII); callers see Eigen vectors only.
 ///
-/// Torques are re-applied before every physics sub-step (ODE clears its force
-/// accumulators after each step): joint torque tau_i acts +tau_i on link i and
-/// -tau_i on its parent. Joint angles, which the bodies show modulo 2 pi, are
-/// kept continuous (multi-turn): each sub-step the wrapped angle is unwrapped
-/// towards the angle predicted from the joint rate, so turns are counted
-/// correctly as long as the rate is below pi / physics_step.
-///
-/// Flexible joints (model/flexible_joint.hpp): one more body per joint, the
-/// rotor, hinged to the base on the z axis with inertia J_i about it. Each
-/// sub-step the spring torque K_i (q2_i - q1_i) acts as joint torque on joint
-/// i (+ on link i, - on link i-1) and opposite on rotor i, and the input tau_i
-/// acts on rotor i; the stator reaction goes to the base.
+/// Flexible joints (model/flexible_joint.hpp): one rotor per joint, hinged to
+/// the base with inertia J_i; the spring torque K_i (q2_i - q1_i) acts as
+/// joint torque on joint i (+ on link i, - on link i-1) and opposite on rotor
+/// i, and the input tau_i acts on rotor i.
 ///
 /// No damping, friction or stops unless asked (JointPhysics): the paper's arm
-/// is lossless. With them, ODE applies them inside its step (implicitly; see
-/// plant/joint_effects.hpp) and dissipated() counts the energy they took.
+/// is lossless. With them, the engine applies them inside its step
+/// (implicitly on ODE; see plant/joint_effects.hpp) and dissipated() counts
+/// the energy they took.
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -31,32 +24,10 @@
 
 #include "model/flexible_joint.hpp"
 #include "plant/arm_world.hpp"
+#include "plant/physics_engine.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::plant {
-
-struct PlantState {
-  Eigen::VectorXd q;             ///< joint (link) angles [rad], continuous
-  Eigen::VectorXd qdot;          ///< joint rates [rad/s]
-  Eigen::VectorXd motor_q{};     ///< flexible joints: motor angles q2 [rad], continuous; else empty
-  Eigen::VectorXd motor_qdot{};  ///< flexible joints: motor rates q2' [rad/s]; else empty
-};
-
-/// Damping, friction and hard stops of a real arm (plant/joint_effects.hpp's
-/// rules; empty vectors: none).
-struct JointPhysics {
-  Eigen::VectorXd damping;         ///< the arm's joints: D_i [N m s/rad]
-  Eigen::VectorXd friction;        ///< the arm's joints: Coulomb F_i [N m]
-  Eigen::VectorXd rotor_damping;   ///< flexible joints' rotors [N m s/rad]
-  Eigen::VectorXd rotor_friction;  ///< flexible joints' rotors [N m]
-  Eigen::VectorXd lower, upper;    ///< the arm's joints' hard stops [rad]; +-inf: none that side
-};
-
-struct PlantEnergy {
-  double kinetic = 0.0;    ///< [J], from the bodies' velocities
-  double potential = 0.0;  ///< [J], from the bodies' heights, plus the springs' for flexible joints
-  double total() const { return kinetic + potential; }
-};
 
 /// Why the plant stopped a run: the simulation failed, or a limit the user set was crossed.
 class PlantStopped : public lagrange::RuntimeFault {
@@ -74,6 +45,11 @@ class PlantStopped : public lagrange::RuntimeFault {
 ///    still growing then reaches inf within steps and ODE aborts normalising a
 ///    quaternion. The limit in rad/s is kMaxTurnPerStep / physics_step
 ///    (62 832 rad/s at the shipped 2.5e-5 s), and shrinks with a smaller step.
+///    MuJoCo integrates the angles themselves and needs no unwrapping, but a
+///    step that turns a body by a quarter turn resolves nothing of the motion
+///    either: the same limit holds on every engine. MuJoCo's own alarm (a
+///    non-finite acceleration, after which it would reset the state) stops
+///    the run as a non-finite state does.
 ///  - when a limit the user set (plant.max_rate) is crossed.
 class PlantSim {
  public:
@@ -81,16 +57,19 @@ class PlantSim {
   static constexpr double kMaxTurnPerStep = M_PI / 2.0;
 
   /// @param arm the robot kind's builder (e.g. planarChainWorld(params)).
-  /// @param physics_step ODE step [s], > 0.
+  /// @param physics_step the engine's step [s], > 0.
   /// @param flexible elastic joints with rotors; then `initial` needs motor_q, motor_qdot
   ///        and the torques of step() act on the rotors.
   /// @param max_rate a limit on any body's angular rate [rad/s] (plant.max_rate); none if unset.
   /// @param joints damping, friction and stops; none by default.
+  /// @param engine the physics engine and its settings (plant.engine); ODE by default.
   /// @throws std::invalid_argument on a size mismatch, non-finite state, a bad step,
-  ///         bad flexible parameters or bad joint physics.
+  ///         bad flexible parameters, bad joint physics, or an engine that cannot
+  ///         simulate the arm (naming it).
   PlantSim(const ArmBuilder& arm, const PlantState& initial, double physics_step,
            std::optional<model::FlexibleParams> flexible = std::nullopt,
-           std::optional<double> max_rate = std::nullopt, const JointPhysics& joints = {});
+           std::optional<double> max_rate = std::nullopt, const JointPhysics& joints = {},
+           const EngineChoice& engine = {});
   ~PlantSim();
   PlantSim(const PlantSim&) = delete;
   PlantSim& operator=(const PlantSim&) = delete;
@@ -98,7 +77,7 @@ class PlantSim {
   /// Advance by `substeps` physics steps with torques tau held constant (joint
   /// torques, or motor torques for flexible joints).
   /// @throws PlantStopped when the simulation fails (see the class comment),
-  ///         before ODE itself would abort, or a body crosses max_rate.
+  ///         before the engine itself would abort, or a body crosses max_rate.
   void step(const Eigen::VectorXd& tau, int substeps);
   /// Advance by `substeps` physics steps cut into tau.rows() equal parts, row
   /// s of tau (joint torques) held over part s: the actuator's output when it
@@ -109,31 +88,26 @@ class PlantSim {
   PlantState state() const;
   PlantEnergy energy() const;
   /// Energy the damping and friction of the joints and rotors took since the
-  /// start [J] (ODE's applied torques times the rates, step by step); 0
+  /// start [J] (the engine's applied torques times the rates, step by step); 0
   /// without them. With it the balance holds without stops: E(t) - E(0) =
   /// work of the inputs - dissipated (an inelastic stop takes energy too).
   double dissipated() const;
   double time() const { return time_; }
-  /// How far the joints have come apart in ODE's maximal coordinates [m] (ArmWorld::jointSeparation).
+  /// How far the joints have come apart in ODE's maximal coordinates [m]
+  /// (ArmWorld::jointSeparation); 0 in an engine's generalized coordinates.
   double jointSeparation() const;
+  /// The engine's name ("ODE", "MuJoCo").
+  std::string engineName() const;
   double physicsStep() const { return physics_step_; }
   int dof() const { return dof_; }
 
  private:
-  struct Ode;
-  void updateJointAngles();
-  void updateMotorAngles();
-  Eigen::VectorXd rotorRates() const;
   void checkBounded() const;
-  bool flexible() const { return flexible_.has_value(); }
 
   int dof_;
   double physics_step_;
   double time_ = 0.0;
-  std::unique_ptr<Ode> ode_;
-  Eigen::VectorXd q_;        ///< continuous joint angles
-  Eigen::VectorXd motor_q_;  ///< continuous motor angles (flexible joints)
-  std::optional<model::FlexibleParams> flexible_;
+  std::unique_ptr<PhysicsEngine> engine_;
   std::optional<double> max_rate_;
 };
 

@@ -3,6 +3,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "config/physics_engines.hpp"
 #include "plant/planar_chain_world.hpp"
 #include "plant/urdf_arm_world.hpp"
 
@@ -22,6 +23,13 @@ bool registerRobotKind(RobotKind kind) {
   const std::string key = kind.section.key;
   config::registerRobotKindSection(std::move(kind.section));  // refuses a key taken
   worlds().emplace(key, std::move(kind.world));
+  return true;
+}
+
+bool registerPhysicsEngine(const std::string& key, EngineFactory factory) {
+  if (!factory) throw std::logic_error("plant::registerPhysicsEngine: '" + key + "' has no factory");
+  config::registerPhysicsEngineKey(key);  // refuses a key taken
+  addPhysicsEngineFactory(key, std::move(factory));
   return true;
 }
 

@@ -20,6 +20,7 @@
 #include "config/robot_kinds.hpp"
 #include "config/scenario.hpp"
 #include "plant/arm_world.hpp"
+#include "plant/physics_engine.hpp"
 
 namespace lagrange::plant {
 
@@ -37,5 +38,11 @@ bool registerRobotKind(RobotKind kind);
 /// The builder of the scenario's arm: its registered kind's, the URDF arm's
 /// or the planar chain's -- the one place the plant picks a kind.
 ArmBuilder armBuilderFor(const config::Scenario& s);
+
+/// Registers a physics engine (plant/physics_engine.hpp) under `key`: with
+/// config, so that plant.engine accepts the key, and with the plant, which
+/// builds it. Returns true, for a namespace-scope initialiser. @throws
+/// std::logic_error for a key taken or a factory missing.
+bool registerPhysicsEngine(const std::string& key, EngineFactory factory);
 
 }  // namespace lagrange::plant

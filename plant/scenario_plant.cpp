@@ -39,12 +39,37 @@ JointPhysics jointPhysicsFor(const config::Scenario& s) {
   return out;
 }
 
+EngineChoice engineFor(const config::Scenario& s) {
+  EngineChoice c;
+  c.key = s.plant.engine;
+  switch (s.plant.mujoco_integrator) {
+    case config::MujocoIntegrator::kRk4:
+      c.mujoco_integrator = MujocoIntegrator::kRk4;
+      break;
+    case config::MujocoIntegrator::kImplicit:
+      c.mujoco_integrator = MujocoIntegrator::kImplicit;
+      break;
+    case config::MujocoIntegrator::kEuler:
+      c.mujoco_integrator = MujocoIntegrator::kEuler;
+      break;
+  }
+  return c;
+}
+
 PlantSim plantFor(const config::Scenario& s) {
   return PlantSim(
       armBuilderFor(s),
       {s.initial_state.q, s.initial_state.qdot, s.initial_state.motor_q, s.initial_state.motor_qdot},
       s.plant.physics_step, s.flexible ? std::optional(s.flexible->params) : std::nullopt, s.plant.max_rate,
-      jointPhysicsFor(s));
+      jointPhysicsFor(s), engineFor(s));
+}
+
+void checkPlantBuilds(const config::Scenario& s) {
+  try {
+    plantFor(s);
+  } catch (const std::invalid_argument& e) {
+    throw config::ConfigError(e.what());
+  }
 }
 
 namespace {

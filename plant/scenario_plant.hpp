@@ -14,8 +14,16 @@
 namespace lagrange::plant {
 
 /// The arm of `s.robot` at `s.initial_state` (with rotors when s.flexible), stepping s.plant.physics_step,
-/// with the joint damping, friction and stops the plant section asks for.
+/// with the joint damping, friction and stops the plant section asks for, in the engine plant.engine names.
 PlantSim plantFor(const config::Scenario& s);
+
+/// Builds the scenario's plant once and drops it, so that what an engine
+/// refuses (an arm it cannot simulate) stops a run before anything starts.
+/// @throws config::ConfigError with the engine's reason.
+void checkPlantBuilds(const config::Scenario& s);
+
+/// plant.engine and plant.mujoco_integrator, as the plant's engine seam takes them.
+EngineChoice engineFor(const config::Scenario& s);
 
 /// The joint damping, friction and stops of the scenario's plant: plant.joint_*
 /// and plant.rotor_*, else (plant.urdf_dynamics) the URDF's <dynamics>, and

@@ -142,10 +142,15 @@ ArmBuilder urdfArmWorld(std::shared_ptr<const model::UrdfArm> arm) {
 
 ArmBuilder urdfArmWorld(std::vector<model::UrdfBody> bodies, double gravity) {
   const int n = static_cast<int>(bodies.size());
-  return {n, [bodies = std::move(bodies), gravity](dWorldID world, const Eigen::VectorXd& q,
-                                                   const Eigen::VectorXd& qdot) {
+  ArmBodies arm{{}, Eigen::Vector3d(0.0, 0.0, -gravity)};
+  for (const model::UrdfBody& b : bodies)
+    arm.bodies.push_back({b.joint_anchor, b.joint_axis, b.mass, b.com, b.inertia});
+  return {n,
+          [bodies = std::move(bodies), gravity](dWorldID world, const Eigen::VectorXd& q,
+                                                const Eigen::VectorXd& qdot) {
             return std::unique_ptr<ArmWorld>(std::make_unique<UrdfArmWorld>(bodies, gravity, world, q, qdot));
-          }};
+          },
+          std::move(arm)};
 }
 
 }  // namespace lagrange::plant

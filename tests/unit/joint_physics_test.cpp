@@ -180,27 +180,80 @@ TEST(JointPhysics, AHardStopHoldsTheJointEvenPastAWrap) {
   EXPECT_NEAR(sim.state().q(0), 1.0, 0.01);
 }
 
+// Refused before any engine is built, on every engine alike.
 TEST(JointPhysics, RefusesBadValues) {
   const PlantState at_rest{Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)};
   JointPhysics negative;
   negative.damping = -1.0 * kOne;
-  EXPECT_THROW(PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, negative),
-               std::invalid_argument);
   JointPhysics wrong_size;
   wrong_size.friction = Eigen::Vector2d(1.0, 1.0);
-  EXPECT_THROW(
-      PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, wrong_size),
-      std::invalid_argument);
   JointPhysics crossed;
   crossed.lower = kOne;
   crossed.upper = -1.0 * kOne;
-  EXPECT_THROW(PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, crossed),
-               std::invalid_argument);
   JointPhysics rotor_without_rotors;
   rotor_without_rotors.rotor_damping = kOne;
-  EXPECT_THROW(PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt,
-                        rotor_without_rotors),
-               std::invalid_argument);
+  for (const std::string engine : {"ode", "mujoco"})
+    for (const JointPhysics& bad : {negative, wrong_size, crossed, rotor_without_rotors})
+      EXPECT_THROW(
+          PlantSim(planarChainWorld(oneLink(0.0)), at_rest, kStep, std::nullopt, std::nullopt, bad, {engine}),
+          std::invalid_argument)
+          << engine;
+}
+
+// The same closed forms on MuJoCo (plant/mujoco/mujoco_model.hpp): damping
+// is the joint's own, friction `frictionloss` and a stop `range` -- soft
+// constraints MuJoCo solves within the step, where ODE's are hard: the
+// figures below are what the softness leaves, measured and bounded.
+const EngineChoice kMujoco{"mujoco", MujocoIntegrator::kRk4};
+
+TEST(JointPhysics, OnMujocoDampingDecaysAtTheClosedFormRateAndTheBalanceHolds) {
+  const double damping = 0.05, w0 = 3.0;
+  JointPhysics physics;
+  physics.damping = damping * kOne;
+  PlantSim sim(planarChainWorld(oneLink(0.0)), {Eigen::VectorXd::Zero(1), w0 * kOne}, kStep, std::nullopt,
+               std::nullopt, physics, kMujoco);
+  for (int k = 1; k <= 10; ++k) {
+    sim.step(Eigen::VectorXd::Zero(1), 1000);
+    const double expected = w0 * std::exp(-damping * sim.time() / kJointInertia);
+    EXPECT_NEAR(sim.state().qdot(0), expected, 1e-9 * expected) << "t = " << sim.time();
+  }
+  const double e0 = 0.5 * kJointInertia * w0 * w0;
+  EXPECT_NEAR(sim.dissipated(), e0 - sim.energy().total(), 1e-3 * e0);
+}
+
+TEST(JointPhysics, OnMujocoFrictionStopsASpinningLinkNearTheClosedFormAngle) {
+  const double friction = 0.4, w0 = 5.0;
+  JointPhysics physics;
+  physics.friction = friction * kOne;
+  PlantSim sim(planarChainWorld(oneLink(0.0)), {Eigen::VectorXd::Zero(1), w0 * kOne}, kStep, std::nullopt,
+               std::nullopt, physics, kMujoco);
+  const double stop_time = kJointInertia * w0 / friction,
+               stop_angle = kJointInertia * w0 * w0 / (2 * friction);
+  sim.step(Eigen::VectorXd::Zero(1), static_cast<int>(2 * stop_time / kStep));
+  std::printf("MuJoCo friction: stopped at %.6f rad (closed form %.6f), %.3e rad/s left\n", sim.state().q(0),
+              stop_angle, sim.state().qdot(0));
+  EXPECT_NEAR(sim.state().q(0), stop_angle, 1e-2 * stop_angle);
+  EXPECT_LT(std::abs(sim.state().qdot(0)), 1e-3);
+  const double e0 = 0.5 * kJointInertia * w0 * w0;
+  EXPECT_NEAR(sim.dissipated(), e0 - sim.energy().total(), 1e-2 * e0);
+}
+
+TEST(JointPhysics, OnMujocoAStopHoldsTheJointFromEitherSide) {
+  JointPhysics physics;
+  physics.lower = Eigen::VectorXd::Constant(1, -4.0);
+  physics.upper = Eigen::VectorXd::Constant(1, 1.0);
+  PlantSim sim(planarChainWorld(oneLink(0.0)), {Eigen::VectorXd::Zero(1), -8.0 * kOne}, kStep, std::nullopt,
+               std::nullopt, physics, kMujoco);
+  double lowest = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    sim.step(-1.0 * kOne, 10);
+    lowest = std::min(lowest, sim.state().q(0));
+  }
+  std::printf("MuJoCo stop at -4 rad: deepest %.4f rad, resting at %.4f rad\n", lowest, sim.state().q(0));
+  EXPECT_GT(lowest, -4.0 - 0.1);  // soft: it gives a little when hit at 8 rad/s
+  EXPECT_NEAR(sim.state().q(0), -4.0, 0.01);
+  for (int k = 0; k < 3000; ++k) sim.step(2.0 * kOne, 10);
+  EXPECT_NEAR(sim.state().q(0), 1.0, 0.01);
 }
 
 }  // namespace

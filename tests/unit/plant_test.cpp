@@ -16,8 +16,9 @@ Eigen::VectorXd probeTorque(int n, double t) {
   return tau;
 }
 
-// Max |q_ode - q_rk4| over 1 s from the same state under the same torque.
-double gapOverOneSecond(const model::ChainParams& params, double physics_step) {
+// Max |q_engine - q_rk4| over 1 s from the same state under the same torque.
+double gapOverOneSecond(const model::ChainParams& params, double physics_step,
+                        const EngineChoice& engine = {}) {
   const int n = static_cast<int>(params.links.size());
   const model::PlanarChain chain(params);
   Eigen::VectorXd q0(n), v0(n);
@@ -25,7 +26,7 @@ double gapOverOneSecond(const model::ChainParams& params, double physics_step) {
     q0(i) = 0.5 - 0.3 * i;
     v0(i) = 0.2 * i - 0.4;
   }
-  PlantSim sim(planarChainWorld(params), {q0, v0}, physics_step);
+  PlantSim sim(planarChainWorld(params), {q0, v0}, physics_step, std::nullopt, std::nullopt, {}, engine);
   Eigen::VectorXd x(2 * n);
   x << q0, v0;
   const double period = 1e-3;
@@ -58,6 +59,25 @@ TEST(PlantSim, ThreeLinkChainMatchesTheModelToo) {
   EXPECT_LT(gapOverOneSecond(p, 1e-4), 2e-3);
 }
 
+// MuJoCo (generalized coordinates, RK4) at the control rate's own step
+// against the same equations: what ODE needs 1e-5 s for, it does at 1e-3 s.
+TEST(PlantSim, OnMujocoChainsMatchTheAnalyticModelAtTheControlRatesOwnStep) {
+  const EngineChoice mujoco{"mujoco", MujocoIntegrator::kRk4};
+  model::ChainParams three;
+  three.links = {{0.3, 0.15, 3.0, 0.0225}, {0.3, 0.15, 2.0, 0.015}, {0.3, 0.15, 1.0, 0.0075}};
+  const double pelican = gapOverOneSecond(model::pelicanParams(), 1e-3, mujoco);
+  const double chain3 = gapOverOneSecond(three, 1e-3, mujoco);
+  const double euler = gapOverOneSecond(model::pelicanParams(), 1e-4, {"mujoco", MujocoIntegrator::kEuler});
+  std::printf(
+      "MuJoCo vs RK4 over 1 s: max |dq| = %.3e (Pelican), %.3e (3 links) at RK4 1e-3; %.3e at Euler 1e-4\n",
+      pelican, chain3, euler);
+  EXPECT_LT(pelican, 1e-7);
+  EXPECT_LT(chain3, 1e-7);
+  // Its semi-implicit Euler is first order like ODE's stepper: the same mrad.
+  EXPECT_LT(euler, 5e-3);
+  EXPECT_GT(euler, 100 * pelican);
+}
+
 TEST(PlantSim, EnergyDriftWithoutTorqueIsSmallAndShrinksWithTheStep) {
   auto drift = [](double dt) {
     PlantSim sim(planarChainWorld(model::pelicanParams()),
@@ -81,9 +101,13 @@ TEST(PlantSim, EnergyDriftWithoutTorqueIsSmallAndShrinksWithTheStep) {
 TEST(PlantSim, EnergyAgreesWithTheAnalyticModel) {
   const model::PlanarChain chain(model::pelicanParams());
   const Eigen::Vector2d q(0.7, 2.1), v(-1.5, 3.0);
-  PlantSim sim(planarChainWorld(model::pelicanParams()), {q, v}, 1e-4);
-  EXPECT_NEAR(sim.energy().kinetic, chain.kineticEnergy(q, v), 1e-12);
-  EXPECT_NEAR(sim.energy().potential, chain.potentialEnergy(q), 1e-12);
+  for (const std::string engine : {"ode", "mujoco"}) {
+    PlantSim sim(planarChainWorld(model::pelicanParams()), {q, v}, 1e-4, std::nullopt, std::nullopt, {},
+                 {engine});
+    EXPECT_NEAR(sim.energy().kinetic, chain.kineticEnergy(q, v), 1e-12) << engine;
+    EXPECT_NEAR(sim.energy().potential, chain.potentialEnergy(q), 1e-12) << engine;
+    EXPECT_EQ(sim.engineName(), engine == "ode" ? "ODE" : "MuJoCo");
+  }
 }
 
 TEST(PlantSim, OneLinkSpinsThroughManyTurnsWithoutWrapping) {
@@ -98,6 +122,13 @@ TEST(PlantSim, OneLinkSpinsThroughManyTurnsWithoutWrapping) {
   // first-order stepper's slight loss of speed on a link spinning about an
   // offset centre of mass (about 2 mrad here).
   EXPECT_NEAR(sim.state().q(0), 160.0, 1e-2);
+  // MuJoCo integrates the angle itself: no turn is lost, and no speed.
+  PlantSim mujoco(planarChainWorld(p),
+                  {Eigen::VectorXd::Constant(1, 100.0), Eigen::VectorXd::Constant(1, 30.0)}, 1e-4,
+                  std::nullopt, std::nullopt, {}, {"mujoco"});
+  mujoco.step(Eigen::VectorXd::Zero(1), 20000);
+  EXPECT_NEAR(mujoco.state().q(0), 160.0, 1e-9);
+  EXPECT_NEAR(mujoco.state().qdot(0), 30.0, 1e-12);
 }
 
 // No artificial limit on the state: a link at 3e4 rad/s (three times the old

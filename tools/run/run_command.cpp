@@ -19,6 +19,7 @@
 #include "controller/gain_report.hpp"
 #include "controller/gain_report_json.hpp"
 #include "logs/out_dir_lock.hpp"
+#include "plant/scenario_plant.hpp"
 #include "runtime/key_file.hpp"
 #include "tools/command_error.hpp"
 #include "tools/report/report.hpp"
@@ -516,6 +517,8 @@ int runScenarioLocked(const RunOptions& opt) {
   std::string out_dir;
   try {
     scenario = config::loadScenario(opt.config_path, opt.overrides);
+    if (runsHere(opt, "plant"))
+      plant::checkPlantBuilds(scenario);  // e.g. an arm plant.engine cannot simulate
     if (!opt.key_file.empty()) runtime::readKeyFile(opt.key_file);  // a bad key file stops nothing half-way
     // A CPU this machine lacks: refused here rather than by a process half-started
     // (each process checks again on its own host, for runs spread with --processes).
