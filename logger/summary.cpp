@@ -76,6 +76,11 @@ nlohmann::json plantJson(const config::Scenario& s) {
   json out = json::object();
   const config::PlantConfig& p = s.plant;
   auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  if (p.engine != "ode") {  // the design's engine goes unsaid, as in config.resolved.yaml
+    out["engine"] = p.engine;
+    if (p.engine == "mujoco")
+      out["mujoco_integrator"] = util::nameOf(config::kMujocoIntegratorNames, p.mujoco_integrator);
+  }
   if (p.joint_damping) out["joint_damping"] = vec(*p.joint_damping);
   if (p.joint_friction) out["joint_friction"] = vec(*p.joint_friction);
   if (p.rotor_damping) out["rotor_damping"] = vec(*p.rotor_damping);

@@ -27,22 +27,38 @@ model::ChainParams chainOf(const std::any& settings, double gravity) {
   return {{{p.length, p.length, p.mass, 1e-4}}, gravity};  // the mass at the tip
 }
 
-const bool pendulum_registered = registerRobotKind(
-    {{"test_pendulum",
-      [](config::MapReader& section) -> std::any {
-        Pendulum p{section.positive("length"), section.positive("mass")};
-        section.finish({"length", "mass"});
-        return p;
-      },
-      [](const std::any& settings, double gravity) -> model::RobotModelPtr {
-        return std::make_shared<const model::PlanarChain>(chainOf(settings, gravity));
-      },
-      [](YAML::Emitter& out, const std::any& settings) {
-        const auto& p = std::any_cast<const Pendulum&>(settings);
-        out << YAML::BeginMap << YAML::Key << "length" << YAML::Value << p.length << YAML::Key << "mass"
-            << YAML::Value << p.mass << YAML::EndMap;
-      }},
-     [](const std::any& settings, double gravity) { return planarChainWorld(chainOf(settings, gravity)); }});
+// The pendulum's section under `key`, its world from `world`.
+RobotKind pendulumKind(const std::string& key, std::function<ArmBuilder(const std::any&, double)> world) {
+  return {{key,
+           [](config::MapReader& section) -> std::any {
+             Pendulum p{section.positive("length"), section.positive("mass")};
+             section.finish({"length", "mass"});
+             return p;
+           },
+           [](const std::any& settings, double gravity) -> model::RobotModelPtr {
+             return std::make_shared<const model::PlanarChain>(chainOf(settings, gravity));
+           },
+           [](YAML::Emitter& out, const std::any& settings) {
+             const auto& p = std::any_cast<const Pendulum&>(settings);
+             out << YAML::BeginMap << YAML::Key << "length" << YAML::Value << p.length << YAML::Key << "mass"
+                 << YAML::Value << p.mass << YAML::EndMap;
+           }},
+          std::move(world)};
+}
+
+const bool pendulum_registered =
+    registerRobotKind(pendulumKind("test_pendulum", [](const std::any& settings, double gravity) {
+      return planarChainWorld(chainOf(settings, gravity));
+    }));
+
+// The same pendulum described for ODE only, as a kind written before the
+// engines had a seam: its builder gives ODE's world and no bodies.
+const bool ode_only_registered =
+    registerRobotKind(pendulumKind("test_ode_only_pendulum", [](const std::any& settings, double gravity) {
+      ArmBuilder b = planarChainWorld(chainOf(settings, gravity));
+      b.bodies.reset();
+      return b;
+    }));
 
 const std::string kScenario = R"(name: pendulum
 duration: 3
@@ -77,10 +93,29 @@ TEST(RobotKindSeam, ATestOnlyKindIsReadWrittenBuiltAndRun) {
   EXPECT_LT(run.tracking.final_error, 1e-3) << "initial error 0.4 rad";
 }
 
+// Its ArmBuilder gives ODE's world only, no bodies: on MuJoCo the launcher
+// refuses the scenario before anything starts, naming the engine.
+TEST(RobotKindSeam, AKindDescribedForOdeOnlyIsRefusedOnMujocoBeforeAnythingStarts) {
+  ASSERT_TRUE(ode_only_registered);
+  std::string text = kScenario;
+  text.replace(text.find("test_pendulum"), 13, "test_ode_only_pendulum");
+  const config::Scenario s = config::parseScenario(text, "pendulum.yaml", {"plant.engine=mujoco"});
+  try {
+    checkPlantBuilds(s);
+    ADD_FAILURE() << "accepted";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("plant.engine: mujoco cannot simulate this arm"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(checkPlantBuilds(config::parseScenario(text, "pendulum.yaml")));  // on ODE
+  EXPECT_NO_THROW(
+      checkPlantBuilds(config::parseScenario(kScenario, "pendulum.yaml", {"plant.engine=mujoco"})));
+}
+
 TEST(RobotKindSeam, ItsSectionIsCheckedAndItsKeyIsItsOwn) {
   const std::string two_arms = testing::errorOf(kScenario, {"robot.preset=pelican"});
   EXPECT_NE(two_arms.find("give exactly one of robot.preset (pelican), robot.links or robot.urdf "
-                          "(or a kind built into this program: robot.test_pendulum)"),
+                          "(or a kind built into this program: robot.test_ode_only_pendulum, robot.test_pendulum)"),
             std::string::npos)
       << two_arms;
   const std::string negative = testing::errorOf(kScenario, {"robot.test_pendulum.length=-1"});
