@@ -116,11 +116,17 @@ struct SampledSimulation {
   /// joint-angle sensor delay (the same lag, the reference a period apart).
   bool one_period_delay = false;
   std::vector<Start> starts;
-  std::string verdict;     ///< "adequate", "inadequate", "diverges" or "not assessed"
+  /// "adequate", "inadequate", "does not converge" (neither the sampled nor
+  /// the fine-rate loop reaches the tolerance: said before what sampling
+  /// changes), "diverges" or "not assessed"
+  std::string verdict;
   std::string why;         ///< one sentence behind the verdict
   double wall_time = 0.0;  ///< what the simulations took [s]
 
   bool adequate() const { return verdict == "adequate"; }
+  /// A failed check (check-gains exits 1, run --strict refuses): the loop
+  /// diverges, or reaches the tolerance at no rate tried.
+  bool fails() const { return verdict == "diverges" || verdict == "does not converge"; }
 };
 
 /// What a person reads: the verdict, the times, and what it rests on.

@@ -150,7 +150,20 @@ std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, do
                               ", the fine-rate loop at " + seconds(*st.fine_time) + " (ADEQUATE: within " +
                               std::to_string(static_cast<int>(std::lround((slack - 1) * 100))) + " %)"};
   }
-  if (st.sampled_error <= slack * st.fine_error + 0.25 * tolerance) return {"adequate", ""};
+  const bool as_fine = st.sampled_error <= slack * st.fine_error + 0.25 * tolerance;
+  if (!st.sampled_time) {
+    // Neither loop reaches the tolerance: that comes first, whatever
+    // sampling does (a payload a PD-type law leaves an error on, a torque
+    // limit below what the motion needs); then what sampling changes.
+    char why[320];
+    std::snprintf(why, sizeof why,
+                  "what sampling changes: the sampled loop's steady-state error, %.3g rad RMS over the last "
+                  "second, is %s the fine-rate loop's %.3g rad",
+                  st.sampled_error, as_fine ? "as small as (within 25 % of)" : "more than 25 % above",
+                  st.fine_error);
+    return {"does not converge", why};
+  }
+  if (as_fine) return {"adequate", ""};
   char why[256];
   std::snprintf(
       why, sizeof why,
@@ -322,7 +335,8 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
   std::vector<Loop> fine_loops = {fine_initial};
   fine_loops.insert(fine_loops.end(), loops.begin() + static_cast<long>(simulated_sampled), loops.end());
 
-  const std::vector<std::string> order = {"adequate", "not assessed", "inadequate", "diverges"};
+  const std::vector<std::string> order = {"adequate", "not assessed", "inadequate", "does not converge",
+                                          "diverges"};
   auto rank = [&](const std::string& v) { return std::find(order.begin(), order.end(), v) - order.begin(); };
   out.verdict = "adequate";
   for (size_t i = 0; i < starts.size(); ++i) {
@@ -345,7 +359,25 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
         std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
         " % of the fine-rate loop's time (or, where the fine-rate loop did not reach the tolerance, its "
         "steady-state error was within as much)";
-  if (!out.confirmed_at) {
+  if (out.verdict == "does not converge") {
+    const auto stuck =
+        std::count_if(out.starts.begin(), out.starts.end(),
+                      [](const SampledSimulation::Start& st) { return st.verdict == "does not converge"; });
+    char head[320];
+    std::snprintf(
+        head, sizeof head,
+        "at any rate tried: from %s neither the sampled loop at %g Hz nor the fine-rate loop at %g Hz "
+        "reached the tolerance (%g rad) within the run; ",
+        stuck == static_cast<long>(out.starts.size())
+            ? (out.starts.size() > 1 ? "every start" : "its start")
+            : (std::to_string(stuck) + " of " + std::to_string(out.starts.size()) + " starts").c_str(),
+        out.rate, fine, out.tolerance);
+    out.why = head + out.why;
+  }
+  if (!out.confirmed_at && out.verdict == "does not converge") {
+    out.why += "; no fine rate up to " + std::to_string(max_refinement) +
+               " x the configured one agreed with the next finer";
+  } else if (!out.confirmed_at) {
     if (out.verdict == "adequate") out.verdict = "not assessed";
     out.why = "no fine rate up to " + std::to_string(max_refinement) +
               " x the configured one agreed with the next finer, so no loop stands for continuous time; " +

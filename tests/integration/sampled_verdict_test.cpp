@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include "config/scenario.hpp"
@@ -100,6 +101,46 @@ TEST_P(ShippedVerdict, TheSampledDataWordAgreesWithTheRunsItSpeaksOf) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Configs, ShippedVerdict, ::testing::ValuesIn(shippedConfigs()));
+
+// A payload the PD-type law leaves a 0.19 rad error on: no rate tried reaches
+// the tolerance, and the check says that first -- it once printed ADEQUATE
+// above two lines of "did not converge" (sampling changed nothing, true, but
+// not the first thing a user needs) -- then what sampling changes; it fails
+// as a diverging loop does: check-gains exits 1, run --strict refuses, and
+// a sweep's row says so.
+TEST(SampledVerdict, ALoopThatReachesTheToleranceAtNoRateSaysThatFirstAndFailsTheCheck) {
+  const std::string config = kConfigs + "/rigid_2dof.yaml";
+  const std::string sets = " --set duration=3 --set 'plant.payload={mass: 2.0, com: 0.1}'";
+  const RunResult check = lagrange("check-gains " + quote(config) + sets);
+  EXPECT_EQ(check.exit_code, 1) << check.output;
+  EXPECT_NE(
+      check.output.find("sampled-data check at 1000 Hz: DOES NOT CONVERGE at any rate tried: from every "
+                        "start neither the sampled loop at 1000 Hz nor the fine-rate loop at 8000 Hz "
+                        "reached the tolerance (0.001 rad) within the run; what sampling changes: "),
+      std::string::npos)
+      << check.output;
+  EXPECT_EQ(check.output.find("ADEQUATE"), std::string::npos) << check.output;
+
+  const std::string dir = freshDir("verdict-no-rate");
+  const RunResult strict = lagrange("run " + quote(config) + sets +
+                                    " --mode inproc -q --check-sampled --strict -o " + quote(dir + "/run"));
+  EXPECT_EQ(strict.exit_code, 2) << strict.output;
+  EXPECT_NE(strict.output.find("refusing to start (--strict) because the sampled loop does not converge in "
+                               "simulation: at any rate tried"),
+            std::string::npos)
+      << strict.output;
+
+  std::ofstream(dir + "/sweep.yaml") << "scenario: " << config << "\nset: {duration: 3}\n"
+                                     << "simulate_sampled_data: true\n"
+                                     << "axes:\n  - {key: plant.payload, values: [{mass: 2.0, com: 0.1}]}\n";
+  const RunResult sweep =
+      lagrange("sweep " + quote(dir + "/sweep.yaml") + " -o " + quote(dir + "/sweep") + " -q");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  std::ifstream rows(dir + "/sweep/sweep.jsonl");
+  std::string line;
+  ASSERT_TRUE(std::getline(rows, line));
+  EXPECT_EQ(nlohmann::json::parse(line).at("sampled_verdict"), "does not converge") << line;
+}
 
 }  // namespace
 }  // namespace lagrange::testing

@@ -22,13 +22,10 @@ int checkGainsCommand(const std::string& config_path, const std::vector<std::str
     if (simulate) r.simulated = wiring::simulateSampledData(s);
     std::cout << controller::describe(r) << "\n";
     // Exit 1 when the theory's conditions fail, or when the sampled loop at the
-    // configured rate diverges in simulation or is unstable near the reference
-    // ("inadequate" and "slow" only warn).
+    // configured rate diverges in simulation, reaches the tolerance at no rate
+    // tried, or is unstable near the reference ("inadequate" and "slow" only warn).
     if (!suggest)
-      return r.holds() && r.sampled.verdict != "unstable" &&
-                     !(r.simulated && r.simulated->verdict == "diverges")
-                 ? 0
-                 : 1;
+      return r.holds() && r.sampled.verdict != "unstable" && !(r.simulated && r.simulated->fails()) ? 0 : 1;
     if (r.unchecked) {
       std::cout << "\nno suggestion: --suggest knows the paper's controllers only\n";
       return kExitFailed;

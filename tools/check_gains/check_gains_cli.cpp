@@ -27,7 +27,8 @@ Subcommand addCheckGainsCommand(CLI::App& app) {
       "for m >= 2) and whether the sampled implementation at the configured rate is adequate "
       "(the loop simulated in process from the initial state and seeded states against the same loop "
       "at a fine rate, and linearised near the reference); exit 1 if a condition is violated, the "
-      "sampled loop diverges in simulation or is unstable near the reference");
+      "sampled loop diverges in simulation or converges at no rate tried, or is unstable near the "
+      "reference");
   cmd->add_option("config", o->config_path, "Scenario YAML file")->required();
   cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
   cmd->add_flag("--suggest", o->suggest,

@@ -113,10 +113,9 @@ bool gainsAllowRun(const config::Scenario& scenario, const controller::GainRepor
               << (gains.unchecked ? "not checked" : "violated") << "\n";
     return false;
   }
-  if (opt.strict && gains.simulated && gains.simulated->verdict == "diverges") {
-    std::cerr
-        << "lagrange run: refusing to start (--strict) because the sampled loop diverges in simulation: "
-        << gains.simulated->why << "\n";
+  if (opt.strict && gains.simulated && gains.simulated->fails()) {
+    std::cerr << "lagrange run: refusing to start (--strict) because the sampled loop "
+              << gains.simulated->verdict << " in simulation: " << gains.simulated->why << "\n";
     return false;
   }
   return true;
