@@ -1,10 +1,15 @@
 // The two physics engines side by side (plant.engine, plant/physics_engine.hpp):
 // a MuJoCo run is as deterministic as an ODE one -- lockstep equals in-process
-// bit for bit, and its log replays through the plant -- and on the shipped
-// configs the two engines reach the same verdict at the same time.
+// bit for bit, and its log replays through the plant -- and every shipped
+// config runs on both, to the same verdict at the same time or to a
+// difference that is the engine's, explained.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "support/configs.hpp"
@@ -48,44 +53,73 @@ TEST(Engines, AMujocoRunIsTheSameInLockstepAndInProcessAndItsLogReplaysThroughTh
   EXPECT_NE(replay.output.find("plant reproduced all 2001"), std::string::npos) << replay.output;
 }
 
-// A shipped config and the physics step MuJoCo runs it at: the control
-// rate's own where the motion allows; the flexible arm's rotors turn at
-// 1 900 rad/s in its first millisecond, past a quarter turn per 1 ms step.
-struct EnginePair {
-  const char* config;
-  const char* mujoco_step;
-};
-void PrintTo(const EnginePair& p, std::ostream* os) { *os << p.config; }
+// plant.engine is an axis like any key: a sweep over both engines, each
+// row naming its engine, both converging at the same time; and a key of
+// compare's sweep (docs/evidence.md, "Does the verdict depend on the engine?").
+TEST(Engines, AreAnAxisOfASweep) {
+  const std::string dir = freshDir("engine-sweep");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/sweep.yaml") << "scenario: " << kConfigs << "/rigid_2dof.yaml\nset: {duration: 2}\n"
+                                     << "axes:\n  - {key: plant.engine, values: [ode, mujoco]}\n";
+  const RunResult r = lagrange("sweep " + quote(dir + "/sweep.yaml") + " -o " + quote(dir + "/out") + " -q");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream rows(dir + "/out/sweep.jsonl");
+  std::string line;
+  std::map<std::string, double> converged_at;
+  while (std::getline(rows, line)) {
+    const auto row = nlohmann::json::parse(line);
+    ASSERT_TRUE(row.at("converged").get<bool>()) << line;
+    converged_at[row.at("plant.engine").get<std::string>()] = row.at("convergence_time").get<double>();
+  }
+  ASSERT_EQ(converged_at.size(), 2u);
+  EXPECT_NEAR(converged_at["mujoco"], converged_at["ode"], 0.01 * converged_at["ode"]);
+}
 
-class EngineAgreement : public ::testing::TestWithParam<EnginePair> {};
+class EngineAgreement : public ::testing::TestWithParam<std::string> {};
 
-// The verdict does not depend on the engine: ODE at the config's own step
-// and MuJoCo at its own both meet the metric, and the convergence times
-// agree within 1 % (measured: within 0.1 % on every shipped config).
-TEST_P(EngineAgreement, BothEnginesMeetTheMetricAndConvergeWithinOnePercent) {
-  const std::string config = kConfigs + "/" + GetParam().config + ".yaml";
+// Every shipped config on both engines, at its own physics step: the verdict
+// does not depend on the engine -- both meet the metric and converge within
+// 1 % of each other's time (measured: within 0.1 %) -- except where the
+// difference is the engine's, explained and asserted:
+//  - flexible_2dof_filtered_rate: its sampled loop is unstable (check-gains:
+//    |mu| = 1.0017, the config says so) and converges on ODE only because
+//    ODE's first-order stepper damps the slowly growing mode; MuJoCo, which
+//    follows the model to 1e-6 rad where ODE is 1e-3 off, lets it grow until
+//    the plant stops the run. The engine was the verdict's.
+//  - rigid_2dof_large_error: from 2 000 rad/s of spin the transient is so
+//    sensitive that the convergence time moves by 10 % with the step on
+//    either engine (ODE 1.235, 1.097, 1.112 s at 100, 25, 10 us; MuJoCo
+//    1.03, 1.061 s at 100, 25 us): both converge, within 25 %.
+TEST_P(EngineAgreement, EveryShippedConfigRunsOnBothEnginesToTheSameVerdict) {
+  const std::string name = GetParam();
+  const std::string config = kConfigs + "/" + name + ".yaml";
   const std::string ode = freshDir("engine-ode"), mujoco = freshDir("engine-mujoco");
   const RunResult a = runScenario(config, ode, "-q --mode inproc");
-  const RunResult b =
-      runScenario(config, mujoco,
-                  std::string("-q --mode inproc --set plant.engine=mujoco --set plant.physics_step=") +
-                      GetParam().mujoco_step);
+  const RunResult b = runScenario(config, mujoco, "-q --mode inproc --set plant.engine=mujoco");
   ASSERT_EQ(a.exit_code, 0) << a.output;
-  ASSERT_EQ(b.exit_code, 0) << b.output;
-  const auto ja = readSummary(ode)["tracking"], jb = readSummary(mujoco)["tracking"];
+  const auto ja = readSummary(ode)["tracking"];
   EXPECT_TRUE(ja["met"].get<bool>()) << ja.dump();
+  if (name == "flexible_2dof_filtered_rate") {
+    EXPECT_EQ(b.exit_code, 1) << b.output;
+    EXPECT_NE(b.output.find("which MuJoCo cannot integrate; the closed loop is unstable"), std::string::npos)
+        << b.output;
+    EXPECT_EQ(readSummary(mujoco)["status"], "diverged");
+    return;
+  }
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  const auto jb = readSummary(mujoco)["tracking"];
   EXPECT_TRUE(jb["met"].get<bool>()) << jb.dump();
   const double ta = ja["convergence_time"].get<double>(), tb = jb["convergence_time"].get<double>();
   RecordProperty("convergence_ode", std::to_string(ta));
   RecordProperty("convergence_mujoco", std::to_string(tb));
-  EXPECT_NEAR(tb, ta, 0.01 * ta) << "ODE " << ta << " s, MuJoCo " << tb << " s";
+  const double within = name == "rigid_2dof_large_error" ? 0.25 : 0.01;
+  EXPECT_NEAR(tb, ta, within * ta) << "ODE " << ta << " s, MuJoCo " << tb << " s";
 }
 
-INSTANTIATE_TEST_SUITE_P(Shipped, EngineAgreement,
-                         ::testing::Values(EnginePair{"rigid_2dof", "1e-3"},
-                                           EnginePair{"panda_theorem1", "1e-3"},
-                                           EnginePair{"chain_m2", "1e-3"},
-                                           EnginePair{"flexible_2dof", "1e-4"}));
+INSTANTIATE_TEST_SUITE_P(Configs, EngineAgreement, ::testing::ValuesIn(shippedConfigs()),
+                         [](const ::testing::TestParamInfo<std::string>& config_name) {
+                           return config_name.param;
+                         });
 
 }  // namespace
 }  // namespace lagrange::testing
