@@ -3,8 +3,9 @@
 # sweep of sweeps/ again on MuJoCo (plant.engine: mujoco, the same physics
 # step), keeps each table as docs/evidence/NAME/sweep_mujoco.csv beside the
 # ODE one scripts/evidence_docs.sh made (sweep.csv), and writes the row-by-row
-# comparison of the two to docs/evidence/engines.md. About 10 minutes on 2
-# cores; a sweep already run into the work directory is resumed.
+# comparison of the two to docs/evidence/engines.md. About 30 minutes on 2
+# cores (28 measured on a busy machine); a sweep already run into the work
+# directory is resumed.
 #   scripts/engine_evidence.sh [WORK_DIR]   (default: build/evidence)
 set -euo pipefail
 cd "$(dirname "$0")/.."
