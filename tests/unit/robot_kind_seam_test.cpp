@@ -114,9 +114,10 @@ TEST(RobotKindSeam, AKindDescribedForOdeOnlyIsRefusedOnMujocoBeforeAnythingStart
 
 TEST(RobotKindSeam, ItsSectionIsCheckedAndItsKeyIsItsOwn) {
   const std::string two_arms = testing::errorOf(kScenario, {"robot.preset=pelican"});
-  EXPECT_NE(two_arms.find("give exactly one of robot.preset (pelican), robot.links or robot.urdf "
-                          "(or a kind built into this program: robot.test_ode_only_pendulum, robot.test_pendulum)"),
-            std::string::npos)
+  EXPECT_NE(
+      two_arms.find("give exactly one of robot.preset (pelican), robot.links or robot.urdf "
+                    "(or a kind built into this program: robot.test_ode_only_pendulum, robot.test_pendulum)"),
+      std::string::npos)
       << two_arms;
   const std::string negative = testing::errorOf(kScenario, {"robot.test_pendulum.length=-1"});
   EXPECT_NE(negative.find("robot.test_pendulum.length"), std::string::npos) << negative;
