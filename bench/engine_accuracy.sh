@@ -136,5 +136,23 @@ plot "$work/panda_ode.dat" using 1:3 with linespoints lw 2 pt 7 lc rgb "#d62728"
      "$work/panda_mujoco.dat" using 1:3:(sprintf("%g", \$4)) with labels offset 0,1 font ",9" notitle
 unset multiplot
 EOF
+# The curve's rows in bench/results/latest.json too, beside the other figures
+# of docs/performance.md (key engine_accuracy: arm -> engine -> rows by step).
+python3 - "$out" bench/results/latest.json <<'PY'
+import csv, json, os, sys
+out, latest = sys.argv[1], sys.argv[2]
+figures = json.load(open(latest)) if os.path.exists(latest) else {}
+curve = {}
+for arm in ("panda", "chain7"):
+    rows = [line for line in open(os.path.join(out, arm + ".tsv")) if not line.startswith("#")]
+    for r in csv.DictReader(rows, delimiter="\t"):
+        curve.setdefault(arm, {}).setdefault(r["engine"], []).append(
+            {"step": float(r["step"]), "status": r["status"], "convergence_time_error": float(r["conv_err_rel"]),
+             "max_trajectory_error": float(r["max_traj_err"]), "plant_cpu_per_s": float(r["plant_cpu_per_s"])})
+figures["engine_accuracy"] = curve
+with open(latest, "w") as f:
+    json.dump(figures, f, indent=2, sort_keys=True)
+    f.write("\n")
+PY
 cat "$out/engine_accuracy.md"
 echo "engine_accuracy.sh: wrote $out/ (panda.tsv, chain7.tsv, engine_accuracy.md, engine_accuracy.png)" >&2
