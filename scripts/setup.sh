@@ -14,7 +14,9 @@ run_packages=(
   liburdfdom-dev liborocos-kdl-dev  # URDF arms: the document, the dynamics
   libsodium-dev libssl-dev  # each run's random key; every message's HMAC-SHA256 (libcrypto)
   libhdf5-dev  # lagrange export: HDF5 through its C++ API (H5Cpp)
-  libmujoco-dev libqhull-dev  # the second physics engine (its CMake package names qhull's headers)
+  # the second physics engine; its CMake package names qhull's headers and
+  # looks for OpenGL (find_dependency), which lagrange itself never calls
+  libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libcpp-httplib-dev libjs-three  # lagrange view: its HTTP server, three.js for its page
   iproute2 util-linux  # each run's private network namespace
