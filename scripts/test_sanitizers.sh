@@ -10,7 +10,8 @@
 #    every shipped scenario, and the sampled-data verdict against every
 #    shipped scenario's runs: Configs/), the URDF arm's gain checks for m = 1..4 and the
 #    Panda under faults, the flexible arm's filtered-rate pole study and the
-#    flexible arm under faults (73 s and 43 s here): the same code paths as
+#    flexible arm under faults (73 s and 43 s here), every shipped config on
+#    both physics engines (Configs/EngineAgreement): the same code paths as
 #    the tests kept (the Panda's and the flexible arm's golden logs, the
 #    restarted controllers, the other faults runs, the motor sensor's run), at
 #    a cost that would double this pass's time;
