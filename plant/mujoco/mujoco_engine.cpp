@@ -19,8 +19,11 @@ namespace {
 
 void countOnly(const char*) {}  // warnings are read from mjData::warning
 void fatal(const char* message) {
-  // MuJoCo's C code cannot unwind a C++ exception: report and end the process.
-  std::fprintf(stderr, "plant: MuJoCo failed: %s\n", message);
+  // MuJoCo's C code cannot unwind a C++ exception: report and end the process
+  // (exit 1, a failed run), saying whose fault it is.
+  std::fprintf(stderr,
+               "plant: MuJoCo stopped with an error of its own (the engine's, not the control loop's): %s\n",
+               message);
   std::_Exit(1);
 }
 
@@ -46,6 +49,10 @@ struct VfsDeleter {
 };
 
 std::unique_ptr<mjModel, ModelDeleter> compile(const std::string& xml) {
+  // MuJoCo 2.2's compiler swaps the global error handlers while it runs:
+  // one compile at a time in a process.
+  static std::mutex compiling;
+  const std::lock_guard<std::mutex> lock(compiling);
   // From memory: a virtual file holds the document (mjVFS is 2 MB: on the heap).
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
   mj_defaultVFS(vfs.get());
@@ -71,9 +78,14 @@ class MujocoEngine final : public PhysicsEngine {
           "bodies; plant/arm_world.hpp); expected plant.engine: ode");
     installHandlers();
     const ArmBodies& arm = *setup.arm.bodies;
+    if (dof_ < 1 || static_cast<int>(arm.bodies.size()) != dof_)
+      throw std::invalid_argument("plant.engine mujoco: the robot kind gives " +
+                                  std::to_string(arm.bodies.size()) + " bodies for " + std::to_string(dof_) +
+                                  " joints; expected one body per joint");
     model_ = compile(mujocoModelXml(arm, setup));
     data_.reset(mj_makeData(model_.get()));
     probe_.reset(mj_makeData(model_.get()));
+    if (!data_ || !probe_) throw std::runtime_error("plant.engine mujoco: no memory for the arm's state");
     gravity_ = arm.gravity;
     for (int i = 0; i < dof_; ++i) {
       d()->qpos[qpos(i)] = setup.initial.q(i);
@@ -152,13 +164,20 @@ class MujocoEngine final : public PhysicsEngine {
   }
 
   std::string unsound() const override {
-    // A non-finite or huge (> 1e10) qpos, qvel or qacc: mj_step has reset the state.
+    // A non-finite or huge (> 1e10) qpos, qvel or qacc: mj_step has already
+    // reset the state to q = 0 and stepped on from there.
     const std::pair<mjtWarning, const char*> alarms[] = {
         {mjWARN_BADQPOS, "joint angles"}, {mjWARN_BADQVEL, "joint rates"}, {mjWARN_BADQACC, "accelerations"}};
     for (const auto& [warning, what] : alarms)
       if (d()->warning[warning].number > 0)
         return std::string("MuJoCo found its ") + what +
-               " no longer finite or beyond 1e10 (and would have reset the arm to its start)";
+               " no longer finite or beyond 1e10 (and reset the arm to q = 0, which is not motion)";
+    // Physics MuJoCo changed to carry on: a mass matrix it had to clamp, or
+    // constraint rows it had to drop (both silently wrong from then on).
+    if (d()->warning[mjWARN_INERTIA].number > 0)
+      return "MuJoCo found the mass matrix not positive definite and clamped it";
+    if (d()->warning[mjWARN_CNSTRFULL].number > 0)
+      return "MuJoCo ran out of room for the joints' constraints and dropped some";
     for (int i = 0; i < model_->nq; ++i)
       if (!std::isfinite(d()->qpos[i])) return "the state is no longer finite";
     for (int i = 0; i < model_->nv; ++i)

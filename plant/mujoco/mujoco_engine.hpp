@@ -11,8 +11,9 @@
 ///
 /// MuJoCo's warnings are counted, not printed (its default handler would
 /// write MUJOCO_LOG.TXT into the working directory); its alarm for a bad
-/// qpos, qvel or qacc -- after which mj_step resets the state -- makes the
-/// state count as no longer finite, so the run stops as on ODE.
+/// qpos, qvel or qacc -- after which mj_step has reset the state to q = 0 --
+/// and its warnings of a clamped mass matrix or dropped constraint rows make
+/// the engine unsound(), so the run stops, named, as on ODE.
 
 #include <memory>
 

@@ -1,5 +1,6 @@
 #include "plant/mujoco/mujoco_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -36,9 +37,10 @@ std::string jointPhysics(const JointPhysics& j, int i) {
   if (j.damping.size() > 0 && j.damping(i) > 0.0) out += " damping=\"" + num(j.damping(i)) + "\"";
   if (j.friction.size() > 0 && j.friction(i) > 0.0) out += " frictionloss=\"" + num(j.friction(i)) + "\"";
   if (j.lower.size() > 0 && (std::isfinite(j.lower(i)) || std::isfinite(j.upper(i)))) {
-    constexpr double kOpen = 1e10;  // [rad]: 1.6e9 turns, past any run's reach
-    const double lo = std::isfinite(j.lower(i)) ? j.lower(i) : -kOpen;
-    const double hi = std::isfinite(j.upper(i)) ? j.upper(i) : kOpen;
+    // An open side: 1e10 rad (1.6e9 turns, past any run's reach), or past the
+    // other side's bound if that lies further out, so the range stays ordered.
+    const double lo = std::isfinite(j.lower(i)) ? j.lower(i) : -std::max(1e10, std::abs(j.upper(i)) + 1.0);
+    const double hi = std::isfinite(j.upper(i)) ? j.upper(i) : std::max(1e10, std::abs(j.lower(i)) + 1.0);
     out += " limited=\"true\" range=\"" + num(lo) + " " + num(hi) + "\"";
   }
   return out;
@@ -64,6 +66,13 @@ std::string mujocoModelXml(const ArmBodies& arm, const EngineSetup& setup) {
     << integratorName(setup.choice.mujoco_integrator) << "\" gravity=\"" << vec(arm.gravity) << "\">\n"
     << "    <flag contact=\"disable\" energy=\"enable\"/>\n"
     << "  </option>\n"
+    // Friction and stops as stiff as MuJoCo advises (a time constant of two
+    // steps, impedance up to 0.999): its defaults let a link creep through
+    // friction at 2 % of its free motion and 0.09 rad into a stop
+    // (docs/architecture.md, "Physics engines").
+    << "  <default><joint solreffriction=\"" << num(2 * setup.physics_step)
+    << " 1\" solimpfriction=\"0.99 0.999 0.001\" solreflimit=\"" << num(2 * setup.physics_step)
+    << " 1\" solimplimit=\"0.99 0.999 0.001\"/></default>\n"
     << "  <worldbody>\n";
   // Each body's frame at its joint's anchor, with the base's axes (the
   // bodies are given at q = 0): a child sits at its anchor minus its parent's.

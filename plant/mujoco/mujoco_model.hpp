@@ -14,9 +14,11 @@
 ///    implicit and Euler integrators). Coulomb friction: `frictionloss`, a
 ///    constraint MuJoCo solves with the step. Stops: `range` (a soft
 ///    constraint, where ODE's are hard: a stop is the one place the two
-///    engines are expected to differ).
-///  - Every number is written with 17 significant digits, so the model holds
-///    the very doubles of the scenario.
+///    engines are expected to differ). Both as stiff as MuJoCo advises.
+///  - Every number is written with 17 significant digits, so each scalar
+///    (mass, damping, stiffness, ...) is the scenario's double; positions are
+///    written as differences of anchors and inertias turned to principal axes
+///    by MuJoCo, so those agree to round-off, not bit for bit.
 /// Pure: no MuJoCo call (plant/mujoco/mujoco_engine.cpp compiles it).
 
 #include <optional>

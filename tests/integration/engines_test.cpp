@@ -73,6 +73,25 @@ TEST(Engines, AreAnAxisOfASweep) {
   }
   ASSERT_EQ(converged_at.size(), 2u);
   EXPECT_NEAR(converged_at["mujoco"], converged_at["ode"], 0.01 * converged_at["ode"]);
+
+  // compare's sweep: one row per engine, each run on the engine its row names.
+  const std::string cmp = dir + "/compare";
+  const RunResult c =
+      lagrange("compare " + quote(kConfigs + "/compare_pelican.yaml") + " -o " + quote(cmp) +
+               " -q --set duration=2 --controllers theorem1 --sweep 'plant.engine=[ode, mujoco]'");
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  const std::string table = slurp(cmp + "/comparison.csv");
+  for (const std::string engine : {"ode", "mujoco"})
+    EXPECT_NE(table.find("theorem1,plant.engine,\"" + engine + "\",completed,"), std::string::npos) << table;
+  int mujoco_runs = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(cmp + "/runs/theorem1"))
+    if (entry.path().filename() == "summary.json") {
+      const auto summary = readSummary(entry.path().parent_path().string());
+      const bool on_mujoco = summary.contains("plant") && summary["plant"]["engine"] == "mujoco";
+      EXPECT_EQ(on_mujoco, entry.path().string().find("mujoco") != std::string::npos) << entry.path();
+      mujoco_runs += on_mujoco;
+    }
+  EXPECT_EQ(mujoco_runs, 1);
 }
 
 class EngineAgreement : public ::testing::TestWithParam<std::string> {};
