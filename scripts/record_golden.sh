@@ -20,7 +20,8 @@ recordings=(
   "chain_m2_lockstep configs/chain_m2.yaml --mode lockstep"
   "flexible_2dof_filtered_rate_lockstep configs/flexible_2dof_filtered_rate.yaml --mode lockstep"
   "chain_m1_realtime configs/chain_m1.yaml --mode realtime"
-  "panda_theorem1_lockstep configs/panda_theorem1.yaml --mode lockstep"
+  # recorded on ODE at 0.1 ms, as before the config moved to MuJoCo (issue #45)
+  "panda_theorem1_lockstep configs/panda_theorem1.yaml --mode lockstep --set plant.engine=ode --set plant.physics_step=1e-4"
 )
 # How many outputs `lagrange replay LOG --component C` reproduced; empty if it did not replay exactly.
 reproduced() {
