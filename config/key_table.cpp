@@ -318,8 +318,11 @@ std::vector<KeyInfo> controllerKeys() {
                "controller's place, supervises it (`supervision.restart` applies) and writes its output to "
                "`controller.log`. The program is a name on PATH or a path, relative to the scenario file's "
                "folder; a missing one is refused before anything starts. It finds the run in its "
-               "environment: `LAGRANGE_LCM_URL`, `LAGRANGE_RUN_ID`, `LAGRANGE_CONFIG` (the resolved "
-               "scenario), `LAGRANGE_JOINTS`, `LAGRANGE_MODE`")),
+               "environment: `LAGRANGE_LCM_URL`, `LAGRANGE_RUN_ID`, `LAGRANGE_KEY_FILE` (the run's key), "
+               "`LAGRANGE_CONFIG` and `LAGRANGE_CONFIG_JSON` (the resolved scenario as YAML and as JSON), "
+               "`LAGRANGE_JOINTS`, `LAGRANGE_MODE`, `LAGRANGE_CLOCK_OFFSET_US` "
+               "(docs/external_controllers.md); "
+               "`lagrange replay LOG -- COMMAND` gives the same")),
       only("external", row("controller.working_directory", "path", "the scenario file's folder",
                            "where the external controller starts (relative to the scenario file's folder)")),
   };

@@ -5,7 +5,9 @@ PdController.java, with the contract kept by lagrange.external (python/).
     u = -Kp (q - q_d) - Kd v,   v = (q_k - q_{k-1}) / (t_k - t_{k-1}) (0 at the first sample),
 
 with a constant q_d: no model, no gravity compensation -- for an arm without
-gravity (robot.gravity: 0) it regulates to q_d. In a scenario:
+gravity (robot.gravity: 0) it regulates to q_d. Without --qd, q_d is the
+scenario's reference offset (reference.offset), read from the resolved scenario
+the run hands over (lagrange.external.scenario()). In a scenario:
 
     controller:
       type: external
@@ -25,8 +27,10 @@ import lagrange.external  # noqa: E402
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    for name in ("--kp", "--kd", "--qd"):
+    for name in ("--kp", "--kd"):
         parser.add_argument(name, required=True, help="one number, or one per joint, comma-separated")
+    parser.add_argument("--qd", help="one number, or one per joint, comma-separated (default: the scenario's "
+                        "reference.offset)")
     args = parser.parse_args()
     joints = int(os.environ.get("LAGRANGE_JOINTS", "0"))
 
@@ -34,7 +38,11 @@ def main():
         parts = [float(x) for x in text.split(",")]
         return [parts[0] if len(parts) == 1 else parts[j] for j in range(joints)]
 
-    kp, kd, qd = vector(args.kp), vector(args.kd), vector(args.qd)
+    kp, kd = vector(args.kp), vector(args.kd)
+    if args.qd is not None:
+        qd = vector(args.qd)
+    else:
+        qd = [float(x) for x in lagrange.external.scenario()["reference"]["offset"]]
     previous = {}
 
     def reset():

@@ -19,8 +19,17 @@ step may also return a dict: {"u": [...]} plus any of the diagnostics
 "q_desired", "q_error", "theta", "filter_state" (one number per joint each;
 the log, CSV export, plots and replay carry them). reset(), when given, is
 called once before the first sample. See examples/external_controller/pd_controller.py.
+
+The run's resolved scenario -- gains, reference, the arm's parameters, every
+default filled in -- is scenario() (a dict; also Controller.scenario), read
+from the JSON file LAGRANGE_CONFIG_JSON names, which `lagrange run` and
+`lagrange replay` both hand over:
+
+    s = lagrange.external.scenario()
+    offset = s["reference"]["offset"]           # b_i [rad], one per joint
 """
 
+import json
 import os
 import sys
 import time
@@ -47,9 +56,23 @@ def _environment(name, environ):
     if not value:
         raise ContractError(
             "%s is not set: an external controller is started by `lagrange run` (controller.type: external), "
-            "which sets LAGRANGE_LCM_URL, LAGRANGE_RUN_ID, LAGRANGE_KEY_FILE, LAGRANGE_JOINTS and "
-            "LAGRANGE_MODE" % name)
+            "which sets LAGRANGE_LCM_URL, LAGRANGE_RUN_ID, LAGRANGE_KEY_FILE, LAGRANGE_CONFIG, "
+            "LAGRANGE_CONFIG_JSON, LAGRANGE_JOINTS, LAGRANGE_MODE and LAGRANGE_CLOCK_OFFSET_US (`lagrange replay "
+            "LOG -- COMMAND` sets the same)" % name)
     return value
+
+
+def scenario(environ=None):
+    """The run's resolved scenario as a dict (config.resolved.json, which
+    LAGRANGE_CONFIG_JSON names): the same tree as config.resolved.yaml,
+    numbers as numbers. Raises ContractError when the variable is unset or the
+    file cannot be read."""
+    path = _environment("LAGRANGE_CONFIG_JSON", os.environ if environ is None else environ)
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        raise ContractError("cannot read the run's scenario from LAGRANGE_CONFIG_JSON=%s: %s" % (path, e)) from None
 
 
 class Controller:
@@ -64,6 +87,8 @@ class Controller:
         self.joints = int(_environment("LAGRANGE_JOINTS", environ))
         self.mode = environ.get("LAGRANGE_MODE", "")
         self.key = contract.Key.from_file(_environment("LAGRANGE_KEY_FILE", environ))
+        # The resolved scenario (a dict), when the program was started by lagrange.
+        self.scenario = scenario(environ) if environ.get("LAGRANGE_CONFIG_JSON") else None
         self.headers = contract.Headers(self.run_id, "controller")
         self.lcm = LCM(self.url)
         self.answered = {}  # tick -> the command sent for it

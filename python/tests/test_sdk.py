@@ -432,6 +432,19 @@ class ExternalController(unittest.TestCase):
         self.assertTrue(self.controller.plant_finished)
         self.assertEqual(states, ["ready", "finished", "finished", "finished"])
 
+    def test_the_runs_scenario_is_a_dict_or_a_named_error(self):
+        self.assertIsNone(self.controller.scenario, "no LAGRANGE_CONFIG_JSON: no scenario")
+        path = os.path.join(self.dir.name, "config.resolved.json")
+        with open(path, "w") as f:
+            f.write('{"reference": {"offset": [0.5, -0.2]}, "controller": {"type": "external"}}')
+        s = lagrange.external.scenario({"LAGRANGE_CONFIG_JSON": path})
+        self.assertEqual(s["reference"]["offset"], [0.5, -0.2])
+        with self.assertRaisesRegex(lagrange.external.ContractError, "LAGRANGE_CONFIG_JSON is not set"):
+            lagrange.external.scenario({})
+        with self.assertRaisesRegex(lagrange.external.ContractError,
+                                    "cannot read the run's scenario from LAGRANGE_CONFIG_JSON=.*missing.json"):
+            lagrange.external.scenario({"LAGRANGE_CONFIG_JSON": path + ".missing.json"})
+
 
 if __name__ == "__main__":
     unittest.main()

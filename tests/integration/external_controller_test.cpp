@@ -15,6 +15,7 @@
 #include "support/launch.hpp"
 #include "support/run_log.hpp"
 #include "support/sweep_files.hpp"
+#include "support/wait.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -55,7 +56,8 @@ std::string pythonReplayCommand() {
          quote(std::string(LAGRANGE_SOURCE_DIR) + "/examples/external_controller/pd_controller.py") +
          " --kp 20,5 --kd 4,1 --qd 0.5,-0.2";
 }
-std::string scenario(const std::string& mode, const std::string& command = javaCommand()) {
+std::string scenario(const std::string& mode, const std::string& command = javaCommand(),
+                     const std::string& arguments = kPdArguments) {
   const std::string path = freshDir("external-config") + ".yaml";
   std::ofstream(path)
       << "name: external_pd\nduration: 3.0\nmode: " << mode
@@ -64,7 +66,7 @@ std::string scenario(const std::string& mode, const std::string& command = javaC
          "reference: {type: sine, offset: [0.5, -0.2], amplitude: [0.0, 0.0], frequency: [0.0, 0.0]}\n"
          "plant: {physics_step: 1.0e-4, publish_rate: 1000}\n"
          "controller:\n  type: external\n  command: ["
-      << command << ", " << kPdArguments
+      << command << ", " << arguments
       << "]\n"
          "metrics: {tolerance: 1.0e-3, convergence_deadline: 2.0}\n";
   return path;
@@ -193,6 +195,37 @@ TEST(ExternalController, APythonPdMatchesTheJavaOneBitForBitInLockstepAndReplays
   std::snprintf(expected, sizeof expected, "3001 3001 %.17g %.17g 0 0 True\n", b[1234].q(1),
                 readCommands(python + "/run.lcm").at(2999)[0]);
   EXPECT_EQ(loaded.output, expected);
+}
+
+// A program that reads its parameters from the run's scenario (the Python
+// PD without --qd takes q_d from reference.offset, through
+// lagrange.external.scenario(): LAGRANGE_CONFIG_JSON) runs as the one given
+// q_d on its command line, and replays: replay hands it the log's scenario
+// and the rest of a run's environment, and says so.
+TEST(ExternalController, AProgramThatReadsTheScenarioRunsAndReplaysWithIt) {
+  const std::string given = freshDir("external-python-qd"), read = freshDir("external-python-scenario");
+  ASSERT_EQ(runScenario(scenario("lockstep", pythonCommand()), given, "-q --set duration=1").exit_code, 0);
+  const RunResult run = runScenario(scenario("lockstep", pythonCommand(), "--kp, \"20,5\", --kd, \"4,1\""),
+                                    read, "-q --set duration=1");
+  ASSERT_EQ(run.exit_code, 0) << run.output << readText(read + "/controller.log");
+  EXPECT_EQ(readCommands(given + "/run.lcm"), readCommands(read + "/run.lcm"));
+  // The run's scenario as JSON: numbers as numbers, strings as strings.
+  const auto resolved = nlohmann::json::parse(slurp(read + "/config.resolved.json"));
+  EXPECT_EQ(resolved["reference"]["offset"], nlohmann::json::array({0.5, -0.2})) << resolved.dump();
+  EXPECT_EQ(resolved["plant"]["physics_step"], 1e-4) << resolved.dump();
+  EXPECT_EQ(resolved["controller"]["type"], "external") << resolved.dump();
+  const RunResult replay =
+      lagrange("replay " + quote(read + "/run.lcm") + " -- env " +
+               quote("PYTHONPATH=" + std::string(LAGRANGE_SOURCE_DIR) + "/python") + " python3 -S " +
+               quote(std::string(LAGRANGE_SOURCE_DIR) + "/examples/external_controller/pd_controller.py") +
+               " --kp 20,5 --kd 4,1");
+  EXPECT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("reproduced all 1001 recorded outputs bit for bit"), std::string::npos)
+      << replay.output;
+  EXPECT_NE(
+      replay.output.find("with a run's environment: LAGRANGE_LCM_URL, LAGRANGE_RUN_ID, LAGRANGE_KEY_FILE"),
+      std::string::npos)
+      << replay.output;
 }
 
 // In realtime: it answers the positions as they come, obeys the law, and its

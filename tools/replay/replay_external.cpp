@@ -5,11 +5,13 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <optional>
 
+#include "config/scenario_json.hpp"
 #include "lagrange/control_command_t.hpp"
 #include "logs/log_reader.hpp"
 #include "runtime/key_file.hpp"
@@ -19,6 +21,7 @@
 #include "transport/channels.hpp"
 #include "transport/lcm_node.hpp"
 #include "transport/messages.hpp"
+#include "transport/run_clock.hpp"
 #include "util/output_file.hpp"
 #include "wiring/netns.hpp"
 #include "wiring/supervisor.hpp"
@@ -93,12 +96,16 @@ class ScratchDirectory {
   ~ScratchDirectory() {
     std::error_code ignored;
     std::filesystem::remove(keyFile(), ignored);
+    std::filesystem::remove(configFile(), ignored);
+    std::filesystem::remove(configJsonFile(), ignored);
     if (!keep_output_) std::filesystem::remove_all(path_, ignored);
   }
   ScratchDirectory(const ScratchDirectory&) = delete;
   ScratchDirectory& operator=(const ScratchDirectory&) = delete;
 
   std::string keyFile() const { return path_ + "/run.key"; }
+  std::string configFile() const { return path_ + "/config.resolved.yaml"; }
+  std::string configJsonFile() const { return path_ + "/config.resolved.json"; }
   std::string outputFile() const { return path_ + "/controller.log"; }
   /// The program failed: its output stays, and the error names it; else all goes.
   std::string keepOutput() {
@@ -158,9 +165,26 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
   spec.argv = command;  // the user's, never the log's; it starts where the user is
   spec.log_path = output;
   spec.append_log = true;
-  spec.env = {"LAGRANGE_LCM_URL=" + url, "LAGRANGE_RUN_ID=" + std::to_string(run_id),
-              "LAGRANGE_KEY_FILE=" + scratch.keyFile(), "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
-              "LAGRANGE_MODE=lockstep"};
+  // The environment a run gives it (tools/run/run_command.cpp), the log's
+  // resolved scenario among it: a program that reads its parameters from the
+  // scenario replays as it ran.
+  util::writeOutputFile(scratch.configFile(), config::toYaml(s), 0600);
+  util::writeOutputFile(scratch.configJsonFile(), config::toJson(s), 0600);
+  spec.env = {
+      "LAGRANGE_LCM_URL=" + url,
+      "LAGRANGE_RUN_ID=" + std::to_string(run_id),
+      "LAGRANGE_KEY_FILE=" + scratch.keyFile(),
+      "LAGRANGE_CONFIG=" + scratch.configFile(),
+      "LAGRANGE_CONFIG_JSON=" + scratch.configJsonFile(),
+      "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
+      "LAGRANGE_MODE=lockstep",
+      std::string(transport::kClockOffsetVariable) + "=" + std::to_string(transport::clockOffsetUs())};
+  std::printf(
+      "lagrange replay: starting %s with a run's environment: LAGRANGE_LCM_URL, LAGRANGE_RUN_ID, "
+      "LAGRANGE_KEY_FILE (a key of this replay), LAGRANGE_CONFIG and LAGRANGE_CONFIG_JSON (the log's "
+      "scenario), LAGRANGE_JOINTS=%d, LAGRANGE_MODE=lockstep, LAGRANGE_CLOCK_OFFSET_US\n",
+      shellWords(command).c_str(), s.dof());
+  std::fflush(stdout);  // before the fork: the child must not inherit the line unwritten
   supervisor.start(spec);
 
   // As the lockstep plant: each position until its answer comes, re-sent

@@ -16,6 +16,7 @@
 #include <optional>
 
 #include "config/scenario.hpp"
+#include "config/scenario_json.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_report_json.hpp"
 #include "logs/out_dir_lock.hpp"
@@ -77,8 +78,9 @@ std::string prepareOutDir(const std::string& dir) {
 // than at the moment its writer comes to it. Each writer creates its file
 // with util::createOutputFile all the same (a link planted during the run).
 void checkOutputPaths(const std::string& out_dir, bool report) {
-  for (const char* name : {"run.lcm", "summary.json", "config.resolved.yaml", "gains.json", "lcm.json",
-                           "run.key", "logger.log", "controller.log", "actuator.log", "plant.log"})
+  for (const char* name :
+       {"run.lcm", "summary.json", "config.resolved.yaml", "config.resolved.json", "gains.json", "lcm.json",
+        "run.key", "logger.log", "controller.log", "actuator.log", "plant.log"})
     util::checkOutputPath((fs::path(out_dir) / name).string());
   const std::string report_dir = (fs::path(out_dir) / "report").string();
   if (!report || !fs::exists(fs::symlink_status(report_dir))) return;
@@ -126,6 +128,9 @@ std::string writeResolved(const config::Scenario& scenario, const std::string& s
   const std::string path = (fs::path(out_dir) / "config.resolved.yaml").string();
   util::writeOutputFile(path, "# Resolved scenario of this run: defaults, the file " + source +
                                   " and --set overrides.\n" + config::toYaml(scenario));
+  // The same as JSON, for programs that read no YAML (an external controller
+  // on the standard library only: LAGRANGE_CONFIG_JSON).
+  util::writeOutputFile((fs::path(out_dir) / "config.resolved.json").string(), config::toJson(scenario));
   return path;
 }
 
@@ -401,6 +406,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                       "LAGRANGE_RUN_ID=" + std::to_string(run_id),
                       "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
                       "LAGRANGE_CONFIG=" + resolved,
+                      "LAGRANGE_CONFIG_JSON=" + (fs::path(out_dir) / "config.resolved.json").string(),
                       "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
                       "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
   }
