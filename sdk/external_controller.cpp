@@ -178,11 +178,19 @@ class Controller {
     publish("STATUS", s);
   }
 
-  std::vector<double> vector(const std::vector<double>& v, const char* what) const {
+  std::vector<double> vector(const std::vector<double>& v, const char* what,
+                             const lagrange::plant_position_t& p) const {
     if (v.empty() && std::string(what) != "u") return std::vector<double>(static_cast<size_t>(joints_), 0.0);
     if (static_cast<int>(v.size()) != joints_)
       throw ContractError(std::string("the law returned ") + std::to_string(v.size()) + " numbers for " +
                           what + "; expected " + std::to_string(joints_) + " (one per joint)");
+    // The plant would refuse the command and the run stall: say it here, at once.
+    for (size_t j = 0; j < v.size(); ++j)
+      if (!std::isfinite(v[j]))
+        throw ContractError(std::string("the law returned ") + std::to_string(v[j]) + " for " + what + "[" +
+                            std::to_string(j) + "] (joint " + std::to_string(j + 1) +
+                            ") at the sample of tick " + std::to_string(p.header.tick) +
+                            " (t = " + std::to_string(p.header.sim_time) + " s); expected finite numbers");
     return v;
   }
 
@@ -216,11 +224,11 @@ class Controller {
       c.input_actuator_tick = -1;
       c.input_motor_tick = -1;
       c.num_joints = joints_;
-      c.u = vector(out.u, "u");
-      c.q_desired = vector(out.q_desired, "q_desired");
-      c.q_error = vector(out.q_error, "q_error");
-      c.theta = vector(out.theta, "theta");
-      c.filter_state = vector(out.filter_state, "filter_state");
+      c.u = vector(out.u, "u", p);
+      c.q_desired = vector(out.q_desired, "q_desired", p);
+      c.q_error = vector(out.q_error, "q_error", p);
+      c.theta = vector(out.theta, "theta", p);
+      c.filter_state = vector(out.filter_state, "filter_state", p);
       c.chain_order = 0;
       answered_[tick] = c;
       answered_.erase(answered_.begin(), answered_.upper_bound(tick - kKeepAnswers));  // skipped ticks too

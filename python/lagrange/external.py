@@ -30,6 +30,7 @@ from the JSON file LAGRANGE_CONFIG_JSON names, which `lagrange run` and
 """
 
 import json
+import math
 import os
 import sys
 import time
@@ -136,7 +137,7 @@ class Controller:
         self._publish_command(command)
 
     # -- the law ---------------------------------------------------------
-    def _vector(self, what, value):
+    def _vector(self, what, value, p):
         try:
             v = [float(x) for x in value]
         except TypeError:
@@ -144,6 +145,10 @@ class Controller:
         if len(v) != self.joints:
             raise ContractError("step() returned %d numbers for %s; expected %d (one per joint)"
                                 % (len(v), what, self.joints))
+        for j, x in enumerate(v):
+            if not math.isfinite(x):  # the plant would refuse the command and stall: say it here, at once
+                raise ContractError("step() returned %r for %s[%d] (joint %d) at the sample of tick %d (t = %.6g s); "
+                                    "expected finite numbers" % (x, what, j, j + 1, p.header.tick, p.header.sim_time))
         return v
 
     def _command(self, p):
@@ -159,9 +164,9 @@ class Controller:
         c.input_actuator_tick = -1
         c.input_motor_tick = -1
         c.num_joints = self.joints
-        c.u = self._vector("u", fields["u"])
+        c.u = self._vector("u", fields["u"], p)
         for name in _DIAGNOSTICS:
-            setattr(c, name, self._vector(name, fields[name]) if name in fields else [0.0] * self.joints)
+            setattr(c, name, self._vector(name, fields[name], p) if name in fields else [0.0] * self.joints)
         c.chain_order = 0
         c.xi_error = []
         return c

@@ -417,6 +417,15 @@ class ExternalController(unittest.TestCase):
                                     "step\\(\\) returned 1 numbers for u; expected 2 \\(one per joint\\)"):
             self.send(position(0, [1.0, 2.0]))
 
+    def test_a_law_that_returns_a_non_finite_value_is_named_with_its_sample(self):
+        self.send(position(0, [1.0, 2.0]))
+        self.controller.step = lambda t, q: [0.0, float("nan")]
+        with self.assertRaisesRegex(lagrange.external.ContractError,
+                                    "step\\(\\) returned nan for u\\[1\\] \\(joint 2\\) at the sample of tick 3 "
+                                    "\\(t = 0.003 s\\); expected finite numbers"):
+            self.send(position(3, [1.0, 2.0]))
+        self.assertEqual([c.header.tick for c in self.commands], [0], "nothing published for the bad sample")
+
     def test_ends_with_finished_when_the_plant_finishes(self):
         states = []
         publish_status = self.controller.publish_status

@@ -337,6 +337,20 @@ TEST(ExternalController, ACppPdBuiltAgainstTheInstalledPackageMatchesTheJavaOne)
   const RunResult replay = lagrange("replay " + quote(cpp + "/run.lcm") + " -- " +
                                     quote(build + "/pd_controller") + " --kp 20,5 --kd 4,1 --qd 0.5,-0.2");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
+
+  // A law that returns NaN is stopped at the SDK, naming the value, the joint
+  // and the sample, rather than left for the plant to refuse and stall on.
+  const std::string nan = freshDir("cpp-sdk-nan");
+  const RunResult bad = shell(quote(prefix + "/bin/lagrange") + " run " +
+                              quote(scenario("lockstep", quote(build + "/pd_controller"),
+                                             "--kp, \"nan,5\", --kd, \"4,1\", --qd, \"0.5,-0.2\"")) +
+                              " -q -o " + quote(nan) + " --set duration=0.5 2>&1");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;
+  const std::string said = readText(nan + "/controller.log");
+  EXPECT_NE(
+      said.find("nan for u[0] (joint 1) at the sample of tick 0 (t = 0.000000 s); expected finite numbers"),
+      std::string::npos)
+      << said;
 }
 
 }  // namespace
