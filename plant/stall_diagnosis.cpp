@@ -44,8 +44,11 @@ std::string inputSeen(const lagrange::status_t& s, const std::string& channel) {
   const lagrange::channel_stats_t* c = find(s.channels, channel);
   if (c == nullptr) return "it reports no counters of " + channel;
   const std::string r = describeRejections(*c);
+  // Its STATUS names the last message it refused as invalid, and whose.
+  const std::string last =
+      s.message.rfind("last refused as invalid: ", 0) == 0 ? " -- " + s.message : std::string();
   return "it accepted " + std::to_string(c->received) + " " + channel +
-         (r.empty() ? " and rejected none" : " and rejected " + r);
+         (r.empty() ? " and rejected none" : " and rejected " + r) + last;
 }
 
 }  // namespace

@@ -34,7 +34,10 @@ class BasicStatusReporter {
     s.state = transport::toString(state);
     s.last_tick = last_tick;
     s.tracking_error = tracking_error;
-    s.message = message;
+    // Without a message of its own, what it last refused as invalid: a
+    // stalled plant reads it from here (plant/stall_diagnosis.cpp).
+    const std::string invalid = message.empty() ? node_.lastInvalid() : std::string();
+    s.message = invalid.empty() ? message : "last refused as invalid: " + invalid;
     // Count this STATUS before taking the snapshot so the numbers it reports
     // include itself.
     s.channels = node_.channelStats();

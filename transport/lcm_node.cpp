@@ -78,6 +78,13 @@ int LcmNode::drain(int max_messages) {
   return handled;
 }
 
+std::string LcmNode::lastInvalid() const {
+  std::string all;
+  for (const auto& [channel, c] : counters_)
+    if (!c.last_invalid.empty()) all += (all.empty() ? "" : "; ") + channel + ": " + c.last_invalid;
+  return all;
+}
+
 void LcmNode::reject(const std::string& channel, RejectReason why, const std::string& detail) {
   ChannelCounters& c = counters_[channel];
   c.rejected++;

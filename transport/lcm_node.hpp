@@ -37,6 +37,8 @@ struct ChannelCounters {
   long long rejected = 0;
   std::array<long long, kRejectReasons> rejected_by = {};  ///< indexed by RejectReason
   long long lost_on_receive = 0;                           ///< injected: faults.receivers
+  /// Why the last message refused as invalid was, and whose (empty: none).
+  std::string last_invalid;
 };
 
 /// True for the project's message types: they carry a header_t.
@@ -127,6 +129,11 @@ class LcmNode {
 
   const std::map<std::string, ChannelCounters>& counters() const { return counters_; }
   std::vector<lagrange::channel_stats_t> channelStats() const;
+  /// The last message of the run's own publishers refused as invalid, per
+  /// channel ("CONTROL_COMMAND: u[0] is not finite (from 'controller', tick
+  /// 531)"), joined by "; " -- empty when none was. STATUS carries it, so that
+  /// a stall names what was wrong and who sent it.
+  std::string lastInvalid() const;
   const std::string& processName() const { return process_name_; }
   lcm::LCM& raw() { return lcm_; }
 
@@ -208,7 +215,12 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
       if (!admit(channel, msg.header, order)) return;
     }
     const Rejection why = validate(msg);
-    if (!why.empty()) return reject(channel, RejectReason::kInvalid, why);
+    if (!why.empty()) {
+      if constexpr (HasHeader<Msg>::value)
+        counters_[channel].last_invalid =
+            why + " (from '" + msg.header.publisher + "', tick " + std::to_string(msg.header.tick) + ")";
+      return reject(channel, RejectReason::kInvalid, why);
+    }
     counters_[channel].received++;
     last_receive_utime_ = rbuf->recv_utime;
     handle(msg);

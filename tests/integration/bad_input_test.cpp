@@ -180,6 +180,10 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   const auto& reasons = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected_by_reason"];
   EXPECT_GE(reasons["undecodable"].get<long long>(), 1) << reasons.dump();
   EXPECT_GE(reasons["invalid"].get<long long>(), 2) << reasons.dump();
+  // Its STATUS names the last one refused as invalid, and whose it was.
+  const std::string said = j["processes"]["controller"]["message"];
+  EXPECT_EQ(said.rfind("last refused as invalid: PLANT_POSITION: ", 0), 0u) << said;
+  EXPECT_NE(said.find("(from 'plant', tick "), std::string::npos) << said;
 }
 
 // Message hygiene: well-formed positions of another run, of a process that is

@@ -70,6 +70,7 @@ class FakeNode {
 
   const std::string& processName() const { return process_name_; }
   std::vector<lagrange::channel_stats_t> channelStats() const { return {}; }
+  std::string lastInvalid() const { return ""; }
   int64_t lastReceiveUtime() const { return 0; }
   int rejected() const { return rejected_; }
   int polls() const { return polls_; }

@@ -56,6 +56,22 @@ TEST(StallDiagnosis, ACommandTheActuatorRejectsNamesTheControllerAndWhy) {
       << why;  // an external program's empty STATUS
 }
 
+// A command refused as invalid (a NaN from a program without the SDK): the
+// actuator's STATUS names the last one and who sent it, and so does the stall.
+TEST(StallDiagnosis, ACommandRefusedAsInvalidIsQuotedWithItsSender) {
+  lagrange::channel_stats_t commands = channel("CONTROL_COMMAND", 0);
+  commands.rejected = commands.rejected_invalid = 193;
+  StallFacts f{0, 10.0, {}, {}};
+  f.peers["actuator"] = status("actuator", "ready", -1, {commands});
+  f.peers["actuator"].message =
+      "last refused as invalid: CONTROL_COMMAND: u[0] is not finite (nan) (from 'controller', tick 0)";
+  const std::string why = describeAnswerStall(f);
+  EXPECT_TRUE(has(why,
+                  "rejected 193 (193 invalid) -- last refused as invalid: CONTROL_COMMAND: u[0] is not "
+                  "finite (nan) (from 'controller', tick 0)"))
+      << why;
+}
+
 TEST(StallDiagnosis, ASilentControllerAndAForgerOnStatusAreBothNamed) {
   StallFacts f{7, 2.5, {}, {}};
   f.peers["actuator"] = status("actuator", "running", 6, {channel("CONTROL_COMMAND", 7)});
