@@ -217,8 +217,10 @@ void LcmNode::subscribe(const std::string& channel, std::function<Rejection(cons
     const Rejection why = validate(msg);
     if (!why.empty()) {
       if constexpr (HasHeader<Msg>::value)
-        counters_[channel].last_invalid =
-            why + " (from '" + msg.header.publisher + "', tick " + std::to_string(msg.header.tick) + ")";
+        // At most 240 bytes of the reason (publisher names are bounded too):
+        // STATUS stays far below its bound (logs/event_bounds.hpp).
+        counters_[channel].last_invalid = why.substr(0, 240) + " (from '" + msg.header.publisher +
+                                          "', tick " + std::to_string(msg.header.tick) + ")";
       return reject(channel, RejectReason::kInvalid, why);
     }
     counters_[channel].received++;
