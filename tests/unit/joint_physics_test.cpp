@@ -115,17 +115,23 @@ TEST(JointPhysics, ADampedPendulumsSwingsDecayAtTheClosedFormRate) {
   EXPECT_NEAR(last / first, expected, 0.03 * expected);
 }
 
-TEST(JointPhysics, EnergyBalanceHoldsWithDampingAndFrictionUnderTorque) {
-  // Two links, both losses, a torque that keeps them moving and reversing.
+// Two links, both losses, a torque that keeps them moving and reversing, for
+// 2 s: the energy's change, the torques' work (sum tau q' h), what the
+// engine says the losses took, and what -D q' and Coulomb's F predict
+// (sum (D q'^2 + F |q'|) h).
+struct Balance {
+  double change, work, dissipated, predicted;
+};
+Balance balanceUnderTorque(const EngineChoice& engine) {
   JointPhysics physics;
   physics.damping = Eigen::Vector2d(0.3, 0.05);
   physics.friction = Eigen::Vector2d(0.8, 0.2);
   const Eigen::Vector2d q0(0.4, -0.3), v0(1.0, -2.0);
-  PlantSim sim(planarChainWorld(model::pelicanParams()), {q0, v0}, kStep, std::nullopt, std::nullopt,
-               physics);
+  PlantSim sim(planarChainWorld(model::pelicanParams()), {q0, v0}, kStep, std::nullopt, std::nullopt, physics,
+               engine);
   const double e0 = sim.energy().total();
-  double work = 0.0, predicted = 0.0;  // sum tau q' h; sum (D q'^2 + F |q'|) h
-  for (int k = 0; k < 20000; ++k) {    // 2 s
+  double work = 0.0, predicted = 0.0;
+  for (int k = 0; k < 20000; ++k) {
     const double t = k * kStep;
     const Eigen::Vector2d tau(6.0 * std::sin(3.0 * t), 1.5 * std::cos(5.0 * t));
     sim.step(tau, 1);
@@ -135,14 +141,18 @@ TEST(JointPhysics, EnergyBalanceHoldsWithDampingAndFrictionUnderTorque) {
         (physics.damping.cwiseProduct(v.cwiseAbs2()) + physics.friction.cwiseProduct(v.cwiseAbs())).sum() *
         kStep;
   }
-  const double change = sim.energy().total() - e0;
-  RecordProperty("dissipated", std::to_string(sim.dissipated()));
-  ASSERT_GT(sim.dissipated(), 1.0);  // the losses took something worth checking
+  return {sim.energy().total() - e0, work, sim.dissipated(), predicted};
+}
+
+TEST(JointPhysics, EnergyBalanceHoldsWithDampingAndFrictionUnderTorque) {
+  const Balance b = balanceUnderTorque(EngineChoice{});
+  RecordProperty("dissipated", std::to_string(b.dissipated));
+  ASSERT_GT(b.dissipated, 1.0);  // the losses took something worth checking
   // ODE's step keeps the balance up to its own energy error (PlantSim's
   // lossless drift test: ~1e-4 of the energy per second at this step).
-  EXPECT_NEAR(change, work - sim.dissipated(), 2e-3 * (std::abs(work) + sim.dissipated()));
+  EXPECT_NEAR(b.change, b.work - b.dissipated, 2e-3 * (std::abs(b.work) + b.dissipated));
   // And what the motors took is what -D q' and Coulomb's F say.
-  EXPECT_NEAR(sim.dissipated(), predicted, 2e-3 * predicted);
+  EXPECT_NEAR(b.dissipated, b.predicted, 2e-3 * b.predicted);
 }
 
 TEST(JointPhysics, ARotorsBearingLosesItsEnergyToo) {
@@ -260,32 +270,13 @@ TEST(JointPhysics, OnMujocoFrictionHoldsBelowItsForceAndGivesWayAbove) {
 }
 
 TEST(JointPhysics, OnMujocoEnergyBalanceHoldsWithDampingAndFrictionUnderTorque) {
-  // As on ODE above: two links, both losses, a torque that reverses them.
-  JointPhysics physics;
-  physics.damping = Eigen::Vector2d(0.3, 0.05);
-  physics.friction = Eigen::Vector2d(0.8, 0.2);
-  const Eigen::Vector2d q0(0.4, -0.3), v0(1.0, -2.0);
-  PlantSim sim(planarChainWorld(model::pelicanParams()), {q0, v0}, kStep, std::nullopt, std::nullopt, physics,
-               kMujoco);
-  const double e0 = sim.energy().total();
-  double work = 0.0, predicted = 0.0;
-  for (int k = 0; k < 20000; ++k) {
-    const double t = k * kStep;
-    const Eigen::Vector2d tau(6.0 * std::sin(3.0 * t), 1.5 * std::cos(5.0 * t));
-    sim.step(tau, 1);
-    const Eigen::VectorXd v = sim.state().qdot;
-    work += tau.dot(v) * kStep;
-    predicted +=
-        (physics.damping.cwiseProduct(v.cwiseAbs2()) + physics.friction.cwiseProduct(v.cwiseAbs())).sum() *
-        kStep;
-  }
-  const double change = sim.energy().total() - e0;
+  const Balance b = balanceUnderTorque(kMujoco);
   std::printf("MuJoCo balance: change %.6f, work - dissipated %.6f; dissipated %.6f, predicted %.6f\n",
-              change, work - sim.dissipated(), sim.dissipated(), predicted);
-  ASSERT_GT(sim.dissipated(), 1.0);
+              b.change, b.work - b.dissipated, b.dissipated, b.predicted);
+  ASSERT_GT(b.dissipated, 1.0);
   // Measured: 1.2e-5 and 1e-7 of the scale.
-  EXPECT_NEAR(change, work - sim.dissipated(), 1e-4 * (std::abs(work) + sim.dissipated()));
-  EXPECT_NEAR(sim.dissipated(), predicted, 1e-5 * predicted);
+  EXPECT_NEAR(b.change, b.work - b.dissipated, 1e-4 * (std::abs(b.work) + b.dissipated));
+  EXPECT_NEAR(b.dissipated, b.predicted, 1e-5 * b.predicted);
 }
 
 TEST(JointPhysics, OnMujocoAStopHoldsTheJointFromEitherSide) {
