@@ -12,6 +12,7 @@
 #include <string>
 
 #include "plant/mujoco/mujoco_model.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::plant {
 
@@ -85,7 +86,7 @@ class MujocoEngine final : public PhysicsEngine {
     model_ = compile(mujocoModelXml(arm, setup));
     data_.reset(mj_makeData(model_.get()));
     probe_.reset(mj_makeData(model_.get()));
-    if (!data_ || !probe_) throw std::runtime_error("plant.engine mujoco: no memory for the arm's state");
+    if (!data_ || !probe_) throw RuntimeFault("plant.engine mujoco: no memory for the arm's state");
     gravity_ = arm.gravity;
     for (int i = 0; i < dof_; ++i) {
       d()->qpos[qpos(i)] = setup.initial.q(i);
