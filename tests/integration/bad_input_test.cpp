@@ -172,7 +172,10 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   std::printf("sent %d bad messages; the controller rejected %lld\n", sent, rejected);
   EXPECT_GE(rejected, 3);                         // the fault happened ...
   EXPECT_TRUE(j["tracking"]["met"].get<bool>());  // ... and the run coped
-  EXPECT_LT(j["timing"]["wall_time"].get<double>(), 30.0) << "the run stalled under bad traffic";
+  // A stall would have ended the run (exit 1 above: lockstep.stall_timeout);
+  // how long it took is the machine's, not asserted (under ASan beside other
+  // tests it has taken 30 s, alone 4).
+  EXPECT_EQ(j["status"], "completed");
   const std::string text = readText(dir + "/controller.log");
   EXPECT_NE(text.find("undecodable"), std::string::npos);
   EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
