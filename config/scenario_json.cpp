@@ -56,7 +56,10 @@ nlohmann::ordered_json jsonOfYamlNode(const YAML::Node& node) {
 
 std::string yamlToJson(const std::string& yaml_text) {
   try {
-    return jsonOfYamlNode(YAML::Load(yaml_text)).dump(1) + "\n";
+    // Bytes that are not UTF-8 (a URDF comment in Latin-1) become U+FFFD, not an exception.
+    return jsonOfYamlNode(YAML::Load(yaml_text))
+               .dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
+           "\n";
   } catch (const YAML::Exception& e) {
     throw ConfigError(std::string("the scenario is not YAML: ") + e.what());
   }

@@ -26,6 +26,8 @@ TEST(ScenarioJson, ScalarsAreTypedAsYamlReadsThemAndQuotedOnesStayStrings) {
   EXPECT_EQ(j["i"], ".inf");
   EXPECT_EQ(j["k"], "0x1F");
   EXPECT_THROW(yamlToJson("a: [1, 2"), ConfigError);
+  // A byte that is not UTF-8 (a URDF's Latin-1 comment) never fails a run.
+  EXPECT_EQ(nlohmann::json::parse(yamlToJson("u: \"caf\xe9\"\n"))["u"], "caf\xef\xbf\xbd");
 }
 
 TEST(ScenarioJson, EveryShippedScenarioKeepsItsNumbersToTheLastBit) {
