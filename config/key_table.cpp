@@ -426,6 +426,16 @@ std::vector<KeyInfo> judgementKeys() {
           "restarts per process; its next death stops the run (exit 1, the process and how it died "
           "named).",
           {0.0, 1000.0, false, "", ""}),
+      row("supervision.slow_answer", "number > 0", "`1`",
+          "wall time [s] past which an answer is slow: the controller's CONTROL_COMMAND to the plant's "
+          "PLANT_POSITION of the same tick, the actuator's ACTUATOR_STATE to that command, timed by the "
+          "logger as it hears them (LCM modes; a program from outside reports nothing itself). A wait "
+          "past it is said on the terminal while it lasts, e.g. `lagrange run: the controller (python3 "
+          "my_controller.py) has not answered tick 510 for 1.0 s (supervision.slow_answer = 1 s)`, "
+          "then at most every 10 s; `summary.json` `answers` has each one's median and worst answer "
+          "and how many were slow. Only said: `lockstep.stall_timeout` is what stops a run.",
+          {0.001, 86400.0, false, "s",
+           "below a millisecond every answer would be slow; a day is past any run's pause"}),
   };
 }
 

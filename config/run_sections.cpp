@@ -110,6 +110,7 @@ const Fields<SupervisionConfig>& supervisionFields() {
          out << YAML::Key << "restart" << YAML::Value << YAML::Flow << c.restart;
        }},
       integer("max_restarts", &SupervisionConfig::max_restarts, 0, kNoLimit, "expected a whole number >= 0"),
+      positive("slow_answer", &SupervisionConfig::slow_answer),
   };
   return fields;
 }

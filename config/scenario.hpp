@@ -212,6 +212,10 @@ struct SupervisionConfig {
   /// (the simulated arm) and the logger (the log) cannot be restarted.
   std::vector<std::string> restart;
   int max_restarts = 3;  ///< per process; the next death stops the run
+  /// [s] an answer (the controller's command to a position, the actuator's
+  /// state to a command) slower than this is said on the terminal while it
+  /// lasts and counted in summary.json `answers` (logger/answer_times.hpp).
+  double slow_answer = 1.0;
   bool restarts(const std::string& process) const {
     return std::find(restart.begin(), restart.end(), process) != restart.end();
   }

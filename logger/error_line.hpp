@@ -22,4 +22,17 @@ inline void sendErrorLine(int fd, const std::string& what) {
   [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
 }
 
+/// A line for the launcher to print as it comes ("notice: WHAT"): a slow
+/// answer while it lasts (logger/answer_times.hpp). Best effort likewise.
+inline constexpr const char* kLoggerNoticePrefix = "notice: ";
+
+inline void sendNoticeLine(int fd, const std::string& what) {
+  if (fd < 0) return;
+  std::string line = kLoggerNoticePrefix + what;
+  for (char& c : line)
+    if (c == '\n') c = ' ';
+  line += '\n';
+  [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
+}
+
 }  // namespace lagrange::logger

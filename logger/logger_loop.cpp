@@ -11,6 +11,8 @@
 #include "config/robot_description_lcm.hpp"
 #include "config/scenario_lcm.hpp"
 #include "controller/gain_report.hpp"
+#include "logger/answer_times.hpp"
+#include "logger/error_line.hpp"
 #include "logger/event_log.hpp"
 #include "logger/metrics_lcm.hpp"
 #include "logger/record_filter.hpp"
@@ -52,6 +54,19 @@ void writeProgress(int fd, const TrackingMetrics& metrics) {
   [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
 }
 
+// What the controller and the actuator are, for the slow-answer lines:
+// a program from outside by its command line.
+std::vector<AnswerTimes::Answerer> answerersOf(const config::Scenario& s) {
+  std::string controller = "lagrange-controller";
+  if (s.controller.type == "external") {
+    controller.clear();
+    for (const std::string& arg : s.controller.command) controller += (controller.empty() ? "" : " ") + arg;
+    if (controller.size() > 120) controller = controller.substr(0, 117) + "...";
+  }
+  return {{"controller", controller, transport::kPlantPosition, transport::kControlCommand},
+          {"actuator", "lagrange-actuator", transport::kControlCommand, transport::kActuatorState}};
+}
+
 }  // namespace
 
 int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerOptions& options,
@@ -83,6 +98,10 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   // start, twice the plant's own start-up allowance (3 x stall_timeout).
   const double plant_silence_limit = 4.0 * s.lockstep.stall_timeout;
   const double plant_start_limit = 6.0 * s.lockstep.stall_timeout;
+  AnswerTimes answers(answerersOf(s), s.supervision.slow_answer);
+  const auto sinceStart = [wall_start](Clock::time_point t) {
+    return std::chrono::duration<double>(t - wall_start).count();
+  };
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
   RecordFilter record_filter(node.runId());  // only what the run's processes would accept
 
@@ -115,6 +134,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
           channel, [&s](const Msg& m) { return validateFor(s, m); },
           [&, channel](const Msg& m) {
             if (m.header.publisher == "plant") end.plantHeard(Clock::now());
+            answers.arrived(channel, m.header.tick, sinceStart(Clock::now()));
             observe(metrics, m);
             confirmation.record(channel, m.header.tick, metrics.lastTick());
           },
@@ -166,6 +186,13 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       }
       next_status = now + std::chrono::milliseconds(100);
     }
+    for (const AnswerTimes::Slow& slow : answers.newlySlow(sinceStart(now))) {
+      const std::string line =
+          fmt::format("the {} ({}) has not answered tick {} for {:.1f} s (supervision.slow_answer = {:g} s)",
+                      slow.name, slow.program, slow.tick, slow.waited, s.supervision.slow_answer);
+      spdlog::warn(line);
+      sendNoticeLine(options.progress_fd, line);  // for the launcher to print now
+    }
     if (end.due(now, confirmation.confirmed(metrics.lastTick()) >= s.lastTick())) break;
     if (const auto silent =
             end.plantGone(now, asDuration(plant_silence_limit), asDuration(plant_start_limit)))
@@ -215,6 +242,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   facts.wall_time = std::chrono::duration<double>(Clock::now() - wall_start).count();
   facts.missing_records = gaps.missing(facts.final_status);
   facts.not_recorded = record_filter.notRecorded();
+  facts.answers = answers.summary();
 
   if (gains.sampled.verdict.empty()) gains.sampled = controller::checkSampledData(s);
   const auto summary = makeSummary(s, metrics.summary(), gains, facts);

@@ -261,6 +261,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   }
   j["messages"] = messages;
   j["processes"] = processes;
+  if (!f.answers.is_null()) j["answers"] = f.answers;  // LCM modes: the logger timed them
   j["log"] = {
       {"path", f.log_path},
       {"events", f.log_events},

@@ -29,6 +29,8 @@ struct RunFacts {
   /// record because no process of the run would accept their header
   /// (logger/record_filter.hpp).
   std::map<std::string, std::map<std::string, long long>> not_recorded;
+  /// How long the controller and the actuator took to answer (logger/answer_times.hpp).
+  nlohmann::json answers;
 };
 
 /// Makes `metrics` watch the joints' rates against the URDF's <limit

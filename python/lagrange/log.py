@@ -135,18 +135,28 @@ class Run:
         self.unknown_channels = {}  # channel -> count
         self.scan = None
         self.summary = None
-        self.scenario_yaml = None
+        self.scenario_yaml = None  # config.resolved.yaml's text
+        self.scenario = None  # config.resolved.json as a dict (the same scenario; None for older runs)
 
 
 def load(run_dir, numpy=None, verify=True):
-    """Reads a run directory (OUT of `lagrange run`): run.lcm into per-channel
-    columns, summary.json (None if absent), config.resolved.yaml as text.
+    """Reads a run directory (OUT of `lagrange run`), or its run.lcm, as the
+    lagrange subcommands take either: run.lcm into per-channel columns,
+    summary.json (None if absent), config.resolved.yaml as text
+    (`scenario_yaml`) and config.resolved.json as a dict (`scenario`).
     numpy: None (use it when installed), True or False. verify: leave out
     (and count in `run.corrupt`) messages whose checksum does not match, as
     the project's own readers do; False skips the check (it is pure Python,
     about a second per 30 000 messages)."""
+    if os.path.isfile(str(run_dir)):  # the log itself: its folder holds the rest
+        path = str(run_dir)
+        run = Run(os.path.dirname(os.path.abspath(path)))
+        return _load(run, path, numpy, verify)
     run = Run(run_dir)
-    path = os.path.join(run.dir, "run.lcm")
+    return _load(run, os.path.join(run.dir, "run.lcm"), numpy, verify)
+
+
+def _load(run, path, numpy, verify):
     if not os.path.exists(path):
         raise logfile.LogError("%s has no run.lcm; expected the output directory of a lagrange run (--out)" % run.dir)
     if numpy is None:
@@ -192,4 +202,8 @@ def load(run_dir, numpy=None, verify=True):
     if os.path.exists(resolved):
         with open(resolved, "r", encoding="utf-8") as f:
             run.scenario_yaml = f.read()
+    resolved_json = os.path.join(run.dir, "config.resolved.json")
+    if os.path.exists(resolved_json):
+        with open(resolved_json, "r", encoding="utf-8") as f:
+            run.scenario = json.load(f)
     return run

@@ -6,6 +6,7 @@ The runs through it (a Python controller against the Java one, a run's log
 against the C++ reader) are in tests/integration/external_controller_test.cpp.
 """
 
+import json
 import os
 import struct
 import subprocess
@@ -342,6 +343,20 @@ class Lcm(unittest.TestCase):
         self.assertEqual(run.undecodable, {"PLANT_TRUTH": 1})
         self.assertEqual(run.unknown_channels, {"SOMETHING_ELSE": 1})
         self.assertIsNone(run.summary)
+
+    def test_the_log_itself_loads_as_its_folder_does_with_the_scenario_as_a_dict(self):
+        with tempfile.TemporaryDirectory() as d:
+            with lagrange.lcm.LCM("file://%s/run.lcm?mode=w" % d) as lc:
+                for tick in range(3):
+                    lc.publish("PLANT_POSITION", position(tick, [tick * 0.5, -tick]).encode())
+            with open(os.path.join(d, "config.resolved.json"), "w") as f:
+                json.dump({"name": "two", "controller": {"kp": [100.0, 8.0]}}, f)
+            by_folder = lagrange.log.load(d, numpy=False)
+            by_log = lagrange.log.load(os.path.join(d, "run.lcm"), numpy=False)
+        self.assertEqual(by_log.channels, by_folder.channels)
+        self.assertEqual(by_log.dir, os.path.abspath(d))
+        self.assertEqual(by_log.scenario["controller"]["kp"], [100.0, 8.0])
+        self.assertEqual(by_folder.scenario, by_log.scenario)
 
     def test_a_directory_without_a_log_is_named(self):
         with tempfile.TemporaryDirectory() as d:

@@ -178,15 +178,32 @@ TEST(Failure, MalformedPositionMessagesAreRejectedAndCounted) {
   EXPECT_EQ(j["status"], "completed");
   const std::string text = readText(dir + "/controller.log");
   EXPECT_NE(text.find("undecodable"), std::string::npos);
-  EXPECT_NE(text.find("num_joints is 3, expected 2"), std::string::npos);
-  EXPECT_NE(text.find("non-finite"), std::string::npos);
   const auto& reasons = j["processes"]["controller"]["channels"]["PLANT_POSITION"]["rejected_by_reason"];
   EXPECT_GE(reasons["undecodable"].get<long long>(), 1) << reasons.dump();
-  EXPECT_GE(reasons["invalid"].get<long long>(), 2) << reasons.dump();
-  // Its STATUS names the last one refused as invalid, and whose it was.
-  const std::string said = j["processes"]["controller"]["message"];
-  EXPECT_EQ(said.rfind("last refused as invalid: PLANT_POSITION: ", 0), 0u) << said;
-  EXPECT_NE(said.find("(from 'plant', tick "), std::string::npos) << said;
+  // The well-formed bad positions come signed, as 'plant' with pid 1: before
+  // the real plant's first position they hold the publisher's window and
+  // reach validation (refused as invalid); once the plant has spoken it
+  // replaces pid 1, whose messages are then refused as replays of an
+  // earlier process before validation (issue #44). How many arrive before
+  // the plant is the run's race (on a fast machine none did); each is
+  // refused for one reason or the other, and every one that reached
+  // validation is named.
+  const long long invalid = reasons["invalid"].get<long long>();
+  EXPECT_GE(invalid + reasons["old_or_repeated"].get<long long>(), 2) << reasons.dump();
+  if (invalid > 0) {
+    EXPECT_TRUE(text.find("num_joints is 3, expected 2") != std::string::npos ||
+                text.find("non-finite") != std::string::npos)
+        << text;
+    // Its STATUS names the last one refused as invalid, and whose it was.
+    const std::string said = j["processes"]["controller"]["message"];
+    EXPECT_EQ(said.rfind("last refused as invalid: PLANT_POSITION: ", 0), 0u) << said;
+    EXPECT_NE(said.find("(from 'plant', tick "), std::string::npos) << said;
+  }
+  if (reasons["old_or_repeated"].get<long long>() > 0) {
+    EXPECT_TRUE(text.find("from pid 1 of 'plant'") != std::string::npos ||
+                text.find("of 'plant' not newer than") != std::string::npos)
+        << text;
+  }
 }
 
 // Message hygiene: well-formed positions of another run, of a process that is

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "support/configs.hpp"
@@ -103,6 +104,36 @@ TEST(Compare, RunsEachControllerAsItsSectionTunesItAndTabulatesEachRunsOwnNumber
   text << md.rdbuf();
   EXPECT_NE(text.str().find("| pd_plus | completed |"), std::string::npos) << text.str();
   EXPECT_NE(r.output.find("## Sweep of sensors.position.counts_per_revolution"), std::string::npos);
+}
+
+// Issue #46: an external row whose program crashes was shown as
+// `interrupted`, compare exited 0 and said nothing. Now the row is `failed`,
+// compare says which process ended how, and exits 1; the other row stands.
+TEST(Compare, AnExternalRowThatCrashesIsAFailedRowWithItsReasonAndExitsOne) {
+  const std::string out = freshDir("compare-crash");
+  const RunResult r =
+      lagrange("compare " + quote(kConfigs + "/rigid_2dof.yaml") + " -o " + quote(out) +
+               " --set duration=0.2 --set 'compare={controllers: {theorem1: {}, crash: {type: "
+               "external, command: [sh, -c, \"echo about to fail; exit 7\"]}}}'");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("lagrange compare: crash failed: process 'controller' exited with code 7; see "),
+            std::string::npos)
+      << r.output;
+  const auto rows = csvRows(out + "/comparison.csv");
+  ASSERT_EQ(rows.size(), 3u) << r.output;
+  std::map<std::string, std::string> status;
+  for (size_t i = 1; i < rows.size(); ++i) status[rows[i][0]] = rows[i][3];
+  EXPECT_EQ(status["crash"], "failed");
+  EXPECT_EQ(status["theorem1"], "completed");
+  for (size_t i = 1; i < rows.size(); ++i) {  // a failed run's numbers are no result: blank
+    if (rows[i][0] == "crash") EXPECT_EQ(rows[i][5], "") << rows[i][5];
+  }
+  // The run's own summary says it too, with the program's last words.
+  const auto j = readSummary(out + "/runs/crash");
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_EQ(j["failure"]["process"], "controller");
+  EXPECT_EQ(j["failure"]["how"], "exited with code 7");
+  EXPECT_EQ(j["failure"]["last_lines"].back(), "about to fail") << j["failure"].dump();
 }
 
 TEST(Compare, BadInputIsNamedBeforeAnyRunStarts) {

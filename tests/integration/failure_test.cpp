@@ -67,6 +67,45 @@ TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
   EXPECT_EQ(j["tracking"]["samples"].get<size_t>(), truth.size());  // nothing recorded was lost
 }
 
+// Issue #46: a controller that takes seconds a sample left the run sitting
+// silent (the stall deadline is 10 s a tick). A wait past
+// supervision.slow_answer is said on the terminal while it lasts, and
+// summary.json has each answerer's median and worst.
+TEST(Failure, ASlowAnswerIsSaidWhileItLastsAndSummarised) {
+  const std::string dir = freshDir("slow-answer");
+  std::atomic<bool> done{false};
+  RunResult r;
+  std::thread runner([&] {
+    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=3 --set supervision.slow_answer=0.3");
+    done = true;
+  });
+  bool frozen = false;
+  for (int i = 0; i < 400 && !frozen && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 200000) continue;
+    const pid_t pid = findProcess("lagrange-controller", dir);
+    if (pid > 0 && kill(pid, SIGSTOP) == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1200));
+      kill(pid, SIGCONT);
+      frozen = true;
+    }
+  }
+  runner.join();
+  ASSERT_TRUE(frozen) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("lagrange run: the controller (lagrange-controller) has not answered tick "),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("(supervision.slow_answer = 0.3 s)"), std::string::npos) << r.output;
+  const auto answers = readSummary(dir)["answers"];
+  EXPECT_EQ(answers["threshold"], 0.3);
+  EXPECT_GE(answers["controller"]["slow"].get<long long>(), 1) << answers.dump();
+  EXPECT_GE(answers["controller"]["worst"].get<double>(), 0.8) << answers.dump();
+  EXPECT_LT(answers["controller"]["median"].get<double>(), 0.3) << answers.dump();
+  EXPECT_GE(answers["controller"]["answered"].get<long long>(), 2900) << answers.dump();
+  EXPECT_GE(answers["actuator"]["answered"].get<long long>(), 2900) << answers.dump();
+}
+
 // Stale inputs: a controller frozen for 300 ms (SIGSTOP) sends nothing; the
 // plant's policy zeroes (or holds) the torque and counts it, the controller
 // refuses the positions that aged while it was frozen, and the arm converges

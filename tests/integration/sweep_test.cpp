@@ -355,6 +355,37 @@ TEST(Sweep, AShardRunsNothingOfAPlanPlantedAfterItsSweepStarted) {
       0);
 }
 
+// Issue #46: an external row that fails every time was left out of the
+// table, and the sweep said "not done yet, run it again" -- which failed the
+// same way. Now it is a row with status `failed` and the launcher's reason,
+// said on the terminal, and the sweep exits 1; a restart does not run it again.
+TEST(Sweep, AnExternalRowThatFailsIsAFailedRowWithItsReason) {
+  const std::string dir = freshDir("sweep-external-fails");
+  fs::create_directories(dir);
+  const std::string sweep = dir + "/sweep.yaml";
+  std::ofstream(sweep) << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
+                       << "set: {duration: 0.2, controller: {type: external, command: [sh, -c, 'exit 5']}}\n"
+                       << "axes:\n  - {key: plant.physics_step, values: [1.0e-4]}\n";
+  const std::string out = dir + "/out";
+  const RunResult r = lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -j 1");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("1 of 1 runs in"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("row 0 failed: process 'controller' exited with code 5; see "), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("not done yet"), std::string::npos) << r.output;
+  std::ifstream rows(out + "/sweep.jsonl");
+  const auto row = nlohmann::json::parse(rows);
+  EXPECT_EQ(row["status"], "failed");
+  EXPECT_NE(row["stop_reason"].get<std::string>().find("exited with code 5"), std::string::npos)
+      << row.dump();
+  EXPECT_TRUE(fs::exists(out + "/external/row-0/controller.log")) << "the failed run's logs are kept";
+  // Done, not missing: the same command runs nothing again.
+  const RunResult again = lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -j 1");
+  EXPECT_EQ(again.exit_code, 1) << again.output;
+  EXPECT_EQ(again.output.find("shard"), std::string::npos) << again.output;
+}
+
 // A link planted as a shard's log in a shared sweep folder: the shard's
 // output was appended to its target (found in review: only the rows files
 // were opened without following links). Now refused, the target untouched.

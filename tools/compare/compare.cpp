@@ -159,14 +159,27 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
   }
   const nlohmann::json j = nlohmann::json::parse(in);
   n.status = j.at("status").get<std::string>();
+  // A process that died: the launcher says which in summary.json's
+  // `failure`; an older or killed launcher left only its exit code.
+  if (const auto f = j.find("failure"); f != j.end() && f->is_object()) {
+    n.failure = "process '" + f->value("process", std::string("?")) + "' " + f->value("how", std::string()) +
+                "; see " + f->value("log", run.dir);
+  } else if (exit_status != kExitOk && n.status == "interrupted") {
+    n.status = "failed";
+    n.failure =
+        "lagrange run exited with code " + std::to_string(exit_status) + "; see " + run.dir + "/compare.log";
+  }
+  if (n.status == "failed") return n;  // the numbers of a run cut short are no result: left blank
+  // null where a run blew up (summary.json writes a non-finite number so)
+  const auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : std::nan(""); };
   const auto& t = j.at("tracking");
   if (!t.at("convergence_time").is_null()) n.convergence_time = t.at("convergence_time").get<double>();
-  n.final_error = t.at("final_error").get<double>();
-  n.rms_last_second = t.at("rms_last_second").get<double>();
+  n.final_error = number(t.at("final_error"));
+  n.rms_last_second = number(t.at("rms_last_second"));
   const auto& torque = j.at("torque");
-  n.max_torque = torque.at("max_abs").get<double>();
-  n.total_variation = torque.at("total_variation").get<double>();
-  n.energy = torque.at("energy").get<double>();
+  n.max_torque = number(torque.at("max_abs"));
+  n.total_variation = number(torque.at("total_variation"));
+  n.energy = number(torque.at("energy"));
   return n;
 }
 
@@ -289,9 +302,16 @@ int runComparison(const CompareOptions& o) {
       for (const std::string& png : plots.written) std::cout << "lagrange compare: wrote " << png << "\n";
     for (const std::string& png : plots.failed)
       std::cerr << "lagrange compare: gnuplot could not draw " << png << " (see " << plots.log << ")\n";
-    for (const RunNumbers& n : numbers)
-      if (n.status.rfind("failed", 0) == 0) return kExitFailed;
-    return kExitOk;
+    bool failed = false;
+    for (const RunNumbers& n : numbers) {
+      if (n.status.rfind("failed", 0) != 0) continue;
+      failed = true;
+      if (!n.failure.empty())
+        std::cerr << "lagrange compare: " << n.type
+                  << (n.value ? " at " + plan.sweep_key + " = " + *n.value : "") << " failed: " << n.failure
+                  << "\n";
+    }
+    return failed ? kExitFailed : kExitOk;
   } catch (const std::exception& e) {
     return failWith("lagrange compare", e);
   }

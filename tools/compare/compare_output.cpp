@@ -28,7 +28,11 @@ std::string full(double x) { return std::isfinite(x) ? util::exactText(x) : ""; 
 
 std::string markdownRow(const RunNumbers& n, bool with_value) {
   std::string row = "| " + n.type + (with_value ? " | " + n.value.value_or("") : "") + " | " + n.status +
-                    " | " + (n.convergence_time ? number(*n.convergence_time) : "not within the run") + " | ";
+                    " | " +
+                    (n.convergence_time                 ? number(*n.convergence_time)
+                     : n.status.rfind("failed", 0) == 0 ? "—"
+                                                        : "not within the run") +
+                    " | ";
   for (double x : {n.final_error, n.rms_last_second, n.max_torque, n.total_variation, n.energy})
     row += number(x) + " | ";
   return row.substr(0, row.size() - 1) + "\n";

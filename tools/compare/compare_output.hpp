@@ -19,7 +19,8 @@ struct RunNumbers {
   std::string type;
   std::optional<std::string> value;  ///< the sweep value; none: the nominal run
   std::string dir;
-  std::string status;                      ///< completed, diverged, or "failed (...)"
+  std::string status;                      ///< completed, diverged, failed, or "failed (...)"
+  std::string failure;                     ///< why a failed run failed (printed under the table)
   std::optional<double> convergence_time;  ///< tracking.convergence_time [s]
   double final_error = std::nan("");       ///< tracking.final_error [rad]
   double rms_last_second = std::nan("");   ///< tracking.rms_last_second [rad]

@@ -24,6 +24,10 @@ std::optional<std::pair<double, double>> ProgressReader::wait(int timeout_ms) {
       logger_error_ = line.substr(std::strlen(logger::kLoggerErrorPrefix));
       continue;
     }
+    if (line.rfind(logger::kLoggerNoticePrefix, 0) == 0) {
+      if (notices_.size() < 100) notices_.push_back(line.substr(std::strlen(logger::kLoggerNoticePrefix)));
+      continue;
+    }
     std::istringstream in(line);
     double t = 0.0, error = 0.0;
     if (in >> t >> error) newest = std::make_pair(t, error);

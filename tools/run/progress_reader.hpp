@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace lagrange::tools {
 
@@ -19,11 +20,14 @@ class ProgressReader {
   std::optional<std::pair<double, double>> wait(int timeout_ms);
   /// Why the logger stopped, if it said so ("" otherwise).
   const std::string& loggerError() const { return logger_error_; }
+  /// What the logger asked to be said since the last call (a slow answer).
+  std::vector<std::string> takeNotices() { return std::exchange(notices_, {}); }
 
  private:
   int fd_;
   std::string pending_;  ///< the start of a line not yet ended
   std::string logger_error_;
+  std::vector<std::string> notices_;
 };
 
 }  // namespace lagrange::tools

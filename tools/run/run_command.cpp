@@ -144,10 +144,13 @@ std::string writeGains(const config::Scenario& scenario, const controller::GainR
 }
 
 // The logger wrote summary.json before the others were reaped; the launcher
-// adds what only it knows: each process's CPU time, and the processes that
-// died and were restarted (supervision).
+// adds what only it knows: each process's CPU time, the processes that died
+// and were restarted (supervision), and, when it ended the run because a
+// process died, why (`failure`; the status is then `failed`, not the
+// `interrupted` the logger wrote when it was stopped: a sweep or compare
+// reading the summary must not take a crash for a Ctrl-C to run again).
 void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
-                      const nlohmann::json& supervision) {
+                      const nlohmann::json& supervision, const nlohmann::json& failure) {
   const fs::path path = fs::path(out_dir) / "summary.json";
   nlohmann::json j;
   try {
@@ -157,15 +160,30 @@ void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
   }
   j["timing"]["cpu_seconds"] = cpu;
   j["supervision"] = supervision;
+  if (!failure.is_null()) {
+    j["status"] = "failed";
+    j["failure"] = failure;
+  }
   util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
 }
 
-void printTail(const std::string& path, int lines) {
+// The last `lines` lines of a process's log.
+std::vector<std::string> logTail(const std::string& path, int lines) {
   std::ifstream in(path);
   std::vector<std::string> all;
   for (std::string l; std::getline(in, l);) all.push_back(l);
   const size_t from = all.size() > static_cast<size_t>(lines) ? all.size() - lines : 0;
-  for (size_t i = from; i < all.size(); ++i) std::cerr << "    " << all[i] << "\n";
+  return {all.begin() + static_cast<std::ptrdiff_t>(from), all.end()};
+}
+
+// summary.json's `failure`: a process's end, with the last 5 lines of its
+// log each cut at 1000 bytes (a program from outside may write anything).
+nlohmann::json failureRecord(const std::string& process, const std::string& how, const std::string& log,
+                             const std::vector<std::string>& tail) {
+  std::vector<std::string> last;
+  for (size_t i = tail.size() > 5 ? tail.size() - 5 : 0; i < tail.size(); ++i)
+    last.push_back(tail[i].size() > 1000 ? tail[i].substr(0, 1000) + "..." : tail[i]);
+  return {{"process", process}, {"how", how}, {"log", log}, {"last_lines", last}};
 }
 
 void printResult(const std::string& out_dir) {
@@ -418,6 +436,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   int exit_code = kExitOk;
   nlohmann::json cpu = nlohmann::json::object();
   nlohmann::json supervision = supervisionRecord(scenario.supervision);
+  nlohmann::json failure;  // why the launcher ended the run, when a process died (summary.json)
   // After the plant has finished, the others get this long to follow (they
   // normally need milliseconds); then they are stopped, so that a lost final
   // STATUS can never hang a run.
@@ -425,6 +444,10 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   std::optional<std::chrono::steady_clock::time_point> plant_done;
   while (supervisor.anyRunning()) {
     if (const auto latest = progress_reader.wait(50)) progress.update(latest->first, latest->second);
+    for (const std::string& notice : progress_reader.takeNotices()) {
+      progress.finish();  // the line under the bar, which is drawn again below it
+      std::cerr << "lagrange run: " << notice << "\n";
+    }
     progress.tick();
     if (launcher_signal != 0) {
       progress.finish();
@@ -467,9 +490,12 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
         std::cerr << "lagrange run: the logger stopped the run: " << progress_reader.loggerError()
                   << "; stopping the others\n";
       } else {
+        const std::string log = (fs::path(out_dir) / (e.name + ".log")).string();
         std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
-                  << "; stopping the others. Its last lines (" << out_dir << "/" << e.name << ".log):\n";
-        printTail((fs::path(out_dir) / (e.name + ".log")).string(), 15);
+                  << "; stopping the others. Its last lines (" << log << "):\n";
+        const std::vector<std::string> tail = logTail(log, 15);
+        for (const std::string& line : tail) std::cerr << "    " << line << "\n";
+        failure = failureRecord(e.name, e.describe(), log, tail);
       }
       for (const wiring::ChildExit& other : supervisor.stopAll(5.0))
         if (other.failed() && other.signal != SIGTERM)
@@ -483,11 +509,12 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
   progress.finish();
   close(progress_pipe[0]);
-  if (exit_code == 0 && runsHere(opt, "logger")) {
+  if ((exit_code == 0 || !failure.is_null()) && runsHere(opt, "logger")) {
     try {
-      addLauncherFacts(out_dir, cpu, supervision);
+      addLauncherFacts(out_dir, cpu, supervision, failure);
     } catch (const std::exception& e) {
-      exit_code = failWith("lagrange run", e);
+      const int code = failWith("lagrange run", e);
+      if (exit_code == 0) exit_code = code;
     }
   }
   if (exit_code != kExitInterrupted) writeRunReport(opt, out_dir);

@@ -121,9 +121,10 @@ std::string exitText(int wstatus) {
 struct Finished {
   long missing = 0;
   long refused = 0;
+  long failed_rows = 0;  // in the table with status `failed`: run, and could not be made
   int exitCode(bool failed) const {
     if (refused > 0) return kExitBadInput;
-    return failed || missing > 0 ? kExitFailed : kExitOk;
+    return failed || missing > 0 || failed_rows > 0 ? kExitFailed : kExitOk;
   }
 };
 
@@ -149,20 +150,37 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
   // left anything (remove() leaves a directory that is not empty).
   std::error_code ec;
   fs::remove(fs::path(out_dir) / "external", ec);
-  long diverged = 0, converged = 0;
+  long diverged = 0, converged = 0, failed_rows = 0;
   for (const auto& [i, r] : rows) {
     diverged += r.value("diverged", false);
     converged += r.value("converged", false);
+    const auto status = r.find("status");
+    failed_rows += status != r.end() && status->is_string() && *status == "failed";
   }
   const long missing = static_cast<long>(plan.rows.size()) - static_cast<long>(rows.size());
   if (!quiet) {
     std::cout << who << rows.size() << " of " << plan.rows.size() << " runs in "
               << (fs::path(out_dir) / "sweep.csv").string() << " (and sweep.jsonl): " << converged
-              << " converged, " << diverged << " diverged, "
-              << static_cast<long>(rows.size()) - converged - diverged << " neither"
+              << " converged, " << diverged << " diverged, " << failed_rows << " failed, "
+              << static_cast<long>(rows.size()) - converged - diverged - failed_rows << " neither"
               << (finished.refused > 0 ? "; " + std::to_string(finished.refused) + " refused (above)" : "")
               << "\n";
   }
+  // A failed row is done (a restart does not run it again: it would fail the
+  // same way); why is in its stop_reason, the first few said here.
+  long shown_failures = 0;
+  for (const auto& [i, r] : rows) {
+    const auto status = r.find("status");
+    if (status == r.end() || !status->is_string() || *status != "failed" || shown_failures++ >= 3) continue;
+    const auto reason = r.find("stop_reason");
+    std::cerr << who << "row " << i << " failed: "
+              << (reason != r.end() && reason->is_string() ? reason->get<std::string>().substr(0, 400)
+                                                           : std::string("(no reason recorded)"))
+              << "\n";
+  }
+  if (failed_rows > 3)
+    std::cerr << who << "... and " << failed_rows - 3
+              << " more failed rows (column stop_reason of sweep.csv)\n";
   try {
     const SweepMaps maps = drawSweepMaps(out_dir, plan, rows);
     if (!quiet) {
@@ -186,7 +204,7 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
                         "the same lagrange sweep command runs what is missing\n"
                       : "run the same lagrange sweep command again to run them\n");
   }
-  return {missing, finished.refused};
+  return {missing, finished.refused, failed_rows};
 }
 
 // Local: shards as processes, one per core; progress from the rows files.

@@ -11,10 +11,13 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
+#include <sstream>
 #include <thread>
 
 #include "controller/paper_section.hpp"
 #include "model/reference.hpp"
+#include "tools/sweep/sweep_files.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 #include "wiring/inproc_runner.hpp"
@@ -24,6 +27,18 @@
 namespace lagrange::tools {
 
 namespace {
+
+// The first error line `lagrange run` wrote into a row's run.out (after
+// "; "), or nothing: what a failed row says when its summary does not.
+std::string launcherError(const std::filesystem::path& run_out) {
+  std::string error;  // a row's folder may be in a shared one: read as any file there
+  const std::optional<std::string> text = readSweepFile(run_out.string(), "a row's run.out", 1 << 20, error);
+  std::istringstream in(text.value_or(""));
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("lagrange run: ", 0) == 0 && line.find("the log so far is kept") == std::string::npos)
+      return "; " + line.substr(0, 300);
+  return "";
+}
 
 // ||(q~(0), q~'(0), qc(0))||: the closed loop's initial state, the plant's
 // error and (the paper's controllers) the stage-0 filter state. r0: the
@@ -209,9 +224,13 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   } catch (const std::exception&) {
     throw RuntimeFault("the external controller's run left no summary.json (exit " +
                        std::to_string(WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus)) +
-                       "); see " + dir.string());
+                       launcherError(dir / "run.out") + "); see " + dir.string());
   }
   o.status = summary.value("status", std::string("failed"));
+  // Stopped, yet not by this sweep: the launcher ended it (a process died;
+  // summary.json's `failure` says which). A row that failed, not one to run
+  // again on a restart, which would fail the same way.
+  if (o.status == "interrupted") o.status = "failed";
   const nlohmann::json& t = summary.at("tracking");
   if (!t.at("convergence_time").is_null())
     o.tracking.convergence_time = t.at("convergence_time").get<double>();
@@ -224,7 +243,12 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   o.tracking.rms_last_second = number(t.at("rms_last_second"));
   // Why a run that did not complete stopped: the plant's last word.
   const nlohmann::json plant = summary.value("/processes/plant"_json_pointer, nlohmann::json::object());
-  if (o.status != "completed") o.stop_message = plant.value("message", std::string("see ") + dir.string());
+  if (const auto f = summary.find("failure"); f != summary.end() && f->is_object())
+    o.stop_message = "process '" + f->value("process", std::string("?")) + "' " +
+                     f->value("how", std::string()) + "; see " + dir.string();
+  else if (o.status != "completed")
+    o.stop_message =
+        plant.value("message", std::string()) + launcherError(dir / "run.out") + "; see " + dir.string();
   if (o.status == "completed") fs::remove_all(dir);  // kept when it failed: its logs say why
   return o;
 }
