@@ -5,7 +5,9 @@
 //   u = -Kp (q - q_d) - Kd v,   v = (q_k - q_{k-1}) / (t_k - t_{k-1}) (0 at the first sample),
 //
 // with a constant q_d: no model, no gravity compensation -- for an arm
-// without gravity (robot.gravity: 0) it regulates to q_d.
+// without gravity (robot.gravity: 0) it regulates to q_d. Without --qd,
+// q_d is the scenario's reference.offset, read from the resolved scenario
+// the run hands over (lagrange::sdk::scenario()).
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "lagrange/sdk/external_controller.hpp"
+#include "lagrange/sdk/scenario.hpp"
 
 namespace {
 
@@ -33,15 +36,23 @@ int main(int argc, char** argv) {
   std::map<std::string, std::string> options;
   for (int i = 1; i + 1 < argc; i += 2) options[argv[i]] = argv[i + 1];
   const char* joints_text = std::getenv("LAGRANGE_JOINTS");
-  if (!options.count("--kp") || !options.count("--kd") || !options.count("--qd") || joints_text == nullptr) {
-    std::cerr
-        << "pd_controller: expected --kp K --kd K --qd Q (one number, or one per joint, comma-separated), "
-           "started by lagrange run (controller.type: external)\n";
+  if (!options.count("--kp") || !options.count("--kd") || joints_text == nullptr) {
+    std::cerr << "pd_controller: expected --kp K --kd K [--qd Q] (one number, or one per joint, "
+                 "comma-separated), started by lagrange run (controller.type: external)\n";
     return 2;
   }
   const size_t n = static_cast<size_t>(std::atoi(joints_text));
-  const std::vector<double> kp = perJoint(options["--kp"], n), kd = perJoint(options["--kd"], n),
-                            qd = perJoint(options["--qd"], n);
+  const std::vector<double> kp = perJoint(options["--kp"], n), kd = perJoint(options["--kd"], n);
+  std::vector<double> qd;
+  try {
+    qd = options.count("--qd")
+             ? perJoint(options["--qd"], n)
+             : lagrange::sdk::scenario().at("reference").at("offset").get<std::vector<double>>();
+  } catch (const std::exception& e) {
+    std::cerr << "pd_controller: no --qd, and the scenario's reference.offset could not be read: " << e.what()
+              << "\n";
+    return 2;
+  }
   std::vector<double> previous_q;
   double previous_t = 0.0;
 

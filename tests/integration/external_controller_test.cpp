@@ -136,6 +136,18 @@ TEST(ExternalController, AJavaPdTakesTheControllersPlaceInLockstepAndItsRunRepla
   const RunResult changed = lagrange("replay " + quote(out + "/run.lcm") + javaReplayCommand("21,5"));
   EXPECT_EQ(changed.exit_code, 1) << changed.output;
   EXPECT_NE(changed.output.find("DIVERGED after 1 outputs at tick 0"), std::string::npos) << changed.output;
+  // A law that returns NaN is stopped at the Java SDK, naming the value, the
+  // joint and the sample (issue #46), as the C++ and Python SDKs do.
+  const std::string nan = freshDir("external-java-nan");
+  const RunResult bad =
+      runScenario(scenario("lockstep", javaCommand(), "--kp, \"NaN,5\", --kd, \"4,1\", --qd, \"0.5,-0.2\""),
+                  nan, "-q --set duration=0.5");
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  const std::string said = readText(nan + "/controller.log");
+  EXPECT_NE(said.find("the law returned NaN for u[0] (joint 1) at the sample of tick 0 (t = 0.0 s); expected "
+                      "finite numbers"),
+            std::string::npos)
+      << said;
 }
 
 TEST(ExternalController, AJavaPdRunsInRealtimeAndItsRunReplays) {
@@ -337,6 +349,20 @@ TEST(ExternalController, ACppPdBuiltAgainstTheInstalledPackageMatchesTheJavaOne)
   const RunResult replay = lagrange("replay " + quote(cpp + "/run.lcm") + " -- " +
                                     quote(build + "/pd_controller") + " --kp 20,5 --kd 4,1 --qd 0.5,-0.2");
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
+
+  // Without --qd the program reads q_d from the scenario the run hands over
+  // (lagrange::sdk::scenario(), issue #46): the same commands, and replay
+  // hands the same scenario over.
+  const std::string from_scenario = freshDir("cpp-sdk-scenario");
+  const RunResult reading =
+      shell(quote(prefix + "/bin/lagrange") + " run " +
+            quote(scenario("lockstep", quote(build + "/pd_controller"), "--kp, \"20,5\", --kd, \"4,1\"")) +
+            " -q -o " + quote(from_scenario) + " 2>&1");
+  ASSERT_EQ(reading.exit_code, 0) << reading.output << readText(from_scenario + "/controller.log");
+  EXPECT_EQ(readCommands(from_scenario + "/run.lcm"), readCommands(cpp + "/run.lcm"));
+  const RunResult replay_reading = lagrange("replay " + quote(from_scenario + "/run.lcm") + " -- " +
+                                            quote(build + "/pd_controller") + " --kp 20,5 --kd 4,1");
+  EXPECT_EQ(replay_reading.exit_code, 0) << replay_reading.output;
 
   // A law that returns NaN is stopped at the SDK, naming the value, the joint
   // and the sample, rather than left for the plant to refuse and stall on.

@@ -181,11 +181,18 @@ public final class ExternalController implements LCMSubscriber {
     publishSigned("STATUS", s);
   }
 
-  private double[] vector(double[] v, String what) {
+  private double[] vector(double[] v, String what, plant_position_t p) {
     if (v == null && !what.equals("u")) return new double[joints];
     if (v == null || v.length != joints)
       throw new IllegalStateException("the law returned " + (v == null ? "no" : String.valueOf(v.length))
           + " numbers for " + what + "; expected " + joints + " (one per joint)");
+    // NaN or infinity would leave here signed and valid, and stall the run at
+    // the actuator (issue #46): refused at the source, naming the sample.
+    for (int j = 0; j < joints; ++j)
+      if (!Double.isFinite(v[j]))
+        throw new IllegalStateException("the law returned " + v[j] + " for " + what + "[" + j + "] (joint "
+            + (j + 1) + ") at the sample of tick " + p.header.tick + " (t = " + p.header.sim_time
+            + " s); expected finite numbers");
     return v.clone();
   }
 
@@ -200,11 +207,11 @@ public final class ExternalController implements LCMSubscriber {
     c.input_actuator_tick = -1;
     c.input_motor_tick = -1;
     c.num_joints = joints;
-    c.u = vector(out.u, "u");
-    c.q_desired = vector(out.qDesired, "q_desired");
-    c.q_error = vector(out.qError, "q_error");
-    c.theta = vector(out.theta, "theta");
-    c.filter_state = vector(out.filterState, "filter_state");
+    c.u = vector(out.u, "u", p);
+    c.q_desired = vector(out.qDesired, "q_desired", p);
+    c.q_error = vector(out.qError, "q_error", p);
+    c.theta = vector(out.theta, "theta", p);
+    c.filter_state = vector(out.filterState, "filter_state", p);
     c.chain_order = 0;
     c.xi_error = new double[0][joints];
     return c;
