@@ -392,7 +392,9 @@ std::vector<KeyInfo> judgementKeys() {
           "realtime: SCHED_FIFO priority of the plant, controller, actuator and logger (memory locked "
           "with mlockall, the stack and a heap reserve faulted in before the loops); 0 for the normal "
           "scheduler. Without root or CAP_SYS_NICE the processes warn and "
-          "run under the normal scheduler; `timing.loops.NAME.scheduler` says which.",
+          "run under the normal scheduler; `timing.loops.NAME.scheduler` says which. An external "
+          "controller gets the same from the launcher, set before its program starts (its log says "
+          "whether the kernel allowed it; memory locking is the program's own to ask for).",
           {0.0, 99.0, false, "", ""}),
       row("realtime.cpus.PROCESS", "list of CPU numbers 0–1023", "none: where the scheduler puts it",
           "realtime: the CPUs the process PROCESS (`plant`, `controller`, `actuator` or `logger`) may run "
@@ -400,7 +402,8 @@ std::vector<KeyInfo> judgementKeys() {
           "controller: [3], actuator: [3], logger: [0]}}` to keep the logger off the loops' cores on a "
           "machine with cores to spare (docs/performance.md, \"A real machine\"). A CPU the machine does "
           "not have stops the process at start (exit 2, naming the key and the machine's CPUs); "
-          "`timing.loops.NAME.scheduler` shows the CPUs a loop ran on (`fifo:50 cpus 3`).",
+          "`timing.loops.NAME.scheduler` shows the CPUs a loop ran on (`fifo:50 cpus 3`). An external "
+          "controller is pinned by the launcher before its program starts.",
           {0.0, 1023.0, false, "", ""}),
       row("realtime.max_input_age", "number > 0", "`0.005`",
           "realtime: the controller never acts on a position older than this [s], the actuator never "

@@ -12,6 +12,7 @@
 #include "config/scenario_lcm.hpp"
 #include "controller/gain_report.hpp"
 #include "logger/answer_times.hpp"
+#include "logger/arrival_timing.hpp"
 #include "logger/error_line.hpp"
 #include "logger/event_log.hpp"
 #include "logger/metrics_lcm.hpp"
@@ -99,6 +100,9 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const double plant_silence_limit = 4.0 * s.lockstep.stall_timeout;
   const double plant_start_limit = 6.0 * s.lockstep.stall_timeout;
   AnswerTimes answers(answerersOf(s), s.supervision.slow_answer);
+  // An external controller in realtime: its loop timed from its commands.
+  const bool external_loop = s.controller.type == "external" && s.mode == config::Mode::kRealtime;
+  ArrivalTiming command_arrivals(s.tickPeriod());
   const auto sinceStart = [wall_start](Clock::time_point t) {
     return std::chrono::duration<double>(t - wall_start).count();
   };
@@ -135,6 +139,8 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
           [&, channel](const Msg& m) {
             if (m.header.publisher == "plant") end.plantHeard(Clock::now());
             answers.arrived(channel, m.header.tick, sinceStart(Clock::now()));
+            if (external_loop && channel == transport::kControlCommand)
+              command_arrivals.arrived(m.header.tick, sinceStart(Clock::now()));
             observe(metrics, m);
             confirmation.record(channel, m.header.tick, metrics.lastTick());
           },
@@ -243,6 +249,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   facts.missing_records = gaps.missing(facts.final_status);
   facts.not_recorded = record_filter.notRecorded();
   facts.answers = answers.summary();
+  if (external_loop) facts.external_controller_loop = command_arrivals.loopJson();
 
   if (gains.sampled.verdict.empty()) gains.sampled = controller::checkSampledData(s);
   const auto summary = makeSummary(s, metrics.summary(), gains, facts);

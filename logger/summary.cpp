@@ -1,5 +1,6 @@
 #include "logger/summary.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "controller/gain_report_json.hpp"
@@ -232,6 +233,19 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     processes[name] = {
         {"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message}, {"channels", channels}};
   }
+  constexpr const char* kCommandChannel = "CONTROL_COMMAND";  // transport/channels.hpp's, a layer down
+  // A program from outside reports no counts of its own: what it published
+  // is what reached its receivers -- the most any of them received.
+  if (s.controller.type == "external" && messages.contains(kCommandChannel) &&
+      messages[kCommandChannel]["published"].get<long long>() == 0) {
+    long long heard = 0;
+    for (const auto& [name, p] : processes.items())
+      if (p["channels"].contains(kCommandChannel))
+        heard = std::max(heard, p["channels"][kCommandChannel]["received"].get<long long>());
+    messages[kCommandChannel]["published"] = heard;
+    messages[kCommandChannel]["published_counted_by"] =
+        "its receivers (a program from outside reports no counts): the most any of them received";
+  }
   if (s.mode == config::Mode::kRealtime) {
     json loops = json::object();
     json stale = json::object();
@@ -256,6 +270,8 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
         stale[name]["torque_zeroed"] = l.torque_zeroed;
       }
     }
+    if (!f.external_controller_loop.is_null() && !loops.contains("controller"))
+      loops["controller"] = f.external_controller_loop;
     j["timing"]["loops"] = loops;
     messages["stale"] = stale;
   }

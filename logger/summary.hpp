@@ -31,6 +31,9 @@ struct RunFacts {
   std::map<std::string, std::map<std::string, long long>> not_recorded;
   /// How long the controller and the actuator took to answer (logger/answer_times.hpp).
   nlohmann::json answers;
+  /// Realtime, external controller: its loop as its commands' arrivals show
+  /// it (logger/arrival_timing.hpp); null otherwise.
+  nlohmann::json external_controller_loop;
 };
 
 /// Makes `metrics` watch the joints' rates against the URDF's <limit

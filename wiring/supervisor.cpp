@@ -1,6 +1,7 @@
 #include "wiring/supervisor.hpp"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -25,6 +26,66 @@ std::string ChildExit::describe() const {
 
 Supervisor::~Supervisor() {
   if (anyRunning()) stopAll(2.0);
+}
+
+namespace {
+
+// In the child, before exec: the realtime scheduling of a program from
+// outside (ChildSpec::fifo_priority, cpus). Only what is safe after fork:
+// system calls and fprintf to the child's own log.
+void enterScheduling(const ChildSpec& spec) {
+  if (!spec.cpus.empty()) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    for (const int c : spec.cpus)
+      if (c >= 0 && c < CPU_SETSIZE) CPU_SET(c, &set);
+    if (sched_setaffinity(0, sizeof set, &set) != 0)
+      std::fprintf(stderr,
+                   "lagrange run: warning: realtime.cpus.%s: the kernel refused these CPUs (%s); running "
+                   "where the scheduler puts it\n",
+                   spec.name.c_str(), std::strerror(errno));
+  }
+  if (spec.fifo_priority > 0) {
+    sched_param param{};
+    param.sched_priority = spec.fifo_priority;
+    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0)
+      std::fprintf(
+          stderr,
+          "lagrange run: warning: SCHED_FIFO priority %d (realtime.priority) is not allowed here (%s; "
+          "needs root or CAP_SYS_NICE); the %s runs under the normal scheduler\n",
+          spec.fifo_priority, std::strerror(errno), spec.name.c_str());
+    else
+      std::fprintf(stderr, "lagrange run: the %s runs under SCHED_FIFO priority %d (realtime.priority)\n",
+                   spec.name.c_str(), spec.fifo_priority);
+  }
+}
+
+}  // namespace
+
+std::string schedulerOf(pid_t pid) {
+  sched_param param{};
+  const int policy = sched_getscheduler(pid);
+  if (policy < 0) return "unknown";
+  std::string out = "other";
+  if (policy == SCHED_FIFO && sched_getparam(pid, &param) == 0)
+    out = "fifo:" + std::to_string(param.sched_priority);
+  cpu_set_t mine, its;
+  CPU_ZERO(&mine);
+  CPU_ZERO(&its);
+  if (sched_getaffinity(0, sizeof mine, &mine) == 0 && sched_getaffinity(pid, sizeof its, &its) == 0 &&
+      !CPU_EQUAL(&mine, &its)) {
+    std::string list;
+    for (int c = 0; c < CPU_SETSIZE; ++c)
+      if (CPU_ISSET(c, &its)) list += (list.empty() ? "" : ",") + std::to_string(c);
+    out += " cpus " + list;
+  }
+  return out;
+}
+
+pid_t Supervisor::pidOf(const std::string& name) const {
+  for (const auto& c : children_)
+    if (c.spec.name == name && c.running) return c.pid;
+  return -1;
 }
 
 void Supervisor::start(const ChildSpec& spec) {
@@ -53,6 +114,7 @@ void Supervisor::start(const ChildSpec& spec) {
     const int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, STDIN_FILENO);
     std::signal(SIGINT, SIG_IGN);  // Ctrl-C reaches the launcher, which stops us with SIGTERM
+    enterScheduling(spec);
     for (const auto& e : spec.env) putenv(const_cast<char*>(e.c_str()));  // the child's own copy of spec
     if (!spec.working_directory.empty() && chdir(spec.working_directory.c_str()) != 0) {
       std::fprintf(stderr, "cannot enter %s: %s\n", spec.working_directory.c_str(), std::strerror(errno));

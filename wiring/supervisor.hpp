@@ -18,7 +18,18 @@ struct ChildSpec {
   std::string log_path;           ///< stdout and stderr go here
   int pass_fd = -1;               ///< if >= 0, handed to the child as its file descriptor 3
   bool append_log = false;        ///< append to log_path (a restart) instead of truncating it
+  /// A program from outside in a realtime run (issue #46): the scheduling the
+  /// built-in processes give themselves, set in the child before its exec
+  /// (exec keeps both): SCHED_FIFO at this priority (0: the normal
+  /// scheduler) and these CPUs (empty: any). What the kernel refuses is
+  /// said in its log, and the program runs as it can.
+  int fifo_priority = 0;
+  std::vector<int> cpus;
 };
+
+/// How `pid` is scheduled, as the loops report it: "fifo:50", "other", with
+/// " cpus 1" when it is pinned to fewer than every CPU.
+std::string schedulerOf(pid_t pid);
 
 struct ChildExit {
   std::string name;
@@ -48,6 +59,8 @@ class Supervisor {
   std::vector<ChildExit> reap();
 
   bool anyRunning() const;
+  /// The running child's pid, or -1.
+  pid_t pidOf(const std::string& name) const;
 
   /// SIGTERM to every running child, then SIGKILL after `grace_seconds`.
   /// Returns how they exited.

@@ -150,7 +150,8 @@ std::string writeGains(const config::Scenario& scenario, const controller::GainR
 // `interrupted` the logger wrote when it was stopped: a sweep or compare
 // reading the summary must not take a crash for a Ctrl-C to run again).
 void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
-                      const nlohmann::json& supervision, const nlohmann::json& failure) {
+                      const nlohmann::json& supervision, const nlohmann::json& failure,
+                      const std::string& external_scheduler) {
   const fs::path path = fs::path(out_dir) / "summary.json";
   nlohmann::json j;
   try {
@@ -160,6 +161,11 @@ void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
   }
   j["timing"]["cpu_seconds"] = cpu;
   j["supervision"] = supervision;
+  // The logger timed the external controller's loop from its commands; how
+  // it was scheduled only the launcher can see.
+  if (!external_scheduler.empty() && j["timing"].contains("loops") &&
+      j["timing"]["loops"].contains("controller"))
+    j["timing"]["loops"]["controller"]["scheduler"] = external_scheduler;
   if (!failure.is_null()) {
     j["status"] = "failed";
     j["failure"] = failure;
@@ -427,6 +433,21 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                       "LAGRANGE_CONFIG_JSON=" + (fs::path(out_dir) / "config.resolved.json").string(),
                       "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
                       "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
+    // In realtime a loop like the built-in ones: their priority and CPUs,
+    // set before its exec (it cannot be trusted to ask for them itself).
+    if (scenario.mode == config::Mode::kRealtime) {
+      controller.fifo_priority = scenario.realtime.priority;
+      if (const auto it = scenario.realtime.cpus.find("controller"); it != scenario.realtime.cpus.end()) {
+        try {
+          transport::checkCpus(it->second, "realtime.cpus.controller");
+        } catch (const std::exception& e) {
+          close(progress_pipe[0]);
+          close(progress_pipe[1]);
+          return failWith("lagrange run", e);  // exit 2 before anything starts
+        }
+        controller.cpus = it->second;
+      }
+    }
   }
   std::vector<wiring::ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};
   for (const auto& s : specs)
@@ -442,8 +463,18 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // STATUS can never hang a run.
   constexpr double kFollowSeconds = 10.0;
   std::optional<std::chrono::steady_clock::time_point> plant_done;
+  // How the external controller was scheduled (summary.json
+  // timing.loops.controller.scheduler): looked at once it has answered, long
+  // after its exec.
+  std::string external_scheduler;
+  const bool external_loop = scenario.controller.type == "external" &&
+                             scenario.mode == config::Mode::kRealtime && runsHere(opt, "controller");
   while (supervisor.anyRunning()) {
-    if (const auto latest = progress_reader.wait(50)) progress.update(latest->first, latest->second);
+    const auto latest = progress_reader.wait(50);
+    if (latest) progress.update(latest->first, latest->second);
+    if (latest && latest->first > 0.0 && external_loop && external_scheduler.empty())
+      if (const pid_t pid = supervisor.pidOf("controller"); pid > 0)
+        external_scheduler = wiring::schedulerOf(pid);
     for (const std::string& notice : progress_reader.takeNotices()) {
       progress.finish();  // the line under the bar, which is drawn again below it
       std::cerr << "lagrange run: " << notice << "\n";
@@ -511,7 +542,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   close(progress_pipe[0]);
   if ((exit_code == 0 || !failure.is_null()) && runsHere(opt, "logger")) {
     try {
-      addLauncherFacts(out_dir, cpu, supervision, failure);
+      addLauncherFacts(out_dir, cpu, supervision, failure, external_scheduler);
     } catch (const std::exception& e) {
       const int code = failWith("lagrange run", e);
       if (exit_code == 0) exit_code = code;
