@@ -11,28 +11,23 @@
 namespace lagrange::logger {
 
 inline constexpr const char* kLoggerErrorPrefix = "error: ";
+/// A line for the launcher to print as it comes ("notice: WHAT"): a slow
+/// answer while it lasts (logger/answer_times.hpp).
+inline constexpr const char* kLoggerNoticePrefix = "notice: ";
 
-/// Best effort, like the progress lines: never blocks, never throws.
-inline void sendErrorLine(int fd, const std::string& what) {
+/// One line PREFIX + WHAT on the pipe; best effort, like the progress lines:
+/// never blocks, never throws.
+inline void sendPrefixedLine(int fd, const char* prefix, const std::string& what) {
   if (fd < 0) return;
-  std::string line = kLoggerErrorPrefix + what;
+  std::string line = prefix + what;
   for (char& c : line)
     if (c == '\n') c = ' ';
   line += '\n';
   [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
 }
-
-/// A line for the launcher to print as it comes ("notice: WHAT"): a slow
-/// answer while it lasts (logger/answer_times.hpp). Best effort likewise.
-inline constexpr const char* kLoggerNoticePrefix = "notice: ";
-
+inline void sendErrorLine(int fd, const std::string& what) { sendPrefixedLine(fd, kLoggerErrorPrefix, what); }
 inline void sendNoticeLine(int fd, const std::string& what) {
-  if (fd < 0) return;
-  std::string line = kLoggerNoticePrefix + what;
-  for (char& c : line)
-    if (c == '\n') c = ' ';
-  line += '\n';
-  [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
+  sendPrefixedLine(fd, kLoggerNoticePrefix, what);
 }
 
 }  // namespace lagrange::logger

@@ -35,6 +35,35 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Runs the default scenario with `options` into `dir` and, once its log
+// holds `log_bytes`, freezes the controller (SIGSTOP) for `freeze`.
+struct FrozenRun {
+  RunResult result;
+  bool frozen = false;
+};
+FrozenRun runFreezingTheController(const std::string& dir, const std::string& options, uintmax_t log_bytes,
+                                   std::chrono::milliseconds freeze) {
+  std::atomic<bool> done{false};
+  FrozenRun out;
+  std::thread runner([&] {
+    out.result = runScenario(kConfigs + "/rigid_2dof.yaml", dir, options);
+    done = true;
+  });
+  for (int i = 0; i < 2000 && !out.frozen && !done; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < log_bytes)
+      continue;
+    const pid_t pid = findProcess("lagrange-controller", dir);
+    if (pid > 0 && kill(pid, SIGSTOP) == 0) {
+      std::this_thread::sleep_for(freeze);
+      kill(pid, SIGCONT);
+      out.frozen = true;
+    }
+  }
+  runner.join();
+  return out;
+}
+
 // Runs the default scenario for a long time and, once its log holds 100 kB,
 // sends `sig` to the process whose argv[0] ends with `process`.
 // A dead process: the launcher names it and its signal, stops the rest and
@@ -73,24 +102,8 @@ TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
 // summary.json has each answerer's median and worst.
 TEST(Failure, ASlowAnswerIsSaidWhileItLastsAndSummarised) {
   const std::string dir = freshDir("slow-answer");
-  std::atomic<bool> done{false};
-  RunResult r;
-  std::thread runner([&] {
-    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir, "--set duration=3 --set supervision.slow_answer=0.3");
-    done = true;
-  });
-  bool frozen = false;
-  for (int i = 0; i < 400 && !frozen && !done; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 200000) continue;
-    const pid_t pid = findProcess("lagrange-controller", dir);
-    if (pid > 0 && kill(pid, SIGSTOP) == 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(1200));
-      kill(pid, SIGCONT);
-      frozen = true;
-    }
-  }
-  runner.join();
+  const auto [r, frozen] = runFreezingTheController(dir, "--set duration=3 --set supervision.slow_answer=0.3",
+                                                    200000, std::chrono::milliseconds(1200));
   ASSERT_TRUE(frozen) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("lagrange run: the controller (lagrange-controller) has not answered tick "),
@@ -114,32 +127,17 @@ class StaleTorquePolicy : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(StaleTorquePolicy, TriggersWhenTheControllerStopsAndTheArmRecovers) {
   const std::string dir = freshDir("stale");
-  std::atomic<bool> done{false};
-  RunResult r;
   // Under `zero` every scheduling hiccup longer than max_torque_age (default
   // 2 ms) drops the arm for a period; on a loaded machine those kicks kept it
   // from settling after the freeze (final error 1e-3..2e-2 in some runs).
   // Fresh for 20 ms, a torque rides out hiccups while the 300 ms freeze still
   // zeroes at least 280 periods.
   const std::string age = GetParam() == "zero" ? " --set realtime.max_torque_age=20" : "";
-  std::thread runner([&] {
-    r = runScenario(kConfigs + "/rigid_2dof.yaml", dir,
-                    "-q --mode realtime --set duration=5 --set realtime.stale_torque=" + GetParam() +
-                        " --set realtime.hold_periods=100" + age);
-    done = true;
-  });
-  bool frozen = false;
-  for (int i = 0; i < 200 && !frozen && !done; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (!fs::exists(fs::path(dir) / "run.lcm") || fs::file_size(fs::path(dir) / "run.lcm") < 600000) continue;
-    const pid_t pid = findProcess("lagrange-controller", dir);
-    if (pid > 0 && kill(pid, SIGSTOP) == 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
-      kill(pid, SIGCONT);
-      frozen = true;
-    }
-  }
-  runner.join();
+  const auto [r, frozen] = runFreezingTheController(
+      dir,
+      "-q --mode realtime --set duration=5 --set realtime.stale_torque=" + GetParam() +
+          " --set realtime.hold_periods=100" + age,
+      600000, std::chrono::milliseconds(300));
   ASSERT_TRUE(frozen);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir);
