@@ -393,8 +393,9 @@ std::vector<KeyInfo> judgementKeys() {
           "with mlockall, the stack and a heap reserve faulted in before the loops); 0 for the normal "
           "scheduler. Without root or CAP_SYS_NICE the processes warn and "
           "run under the normal scheduler; `timing.loops.NAME.scheduler` says which. An external "
-          "controller gets the same from the launcher, set before its program starts (its log says "
-          "whether the kernel allowed it; memory locking is the program's own to ask for).",
+          "controller gets SCHED_FIFO one priority below this from the launcher, set before its program "
+          "starts (FIFO from its first instruction, its start-up must not hold off the built-in loops; its "
+          "log says what was set; memory locking is the program's own to ask for).",
           {0.0, 99.0, false, "", ""}),
       row("realtime.cpus.PROCESS", "list of CPU numbers 0–1023", "none: where the scheduler puts it",
           "realtime: the CPUs the process PROCESS (`plant`, `controller`, `actuator` or `logger`) may run "

@@ -52,19 +52,34 @@ nlohmann::ordered_json jsonOfYamlNode(const YAML::Node& node) {
   return nullptr;
 }
 
-}  // namespace
-
-std::string yamlToJson(const std::string& yaml_text) {
+nlohmann::ordered_json parsedYaml(const std::string& yaml_text) {
   try {
-    // Bytes that are not UTF-8 (a URDF comment in Latin-1) become U+FFFD, not an exception.
-    return jsonOfYamlNode(YAML::Load(yaml_text))
-               .dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) +
-           "\n";
+    return jsonOfYamlNode(YAML::Load(yaml_text));
   } catch (const YAML::Exception& e) {
     throw ConfigError(std::string("the scenario is not YAML: ") + e.what());
   }
 }
 
-std::string toJson(const Scenario& scenario) { return yamlToJson(toYaml(scenario)); }
+// Bytes that are not UTF-8 (a URDF comment in Latin-1) become U+FFFD, not an exception.
+std::string dumped(const nlohmann::ordered_json& j) {
+  return j.dump(1, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace
+
+std::string yamlToJson(const std::string& yaml_text) { return dumped(parsedYaml(yaml_text)); }
+
+std::string toJson(const Scenario& scenario) {
+  nlohmann::ordered_json j = parsedYaml(toYaml(scenario));
+  // The emitter writes a string that reads as a number ("20", an argument;
+  // a scenario named 2026) unquoted, and YAML would read it back as one: the
+  // strings the scenario holds go in as the strings they are.
+  if (j.is_object()) {
+    if (j.contains("name")) j["name"] = scenario.name;
+    if (j.contains("controller") && j["controller"].is_object() && j["controller"].contains("command"))
+      j["controller"]["command"] = scenario.controller.command;
+  }
+  return dumped(j);
+}
 
 }  // namespace lagrange::config

@@ -11,14 +11,6 @@ namespace {
 // logger without bound (the oldest are dropped, never said slow).
 constexpr size_t kMaxWaiting = 4096;
 
-double median(std::vector<double> v) {
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-  if (v.size() % 2 == 1) return v[mid];
-  const double upper = v[mid];
-  return 0.5 * (*std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)) + upper);
-}
-
 }  // namespace
 
 AnswerTimes::AnswerTimes(std::vector<Answerer> answerers, double threshold) : threshold_(threshold) {
@@ -41,7 +33,7 @@ void AnswerTimes::arrived(const std::string& channel, int64_t tick, double t) {
       const auto it = r.asked.find(tick);
       if (it == r.asked.end()) continue;  // a copy, or an answer to nothing heard
       const double took = t - it->second;
-      r.times.push_back(took);
+      r.times.add(took);
       if (took > r.worst || r.worst_tick < 0) {
         r.worst = took;
         r.worst_tick = tick;
@@ -73,10 +65,11 @@ nlohmann::json AnswerTimes::summary() const {
   for (const Record& r : records_) {
     nlohmann::json a;
     a["program"] = r.who.program;
-    a["answered"] = r.times.size();
-    a["median"] = r.times.empty() ? nlohmann::json() : nlohmann::json(median(r.times));
-    a["worst"] = r.times.empty() ? nlohmann::json() : nlohmann::json(r.worst);
-    a["worst_tick"] = r.times.empty() ? nlohmann::json() : nlohmann::json(r.worst_tick);
+    const bool none = r.times.count() == 0;
+    a["answered"] = r.times.count();
+    a["median"] = none ? nlohmann::json() : nlohmann::json(r.times.percentiles().p50);
+    a["worst"] = none ? nlohmann::json() : nlohmann::json(r.worst);
+    a["worst_tick"] = none ? nlohmann::json() : nlohmann::json(r.worst_tick);
     a["slow"] = r.slow;
     j[r.who.name] = std::move(a);
   }

@@ -23,9 +23,11 @@ class ArrivalTiming {
   /// count once.
   void arrived(int64_t tick, double t);
   /// The loop entry of summary.json (docs/summary.md, timing.loops): period,
-  /// cycles, achieved_rate, jitter (|interval - period|), deadline_misses
-  /// (an interval over 1.5 periods: a cycle missed), on_time_fraction,
-  /// longest_miss_run, measured_by; null when fewer than two arrived.
+  /// cycles (messages heard), achieved_rate, jitter (|interval - period|),
+  /// deadline_misses (the periods that passed without a message: an interval
+  /// of N periods, rounded, missed N - 1), on_time_fraction (cycles / (cycles
+  /// + misses)), longest_miss_run (missed periods in a row), measured_by;
+  /// null when fewer than two arrived.
   nlohmann::json loopJson() const;
 
  private:

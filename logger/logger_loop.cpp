@@ -192,7 +192,11 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
       }
       next_status = now + std::chrono::milliseconds(100);
     }
-    for (const AnswerTimes::Slow& slow : answers.newlySlow(sinceStart(now))) {
+    // While the plant runs: after its last tick nothing more is asked, and
+    // an answer it no longer needs is not late.
+    const bool plant_running = metrics.newestTick() < s.lastTick();
+    for (const AnswerTimes::Slow& slow :
+         plant_running ? answers.newlySlow(sinceStart(now)) : std::vector<AnswerTimes::Slow>{}) {
       const std::string line =
           fmt::format("the {} ({}) has not answered tick {} for {:.1f} s (supervision.slow_answer = {:g} s)",
                       slow.name, slow.program, slow.tick, slow.waited, s.supervision.slow_answer);

@@ -35,6 +35,12 @@ class PlantStopped : public lagrange::RuntimeFault {
   using lagrange::RuntimeFault::RuntimeFault;
 };
 
+/// How every PlantStopped message begins: what the launcher looks for in a
+/// dead plant's log to call the run `diverged` (as in process) rather than
+/// `failed`.
+inline constexpr const char* kPlantStoppedMarks[] = {"plant: the simulation diverged ",
+                                                     "plant: stopped at t = "};
+
 /// No artificial limit on the state: the global results are about large
 /// errors, and converging runs pass through fast motion. A run is stopped only
 ///  - when the simulation fails: a non-finite body state, or a body turning by

@@ -44,6 +44,9 @@ void enterScheduling(const ChildSpec& spec) {
                    "lagrange run: warning: realtime.cpus.%s: the kernel refused these CPUs (%s); running "
                    "where the scheduler puts it\n",
                    spec.name.c_str(), std::strerror(errno));
+    else
+      std::fprintf(stderr, "lagrange run: the %s runs on the CPUs of realtime.cpus.%s\n", spec.name.c_str(),
+                   spec.name.c_str());
   }
   if (spec.fifo_priority > 0) {
     sched_param param{};
@@ -51,11 +54,13 @@ void enterScheduling(const ChildSpec& spec) {
     if (sched_setscheduler(0, SCHED_FIFO, &param) != 0)
       std::fprintf(
           stderr,
-          "lagrange run: warning: SCHED_FIFO priority %d (realtime.priority) is not allowed here (%s; "
-          "needs root or CAP_SYS_NICE); the %s runs under the normal scheduler\n",
+          "lagrange run: warning: SCHED_FIFO priority %d (one below realtime.priority) is not allowed "
+          "here (%s; needs root or CAP_SYS_NICE); the %s runs under the normal scheduler\n",
           spec.fifo_priority, std::strerror(errno), spec.name.c_str());
     else
-      std::fprintf(stderr, "lagrange run: the %s runs under SCHED_FIFO priority %d (realtime.priority)\n",
+      std::fprintf(stderr,
+                   "lagrange run: the %s runs under SCHED_FIFO priority %d (one below realtime.priority, the "
+                   "built-in loops')\n",
                    spec.name.c_str(), spec.fifo_priority);
   }
 }
@@ -74,9 +79,13 @@ std::string schedulerOf(pid_t pid) {
   CPU_ZERO(&its);
   if (sched_getaffinity(0, sizeof mine, &mine) == 0 && sched_getaffinity(pid, sizeof its, &its) == 0 &&
       !CPU_EQUAL(&mine, &its)) {
-    std::string list;
-    for (int c = 0; c < CPU_SETSIZE; ++c)
-      if (CPU_ISSET(c, &its)) list += (list.empty() ? "" : ",") + std::to_string(c);
+    std::string list;  // "0,2-3", as the loops write theirs (transport/rate_loop.cpp)
+    for (int c = 0; c < CPU_SETSIZE; ++c) {
+      if (!CPU_ISSET(c, &its) || (c > 0 && CPU_ISSET(c - 1, &its))) continue;
+      int last = c;
+      while (last + 1 < CPU_SETSIZE && CPU_ISSET(last + 1, &its)) ++last;
+      list += (list.empty() ? "" : ",") + std::to_string(c) + (last > c ? "-" + std::to_string(last) : "");
+    }
     out += " cpus " + list;
   }
   return out;

@@ -141,22 +141,25 @@ class Run:
 
 def load(run_dir, numpy=None, verify=True):
     """Reads a run directory (OUT of `lagrange run`), or its run.lcm, as the
-    lagrange subcommands take either: run.lcm into per-channel columns,
+    lagrange subcommands take either (another log file alone: its events
+    only, no summary or scenario beside it): run.lcm into per-channel columns,
     summary.json (None if absent), config.resolved.yaml as text
     (`scenario_yaml`) and config.resolved.json as a dict (`scenario`).
     numpy: None (use it when installed), True or False. verify: leave out
     (and count in `run.corrupt`) messages whose checksum does not match, as
     the project's own readers do; False skips the check (it is pure Python,
     about a second per 30 000 messages)."""
-    if os.path.isfile(str(run_dir)):  # the log itself: its folder holds the rest
+    if os.path.isfile(str(run_dir)):  # the log itself
         path = str(run_dir)
         run = Run(os.path.dirname(os.path.abspath(path)))
-        return _load(run, path, numpy, verify)
+        # A run's folder holds its summary and scenario beside run.lcm; beside
+        # another log (a stock lcm-logger's) they would be some other run's.
+        return _load(run, path, numpy, verify, with_outputs=os.path.basename(path) == "run.lcm")
     run = Run(run_dir)
     return _load(run, os.path.join(run.dir, "run.lcm"), numpy, verify)
 
 
-def _load(run, path, numpy, verify):
+def _load(run, path, numpy, verify, with_outputs=True):
     if not os.path.exists(path):
         raise logfile.LogError("%s has no run.lcm; expected the output directory of a lagrange run (--out)" % run.dir)
     if numpy is None:
@@ -194,6 +197,8 @@ def _load(run, path, numpy, verify):
             run.channels[channel] = _columns(once, numpy)
         else:
             run.messages[channel] = messages
+    if not with_outputs:
+        return run
     summary = os.path.join(run.dir, "summary.json")
     if os.path.exists(summary):
         with open(summary, "r", encoding="utf-8") as f:

@@ -114,7 +114,7 @@ TEST(Compare, AnExternalRowThatCrashesIsAFailedRowWithItsReasonAndExitsOne) {
   const RunResult r =
       lagrange("compare " + quote(kConfigs + "/rigid_2dof.yaml") + " -o " + quote(out) +
                " --set duration=0.2 --set 'compare={controllers: {theorem1: {}, crash: {type: "
-               "external, command: [sh, -c, \"echo about to fail; exit 7\"]}}}'");
+               "external, command: [sh, -c, \"echo about to fail; sleep 1; exit 7\"]}}}'");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("lagrange compare: crash failed: process 'controller' exited with code 7; see "),
             std::string::npos)

@@ -254,12 +254,17 @@ TEST(ExternalController, APythonPdRunsInRealtimeAndItsRunReplays) {
   // what it published counted by its receivers.
   const auto& loop = summary["timing"]["loops"]["controller"];
   ASSERT_TRUE(loop.is_object()) << summary["timing"].dump();
-  EXPECT_EQ(loop["scheduler"], summary["timing"]["loops"]["actuator"]["scheduler"]) << loop.dump();
-  EXPECT_GE(loop["cycles"].get<long long>(), 2500) << loop.dump();
-  EXPECT_NEAR(loop["achieved_rate"].get<double>(), 1000.0, 100.0) << loop.dump();
+  // One priority below the built-in loops (or, as theirs, the normal scheduler).
+  const std::string actuator = summary["timing"]["loops"]["actuator"]["scheduler"];
+  EXPECT_EQ(loop["scheduler"], actuator.rfind("fifo:", 0) == 0
+                                   ? "fifo:" + std::to_string(std::stoi(actuator.substr(5)) - 1)
+                                   : actuator)
+      << loop.dump();
+  EXPECT_GE(loop["cycles"].get<long long>(), 2000) << loop.dump();  // of 3001: it answered, period by period
+  EXPECT_NEAR(loop["achieved_rate"].get<double>(), 1000.0, 200.0) << loop.dump();
   EXPECT_NE(loop["measured_by"].get<std::string>().find("arrivals of CONTROL_COMMAND"), std::string::npos);
-  EXPECT_GE(summary["messages"]["CONTROL_COMMAND"]["published"].get<long long>(), 2500);
-  EXPECT_GE(summary["answers"]["controller"]["answered"].get<long long>(), 2500) << summary["answers"].dump();
+  EXPECT_GE(summary["messages"]["CONTROL_COMMAND"]["published"].get<long long>(), 2000);
+  EXPECT_GE(summary["answers"]["controller"]["answered"].get<long long>(), 2000) << summary["answers"].dump();
   expectLatenciesNeverNegative(out);
   expectThePdLaw(out + "/run.lcm");
   const RunResult replay = lagrange("replay " + quote(out + "/run.lcm") + pythonReplayCommand());

@@ -78,6 +78,24 @@ TEST(Failure, KilledControllerIsNamedAndTheLogIsKept) {
   EXPECT_GT(readTruth(dir + "/run.lcm").size(), 10u);  // the log is readable
 }
 
+// The plant that stops the simulation (here plant.max_rate) ends its process
+// with exit 1; the run is then `diverged`, as in process, with the plant's
+// reason -- not `failed`, which a sweep or compare reports as an error
+// (found in review: a diverging external controller's rows were failed).
+TEST(Failure, APlantThatStopsTheSimulationMakesTheRunDivergedWithItsReason) {
+  const std::string dir = freshDir("lockstep-diverged");
+  const RunResult r =
+      runScenario(kConfigs + "/rigid_2dof.yaml", dir, "-q --set duration=1 --set plant.max_rate=0.5");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto j = readSummary(dir);
+  EXPECT_EQ(j["status"], "diverged") << j.dump();
+  EXPECT_EQ(j["failure"]["process"], "plant");
+  EXPECT_TRUE(j["failure"]["diverged"].get<bool>());
+  EXPECT_EQ(j["failure"]["reason"].get<std::string>().rfind("plant: stopped at t = ", 0), 0u)
+      << j["failure"].dump();
+  EXPECT_NE(j["failure"]["reason"].get<std::string>().find("above plant.max_rate = 0.5"), std::string::npos);
+}
+
 // Ctrl-C: every process stops cleanly, the log and the summary are kept.
 TEST(Failure, InterruptStopsEveryProcessAndKeepsTheOutputs) {
   const std::string dir = freshDir("interrupt");

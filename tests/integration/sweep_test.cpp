@@ -364,7 +364,7 @@ TEST(Sweep, AnExternalRowThatFailsIsAFailedRowWithItsReason) {
   fs::create_directories(dir);
   const std::string sweep = dir + "/sweep.yaml";
   std::ofstream(sweep) << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
-                       << "set: {duration: 0.2, controller: {type: external, command: [sh, -c, 'exit 5']}}\n"
+                       << "set: {duration: 0.2, controller: {type: external, command: [sh, -c, 'sleep 1; exit 5']}}\n"
                        << "axes:\n  - {key: plant.physics_step, values: [1.0e-4]}\n";
   const std::string out = dir + "/out";
   const RunResult r = lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -j 1");

@@ -45,5 +45,16 @@ TEST(ScenarioJson, EveryShippedScenarioKeepsItsNumbersToTheLastBit) {
   }
 }
 
+// An external controller's arguments "20" and a scenario named 2026 are
+// strings: the emitter writes them unquoted, YAML would read numbers.
+TEST(ScenarioJson, TheScenariosStringsStayStringsThoughTheyReadAsNumbers) {
+  const Scenario s =
+      loadScenario(testing::kConfigs + "/rigid_2dof.yaml",
+                   {"name=\"2026\"", "controller={type: external, command: [sh, -c, \"20\", \"1e3\"]}"});
+  const auto j = nlohmann::json::parse(toJson(s));
+  EXPECT_EQ(j["name"], "2026");
+  EXPECT_EQ(j["controller"]["command"], nlohmann::json::array({"sh", "-c", "20", "1e3"}));
+}
+
 }  // namespace
 }  // namespace lagrange::config

@@ -161,7 +161,7 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
   n.status = j.at("status").get<std::string>();
   // A process that died: the launcher says which in summary.json's
   // `failure`; an older or killed launcher left only its exit code.
-  if (const auto f = j.find("failure"); f != j.end() && f->is_object()) {
+  if (const auto f = j.find("failure"); f != j.end() && f->is_object() && n.status == "failed") {
     n.failure = "process '" + f->value("process", std::string("?")) + "' " + f->value("how", std::string()) +
                 "; see " + f->value("log", run.dir);
   } else if (exit_status != kExitOk && n.status == "interrupted") {

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -20,6 +21,7 @@
 #include "controller/gain_report.hpp"
 #include "controller/gain_report_json.hpp"
 #include "logs/out_dir_lock.hpp"
+#include "plant/plant_sim.hpp"
 #include "plant/scenario_plant.hpp"
 #include "runtime/key_file.hpp"
 #include "tools/command_error.hpp"
@@ -145,11 +147,15 @@ std::string writeGains(const config::Scenario& scenario, const controller::GainR
 
 // The logger wrote summary.json before the others were reaped; the launcher
 // adds what only it knows: each process's CPU time, the processes that died
-// and were restarted (supervision), and, when it ended the run because a
-// process died, why (`failure`; the status is then `failed`, not the
-// `interrupted` the logger wrote when it was stopped: a sweep or compare
-// reading the summary must not take a crash for a Ctrl-C to run again).
-void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
+// and were restarted (supervision), how an external controller was
+// scheduled, and, when it ended the run because a process died, why
+// (`failure`). The status then says what happened: `diverged` when the plant
+// stopped the simulation (as in process), `failed` for any other death --
+// not the `interrupted` the logger wrote when it was stopped, which a sweep
+// would run again -- and `completed` stays when every tick was recorded.
+// Only the summary of this run (its run_id): a logger that died before
+// writing leaves an older run's summary.json in OUT, which is not touched.
+void addLauncherFacts(const std::string& out_dir, int64_t run_id, const nlohmann::json& cpu,
                       const nlohmann::json& supervision, const nlohmann::json& failure,
                       const std::string& external_scheduler) {
   const fs::path path = fs::path(out_dir) / "summary.json";
@@ -159,6 +165,7 @@ void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
   } catch (const std::exception&) {
     return;  // printResult reports the unreadable summary
   }
+  if (!j.is_object() || j.value("run_id", int64_t{0}) != run_id) return;
   j["timing"]["cpu_seconds"] = cpu;
   j["supervision"] = supervision;
   // The logger timed the external controller's loop from its commands; how
@@ -167,7 +174,8 @@ void addLauncherFacts(const std::string& out_dir, const nlohmann::json& cpu,
       j["timing"]["loops"].contains("controller"))
     j["timing"]["loops"]["controller"]["scheduler"] = external_scheduler;
   if (!failure.is_null()) {
-    j["status"] = "failed";
+    if (j.value("status", std::string()) != "completed")
+      j["status"] = failure.value("diverged", false) ? "diverged" : "failed";
     j["failure"] = failure;
   }
   util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
@@ -183,13 +191,24 @@ std::vector<std::string> logTail(const std::string& path, int lines) {
 }
 
 // summary.json's `failure`: a process's end, with the last 5 lines of its
-// log each cut at 1000 bytes (a program from outside may write anything).
+// log each cut at 1000 bytes (a program from outside may write anything);
+// for the plant that stopped the simulation (plant::PlantStopped: it
+// diverged, or crossed plant.max_rate), `diverged` and the plant's reason.
 nlohmann::json failureRecord(const std::string& process, const std::string& how, const std::string& log,
                              const std::vector<std::string>& tail) {
   std::vector<std::string> last;
   for (size_t i = tail.size() > 5 ? tail.size() - 5 : 0; i < tail.size(); ++i)
     last.push_back(tail[i].size() > 1000 ? tail[i].substr(0, 1000) + "..." : tail[i]);
-  return {{"process", process}, {"how", how}, {"log", log}, {"last_lines", last}};
+  nlohmann::json f = {{"process", process}, {"how", how}, {"log", log}, {"last_lines", last}};
+  if (process == "plant")
+    for (auto line = tail.rbegin(); line != tail.rend(); ++line)
+      for (const char* mark : plant::kPlantStoppedMarks)
+        if (const size_t at = line->find(mark); at != std::string::npos) {
+          f["diverged"] = true;
+          f["reason"] = line->substr(at, 1000);
+          return f;
+        }
+  return f;
 }
 
 void printResult(const std::string& out_dir) {
@@ -433,10 +452,15 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
                       "LAGRANGE_CONFIG_JSON=" + (fs::path(out_dir) / "config.resolved.json").string(),
                       "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
                       "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
-    // In realtime a loop like the built-in ones: their priority and CPUs,
-    // set before its exec (it cannot be trusted to ask for them itself).
+    // In realtime a loop like the built-in ones: SCHED_FIFO and its CPUs,
+    // set before its exec (it cannot be trusted to ask for them itself) --
+    // one priority below the built-in loops, because it is FIFO from its
+    // first instruction: a JVM's or Python's start-up, and every thread it
+    // makes (JIT, GC), must never hold off the plant's and the actuator's
+    // loops of equal priority, which the built-in processes avoid by
+    // entering FIFO only once prepared (runtime/process.hpp).
     if (scenario.mode == config::Mode::kRealtime) {
-      controller.fifo_priority = scenario.realtime.priority;
+      controller.fifo_priority = std::max(0, scenario.realtime.priority - 1);
       if (const auto it = scenario.realtime.cpus.find("controller"); it != scenario.realtime.cpus.end()) {
         try {
           transport::checkCpus(it->second, "realtime.cpus.controller");
@@ -542,7 +566,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   close(progress_pipe[0]);
   if ((exit_code == 0 || !failure.is_null()) && runsHere(opt, "logger")) {
     try {
-      addLauncherFacts(out_dir, cpu, supervision, failure, external_scheduler);
+      addLauncherFacts(out_dir, run_id, cpu, supervision, failure, external_scheduler);
     } catch (const std::exception& e) {
       const int code = failWith("lagrange run", e);
       if (exit_code == 0) exit_code = code;

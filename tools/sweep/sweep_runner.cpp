@@ -129,6 +129,7 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
                                          ? runExternal(row, stop_requested)
                                          : wiring::simulateInProcess(s, nullptr, nullptr, stop_requested);
   if (o.status == "interrupted") return std::nullopt;
+  if (o.status == "failed") return failedRow(row, o.stop_message);  // its numbers are no result
 
   const model::ReferenceSample r0 = model::Reference(s.reference).evaluate(0.0, 1);
   nlohmann::ordered_json j;
@@ -227,10 +228,14 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
                        launcherError(dir / "run.out") + "); see " + dir.string());
   }
   o.status = summary.value("status", std::string("failed"));
-  // Stopped, yet not by this sweep: the launcher ended it (a process died;
-  // summary.json's `failure` says which). A row that failed, not one to run
-  // again on a restart, which would fail the same way.
-  if (o.status == "interrupted") o.status = "failed";
+  const int exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
+  // Stopped by a signal (Ctrl-C, scancel reaching the row's run directly
+  // before this loop saw the shard's stop): run again on a restart. Stopped
+  // by the launcher because a process died (exit 1; `failure` says which):
+  // a row that failed, not one to run again, which would fail the same way.
+  if (o.status == "interrupted")
+    o.status =
+        exit_code == kExitInterrupted || (stop_requested && stop_requested()) ? "interrupted" : "failed";
   const nlohmann::json& t = summary.at("tracking");
   if (!t.at("convergence_time").is_null())
     o.tracking.convergence_time = t.at("convergence_time").get<double>();
@@ -244,8 +249,9 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   // Why a run that did not complete stopped: the plant's last word.
   const nlohmann::json plant = summary.value("/processes/plant"_json_pointer, nlohmann::json::object());
   if (const auto f = summary.find("failure"); f != summary.end() && f->is_object())
-    o.stop_message = "process '" + f->value("process", std::string("?")) + "' " +
-                     f->value("how", std::string()) + "; see " + dir.string();
+    o.stop_message = f->contains("reason") ? f->value("reason", std::string()) + "; see " + dir.string()
+                                           : "process '" + f->value("process", std::string("?")) + "' " +
+                                                 f->value("how", std::string()) + "; see " + dir.string();
   else if (o.status != "completed")
     o.stop_message =
         plant.value("message", std::string()) + launcherError(dir / "run.out") + "; see " + dir.string();
