@@ -63,6 +63,21 @@ TEST_F(Recorded, LockstepAndRealtimeLogsReplayExactly) {
     }
 }
 
+// Issue #46: replay wanted run.lcm where report, export and view take the
+// run's folder; now it takes either, with the same result.
+TEST_F(Recorded, ARunsFolderReplaysAsItsLog) {
+  const std::string log = chainLog();
+  const RunResult by_log = lagrange("replay " + quote(log));
+  const RunResult by_folder = lagrange("replay " + quote(std::filesystem::path(log).parent_path().string()));
+  EXPECT_EQ(by_folder.exit_code, 0) << by_folder.output;
+  EXPECT_EQ(by_folder.output, by_log.output);
+  const std::string empty_folder = freshDir("replay-empty-folder");
+  std::filesystem::create_directories(empty_folder);
+  const RunResult empty = lagrange("replay " + quote(empty_folder) + " 2>&1");
+  EXPECT_EQ(empty.exit_code, 2) << empty.output;
+  EXPECT_NE(empty.output.find("run.lcm"), std::string::npos) << empty.output;
+}
+
 // The actuator's replay has teeth too: a saturation limit it did not have
 // clips the first torque step that exceeds it.
 TEST_F(Recorded, TheActuatorReplayCatchesAChangedSaturation) {

@@ -3,6 +3,7 @@
 /// (tools/replay/replay.hpp).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -108,9 +109,10 @@ Subcommand addReplayCommand(CLI::App& app) {
       "recorded one; print the first divergence (tick, time, field, both values); exit 1 on any, 2 when the "
       "log is damaged or has gaps (named: tick, byte offset). An external controller is replayed only by a "
       "program named after --, never by the command the log holds");
-  cmd->add_option("log", o->log, "LCM log written by lagrange run (run.lcm)")
+  cmd->add_option("log", o->log,
+                  "A run's output directory (its run.lcm) or an LCM log (run.lcm, a stock lcm-logger's)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingPath);
   o->component_option =
       cmd->add_option(
              "--component", o->component,
@@ -125,7 +127,14 @@ Subcommand addReplayCommand(CLI::App& app) {
                   "After --: the program (and its arguments) that replays the log's external controller, "
                   "started in the current directory in a private network namespace. The command the log "
                   "holds is shown, never run");
-  return {cmd, [o](const Invocation& inv) { return replay(*o, inv.argv); }};
+  return {cmd, [o](const Invocation& inv) {
+            // A run's folder stands for its log, as report, export and view take it.
+            ReplayCommandLine line = *o;
+            std::error_code not_a_directory;
+            if (std::filesystem::is_directory(line.log, not_a_directory))
+              line.log = (std::filesystem::path(line.log) / "run.lcm").string();
+            return replay(line, inv.argv);
+          }};
 }
 
 }  // namespace lagrange::tools
