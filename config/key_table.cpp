@@ -434,7 +434,8 @@ std::vector<KeyInfo> judgementKeys() {
           "wall time [s] past which an answer is slow: the controller's CONTROL_COMMAND to the plant's "
           "PLANT_POSITION of the same tick, the actuator's ACTUATOR_STATE to that command, timed by the "
           "logger as it hears them (LCM modes; a program from outside reports nothing itself). A wait "
-          "past it is said on the terminal while it lasts, e.g. `lagrange run: the controller (python3 "
+          "past it is said on the terminal while it lasts (until the plant's last tick), e.g. `lagrange run: "
+          "the controller (python3 "
           "my_controller.py) has not answered tick 510 for 1.0 s (supervision.slow_answer = 1 s)`, "
           "then at most every 10 s; `summary.json` `answers` has each one's median and worst answer "
           "and how many were slow. Only said: `lockstep.stall_timeout` is what stops a run.",

@@ -49,8 +49,8 @@ class AnswerTimes {
   /// `repeat_every` seconds per answerer (the count is in the summary).
   std::vector<Slow> newlySlow(double now, double repeat_every = 10.0);
   /// {threshold, NAME: {program, answered, median, worst, worst_tick, slow}}:
-  /// answer times [s] of the ticks answered -- the median from 1 %-wide bins
-  /// (at most 1 % above the exact one: a run of hours at 1 kHz keeps no
+  /// answer times [s] of the ticks answered -- the median (the lower one of
+  /// an even count) from 1 %-wide bins (at most 1 % above the exact one: a run of hours at 1 kHz keeps no
   /// per-tick list in the logger's locked memory), the worst exact; null
   /// median/worst when none.
   nlohmann::json summary() const;

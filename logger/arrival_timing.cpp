@@ -13,13 +13,9 @@ void ArrivalTiming::arrived(int64_t tick, double t) {
     jitter_.add(std::abs(interval - period_));
     // The periods that passed without a message: a gap of 3 periods missed 2.
     const int64_t missed = std::max<int64_t>(0, std::llround(interval / period_) - 1);
-    if (missed > 0) {
-      misses_ += missed;
-      miss_run_ += missed;
-      longest_miss_run_ = std::max(longest_miss_run_, miss_run_);
-    } else {
-      miss_run_ = 0;
-    }
+    // Every gap ends with an arrival: the periods missed in a row are one gap's.
+    misses_ += missed;
+    longest_miss_run_ = std::max(longest_miss_run_, missed);
   } else {
     first_ = t;
   }

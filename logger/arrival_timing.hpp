@@ -26,7 +26,8 @@ class ArrivalTiming {
   /// cycles (messages heard), achieved_rate, jitter (|interval - period|),
   /// deadline_misses (the periods that passed without a message: an interval
   /// of N periods, rounded, missed N - 1), on_time_fraction (cycles / (cycles
-  /// + misses)), longest_miss_run (missed periods in a row), measured_by;
+  /// + misses)), longest_miss_run (the most periods missed in a row: one
+  /// gap's), measured_by;
   /// null when fewer than two arrived.
   nlohmann::json loopJson() const;
 
@@ -35,7 +36,7 @@ class ArrivalTiming {
   std::set<int64_t> heard_;  ///< ticks heard (a realtime run's commands: one a period)
   double first_ = 0.0, last_ = 0.0;
   int64_t arrivals_ = 0;
-  int64_t misses_ = 0, miss_run_ = 0, longest_miss_run_ = 0;
+  int64_t misses_ = 0, longest_miss_run_ = 0;
   transport::SampleHistogram jitter_;
 };
 

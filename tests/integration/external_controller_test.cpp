@@ -261,7 +261,8 @@ TEST(ExternalController, APythonPdRunsInRealtimeAndItsRunReplays) {
                                    : actuator)
       << loop.dump();
   EXPECT_GE(loop["cycles"].get<long long>(), 2000) << loop.dump();  // of 3001: it answered, period by period
-  EXPECT_NEAR(loop["achieved_rate"].get<double>(), 1000.0, 200.0) << loop.dump();
+  EXPECT_NEAR(loop["achieved_rate"].get<double>(), 1000.0, 350.0)
+      << loop.dump();  // >= 2000 of 3001 allows 667
   EXPECT_NE(loop["measured_by"].get<std::string>().find("arrivals of CONTROL_COMMAND"), std::string::npos);
   EXPECT_GE(summary["messages"]["CONTROL_COMMAND"]["published"].get<long long>(), 2000);
   EXPECT_GE(summary["answers"]["controller"]["answered"].get<long long>(), 2000) << summary["answers"].dump();

@@ -27,6 +27,14 @@ TEST(ArrivalTiming, JitterMissesAndRateFromTheArrivals) {
   EXPECT_EQ(j["period"], 0.001);
 }
 
+TEST(ArrivalTiming, GapsApartAreSeparateRunsOfMisses) {
+  ArrivalTiming timing(1.0);
+  for (const double t : {0.0, 3.0, 6.0, 7.0, 12.0}) timing.arrived(static_cast<int64_t>(t), t);
+  const nlohmann::json j = timing.loopJson();
+  EXPECT_EQ(j["deadline_misses"], 2 + 2 + 4);
+  EXPECT_EQ(j["longest_miss_run"], 4);  // not 2 + 2: a message came between
+}
+
 TEST(ArrivalTiming, FewerThanTwoArrivalsIsNoLoop) {
   ArrivalTiming timing(0.001);
   EXPECT_TRUE(timing.loopJson().is_null());

@@ -165,7 +165,9 @@ void addLauncherFacts(const std::string& out_dir, int64_t run_id, const nlohmann
   } catch (const std::exception&) {
     return;  // printResult reports the unreadable summary
   }
-  if (!j.is_object() || j.value("run_id", int64_t{0}) != run_id) return;
+  if (!j.is_object() || !j.contains("run_id") || !j["run_id"].is_number_integer() ||
+      j["run_id"].get<int64_t>() != run_id)
+    return;
   j["timing"]["cpu_seconds"] = cpu;
   j["supervision"] = supervision;
   // The logger timed the external controller's loop from its commands; how
@@ -631,6 +633,10 @@ int runScenarioLocked(const RunOptions& opt) {
   auto lockOutDir = [&] {
     lock.emplace(out_dir, "lagrange run");
     checkOutputPaths(out_dir, opt.report);
+    // A summary.json in OUT is this run's or none: an older run's (the same
+    // --run-id, a logger that died before writing) must not pass for it.
+    std::error_code gone;
+    fs::remove(fs::path(out_dir) / "summary.json", gone);
   };
 
   if (scenario.mode == config::Mode::kInproc) {

@@ -255,7 +255,8 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   else if (o.status != "completed")
     o.stop_message =
         plant.value("message", std::string()) + launcherError(dir / "run.out") + "; see " + dir.string();
-  if (o.status == "completed") fs::remove_all(dir);  // kept when it failed: its logs say why
+  // Kept when it did not complete, or a process died after it did: its logs say why.
+  if (o.status == "completed" && !summary.contains("failure")) fs::remove_all(dir);
   return o;
 }
 
