@@ -26,6 +26,7 @@
 #include "lagrange/plant_position_t.hpp"
 #include "logger/tracking_metrics.hpp"
 #include "runtime/key_file.hpp"
+#include "support/bad_actuator_states.hpp"
 #include "support/configs.hpp"
 #include "support/launch.hpp"
 #include "support/rk4.hpp"
@@ -254,33 +255,13 @@ TEST(Failure, MessagesOfAnotherRunAnotherPublisherOrRepeatedAreRejected) {
 // steps is rejected by the plant, and the m = 1 run converges.
 TEST(Failure, WrongActuatorStatesAreRejectedByTheCascadedController) {
   const std::string dir = freshDir("badchain");
-  lagrange::actuator_state_t wrong_order;  // tick far in the future: the plant ignores it
-  wrong_order.header = transport::makeHeader(1000000000, 1e6);
-  wrong_order.input_command_tick = wrong_order.header.tick;
-  wrong_order.num_joints = 2;
-  wrong_order.order = 2;
-  wrong_order.u_commanded = {0.0, 0.0};
-  wrong_order.torque_steps = 1;
-  wrong_order.tau_applied = {{0.0, 0.0}};
-  wrong_order.saturated = {0, 0};
-  wrong_order.xi = {{1.0, 1.0}, {1.0, 1.0}};
-  lagrange::actuator_state_t wrong_size = wrong_order;
-  wrong_size.order = 1;
-  wrong_size.num_joints = 3;
-  wrong_size.u_commanded = {0.0, 0.0, 0.0};
-  wrong_size.tau_applied = {{0.0, 0.0, 0.0}};
-  wrong_size.saturated = {0, 0, 0};
-  wrong_size.xi = {{1.0, 1.0, 1.0}};
-  lagrange::actuator_state_t wrong_steps = wrong_order;  // chain_m1.yaml updates once a period
-  wrong_steps.order = 1;
-  wrong_steps.xi = {{1.0, 1.0}};
-  wrong_steps.torque_steps = 2;
-  wrong_steps.tau_applied = {{0.0, 0.0}, {0.0, 0.0}};
+  // Tick far in the future: the plant ignores them; chain_m1.yaml updates once a period.
+  const BadActuatorStates bad = badActuatorStates(1000000000, 1e6);
   const auto [r, sent] = runUnderBadTraffic(
       kConfigs + "/chain_m1.yaml", dir, "udpm://239.255.76.67:7672?ttl=0", "ACTUATOR_STATE", [&](int64_t n) {
-        return std::vector<std::vector<uint8_t>>{fromPublisher(wrong_order, "actuator", 3 * n),
-                                                 fromPublisher(wrong_size, "actuator", 3 * n + 1),
-                                                 fromPublisher(wrong_steps, "actuator", 3 * n + 2)};
+        return std::vector<std::vector<uint8_t>>{fromPublisher(bad.wrong_order, "actuator", 3 * n),
+                                                 fromPublisher(bad.wrong_size, "actuator", 3 * n + 1),
+                                                 fromPublisher(bad.wrong_steps, "actuator", 3 * n + 2)};
       });
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto j = readSummary(dir);

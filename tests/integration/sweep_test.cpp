@@ -363,9 +363,10 @@ TEST(Sweep, AnExternalRowThatFailsIsAFailedRowWithItsReason) {
   const std::string dir = freshDir("sweep-external-fails");
   fs::create_directories(dir);
   const std::string sweep = dir + "/sweep.yaml";
-  std::ofstream(sweep) << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
-                       << "set: {duration: 0.2, controller: {type: external, command: [sh, -c, 'sleep 1; exit 5']}}\n"
-                       << "axes:\n  - {key: plant.physics_step, values: [1.0e-4]}\n";
+  std::ofstream(sweep)
+      << "scenario: " << kConfigs << "/rigid_2dof.yaml\n"
+      << "set: {duration: 0.2, controller: {type: external, command: [sh, -c, 'sleep 1; exit 5']}}\n"
+      << "axes:\n  - {key: plant.physics_step, values: [1.0e-4]}\n";
   const std::string out = dir + "/out";
   const RunResult r = lagrange("sweep " + quote(sweep) + " -o " + quote(out) + " -j 1");
   EXPECT_EQ(r.exit_code, 1) << r.output;

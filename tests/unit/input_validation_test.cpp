@@ -12,6 +12,7 @@
 
 #include "controller/controller_lcm.hpp"
 #include "controller/input_assembly.hpp"
+#include "support/bad_actuator_states.hpp"
 #include "transport/channels.hpp"
 #include "transport/checksum.hpp"
 #include "transport/lcm_node.hpp"
@@ -83,33 +84,12 @@ TEST(InputValidation, ActuatorStatesOfTheWrongOrderSizeOrStepsAreRefusedByTheCas
   needs.actuator_order = 1;
   controller::InputAssembly assembly(needs, Eigen::MatrixXd::Zero(1, 2), Eigen::MatrixXd());
   controller::subscribeDeclaredInputs(node, needs, {2, 1, false}, assembly);
-  lagrange::actuator_state_t wrong_order;
-  wrong_order.header = makeHeader(7, 0.007);
-  wrong_order.input_command_tick = 7;
-  wrong_order.num_joints = 2;
-  wrong_order.order = 2;
-  wrong_order.u_commanded = {0.0, 0.0};
-  wrong_order.torque_steps = 1;
-  wrong_order.tau_applied = {{0.0, 0.0}};
-  wrong_order.saturated = {0, 0};
-  wrong_order.xi = {{1.0, 1.0}, {1.0, 1.0}};
+  const auto [wrong_order, wrong_size, wrong_steps] = testing::badActuatorStates(7, 0.007);
   sendAs(node, kActuatorState, wrong_order, "actuator", 1);
   EXPECT_NE(node.lastInvalid().find("actuator order is 2, expected 1"), std::string::npos)
       << node.lastInvalid();
-  lagrange::actuator_state_t wrong_size = wrong_order;
-  wrong_size.order = 1;
-  wrong_size.num_joints = 3;
-  wrong_size.u_commanded = {0.0, 0.0, 0.0};
-  wrong_size.tau_applied = {{0.0, 0.0, 0.0}};
-  wrong_size.saturated = {0, 0, 0};
-  wrong_size.xi = {{1.0, 1.0, 1.0}};
   sendAs(node, kActuatorState, wrong_size, "actuator", 2);
   EXPECT_NE(node.lastInvalid().find("num_joints is 3, expected 2"), std::string::npos) << node.lastInvalid();
-  lagrange::actuator_state_t wrong_steps = wrong_order;
-  wrong_steps.order = 1;
-  wrong_steps.xi = {{1.0, 1.0}};
-  wrong_steps.torque_steps = 2;
-  wrong_steps.tau_applied = {{0.0, 0.0}, {0.0, 0.0}};
   sendAs(node, kActuatorState, wrong_steps, "actuator", 3);
   EXPECT_NE(node.lastInvalid().find("torque_steps is 2, expected 1"), std::string::npos)
       << node.lastInvalid();
