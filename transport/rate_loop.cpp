@@ -96,7 +96,6 @@ std::string enterRealtimeScheduling(int priority) {
   return "fifo:" + std::to_string(priority);
 }
 
-namespace {
 // "0,2-3" for the CPUs of `set`.
 std::string cpuList(const cpu_set_t& set) {
   std::string out;
@@ -108,7 +107,6 @@ std::string cpuList(const cpu_set_t& set) {
   }
   return out;
 }
-}  // namespace
 
 namespace {
 // Set once this process pinned itself: its loops then report where.

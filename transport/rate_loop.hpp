@@ -8,6 +8,8 @@
 /// controller and actuator, started at different moments, still wake in a
 /// fixed order within each period.
 
+#include <sched.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -71,5 +73,8 @@ void pinToCpus(const std::vector<int>& cpus, const std::string& key);
 /// The CPUs this process pinned itself to (pinToCpus), "0,2-3"; empty when
 /// it did not pin itself.
 std::string cpuRestriction();
+
+/// "0,2-3": the CPUs of `set`, as the loops' `scheduler` strings write them.
+std::string cpuList(const cpu_set_t& set);
 
 }  // namespace lagrange::transport

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "transport/rate_loop.hpp"
 #include "util/error.hpp"
 
 namespace lagrange::wiring {
@@ -79,14 +80,7 @@ std::string schedulerOf(pid_t pid) {
   CPU_ZERO(&its);
   if (sched_getaffinity(0, sizeof mine, &mine) == 0 && sched_getaffinity(pid, sizeof its, &its) == 0 &&
       !CPU_EQUAL(&mine, &its)) {
-    std::string list;  // "0,2-3", as the loops write theirs (transport/rate_loop.cpp)
-    for (int c = 0; c < CPU_SETSIZE; ++c) {
-      if (!CPU_ISSET(c, &its) || (c > 0 && CPU_ISSET(c - 1, &its))) continue;
-      int last = c;
-      while (last + 1 < CPU_SETSIZE && CPU_ISSET(last + 1, &its)) ++last;
-      list += (list.empty() ? "" : ",") + std::to_string(c) + (last > c ? "-" + std::to_string(last) : "");
-    }
-    out += " cpus " + list;
+    out += " cpus " + transport::cpuList(its);
   }
   return out;
 }
