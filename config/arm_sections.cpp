@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "config/external_command.hpp"
 #include "config/input_file.hpp"
 #include "config/key_table.hpp"
 #include "config/physics_engines.hpp"
@@ -504,13 +505,50 @@ void checkPlantJoints(MapReader& plant, const Scenario& s) {
 }
 }  // namespace
 
-void readPlantSection(MapReader& root, Scenario& s) {
+namespace {
+// plant.type external: a program from outside takes the plant's place; of the
+// plant's keys only publish_rate (the run's clock) applies, and what a
+// program cannot be told -- a rotor, sensor models -- is refused.
+void readExternalPlant(MapReader& plant, Scenario& s, const std::string& base_dir) {
+  if (s.mode == Mode::kInproc)
+    plant.fail("type",
+               "an external plant runs as its own process over LCM; expected mode lockstep or realtime, got "
+               "inproc");
+  if (s.flexible) plant.fail("type", "an external plant has rigid joints only; this arm has robot.flexible");
+  if (s.sensors)
+    plant.fail("type",
+               "an external plant measures with its own sensors, and the sensors section models the "
+               "simulated plant's; expected no sensors section with plant.type external");
+  const std::set<std::string> own = {"type", "publish_rate", "command", "working_directory"};
+  for (const std::string& key : plant.keys())
+    if (own.count(key) == 0 && keysUnder("plant").count(key) != 0)
+      plant.fail(key, "is a key of the simulated plant, and plant.type is external (the program simulates or "
+                      "drives the arm itself); expected it left out");
+  s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
+  ExternalCommand external = readExternalCommand(plant, base_dir, "plant");
+  s.plant.command = std::move(external.command);
+  s.plant.working_directory = std::move(external.working_directory);
+  plant.finish(own);
+}
+}  // namespace
+
+void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir) {
   if (root.has("plant")) {
+    MapReader plant = root.map("plant");
+    s.plant.type = plant.text("type", "simulated");
+    if (s.plant.type != "simulated" && s.plant.type != "external")
+      plant.fail("type", "unknown plant type '" + s.plant.type + "'; expected simulated or external");
+  }
+  if (s.plant.external()) {
+    MapReader plant = root.map("plant");
+    readExternalPlant(plant, s, base_dir);
+  } else if (root.has("plant")) {
     MapReader plant = root.map("plant");
     readFieldsAmongOthers(plant, s.plant, plantFields());
     readFieldsAmongOthers(plant, s, plantArmFields());
     std::set<std::string> known = keysOf(plantFields());
     for (const std::string& key : keysOf(plantArmFields())) known.insert(key);
+    known.insert("type");
     checkPlantJoints(plant, s);
     plant.finish(known);
     const double ratio = s.tickPeriod() / s.plant.physics_step;

@@ -3,14 +3,10 @@
 /// controller -- its type, and the section its registration reads
 /// (config/controller_params.hpp) (config/scenario_sections.hpp).
 
-#include <unistd.h>
 
-#include <cmath>
-#include <cstdlib>
-#include <filesystem>
-#include <sstream>
 
 #include "config/controller_params.hpp"
+#include "config/external_command.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
@@ -123,6 +119,10 @@ void readActuatorSection(MapReader& root, Scenario& s) {
       act.fail("rate", "expected a whole multiple of plant.publish_rate (" +
                            std::to_string(s.plant.publish_rate) + " Hz), got " +
                            std::to_string(s.actuator.rate) + " Hz");
+    if (s.plant.external() && std::abs(steps - 1.0) > 1e-9)
+      act.fail("rate", "an external plant (plant.type external) applies one torque per period; expected "
+                       "actuator.rate left out or equal to plant.publish_rate (" +
+                           std::to_string(s.plant.publish_rate) + " Hz)");
     if (std::abs(per_step - std::round(per_step)) > 1e-9)
       act.fail("rate", "the actuator period 1/rate must be a whole multiple of plant.physics_step (" +
                            std::to_string(s.plant.physics_step) +
@@ -171,19 +171,8 @@ void readRegisteredController(MapReader& ctl, Scenario& s, const std::vector<Con
 }  // namespace
 
 namespace {
-// A program on PATH, or "" when there is none.
-std::string onPath(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
-    if (access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return candidate;
-  }
-  return "";
-}
-
 // type external: a program from outside the project takes the controller's
-// place (docs/external_controllers.md). Its command is checked here, before
+// place (docs/external_programs.md). Its command is checked here, before
 // anything starts; a relative path is taken from the scenario file's folder.
 void readExternalController(MapReader& ctl, Scenario& s, const std::string& base_dir) {
   if (s.actuator.order != 0)
@@ -196,33 +185,9 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
         "type",
         "an external controller runs as its own process over LCM; expected mode lockstep or realtime, got "
         "inproc");
-  const YAML::Node command = ctl.child("command");
-  if (!command.IsSequence() || command.size() == 0)
-    ctl.fail("command",
-             "expected the controller's command line as a list, e.g. [python3, my_pd.py, --kp, 100]");
-  for (const YAML::Node& arg : command) {
-    if (!arg.IsScalar()) ctl.fail("command", "expected every entry to be a string");
-    s.controller.command.push_back(arg.as<std::string>());
-  }
-  const std::filesystem::path base = std::filesystem::absolute(base_dir.empty() ? "." : base_dir);
-  s.controller.working_directory =
-      ctl.has("working_directory") ? std::filesystem::absolute(base / ctl.text("working_directory")).string()
-                                   : base.string();
-  if (!std::filesystem::is_directory(s.controller.working_directory))
-    ctl.fail("working_directory", "'" + s.controller.working_directory +
-                                      "' is not a directory; expected the folder the command starts in");
-  std::string& program = s.controller.command[0];
-  if (program.find('/') != std::string::npos) {
-    const std::filesystem::path resolved = std::filesystem::absolute(base / program).lexically_normal();
-    if (access(resolved.c_str(), X_OK) != 0 || std::filesystem::is_directory(resolved))
-      ctl.fail("command", "'" + program + "' does not exist or is not executable (looked for " +
-                              resolved.string() + "); expected the controller's program");
-    program = resolved.string();
-  } else if (onPath(program).empty()) {
-    ctl.fail("command", "'" + program +
-                            "' is not a program on PATH; expected the controller's program (a "
-                            "name on PATH, or a path relative to the scenario file)");
-  }
+  ExternalCommand external = readExternalCommand(ctl, base_dir, "controller");
+  s.controller.command = std::move(external.command);
+  s.controller.working_directory = std::move(external.working_directory);
   ctl.finish(keysUnder("controller", "external"));
 }
 }  // namespace

@@ -175,6 +175,25 @@ std::vector<KeyInfo> referenceKeys() {
 // The simulation and the actuator chain.
 std::vector<KeyInfo> plantAndActuatorKeys() {
   return {
+      row("plant.type", "string", "`simulated`",
+          "`simulated`: the plant process simulates the arm with `plant.engine` and the keys below; "
+          "`external`: a program from outside the project takes the plant's place over LCM -- a "
+          "simulator of your own or a bridge to a real arm (keys `command`, `working_directory`, "
+          "`publish_rate`; docs/external_programs.md, docs/hardware.md). The other `plant` keys and a "
+          "`sensors` section are the simulated plant's and refused beside it; it needs rigid joints, "
+          "`mode` lockstep or realtime and one torque per period (`actuator.rate` = `publish_rate`)."),
+      only("external_plant",
+           row("plant.command", "list of strings", "required for `external`",
+               "the external plant's command line (argv, no shell): the launcher starts it in the plant's "
+               "place, writes its output to `plant.log` and ends the run when it exits, as it does the "
+               "built-in plant's. A name on PATH or a path relative to the scenario file's folder; a "
+               "missing one is refused before anything starts. Its environment is an external "
+               "controller's (`LAGRANGE_LCM_URL`, `LAGRANGE_RUN_ID`, `LAGRANGE_KEY_FILE`, "
+               "`LAGRANGE_CONFIG`, `LAGRANGE_CONFIG_JSON`, `LAGRANGE_JOINTS`, `LAGRANGE_MODE`, "
+               "`LAGRANGE_CLOCK_OFFSET_US`); `lagrange replay LOG --component plant -- COMMAND` gives "
+               "the same")),
+      only("external_plant", row("plant.working_directory", "path", "the scenario file's folder",
+                                 "where the external plant starts (relative to the scenario file's folder)")),
       row("plant.engine", "string", "`ode`",
           "the physics engine that simulates the arm: `ode` (the Open Dynamics Engine, maximal "
           "coordinates: the design's engine, and the golden logs') or `mujoco` (MuJoCo 2.2, generalized "
@@ -308,7 +327,7 @@ std::vector<KeyInfo> controllerKeys() {
           "`kd`; needs `sensors.velocity`); `slotine_li`: Slotine and Li's controller on the measured "
           "velocity, a baseline (keys `lambda`, `kd`; needs `sensors.velocity`); `external`: a program "
           "from outside the project in the controller's place, over LCM (keys `command`, "
-          "`working_directory`; [external_controllers.md](external_controllers.md)); or a type "
+          "`working_directory`; [external_programs.md](external_programs.md)); or a type "
           "registered by `controller::registerControllerKind` in programs built with it "
           "(docs/architecture.md, \"Adding a controller\"): its own per-joint keys instead of the ones "
           "below, `actuator.order` 0."),
@@ -321,7 +340,7 @@ std::vector<KeyInfo> controllerKeys() {
                "environment: `LAGRANGE_LCM_URL`, `LAGRANGE_RUN_ID`, `LAGRANGE_KEY_FILE` (the run's key), "
                "`LAGRANGE_CONFIG` and `LAGRANGE_CONFIG_JSON` (the resolved scenario as YAML and as JSON), "
                "`LAGRANGE_JOINTS`, `LAGRANGE_MODE`, `LAGRANGE_CLOCK_OFFSET_US` "
-               "(docs/external_controllers.md); "
+               "(docs/external_programs.md); "
                "`lagrange replay LOG -- COMMAND` gives the same")),
       only("external", row("controller.working_directory", "path", "the scenario file's folder",
                            "where the external controller starts (relative to the scenario file's folder)")),
@@ -551,7 +570,8 @@ std::map<std::string, std::string>& variantDescriptions() {
   static std::map<std::string, std::string> descriptions = {
       {"sine", "reference.type sine and smooth_sine only"},
       {"free_motion", "reference.type free_motion only"},
-      {"external", "controller.type external only"}};
+      {"external", "controller.type external only"},
+      {"external_plant", "plant.type external only"}};
   return descriptions;
 }
 bool& tableBuilt() {

@@ -95,7 +95,7 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readSensorsSection(root, s);  // before the controller, which may need a velocity sensor
   readInitialStateSection(root, s);
   readReferenceSection(root, s);
-  readPlantSection(root, s);
+  readPlantSection(root, s, std::filesystem::path(source).parent_path().string());
   readActuatorSection(root, s);
   readControllerSection(root, s, std::filesystem::path(source).parent_path().string());
   readMetricsSection(root, s);

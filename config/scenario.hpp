@@ -71,6 +71,17 @@ inline constexpr util::EnumName<MujocoIntegrator> kMujocoIntegratorNames[] = {
     {MujocoIntegrator::kEuler, "euler"}};
 
 struct PlantConfig {
+  /// "simulated": the plant process simulates the arm (the keys below);
+  /// "external": a program from outside the project takes the plant's place
+  /// over LCM (docs/external_programs.md) -- a simulator of one's own or a
+  /// bridge to a real arm (docs/hardware.md) -- and of these keys only
+  /// publish_rate applies.
+  std::string type = "simulated";
+  /// "external": its command line (argv; argv[0] absolute when given as a
+  /// path) and the directory it starts in.
+  std::vector<std::string> command;
+  std::string working_directory;
+  bool external() const { return type == "external"; }
   /// The physics engine (plant/physics_engine.hpp): "ode" (the design's,
   /// the default), "mujoco", or one a program registers (config/physics_engines.hpp).
   std::string engine = "ode";
@@ -122,7 +133,7 @@ struct ControllerConfig {
   /// controller/paper_section.hpp).
   std::any settings;
   /// "external": the controller's command line (argv; argv[0] absolute when
-  /// given as a path) and the directory it starts in (docs/external_controllers.md).
+  /// given as a path) and the directory it starts in (docs/external_programs.md).
   std::vector<std::string> command;
   std::string working_directory;
 };

@@ -78,6 +78,8 @@ std::string toJson(const Scenario& scenario) {
     if (j.contains("name")) j["name"] = scenario.name;
     if (j.contains("controller") && j["controller"].is_object() && j["controller"].contains("command"))
       j["controller"]["command"] = scenario.controller.command;
+    if (j.contains("plant") && j["plant"].is_object() && j["plant"].contains("command"))
+      j["plant"]["command"] = scenario.plant.command;
   }
   return dumped(j);
 }

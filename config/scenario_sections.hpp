@@ -16,7 +16,7 @@ namespace lagrange::config::sections {
 void readRobotSection(MapReader& root, Scenario& s, const std::string& base_dir);
 void readInitialStateSection(MapReader& root, Scenario& s);  ///< after robot
 void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot and duration
-void readPlantSection(MapReader& root, Scenario& s);         ///< after duration
+void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir);  ///< after duration, mode, robot, sensors
 
 /// name, description, duration, mode: the top level's own keys.
 const Fields<Scenario>& headerFields();

@@ -56,8 +56,15 @@ std::string toYaml(const Scenario& s) {
   out << YAML::EndMap;
 
   out << YAML::Key << "plant" << YAML::Value << YAML::BeginMap;
-  writeFields(out, s.plant, sections::plantFields());
-  writeFields(out, s, sections::plantArmFields());
+  if (s.plant.external()) {  // the simulated plant's keys do not apply (and are refused)
+    out << YAML::Key << "type" << YAML::Value << s.plant.type;
+    out << YAML::Key << "publish_rate" << YAML::Value << s.plant.publish_rate;
+    out << YAML::Key << "command" << YAML::Value << YAML::Flow << s.plant.command;
+    out << YAML::Key << "working_directory" << YAML::Value << s.plant.working_directory;
+  } else {  // type simulated, the default, left out: a resolved file stays as it was
+    writeFields(out, s.plant, sections::plantFields());
+    writeFields(out, s, sections::plantArmFields());
+  }
   out << YAML::EndMap;
 
   out << YAML::Key << "actuator" << YAML::Value << YAML::BeginMap;

@@ -15,7 +15,7 @@ namespace lagrange::transport {
 /// standard 14695981039346656037: a digit was lost when this was first
 /// written. Every recorded log carries checksums made this way, so it stays;
 /// a program that publishes to a run must use the same basis
-/// (docs/external_controllers.md).
+/// (docs/external_programs.md).
 inline uint64_t fnv1a(const uint8_t* data, size_t size) {
   uint64_t h = 1469598103934665603ULL;
   for (size_t i = 0; i < size; ++i) h = (h ^ data[i]) * 1099511628211ULL;

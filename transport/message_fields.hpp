@@ -22,7 +22,7 @@
 namespace lagrange::transport {
 
 /// The unit of a commanded input u: a torque for a rigid arm, its m-th
-/// derivative behind an m-th order actuator chain (docs/external_controllers.md).
+/// derivative behind an m-th order actuator chain (docs/external_programs.md).
 inline constexpr const char* kInputUnit = "N m (rigid arm; N m / s^m behind an actuator chain of order m)";
 
 template <class V>

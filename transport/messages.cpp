@@ -62,7 +62,9 @@ std::string validate(const lagrange::plant_rate_t& m, int joints) {
 std::string validate(const lagrange::plant_truth_t& m, int joints) {
   std::string why = checkHeader(m.header);
   if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.q, &m.qdot, &m.tau_applied});
-  if (why.empty() && !std::isfinite(m.total_energy)) why = "non-finite energy";
+  // NaN: not known (an external plant that does not compute the arm's
+  // energy; docs/external_programs.md); an infinite energy is refused.
+  if (why.empty() && std::isinf(m.total_energy)) why = "infinite energy";
   return why;
 }
 

@@ -1,5 +1,5 @@
 // A PD controller from outside the project, in Java: the contract of
-// docs/external_controllers.md is kept by lagrange.sdk.ExternalController,
+// docs/external_programs.md is kept by lagrange.sdk.ExternalController,
 // shipped in the jar of this project's message types; this file is the law.
 //
 //   u = -Kp (q - q_d) - Kd v,   v = (q_k - q_{k-1}) / (t_k - t_{k-1}) (0 at the first sample),

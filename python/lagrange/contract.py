@@ -1,4 +1,4 @@
-"""The wire contract every process of a run keeps (docs/external_controllers.md).
+"""The wire contract every process of a run keeps (docs/external_programs.md).
 
 Every datagram is a message's LCM encoding followed by a 32-byte MAC:
 HMAC-SHA256 of the encoding under the run's key. Every message's header

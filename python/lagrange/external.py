@@ -1,7 +1,7 @@
 """A controller of your own in a lagrange run (controller.type: external).
 
 You write the law; this module keeps the contract of
-docs/external_controllers.md -- the run's LCM URL, id and key from the
+docs/external_programs.md -- the run's LCM URL, id and key from the
 environment, the MAC on every datagram, the header (run id, publisher, pid,
 per-channel seq, checksum), which positions to accept, lockstep's re-sent
 ticks (answered with the same command, the law never stepped twice on one

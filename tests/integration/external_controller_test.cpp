@@ -1,7 +1,7 @@
 // A controller from outside the project (controller.type external): the Java
 // PD of examples/external_controller/, compiled here with javac and never by
 // CMake, takes the controller's place over the LCM contract of
-// docs/external_controllers.md -- in lockstep and in realtime -- and its runs
+// docs/external_programs.md -- in lockstep and in realtime -- and its runs
 // replay: `lagrange replay LOG -- COMMAND` runs the program named after --
 // (never the command the log holds) on the recorded positions and gets every
 // recorded command back bit for bit.

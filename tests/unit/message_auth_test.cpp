@@ -50,7 +50,7 @@ TEST(MessageAuth, AnyChangedByteOrAnotherKeyFailsTheCheck) {
 }
 
 // RFC 4231, test case 2: the MAC is standard HMAC-SHA256, which Python's hmac
-// and Java's javax.crypto compute the same way (docs/external_controllers.md).
+// and Java's javax.crypto compute the same way (docs/external_programs.md).
 TEST(MessageAuth, IsStandardHmacSha256) {
   MessageKey key{};
   const std::string jefe = "Jefe";

@@ -242,7 +242,8 @@ ComparisonPlan planComparison(const CompareOptions& o) {
   for (const std::string& type : types) {
     // In process, as fast as the machine allows; an external program in
     // lockstep, its own process over LCM (the same loop, bit for bit).
-    std::vector<std::string> overrides = {typeOf(base, type) == "external" ? "mode=lockstep" : "mode=inproc"};
+    const bool external = typeOf(base, type) == "external" || base.plant.external();
+    std::vector<std::string> overrides = {external ? "mode=lockstep" : "mode=inproc"};
     if (const auto controller = controllerOverride(base, type, o.config_path))
       overrides.push_back(*controller);
     overrides.insert(overrides.end(), o.overrides.begin(), o.overrides.end());

@@ -145,7 +145,7 @@ void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
   const int64_t run_id = wiring::randomRunId();
   transport::LcmNode node("plant", url, run_id);
   // The program gets a key of this bus, as in a run: it signs its commands
-  // and checks the positions (docs/external_controllers.md).
+  // and checks the positions (docs/external_programs.md).
   ScratchDirectory scratch;
   const transport::MessageKey key = transport::randomMessageKey();
   runtime::writeKeyFile(scratch.keyFile(), key);

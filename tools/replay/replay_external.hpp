@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// Replay of a controller from outside the project (controller.type external,
-/// docs/external_controllers.md): there is no core to step, so a program is
+/// docs/external_programs.md): there is no core to step, so a program is
 /// started, in a private network namespace on a bus of its own, and fed the
 /// recorded PLANT_POSITION of each recorded command, in order, as the plant
 /// would in lockstep; every answer is compared with the recorded one bit for

@@ -441,41 +441,48 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   std::vector<std::string> controller_args = {"--gains", handed.gains};
   if (opt.strict) controller_args.push_back("--strict");
   wiring::ChildSpec controller = spec("controller", controller_args);
-  if (scenario.controller.type == "external") {
-    // A program from outside the project in the controller's place; what it
-    // needs to join the run comes in its environment (docs/external_controllers.md).
-    controller.argv = scenario.controller.command;
-    controller.working_directory = scenario.controller.working_directory;
-    controller.env = {clock_offset,
-                      "LAGRANGE_LCM_URL=" + url,
-                      "LAGRANGE_RUN_ID=" + std::to_string(run_id),
-                      "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
-                      "LAGRANGE_CONFIG=" + resolved,
-                      "LAGRANGE_CONFIG_JSON=" + (fs::path(out_dir) / "config.resolved.json").string(),
-                      "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
-                      "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
+  // A program from outside the project in the controller's or the plant's
+  // place; what it needs to join the run comes in its environment
+  // (docs/external_programs.md), the same for both.
+  const std::vector<std::string> external_env = {
+      clock_offset,
+      "LAGRANGE_LCM_URL=" + url,
+      "LAGRANGE_RUN_ID=" + std::to_string(run_id),
+      "LAGRANGE_KEY_FILE=" + (key ? key->path() : std::string()),
+      "LAGRANGE_CONFIG=" + resolved,
+      "LAGRANGE_CONFIG_JSON=" + (fs::path(out_dir) / "config.resolved.json").string(),
+      "LAGRANGE_JOINTS=" + std::to_string(scenario.dof()),
+      "LAGRANGE_MODE=" + std::string(config::toString(scenario.mode))};
+  auto external = [&](wiring::ChildSpec& child, const std::vector<std::string>& command,
+                      const std::string& working_directory) {
+    child.argv = command;
+    child.working_directory = working_directory;
+    child.env = external_env;
     // In realtime a loop like the built-in ones: SCHED_FIFO and its CPUs,
     // set before its exec (it cannot be trusted to ask for them itself) --
     // one priority below the built-in loops, because it is FIFO from its
     // first instruction: a JVM's or Python's start-up, and every thread it
-    // makes (JIT, GC), must never hold off the plant's and the actuator's
-    // loops of equal priority, which the built-in processes avoid by
-    // entering FIFO only once prepared (runtime/process.hpp).
-    if (scenario.mode == config::Mode::kRealtime) {
-      controller.fifo_priority = std::max(0, scenario.realtime.priority - 1);
-      if (const auto it = scenario.realtime.cpus.find("controller"); it != scenario.realtime.cpus.end()) {
-        try {
-          transport::checkCpus(it->second, "realtime.cpus.controller");
-        } catch (const std::exception& e) {
-          close(progress_pipe[0]);
-          close(progress_pipe[1]);
-          return failWith("lagrange run", e);  // exit 2 before anything starts
-        }
-        controller.cpus = it->second;
-      }
+    // makes (JIT, GC), must never hold off the built-in loops of equal
+    // priority, which the built-in processes avoid by entering FIFO only
+    // once prepared (runtime/process.hpp).
+    if (scenario.mode != config::Mode::kRealtime) return;
+    child.fifo_priority = std::max(0, scenario.realtime.priority - 1);
+    if (const auto it = scenario.realtime.cpus.find(child.name); it != scenario.realtime.cpus.end()) {
+      transport::checkCpus(it->second, "realtime.cpus." + child.name);
+      child.cpus = it->second;
     }
+  };
+  wiring::ChildSpec plant = spec("plant", {});
+  try {
+    if (scenario.controller.type == "external")
+      external(controller, scenario.controller.command, scenario.controller.working_directory);
+    if (scenario.plant.external()) external(plant, scenario.plant.command, scenario.plant.working_directory);
+  } catch (const std::exception& e) {
+    close(progress_pipe[0]);
+    close(progress_pipe[1]);
+    return failWith("lagrange run", e);  // exit 2 before anything starts
   }
-  std::vector<wiring::ChildSpec> specs = {logger, controller, spec("actuator", {}), spec("plant", {})};
+  std::vector<wiring::ChildSpec> specs = {logger, controller, spec("actuator", {}), plant};
   for (const auto& s : specs)
     if (runsHere(opt, s.name)) supervisor.start(s);
   close(progress_pipe[1]);
@@ -606,7 +613,7 @@ int runScenarioLocked(const RunOptions& opt) {
   std::string out_dir;
   try {
     scenario = config::loadScenario(opt.config_path, opt.overrides);
-    if (runsHere(opt, "plant"))
+    if (runsHere(opt, "plant") && !scenario.plant.external())
       plant::checkPlantBuilds(scenario);  // e.g. an arm plant.engine cannot simulate
     if (!opt.key_file.empty()) runtime::readKeyFile(opt.key_file);  // a bad key file stops nothing half-way
     // A CPU this machine lacks: refused here rather than by a process half-started

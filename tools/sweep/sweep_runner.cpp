@@ -122,7 +122,8 @@ nlohmann::ordered_json SweepRunner::failedRow(const SweepRow& row, const std::st
 std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool (*stop_requested)()) {
   const auto start = std::chrono::steady_clock::now();
   config::Scenario s = config::loadScenario(plan_.spec.scenario_path, row.overrides);
-  const bool external = s.controller.type == "external";  // a program of its own: lockstep over LCM
+  // A program of its own (controller or plant): lockstep over LCM.
+  const bool external = s.controller.type == "external" || s.plant.external();
   if (!external) s.mode = config::Mode::kInproc;  // the sampled-data check examines the wiring that runs
   const controller::GainReport& gains = gainsOf(s);
   const wiring::InProcessOutcome o = external
@@ -185,7 +186,7 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   namespace fs = std::filesystem;
   if (self_exe_.empty() || out_dir_.empty())
     throw RuntimeFault(
-        "an external controller's row runs through lagrange run; this sweep runner has no binary");
+        "an external program's row runs through lagrange run; this sweep runner has no binary");
   const fs::path dir = fs::path(out_dir_) / "external" / ("row-" + std::to_string(row.index));
   // Never through a link planted as OUT/external (a shared sweep folder):
   // remove_all would follow it. Twice at most: finishing the sweep removes an
@@ -223,7 +224,7 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
   try {
     summary = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
   } catch (const std::exception&) {
-    throw RuntimeFault("the external controller's run left no summary.json (exit " +
+    throw RuntimeFault("the external program's run left no summary.json (exit " +
                        std::to_string(WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus)) +
                        launcherError(dir / "run.out") + "); see " + dir.string());
   }

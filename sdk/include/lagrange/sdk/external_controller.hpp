@@ -8,7 +8,7 @@
 ///     target_link_libraries(my_controller PRIVATE lagrange::sdk)
 ///
 /// You write the law; run() keeps the contract of
-/// docs/external_controllers.md: the run's LCM URL, id, key and joint count
+/// docs/external_programs.md: the run's LCM URL, id, key and joint count
 /// from the environment, the MAC on every datagram (checked before anything
 /// is decoded), the header (run id, publisher, pid, per-channel seq, the
 /// run's clock, checksum), which positions to accept, lockstep's re-sent

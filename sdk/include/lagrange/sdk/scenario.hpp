@@ -4,7 +4,7 @@
 /// lagrange's C++ SDK: the gains, the joints, the arm's parameters as the
 /// run resolved them (every default filled in). `lagrange run` and
 /// `lagrange replay` hand it over as JSON (LAGRANGE_CONFIG_JSON,
-/// OUT/config.resolved.json; docs/external_controllers.md), numbers as
+/// OUT/config.resolved.json; docs/external_programs.md), numbers as
 /// numbers:
 ///
 ///     const nlohmann::json s = lagrange::sdk::scenario();

@@ -1,0 +1,575 @@
+"""A plant of your own in a lagrange run (plant.type: external): a simulator
+you wrote, or a bridge to a real arm (docs/hardware.md).
+
+You write how the arm moves; this module keeps the plant's side of the
+contract of docs/external_programs.md -- the run's LCM URL, id and key from
+the environment, the MAC and header on every datagram, the run's clock
+(lockstep: a tick goes out once the logger is at most lockstep.logger_window
+behind, its measurements re-sent until the actuator answers, unconfirmed
+ticks re-sent to the logger; realtime: a fixed-rate loop with the scenario's
+stale-torque policy), PLANT_POSITION and PLANT_TRUTH of every tick, and the
+STATUS handshake ("ready", "running", "finished" three times) -- and the
+guards a bridge needs: torque, position and rate limits, and a watchdog.
+
+    import lagrange.external_plant
+
+    def step(t, u, dt):          # apply u [N m] from t for dt seconds
+        ...                      # integrate, or command the arm and read it back
+        return q, qdot           # at t + dt: joint angles [rad], rates [rad/s]
+
+    lagrange.external_plant.run(step)
+
+step may also return a dict {"q": [...], "qdot": [...]} with the arm's
+"kinetic_energy" and "potential_energy" [J] (logged in PLANT_TRUTH; NaN,
+"not known", when not given). The state at t = 0 is initial() when given
+(a bridge reads the arm), else the scenario's initial_state. The resolved
+scenario is Plant.scenario (a dict). See examples/external_plant/.
+"""
+
+import math
+import os
+import signal
+import sys
+import time
+
+from . import contract
+from .actuator_state_t import actuator_state_t
+from .external import ContractError, _environment, scenario as _scenario
+from .header_t import header_t
+from .lcm import LCM, LCMError
+from .loop_stats_t import loop_stats_t
+from .plant_position_t import plant_position_t
+from .plant_truth_t import plant_truth_t
+from .status_t import status_t
+
+TORQUE_COMMANDED = plant_truth_t.TORQUE_COMMANDED
+TORQUE_HELD = plant_truth_t.TORQUE_HELD
+TORQUE_ZERO = plant_truth_t.TORQUE_ZERO
+
+
+class PlantStopped(RuntimeError):
+    """The plant ended the run: a stall (whom it waited for), a limit crossed."""
+
+
+class Limits:
+    """What a bridge enforces whatever the controller asks (docs/hardware.md):
+    torque: |u_i| <= torque[i] [N m], a larger command clipped (counted);
+    position: lower[i] <= q_i <= upper[i] [rad], as [(lower, upper), ...];
+    rate: |qdot_i| <= rate[i] [rad/s].
+    A measured state outside its position or rate limits stops the run:
+    zero torque, brake() when given, STATUS "failed" naming joint, value,
+    limit and tick, exit 1. None: no limit of that kind."""
+
+    def __init__(self, torque=None, position=None, rate=None):
+        self.torque = None if torque is None else [float(x) for x in torque]
+        self.position = None if position is None else [(float(lo), float(hi)) for lo, hi in position]
+        self.rate = None if rate is None else [float(x) for x in rate]
+        for what, values in (("torque", self.torque), ("rate", self.rate)):
+            if values is not None and not all(v > 0.0 for v in values):
+                raise ContractError("Limits: every %s limit must be > 0; got %r" % (what, values))
+        if self.position is not None and not all(lo < hi for lo, hi in self.position):
+            raise ContractError("Limits: every position limit must be (lower, upper) with lower < upper; got %r"
+                                % (self.position,))
+
+    def check_sizes(self, joints):
+        for what, values in (("torque", self.torque), ("position", self.position), ("rate", self.rate)):
+            if values is not None and len(values) != joints:
+                raise ContractError("Limits: %d %s limits for %d joints; expected one per joint"
+                                    % (len(values), what, joints))
+
+    def clip(self, u):
+        """u within the torque limits, and whether any entry was clipped."""
+        if self.torque is None:
+            return list(u), False
+        out = [max(-lim, min(lim, x)) for x, lim in zip(u, self.torque)]
+        return out, out != list(u)
+
+    def breach(self, q, qdot):
+        """What the state crosses, as a sentence, or None."""
+        for j in range(len(q)):
+            if self.position is not None:
+                lo, hi = self.position[j]
+                if not lo <= q[j] <= hi:
+                    return ("joint %d's position %.6g rad is outside its limits [%.6g, %.6g]"
+                            % (j + 1, q[j], lo, hi))
+            if self.rate is not None and not abs(qdot[j]) <= self.rate[j]:
+                return "joint %d's rate %.6g rad/s is beyond its limit %.6g" % (j + 1, qdot[j], self.rate[j])
+        return None
+
+
+class TorqueChoice:
+    """Which torque a realtime plant applies over the period after tick k
+    (the built-in plant's rule, plant/plant_loops.cpp): the newest answer
+    while at most max_age ticks old; then, under stale_torque "hold", that
+    torque for hold_periods more; then zero. The watchdog (watchdog_periods,
+    None: off) zeroes an answer older than that whatever the policy, and
+    trips once per silence."""
+
+    def __init__(self, max_age, hold_periods, hold, watchdog_periods=None):
+        self.max_age = max_age
+        self.hold_limit = max_age + hold_periods if hold else max_age
+        self.watchdog = watchdog_periods
+        self.held = self.zeroed = self.watchdog_trips = 0
+        self.tripped = False
+
+    def choose(self, k, newest_tick, newest_tau, joints):
+        """(tau, source, input_tick, tripped_now) for the period after tick k."""
+        age = k - newest_tick if newest_tick is not None else k + 1
+        if self.watchdog is not None and age > self.watchdog:
+            tripped_now = not self.tripped
+            if tripped_now:
+                self.watchdog_trips += 1
+            self.tripped = True
+            if k > 0:
+                self.zeroed += 1
+            return [0.0] * joints, TORQUE_ZERO, -1, tripped_now
+        self.tripped = False
+        if newest_tick is not None and age <= self.max_age:
+            return list(newest_tau), TORQUE_COMMANDED, newest_tick, False
+        if newest_tick is not None and age <= self.hold_limit:
+            self.held += 1
+            return list(newest_tau), TORQUE_HELD, newest_tick, False
+        if k > 0:  # nothing can have answered before the first sample
+            self.zeroed += 1
+        return [0.0] * joints, TORQUE_ZERO, -1, False
+
+
+class _Histogram:
+    """Percentiles of non-negative durations in fixed memory (1 % buckets)."""
+
+    _STEP = math.log(1.01)
+
+    def __init__(self):
+        self.counts = {}
+        self.n = 0
+        self.max = 0.0
+
+    def add(self, seconds):
+        b = int(math.log1p(max(0.0, seconds) * 1e7) / self._STEP)
+        self.counts[b] = self.counts.get(b, 0) + 1
+        self.n += 1
+        self.max = max(self.max, seconds)
+
+    def percentile(self, p):
+        if self.n == 0:
+            return 0.0
+        want, seen = p * self.n, 0
+        for b in sorted(self.counts):
+            seen += self.counts[b]
+            if seen >= want:
+                return math.expm1(b * self._STEP) * 1e-7
+        return self.max
+
+
+class Plant:
+    """The contract around step(t, u, dt) -> q, qdot. Most users call run(step)."""
+
+    def __init__(self, step, initial=None, limits=None, watchdog_periods=None, brake=None, environ=None):
+        environ = os.environ if environ is None else environ
+        self.step = step
+        self.brake = brake
+        self.limits = limits
+        self.url = _environment("LAGRANGE_LCM_URL", environ)
+        self.run_id = int(_environment("LAGRANGE_RUN_ID", environ))
+        self.joints = int(_environment("LAGRANGE_JOINTS", environ))
+        self.key = contract.Key.from_file(_environment("LAGRANGE_KEY_FILE", environ))
+        self.scenario = _scenario(environ)
+        s = self.scenario
+        try:
+            self.mode = s["mode"]
+            self.rate = float(s["plant"]["publish_rate"])
+            self.last_tick = int(round(float(s["duration"]) * self.rate))
+            ls, rt = s["lockstep"], s["realtime"]
+            self.retransmit = float(ls["retransmit_timeout"])
+            self.window = int(ls["logger_window"])
+            self.stall = float(ls["stall_timeout"])
+            self.choice = TorqueChoice(int(rt["max_torque_age"]), int(rt["hold_periods"]),
+                                       rt["stale_torque"] == "hold", watchdog_periods)
+        except (KeyError, TypeError, ValueError) as e:
+            raise ContractError("the run's scenario lacks %s; expected the resolved scenario lagrange wrote" % e)
+        if watchdog_periods is not None and not (isinstance(watchdog_periods, int) and watchdog_periods >= 1):
+            raise ContractError("watchdog_periods must be a whole number of periods >= 1; got %r"
+                                % (watchdog_periods,))
+        if limits is not None:
+            limits.check_sizes(self.joints)
+        self.period = 1.0 / self.rate
+        self.startup = 3.0 * self.stall  # plant/plant_loops.hpp startupTimeout
+        if initial is not None:
+            q, qdot = self._state(initial(), "initial()")
+        else:
+            q = [float(x) for x in s["initial_state"]["q"]]
+            qdot = [float(x) for x in s["initial_state"]["qdot"]]
+        self.q, self.qdot = q, qdot
+        self.energy = (float("nan"), float("nan"))
+        self.headers = contract.Headers(self.run_id, "plant")
+        self.lcm = LCM(self.url)
+        self.lcm.subscribe("ACTUATOR_STATE", self._on_actuator_state)
+        self.lcm.subscribe("STATUS", self._on_status)
+        self.peers = {}  # process -> (state, last_tick) of its newest STATUS
+        self.logger_tick = None  # None: the logger not heard yet
+        self.newest = None  # (tick, tau) of the newest ACTUATOR_STATE
+        self.rejected = {}  # why -> how many datagrams dropped
+        self.retransmits = self.log_resends = self.clipped = 0
+        self.stop_signal = None
+        self.resumed = False
+
+    # -- receiving -------------------------------------------------------
+    def _reject(self, why):
+        self.rejected[why] = self.rejected.get(why, 0) + 1
+
+    def _message(self, kind, data):
+        payload = self.key.authenticate(data)
+        if payload is None:
+            self._reject("MAC")  # forged, altered or of another run: never decoded
+            return None
+        try:
+            m = kind.decode(payload)
+        except Exception:
+            self._reject("undecodable")
+            return None
+        if m.header.run_id != self.run_id:
+            self._reject("another run")
+            return None
+        if not contract.intact(m):
+            self._reject("checksum")
+            return None
+        return m
+
+    def _on_status(self, _channel, data):
+        s = self._message(status_t, data)
+        if s is None or s.process == "plant":
+            return
+        self.peers[s.process] = (s.state, s.last_tick)
+        if s.process == "logger":
+            self.logger_tick = s.last_tick if self.logger_tick is None else max(self.logger_tick, s.last_tick)
+
+    def _on_actuator_state(self, _channel, data):
+        a = self._message(actuator_state_t, data)
+        if a is None:
+            return
+        if a.header.publisher != "actuator":
+            return self._reject("not the actuator's")
+        if a.num_joints != self.joints or a.torque_steps != 1 or len(a.tau_applied) != 1 \
+                or len(a.tau_applied[0]) != self.joints:
+            return self._reject("wrong size")
+        tau = list(a.tau_applied[0])
+        if not all(math.isfinite(x) for x in tau):
+            return self._reject("non-finite torque (NaN or Inf) from %s" % a.header.publisher)
+        if self.newest is None or a.header.tick > self.newest[0]:
+            self.newest = (a.header.tick, tau)
+
+    def _handle(self, timeout_ms):
+        self.lcm.handle_timeout(max(0, int(timeout_ms)))
+
+    def _drain(self):
+        while self.lcm.handle_timeout(0) > 0:
+            pass
+
+    # -- the arm ---------------------------------------------------------
+    def _state(self, out, what):
+        fields = out if isinstance(out, dict) else None
+        try:
+            q, qdot = (fields["q"], fields["qdot"]) if fields is not None else out
+            q, qdot = [float(x) for x in q], [float(x) for x in qdot]
+        except (TypeError, ValueError, KeyError):
+            raise ContractError("%s returned %r; expected (q, qdot) or {\"q\": [...], \"qdot\": [...]}, %d numbers "
+                                "each" % (what, out, self.joints)) from None
+        for name, v in (("q", q), ("qdot", qdot)):
+            if len(v) != self.joints:
+                raise ContractError("%s returned %d numbers for %s; expected %d (one per joint)"
+                                    % (what, len(v), name, self.joints))
+            for j, x in enumerate(v):
+                if not math.isfinite(x):
+                    raise ContractError("%s returned %r for %s of joint %d; expected finite numbers"
+                                        % (what, x, name, j + 1))
+        if fields is not None and "kinetic_energy" in fields:
+            self.energy = (float(fields["kinetic_energy"]), float(fields.get("potential_energy", 0.0)))
+        return q, qdot
+
+    def _advance(self, k, tau):
+        t = k * self.period
+        u, clipped = self.limits.clip(tau) if self.limits is not None else (list(tau), False)
+        self.clipped += 1 if clipped else 0
+        self.q, self.qdot = self._state(self.step(t, u, self.period), "step() at t = %.6g s" % t)
+        return u
+
+    def _check_limits(self, k):
+        why = self.limits.breach(self.q, self.qdot) if self.limits is not None else None
+        if why is not None:
+            if self.brake is not None:
+                self.brake()
+            raise PlantStopped("%s at tick %d (t = %.6g s); the plant commanded zero torque%s and stopped the run "
+                               "(its limits)" % (why, k, k * self.period, " and braked" if self.brake else ""))
+
+    # -- publishing ------------------------------------------------------
+    def _publish(self, channel, msg, tick, sim_time):
+        self.headers.stamp(msg.header, channel, tick, sim_time)
+        self.lcm.publish(channel, self.key.sign(contract.seal(msg).encode()))
+
+    def _sample(self, k, tau, source, input_tick):
+        t = k * self.period
+        p = plant_position_t()
+        p.header = header_t()
+        p.num_joints = self.joints
+        p.q = list(self.q)
+        tr = plant_truth_t()
+        tr.header = header_t()
+        tr.num_joints = self.joints
+        tr.q, tr.qdot, tr.tau_applied = list(self.q), list(self.qdot), list(tau)
+        tr.kinetic_energy, tr.potential_energy = self.energy
+        tr.total_energy = tr.kinetic_energy + tr.potential_energy
+        tr.input_actuator_tick = input_tick
+        tr.torque_source = source
+        return k, t, p, tr
+
+    def _send(self, sample, truth=True):
+        k, t, p, tr = sample
+        self._publish("PLANT_POSITION", p, k, t)
+        if truth:
+            self._publish("PLANT_TRUTH", tr, k, t)
+
+    def publish_status(self, state, last_tick, message="", loop=None):
+        s = status_t()
+        s.header = header_t()
+        s.process = "plant"
+        s.state = state
+        s.last_tick = last_tick
+        s.tracking_error = float("nan")
+        s.message = message
+        s.num_channels = 0
+        s.channels = []
+        s.loop = loop if loop is not None else loop_stats_t()
+        if loop is None:
+            s.loop.scheduler = ""
+        self._publish("STATUS", s, max(last_tick, 0), max(last_tick, 0) * self.period)
+
+    # -- what went wrong -------------------------------------------------
+    def _heard(self):
+        peers = ", ".join("%s %s at tick %d" % (p, st, tick) for p, (st, tick) in sorted(self.peers.items()))
+        rejected = ", ".join("%d (%s)" % (n, why) for why, n in sorted(self.rejected.items()))
+        return "heard: %s; rejected datagrams: %s" % (peers or "nobody", rejected or "none")
+
+    def _stalled(self, what, k, waited):
+        return PlantStopped("stalled at tick %d: %s for %.1f s (lockstep.stall_timeout %g s); %s"
+                            % (k, what, waited, self.stall, self._heard()))
+
+    def _stop_requested(self):
+        return self.stop_signal is not None
+
+    def _take_resume(self):
+        resumed, self.resumed = self.resumed, False
+        return resumed
+
+    # -- lockstep --------------------------------------------------------
+    def _resend_for_logger(self, unconfirmed, now, resend_at):
+        if self.logger_tick is None or now < resend_at:
+            return resend_at
+        for k in [t for t in unconfirmed if t <= self.logger_tick]:
+            del unconfirmed[k]
+        for k in sorted(unconfirmed):
+            self._send(unconfirmed[k])
+            self.log_resends += 1
+        return now + self.retransmit
+
+    def serve_lockstep(self):
+        self.publish_status("ready", -1)
+        unconfirmed = {}  # tick -> its sample, until the logger confirms it
+        tau, source, input_tick = [0.0] * self.joints, TORQUE_ZERO, -1
+        next_status = time.monotonic()
+        watchdog = None if self.choice.watchdog is None else self.choice.watchdog * self.period
+        for k in range(self.last_tick + 1):
+            wait_start = time.monotonic()
+            resend_at, resumed = wait_start + self.retransmit, False
+            while not (self.logger_tick is not None and k - self.logger_tick <= self.window):
+                if self._stop_requested():
+                    self.publish_status("interrupted", k - 1)
+                    return 0
+                if self._take_resume():
+                    wait_start, resumed = time.monotonic(), True
+                limit = self.stall if self.logger_tick is not None and not resumed else self.startup
+                if time.monotonic() - wait_start > limit:
+                    raise self._stalled("waited for the logger (STATUS last_tick %s)" % self.logger_tick, k,
+                                        time.monotonic() - wait_start)
+                self._handle(5)
+                resend_at = self._resend_for_logger(unconfirmed, time.monotonic(), resend_at)
+            sample = self._sample(k, tau, source, input_tick)
+            self._send(sample)
+            published = time.monotonic()
+            unconfirmed[k] = sample
+            for old in [t for t in unconfirmed if t <= self.logger_tick]:
+                del unconfirmed[old]
+            if published >= next_status:
+                self.publish_status("running", k)
+                next_status = published + 0.5
+            deadline = published + (self.startup if k == 0 else self.stall)
+            resend, braked = published + self.retransmit, False
+            while self.newest is None or self.newest[0] < k:
+                if self._stop_requested():
+                    self.publish_status("interrupted", k)
+                    return 0
+                now = time.monotonic()
+                if self._take_resume():
+                    deadline = max(deadline, now + self.startup)
+                if now > deadline:
+                    raise self._stalled("no ACTUATOR_STATE of tick %d" % k, k, now - published)
+                if watchdog is not None and not braked and k > 0 and now - published > watchdog:
+                    # The arm's time does not wait: a bridge brakes (docs/hardware.md).
+                    braked = True
+                    self.choice.watchdog_trips += 1
+                    print("plant: watchdog: no answer to tick %d for %d periods (%.3f s)%s"
+                          % (k, self.choice.watchdog, now - published, "; braking" if self.brake else ""),
+                          file=sys.stderr, flush=True)
+                    if self.brake is not None:
+                        self.brake()
+                self._handle(5)
+                if self.newest is None or self.newest[0] < k:
+                    if time.monotonic() >= resend:
+                        self._send(sample, truth=False)
+                        self.retransmits += 1
+                        resend = time.monotonic() + self.retransmit
+            if k < self.last_tick:
+                tau = self._advance(k, self.newest[1])
+                source, input_tick = TORQUE_COMMANDED, self.newest[0]
+                self._check_limits(k + 1)
+        # The end: every sample in the log first (bounded).
+        deadline = time.monotonic() + self.stall
+        resend_at = time.monotonic() + self.retransmit
+        while (self.logger_tick is None or self.logger_tick < self.last_tick) and time.monotonic() < deadline \
+                and not self._stop_requested():
+            self._handle(5)
+            resend_at = self._resend_for_logger(unconfirmed, time.monotonic(), resend_at)
+        if self.logger_tick is None or self.logger_tick < self.last_tick:
+            print("plant: warning: the logger confirmed every message up to tick %s of %d"
+                  % (self.logger_tick, self.last_tick), file=sys.stderr, flush=True)
+        message = "retransmits=%d log_resends=%d" % (self.retransmits, self.log_resends)
+        return self._finish(message)
+
+    def _finish(self, message, loop=None):
+        if self.clipped:
+            message += " torque_clipped=%d" % self.clipped
+            print("plant: clipped the torque to its limits in %d periods" % self.clipped, file=sys.stderr, flush=True)
+        for _ in range(3):  # the others end on it, and a datagram can be lost
+            self.publish_status("finished", self.last_tick, message, loop)
+        return 0
+
+    # -- realtime --------------------------------------------------------
+    def _loop_stats(self, cycles, started, lateness, misses, longest):
+        st = loop_stats_t()
+        st.period = self.period
+        try:
+            fifo = os.sched_getscheduler(0) == os.SCHED_FIFO
+            st.scheduler = "fifo:%d" % os.sched_getparam(0).sched_priority if fifo else "other"
+            cpus = os.sched_getaffinity(0)
+            if len(cpus) < (os.cpu_count() or len(cpus)):
+                st.scheduler += " cpus " + ",".join(str(c) for c in sorted(cpus))
+        except (AttributeError, OSError):
+            st.scheduler = "other"
+        st.cycles = cycles
+        elapsed = time.monotonic() - started
+        st.achieved_rate = cycles / elapsed if elapsed > 0 else 0.0
+        st.jitter_p50, st.jitter_p99, st.jitter_max = (lateness.percentile(0.5), lateness.percentile(0.99),
+                                                      lateness.max)
+        st.deadline_misses = misses
+        st.longest_miss_run = longest
+        st.torque_held = self.choice.held
+        st.torque_zeroed = self.choice.zeroed
+        st.stale_inputs = self.choice.held + self.choice.zeroed
+        return st
+
+    def serve_realtime(self):
+        self.publish_status("ready", -1)
+        start = time.monotonic()
+        while not all(p in self.peers for p in ("logger", "controller", "actuator")):
+            if self._stop_requested():
+                self.publish_status("interrupted", -1)
+                return 0
+            if time.monotonic() - start > self.startup:
+                raise self._stalled("waited for STATUS from logger, controller and actuator", 0,
+                                    time.monotonic() - start)
+            self._handle(20)
+        lateness, misses, miss_run, longest = _Histogram(), 0, 0, 0
+        t0 = time.monotonic()
+        next_status = t0 + 0.5
+        tau, source, input_tick = [0.0] * self.joints, TORQUE_ZERO, -1
+        k = 0
+        for k in range(self.last_tick + 1):
+            if self._stop_requested():
+                break
+            deadline = t0 + k * self.period
+            now = time.monotonic()
+            if now > deadline:
+                misses, miss_run = misses + 1, miss_run + 1
+                longest = max(longest, miss_run)
+            else:
+                miss_run = 0
+                time.sleep(deadline - now)
+            lateness.add(max(0.0, time.monotonic() - deadline))
+            self._send(self._sample(k, tau, source, input_tick))
+            if k == self.last_tick:
+                break
+            self._drain()
+            newest_tick, newest_tau = self.newest if self.newest is not None else (None, None)
+            chosen, source, input_tick, tripped = self.choice.choose(k, newest_tick, newest_tau, self.joints)
+            if tripped:
+                print("plant: watchdog: the newest torque (tick %s) is more than %d periods old at tick %d "
+                      "(t = %.6g s); commanding zero torque%s" % (newest_tick, self.choice.watchdog, k,
+                                                                k * self.period, " and braking" if self.brake else ""),
+                      file=sys.stderr, flush=True)
+                if self.brake is not None:
+                    self.brake()
+            tau = self._advance(k, chosen)
+            self._check_limits(k + 1)
+            if time.monotonic() >= next_status:
+                self.publish_status("running", k, loop=self._loop_stats(k + 1, t0, lateness, misses, longest))
+                next_status += 0.5
+        loop = self._loop_stats(k + 1, t0, lateness, misses, longest)
+        if self._stop_requested():
+            self.publish_status("interrupted", k, loop=loop)
+            return 0
+        c = self.choice
+        if c.held + c.zeroed > 0:
+            print("plant: warning: stale torque: held %d periods, zeroed %d periods" % (c.held, c.zeroed),
+                  file=sys.stderr, flush=True)
+        message = "torque_held=%d torque_zeroed=%d" % (c.held, c.zeroed)
+        if c.watchdog_trips:
+            message += " watchdog_trips=%d" % c.watchdog_trips
+        return self._finish(message, loop)
+
+    def serve(self):
+        """Runs the plant until the run's last tick (or a stop); returns the exit code."""
+        self._check_limits(0)
+        if self.mode == "realtime":
+            return self.serve_realtime()
+        return self.serve_lockstep()
+
+
+def _install_signals(plant):
+    def stop(signum, _frame):
+        plant.stop_signal = signum
+
+    def resume(_signum, _frame):  # the launcher restarted a peer: start-up time again
+        plant.resumed = True
+
+    signal.signal(signal.SIGTERM, stop)
+    signal.signal(signal.SIGINT, stop)
+    signal.signal(signal.SIGCONT, resume)
+
+
+def run(step, initial=None, limits=None, watchdog_periods=None, brake=None):
+    """Serves step(t, u, dt) -> (q, qdot) as the run's plant until the run
+    ends, then exits the program (0). A stall, a crossed limit or an error of
+    the contract is printed, published as STATUS "failed", and exits 1."""
+    plant = None
+    try:
+        plant = Plant(step, initial, limits, watchdog_periods, brake)
+        _install_signals(plant)
+        code = plant.serve()
+    except (ContractError, PlantStopped, ValueError, LCMError) as e:
+        print("%s: %s" % (os.path.basename(sys.argv[0]) or "plant", e), file=sys.stderr, flush=True)
+        if plant is not None:
+            try:
+                plant.publish_status("failed", -1, str(e)[:500])
+            except LCMError:
+                pass
+        code = 1
+    sys.exit(code)
