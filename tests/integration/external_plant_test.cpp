@@ -1,0 +1,1 @@
+// A plant from outside (plant.type external) in a run: filled in next.

@@ -1,0 +1,1 @@
+// The C++ SDK's plant guards (limits, watchdog, stale-torque choice): filled in next.
