@@ -63,7 +63,10 @@ ReplayResult replayActuator(const std::string& log_path, const std::vector<std::
 /// torque_source: commanded, held or zero, so the stale-torque policy of a
 /// realtime run replays too); compares q, q', the applied torque and the
 /// energies of PLANT_TRUTH, q of PLANT_POSITION and q2 (q2') of PLANT_MOTOR.
-ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides = {});
+/// @param external_command the program that replays an external plant
+/// (plant.type external); must be empty for the simulated plant.
+ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides = {},
+                         const std::vector<std::string>& external_command = {});
 
 /// Declares `replay` and its options on the front end (tools/replay/replay_cli.cpp).
 Subcommand addReplayCommand(CLI::App& app);

@@ -29,7 +29,7 @@ struct ReplayCommandLine {
 int replayComponent(const ReplayCommandLine& o, const std::string& component) {
   try {
     const ReplayResult r = component == "actuator" ? replayActuator(o.log, o.overrides)
-                           : component == "plant"  ? replayPlant(o.log, o.overrides)
+                           : component == "plant"  ? replayPlant(o.log, o.overrides, o.external_command)
                                                    : replayController(o.log, o.overrides, o.external_command);
     for (const auto& w : r.warnings) std::cerr << "lagrange replay: warning: " << w << "\n";
     if (r.divergence) {
@@ -64,11 +64,26 @@ int replay(const ReplayCommandLine& o, const std::vector<std::string>& self_argv
                              "; expected nothing there, or -- and the command of an external controller "
                              "to replay (lagrange replay LOG -- COMMAND ARGS...)"));
   const LoggedController logged = loggedController(o.log);
+  if (command_given && o.component == "plant") {
+    const LoggedController plant = loggedController(o.log, "plant");
+    if (!plant.type.empty() && !plant.external())
+      return failWith("lagrange replay",
+                      BadInput("the log's plant is " + plant.type +
+                               ", which replay builds itself; a command after -- with --component plant is "
+                               "for a log whose plant.type is external, and none was run"));
+    if (!wiring::insidePrivateNetns()) {
+      const std::string why = wiring::reexecInPrivateNetns(self_argv);  // returns only on failure
+      std::cerr << "lagrange replay: " << why << "; install util-linux to replay an external plant\n";
+      return kExitFailed;
+    }
+    return replayComponent(o, "plant");
+  }
   if (command_given) {
     if (o.component != "controller")
       return failWith("lagrange replay",
-                      BadInput("a command after -- replays an external controller; --component " +
-                               o.component + " runs none (drop the command, or replay the controller)"));
+                      BadInput("a command after -- replays an external controller or (with --component "
+                               "plant) an external plant; --component " +
+                               o.component + " runs none (drop the command)"));
     if (!logged.type.empty() && !logged.external())
       return failWith("lagrange replay",
                       BadInput("the log's controller is '" + logged.type +
@@ -107,8 +122,9 @@ Subcommand addReplayCommand(CLI::App& app) {
       "replay",
       "Feed a component's recorded inputs from an LCM log into its core and compare every output with the "
       "recorded one; print the first divergence (tick, time, field, both values); exit 1 on any, 2 when the "
-      "log is damaged or has gaps (named: tick, byte offset). An external controller is replayed only by a "
-      "program named after --, never by the command the log holds");
+      "log is damaged or has gaps (named: tick, byte offset). An external controller (or, with --component "
+      "plant, an external plant) is replayed only by a program named after --, never by the command the log "
+      "holds");
   cmd->add_option("log", o->log,
                   "A run's output directory (its run.lcm) or an LCM log (run.lcm, a stock lcm-logger's)")
       ->required()
@@ -124,7 +140,8 @@ Subcommand addReplayCommand(CLI::App& app) {
                   "Override a key of the logged scenario before replaying (e.g. to check that a "
                   "changed gain is caught); repeatable");
   cmd->add_option("command", o->external_command,
-                  "After --: the program (and its arguments) that replays the log's external controller, "
+                  "After --: the program (and its arguments) that replays the log's external controller "
+                  "(or with --component plant its external plant), "
                   "started in the current directory in a private network namespace. The command the log "
                   "holds is shown, never run");
   return {cmd, [o](const Invocation& inv) {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Replay of a controller from outside the project (controller.type external,
+/// Replay of a controller (or plant, below) from outside the project (controller.type external,
 /// docs/external_programs.md): there is no core to step, so a program is
 /// started, in a private network namespace on a bus of its own, and fed the
 /// recorded PLANT_POSITION of each recorded command, in order, as the plant
@@ -28,14 +28,27 @@ namespace lagrange::tools {
 void replayExternalController(const replay_log::Opened& o, ReplayResult& result,
                               const std::vector<std::string>& command);
 
-/// The controller a log's SCENARIO names, read as the YAML stands (nothing
-/// resolved, nothing run): its type ("" when the log has no readable
-/// SCENARIO) and, for an external one, its command.
+/// The program a log's SCENARIO names in `section` ("controller", "plant"),
+/// read as the YAML stands (nothing resolved, nothing run): its type (""
+/// when the log has no readable SCENARIO; "simulated" for a plant section
+/// without one) and, for an external one, its command.
 struct LoggedController {
   std::string type;
   std::vector<std::string> command;
   bool external() const { return type == "external"; }
 };
-LoggedController loggedController(const std::string& log_path);
+LoggedController loggedController(const std::string& log_path, const std::string& section = "controller");
+
+/// Runs `command` as the log's plant (plant.type external): the replay is
+/// the actuator and the logger, the program the plant, in lockstep. The
+/// program starts from the scenario's initial state; the answer to each
+/// tick k is the torque the log's PLANT_TRUTH k+1 says was applied over the
+/// period (its torque_source; a realtime log's held and zeroed periods
+/// too), and every PLANT_TRUTH and PLANT_POSITION the program publishes is
+/// compared with the recorded one bit for bit (in a realtime log,
+/// input_actuator_tick and torque_source say which answer arrived in time,
+/// not what the plant did, and are not compared). @throws ReplayError as
+/// replayExternalController does.
+void replayExternalPlant(const replay_log::Opened& o, ReplayResult& result, const std::vector<std::string>& command);
 
 }  // namespace lagrange::tools

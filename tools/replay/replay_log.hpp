@@ -137,4 +137,10 @@ void requireTaken(Eigen::Index rows, Eigen::Index columns, Eigen::Index expected
 /// "tick K (t = T s): " -- where a divergence is.
 std::string at(int64_t tick, double t);
 
+/// The torque profile the plant applied over the period ending at `truth`,
+/// as the sample itself says it was chosen (tools/replay/replay_plant.cpp).
+/// @throws ReplayError when the log lacks it, it does not fit, or the
+/// sample names no way it was chosen.
+void chooseTorque(const Opened& o, const lagrange::plant_truth_t& truth, Eigen::MatrixXd& tau);
+
 }  // namespace lagrange::tools::replay_log

@@ -7,6 +7,7 @@
 #include "plant/plant_lcm.hpp"
 #include "plant/scenario_plant.hpp"
 #include "tools/replay/replay.hpp"
+#include "tools/replay/replay_external.hpp"
 #include "tools/replay/replay_gaps.hpp"
 #include "tools/replay/replay_log.hpp"
 #include "transport/channels.hpp"
@@ -14,13 +15,8 @@
 
 namespace lagrange::tools {
 
-namespace {
+namespace replay_log {
 
-using namespace replay_log;
-
-// The torque profile the plant applied over the period ending at `truth`,
-// as the sample itself says it was chosen. @throws ReplayError when the log
-// lacks it, it does not fit, or the sample names no way it was chosen.
 void chooseTorque(const Opened& o, const lagrange::plant_truth_t& truth, Eigen::MatrixXd& tau) {
   switch (truth.torque_source) {
     case lagrange::plant_truth_t::TORQUE_COMMANDED:
@@ -49,6 +45,12 @@ void chooseTorque(const Opened& o, const lagrange::plant_truth_t& truth, Eigen::
     }
   }
 }
+
+}  // namespace replay_log
+
+namespace {
+
+using namespace replay_log;
 
 // First difference between what the plant recorded at a tick and the replayed sample.
 std::string firstDifference(const Opened& o, const lagrange::plant_truth_t& truth,
@@ -82,10 +84,15 @@ std::string firstDifference(const Opened& o, const lagrange::plant_truth_t& trut
 
 }  // namespace
 
-ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides) {
+ReplayResult replayPlant(const std::string& log_path, const std::vector<std::string>& overrides,
+                         const std::vector<std::string>& external_command) {
   return replayWith(log_path, overrides, transport::kPlantTruth, [&](const Opened& o, ReplayResult& result) {
     const Recorded& rec = o.rec;
     const config::Scenario& s = o.scenario;
+    if (s.plant.external()) return replayExternalPlant(o, result, external_command);
+    if (!external_command.empty())
+      throw ReplayError("the log's plant is simulated, which replay builds itself; a command after -- "
+                        "replays an external plant (plant.type external) only, and none was run");
     plant::PlantSim sim = plant::plantFor(s);
     plant::ScenarioSensors sensors = plant::sensorsFor(s);  // their draws again, tick by tick
     Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());

@@ -1,0 +1,150 @@
+#include "sdk/contract.hpp"
+
+#include <openssl/crypto.h>
+#include <openssl/evp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <utility>
+
+namespace lagrange::sdk::contract {
+
+std::string environment(const char* name, const std::string& role) {
+  const char* v = std::getenv(name);
+  if (v == nullptr || *v == '\0')
+    throw ContractError(std::string(name) + " is not set: an external " + role +
+                        " is started by `lagrange run` (" + role +
+                        ".type: external), which sets LAGRANGE_LCM_URL, LAGRANGE_RUN_ID, LAGRANGE_KEY_FILE, "
+                        "LAGRANGE_JOINTS and LAGRANGE_MODE");
+  return v;
+}
+
+long long integer(const char* name, const std::string& role) {
+  const std::string text = environment(name, role);
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (end == text.c_str() || *end != '\0')
+    throw ContractError(std::string(name) + "='" + text + "': expected an integer");
+  return v;
+}
+
+int64_t monotonicUs() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+namespace {
+
+// The run's clock (transport/run_clock.hpp): monotonic plus the launcher's
+// offset, the same for every process of the run; our own when not given.
+int64_t clockOffsetUs() {
+  if (const char* text = std::getenv("LAGRANGE_CLOCK_OFFSET_US")) {
+    char* end = nullptr;
+    const long long v = std::strtoll(text, &end, 10);
+    if (end != text && *end == '\0') return v;
+  }
+  const int64_t wall = std::chrono::duration_cast<std::chrono::microseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count();
+  return wall - monotonicUs();
+}
+
+}  // namespace
+
+Key::Key(const std::string& path) {
+  std::ifstream in(path);
+  std::string text;
+  if (!(in >> text) || text.size() != 64)
+    throw ContractError("the run's key file " + path + " does not hold 64 hex digits");
+  for (size_t i = 0; i < key_.size(); ++i) {
+    const std::string pair = text.substr(2 * i, 2);
+    char* end = nullptr;
+    const long b = std::strtol(pair.c_str(), &end, 16);
+    if (*end != '\0') throw ContractError("the run's key file " + path + " does not hold 64 hex digits");
+    key_[i] = static_cast<unsigned char>(b);
+  }
+}
+
+std::array<unsigned char, kMacBytes> Key::mac(const void* data, size_t size) const {
+  std::array<unsigned char, kMacBytes> out{};
+  size_t written = 0;
+  if (EVP_Q_mac(nullptr, "HMAC", nullptr, "SHA256", nullptr, key_.data(), key_.size(),
+                static_cast<const unsigned char*>(data), size, out.data(), out.size(), &written) == nullptr ||
+      written != kMacBytes)
+    throw ContractError("HMAC-SHA256 failed (libcrypto)");
+  return out;
+}
+
+bool Key::authentic(const void* data, size_t size) const noexcept {
+  if (size < kMacBytes) return false;
+  const size_t payload = size - kMacBytes;
+  try {
+    const auto good = mac(data, payload);
+    return CRYPTO_memcmp(good.data(), static_cast<const unsigned char*>(data) + payload, kMacBytes) == 0;
+  } catch (const ContractError&) {
+    return false;
+  }
+}
+
+Headers::Headers(int64_t run_id, std::string publisher)
+    : run_id_(run_id),
+      publisher_(std::move(publisher)),
+      pid_(static_cast<int32_t>(getpid())),
+      clock_offset_us_(clockOffsetUs()) {}
+
+void Headers::stamp(lagrange::header_t& h, const std::string& channel, int64_t tick, double sim_time) {
+  h.tick = std::max<int64_t>(0, tick);
+  h.sim_time = sim_time;
+  h.publish_utime = monotonicUs() + clock_offset_us_;
+  h.run_id = run_id_;
+  h.publisher = publisher_;
+  h.publisher_pid = pid_;
+  h.seq = ++seq_[channel];
+  h.checksum = 0;
+}
+
+const char* reasonOf(Verdict v) {
+  switch (v) {
+    case Verdict::kUnauthenticated:
+      return "MAC";
+    case Verdict::kUndecodable:
+      return "undecodable";
+    case Verdict::kOtherRun:
+      return "another run";
+    case Verdict::kCorrupt:
+      return "checksum";
+    case Verdict::kAccepted:
+      break;
+  }
+  return "accepted";
+}
+
+Bus::Bus(const std::string& role)
+    : url_(environment("LAGRANGE_LCM_URL", role)),
+      run_id_(integer("LAGRANGE_RUN_ID", role)),
+      key_(environment("LAGRANGE_KEY_FILE", role)),
+      headers_(run_id_, role),
+      lcm_(url_) {
+  if (!lcm_.good()) throw ContractError("LCM could not be created on " + url_ + " (LAGRANGE_LCM_URL)");
+}
+
+int Bus::handle(int timeout_ms) {
+  const int handled = lcm_.handleTimeout(std::max(0, timeout_ms));
+  if (handled >= 0) return handled;
+  if (errno == EINTR) return 0;  // a signal (a stop, a SIGCONT): the caller looks at its flags
+  throw ContractError("LCM failed while waiting for a message on " + url_);
+}
+
+void Bus::send(const std::string& channel, std::vector<uint8_t> bytes) {
+  const auto tag = key_.mac(bytes.data(), bytes.size());
+  bytes.insert(bytes.end(), tag.begin(), tag.end());
+  if (lcm_.publish(channel, bytes.data(), static_cast<unsigned>(bytes.size())) != 0)
+    throw ContractError("LCM could not publish on " + channel + " (" + url_ + ")");
+}
+
+}  // namespace lagrange::sdk::contract
