@@ -87,8 +87,7 @@ class Controller {
     if (!error_.empty()) return;
     lagrange::plant_position_t p;
     if (bus_.receive(rbuf, p) != contract::Verdict::kAccepted) return;
-    if (p.header.publisher != "plant" ||
-        p.num_joints != joints_ || static_cast<int>(p.q.size()) != joints_)
+    if (p.header.publisher != "plant" || p.num_joints != joints_ || static_cast<int>(p.q.size()) != joints_)
       return;
     const int64_t tick = p.header.tick;
     if (const auto cached = answered_.find(tick); cached != answered_.end()) {

@@ -208,6 +208,7 @@ class Plant:
         self.peers = {}  # process -> (state, last_tick) of its newest STATUS
         self.logger_tick = None  # None: the logger not heard yet
         self.newest = None  # (tick, tau) of the newest ACTUATOR_STATE
+        self.newest_utime = 0  # its publish_utime (the run's clock)
         self.rejected = {}  # why -> how many datagrams dropped
         self.retransmits = self.log_resends = self.clipped = 0
         self.stop_signal = None
@@ -257,6 +258,7 @@ class Plant:
             return self._reject("non-finite torque (NaN or Inf) from %s" % a.header.publisher)
         if self.newest is None or a.header.tick > self.newest[0]:
             self.newest = (a.header.tick, tau)
+            self.newest_utime = a.header.publish_utime
 
     def _handle(self, timeout_ms):
         self.lcm.handle_timeout(max(0, int(timeout_ms)))
@@ -453,7 +455,7 @@ class Plant:
         return 0
 
     # -- realtime --------------------------------------------------------
-    def _loop_stats(self, cycles, started, lateness, misses, longest):
+    def _loop_stats(self, cycles, started, lateness, misses, longest, ages):
         st = loop_stats_t()
         st.period = self.period
         try:
@@ -471,6 +473,8 @@ class Plant:
                                                       lateness.max)
         st.deadline_misses = misses
         st.longest_miss_run = longest
+        st.input_age_p50, st.input_age_p99, st.input_age_max = (ages.percentile(0.5), ages.percentile(0.99),
+                                                                ages.max)
         st.torque_held = self.choice.held
         st.torque_zeroed = self.choice.zeroed
         st.stale_inputs = self.choice.held + self.choice.zeroed
@@ -488,14 +492,20 @@ class Plant:
                                     time.monotonic() - start)
             self._handle(20)
         lateness, misses, miss_run, longest = _Histogram(), 0, 0, 0
-        t0 = time.monotonic()
+        ages, used_tick = _Histogram(), -1  # how old each torque was when first applied [s]
+        # Deadlines on whole periods of CLOCK_MONOTONIC, as the built-in loops'
+        # (transport/rate_loop.cpp): the actuator wakes half a period after
+        # each, when the controller has answered, and takes only a fresh command.
+        period_ns = int(round(1e9 / self.rate))
+        t0_ns = (time.monotonic_ns() // period_ns + 1) * period_ns
+        t0 = t0_ns * 1e-9
         next_status = t0 + 0.5
         tau, source, input_tick = [0.0] * self.joints, TORQUE_ZERO, -1
         k = 0
         for k in range(self.last_tick + 1):
             if self._stop_requested():
                 break
-            deadline = t0 + k * self.period
+            deadline = (t0_ns + k * period_ns) * 1e-9
             now = time.monotonic()
             if now > deadline:
                 misses, miss_run = misses + 1, miss_run + 1
@@ -517,12 +527,15 @@ class Plant:
                       file=sys.stderr, flush=True)
                 if self.brake is not None:
                     self.brake()
+            if source == TORQUE_COMMANDED and input_tick > used_tick:
+                used_tick = input_tick
+                ages.add(max(0.0, (self.headers.utime() - self.newest_utime) * 1e-6))
             tau = self._advance(k, chosen)
             self._check_limits(k + 1)
             if time.monotonic() >= next_status:
-                self.publish_status("running", k, loop=self._loop_stats(k + 1, t0, lateness, misses, longest))
+                self.publish_status("running", k, loop=self._loop_stats(k + 1, t0, lateness, misses, longest, ages))
                 next_status += 0.5
-        loop = self._loop_stats(k + 1, t0, lateness, misses, longest)
+        loop = self._loop_stats(k + 1, t0, lateness, misses, longest, ages)
         if self._stop_requested():
             self.publish_status("interrupted", k, loop=loop)
             return 0
