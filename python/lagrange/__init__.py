@@ -1,10 +1,11 @@
 """lagrange for Python: the message types, a reader of run logs, LCM through
-Debian's liblcm1, and a helper for controllers of your own.
+Debian's liblcm1, and helpers for controllers and plants of your own.
 
     lagrange.log.load(run_dir)        a run's log as per-channel arrays (lagrange/log.py)
     lagrange.logfile.LogReader(path)  the events of any LCM log, bounds-checked
     lagrange.lcm.LCM(url)             LCM itself, through ctypes (lagrange/lcm.py)
     lagrange.external.run(step)       an external controller: you write step(t, q) -> u
+    lagrange.external_plant.run(step) an external plant: you write step(t, u, dt) -> (q, qdot)
     lagrange.contract                 the wire contract: MAC, checksum, headers
 
 The message classes (lagrange.plant_position_t, ...) are lcm-gen's Python

@@ -521,10 +521,10 @@ class Plant:
             newest_tick, newest_tau = self.newest if self.newest is not None else (None, None)
             chosen, source, input_tick, tripped = self.choice.choose(k, newest_tick, newest_tau, self.joints)
             if tripped:
-                print("plant: watchdog: the newest torque (tick %s) is more than %d periods old at tick %d "
-                      "(t = %.6g s); commanding zero torque%s" % (newest_tick, self.choice.watchdog, k,
-                                                                k * self.period, " and braking" if self.brake else ""),
-                      file=sys.stderr, flush=True)
+                newest = "no torque yet" if newest_tick is None else "the newest torque (tick %d)" % newest_tick
+                print("plant: watchdog: %s is more than %d periods old at tick %d (t = %.6g s); commanding zero "
+                      "torque%s" % (newest, self.choice.watchdog, k, k * self.period,
+                                    " and braking" if self.brake else ""), file=sys.stderr, flush=True)
                 if self.brake is not None:
                     self.brake()
             if source == TORQUE_COMMANDED and input_tick > used_tick:

@@ -20,6 +20,7 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 import lagrange  # noqa: E402
 import lagrange.contract  # noqa: E402
 import lagrange.external  # noqa: E402
+import lagrange.external_plant  # noqa: E402
 import lagrange.lcm  # noqa: E402
 import lagrange.log  # noqa: E402
 import lagrange.log_bounds  # noqa: E402
@@ -468,6 +469,52 @@ class ExternalController(unittest.TestCase):
         with self.assertRaisesRegex(lagrange.external.ContractError,
                                     "cannot read the run's scenario from LAGRANGE_CONFIG_JSON=.*missing.json"):
             lagrange.external.scenario({"LAGRANGE_CONFIG_JSON": path + ".missing.json"})
+
+
+class PlantGuards(unittest.TestCase):
+    """lagrange.external_plant's realtime torque rule and a bridge's guards (docs/hardware.md)."""
+
+    def test_the_newest_torque_is_applied_then_held_then_zeroed_as_the_built_in_plant_does(self):
+        c = lagrange.external_plant.TorqueChoice(max_age=2, hold_periods=3, hold=True)
+        tau = [1.0, -2.0]
+        P = lagrange.external_plant
+        self.assertEqual(c.choose(0, None, None, 2), ([0.0, 0.0], P.TORQUE_ZERO, -1, False))
+        self.assertEqual(c.zeroed, 0, "nothing can have answered before the first sample")
+        self.assertEqual(c.choose(12, 10, tau, 2)[1:3], (P.TORQUE_COMMANDED, 10))
+        self.assertEqual(c.choose(13, 10, tau, 2)[:3], (tau, P.TORQUE_HELD, 10))
+        self.assertEqual(c.choose(15, 10, tau, 2)[1], P.TORQUE_HELD)
+        self.assertEqual(c.choose(16, 10, tau, 2)[:3], ([0.0, 0.0], P.TORQUE_ZERO, -1))
+        self.assertEqual((c.held, c.zeroed, c.watchdog_trips), (2, 1, 0))
+        zero = lagrange.external_plant.TorqueChoice(max_age=2, hold_periods=3, hold=False)
+        self.assertEqual(zero.choose(13, 10, tau, 2)[1], P.TORQUE_ZERO)
+
+    def test_the_watchdog_zeroes_an_old_torque_whatever_the_policy_and_trips_once_per_silence(self):
+        P = lagrange.external_plant
+        c = P.TorqueChoice(max_age=2, hold_periods=20, hold=True, watchdog_periods=5)
+        self.assertEqual(c.choose(15, 10, [1.0], 1)[1], P.TORQUE_HELD)  # age 5: still the policy's
+        self.assertEqual(c.choose(16, 10, [1.0], 1), ([0.0], P.TORQUE_ZERO, -1, True))  # age 6: tripped
+        self.assertEqual(c.choose(17, 10, [1.0], 1), ([0.0], P.TORQUE_ZERO, -1, False))  # said once
+        self.assertEqual(c.choose(18, 17, [2.0], 1)[:3], ([2.0], P.TORQUE_COMMANDED, 17))  # answers again
+        self.assertEqual(c.choose(30, 17, [2.0], 1)[3], True)  # a second silence trips again
+        self.assertEqual(c.watchdog_trips, 2)
+
+    def test_limits_clip_the_torque_and_name_a_crossed_position_or_rate(self):
+        limits = lagrange.external_plant.Limits(torque=[10.0, 2.0], position=[(-1.0, 1.0), (0.0, 3.0)],
+                                                rate=[5.0, 5.0])
+        self.assertEqual(limits.clip([12.0, -1.0]), ([10.0, -1.0], True))
+        self.assertEqual(limits.clip([-3.0, 1.5]), ([-3.0, 1.5], False))
+        self.assertIsNone(limits.breach([0.5, 1.0], [4.9, -4.9]))
+        self.assertEqual(limits.breach([0.5, -0.25], [0.0, 0.0]),
+                         "joint 2's position -0.25 rad is outside its limits [0, 3]")
+        self.assertEqual(limits.breach([0.5, 1.0], [0.0, -6.0]), "joint 2's rate -6 rad/s is beyond its limit 5")
+        self.assertEqual(limits.breach([float("nan"), 1.0], [0.0, 0.0]),
+                         "joint 1's position nan rad is outside its limits [-1, 1]")
+        with self.assertRaisesRegex(lagrange.external.ContractError, "every torque limit must be > 0"):
+            lagrange.external_plant.Limits(torque=[1.0, 0.0])
+        with self.assertRaisesRegex(lagrange.external.ContractError, "lower < upper"):
+            lagrange.external_plant.Limits(position=[(1.0, -1.0)])
+        with self.assertRaisesRegex(lagrange.external.ContractError, "3 torque limits for 2 joints"):
+            lagrange.external_plant.Limits(torque=[1.0, 1.0, 1.0]).check_sizes(2)
 
 
 if __name__ == "__main__":
