@@ -485,6 +485,7 @@ std::string describe(const SampledSimulation& c) {
         outcome(s.fine_status, s.fine_time).c_str(), s.sampled_error, s.fine_error);
     out += line;
   }
+  if (c.starts.empty()) return out;  // nothing simulated (not assessed): no evidence to qualify
   char tail[320];
   std::snprintf(
       tail, sizeof tail,

@@ -394,20 +394,23 @@ SampledSimulation notAssessedExternal(const config::Scenario& s) {
   out.tolerance = s.metrics.tolerance;
   out.one_period_delay = s.mode == config::Mode::kRealtime;
   out.verdict = "not assessed";
-  out.why = "an external controller does not run in process, where the check simulates the loop";
+  out.why = s.plant.external()
+                ? "an external plant does not run in process, where the check simulates the loop (the "
+                  "linearised estimate uses the robot section's model)"
+                : "an external controller does not run in process, where the check simulates the loop";
   return out;
 }
 
 }  // namespace
 
 SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
-  if (s.controller.type == "external") return notAssessedExternal(s);
+  if (s.controller.type == "external" || s.plant.external()) return notAssessedExternal(s);
   const int processes = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   return check(s, startsOf(s), kMaxRefinement, processes, std::nullopt);
 }
 
 SampledSimulation judgeRun(const config::Scenario& s, const LoopOutcome& run, bool (*stop_requested)()) {
-  if (s.controller.type == "external") return notAssessedExternal(s);
+  if (s.controller.type == "external" || s.plant.external()) return notAssessedExternal(s);
   config::Scenario in_process = s;
   in_process.mode = config::Mode::kInproc;
   const std::vector<StartState> start = {startsOf(in_process).front()};
