@@ -24,7 +24,8 @@ runtime    : util model config transport messages
 logs       : util model config transport messages
 wiring     : util model core config scenario lcm runtime transport messages
 process    : util model core config scenario lcm runtime transport messages logs wiring
-test       : util model core config scenario lcm runtime transport messages logs wiring process
+frontend   : util model core config scenario lcm runtime transport messages logs wiring process
+test       : util model core config scenario lcm runtime transport messages logs wiring process frontend
 sdk        : messages transport/checksum.hpp
 example    : messages sdk
 EOF
@@ -60,7 +61,7 @@ place() {
     runtime/*) layer=runtime ;;
     logs/*) layer=logs ;;
     wiring/*) layer=wiring ;;
-    tools/*) layer=process ;;
+    tools/*) layer=frontend ;;  # the lagrange front end: starts the processes, never started by them
     tests/* | bench/* | fuzz/*) layer=test ;;
     *) layer="" ;;
   esac
@@ -196,7 +197,12 @@ while IFS=$'\t' read -r dir command; do
       fi
       place_library "$name" "$dir" "${args[@]:1}"
       ;;
-    add_executable) lib_layer[${args[0]}]=process ;;  # a program: a process
+    add_executable)  # a program: a process, or the front end in tools/ (or a test's)
+      case $dir in
+        tools | tools/*) lib_layer[${args[0]}]=frontend ;;
+        *) lib_layer[${args[0]}]=process ;;
+      esac
+      ;;
     lagrange_subcommand)
       name=lagrange_tool_${args[0]}
       sources=() tool_links=() part=""

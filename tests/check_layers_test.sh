@@ -1,6 +1,7 @@
 #!/bin/bash
 # Proves that tests/check_layers.sh can fail: on a copy of the sources, an
-# include planted up the layers, a file in no layer, a transport header in
+# include planted up the layers (a model file including a tool, the logger's
+# loop including the front end), a file in no layer, a transport header in
 # config other than the fault rule, a CMake link up the layers, a library in
 # two layers, an include directory other than the repository root and a bare
 # include of a header from another folder are each named and fail the check;
@@ -36,6 +37,13 @@ echo '#include "tools/run/run_command.hpp"' >>"$work/tree/model/bounds.cpp"
 expect_failure "model including a tool" 'model/bounds\.cpp:[0-9]+: #include "tools/run/run_command\.hpp" <- model may include only: +util'
 cp "$work/bounds.cpp" "$work/tree/model/bounds.cpp"
 
+# The front end (tools/) is a layer above the processes: a process's loop
+# that reached into it would run the front end inside a process.
+cp "$work/tree/logger/logger_loop.cpp" "$work/logger_loop.cpp"
+echo '#include "tools/run/run_command.hpp"' >>"$work/tree/logger/logger_loop.cpp"
+expect_failure "a process including the front end" 'logger/logger_loop\.cpp:[0-9]+: #include "tools/run/run_command\.hpp" <- process may include only:'
+cp "$work/logger_loop.cpp" "$work/tree/logger/logger_loop.cpp"
+
 mkdir -p "$work/tree/newpart"
 echo 'int f() { return 0; }' >"$work/tree/newpart/f.cpp"
 expect_failure "a file in no layer" 'newpart/f\.cpp: in no layer'
@@ -56,7 +64,7 @@ expect_failure "model linking runtime" 'model/CMakeLists\.txt: lagrange_model li
 cp "$work/model.cmake" "$work/tree/model/CMakeLists.txt"
 cp "$work/tree/transport/CMakeLists.txt" "$work/transport.cmake"
 echo 'add_library(lagrange_mixed lcm_node.cpp ${PROJECT_SOURCE_DIR}/tools/front_end.cpp)' >>"$work/tree/transport/CMakeLists.txt"
-expect_failure "a library in two layers" 'transport/CMakeLists\.txt: library lagrange_mixed mixes layers \(transport process\)'
+expect_failure "a library in two layers" 'transport/CMakeLists\.txt: library lagrange_mixed mixes layers \(transport frontend\)'
 cp "$work/transport.cmake" "$work/tree/transport/CMakeLists.txt"
 
 # Include directories: one that would let a file include a header of
