@@ -1,6 +1,8 @@
 """lagrange for Python: the message types, a reader of run logs, LCM through
 Debian's liblcm1, and helpers for controllers and plants of your own.
 
+    lagrange.run(scenario, ...)       runs `lagrange run`, returns what lagrange.log.load does
+    lagrange.sweep(spec, ...)         runs `lagrange sweep`, returns its rows (lagrange/programs.py)
     lagrange.log.load(run_dir)        a run's log as per-channel arrays (lagrange/log.py)
     lagrange.logfile.LogReader(path)  the events of any LCM log, bounds-checked
     lagrange.lcm.LCM(url)             LCM itself, through ctypes (lagrange/lcm.py)
@@ -30,3 +32,5 @@ from .robot_description_t import robot_description_t
 from .run_join_t import run_join_t
 from .scenario_t import scenario_t
 from .status_t import status_t
+
+from .programs import LagrangeError, run, sweep  # noqa: E402  (after the types: log needs them)

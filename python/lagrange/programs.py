@@ -1,0 +1,116 @@
+"""lagrange from a notebook or a script: thin wrappers over the installed
+programs, standard library only.
+
+    import lagrange
+    run = lagrange.run("configs/rigid_2dof.yaml", mode="inproc", duration=2.0, controller__kp=[100, 8])
+    run.summary["tracking"]["convergence_time"], run.channels["PLANT_TRUTH"]["q"][-1]
+
+    rows = lagrange.sweep("sweeps/rigid_rates.yaml", jobs=2)
+    [(r["index"], r["status"], r["convergence_time"]) for r in rows]
+
+A keyword override is a scenario key with "__" for each "." (controller__kp
+is controller.kp); its value goes to --set as JSON (which is YAML). The
+program is `lagrange` on PATH, or LAGRANGE_BIN, or the build of this
+checkout (build/bin/lagrange beside python/).
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+
+from . import log
+
+__all__ = ["LagrangeError", "program", "run", "sweep"]
+
+
+class LagrangeError(RuntimeError):
+    """A program could not be found, or ended with an error: the message says
+    which, its exit code, and its last lines; `out` is the output directory
+    (kept: a failed run's log and summary.json are there)."""
+
+    def __init__(self, message, exit_code=None, out=None):
+        super().__init__(message)
+        self.exit_code = exit_code
+        self.out = out
+
+
+def program(environ=None):
+    """The `lagrange` program to run: LAGRANGE_BIN, else `lagrange` on PATH,
+    else build/bin/lagrange of this checkout. Raises LagrangeError naming
+    where it looked."""
+    environ = os.environ if environ is None else environ
+    explicit = environ.get("LAGRANGE_BIN")
+    if explicit:
+        if os.path.isfile(explicit) and os.access(explicit, os.X_OK):
+            return explicit
+        raise LagrangeError("LAGRANGE_BIN=%s is not an executable file; expected the path of the lagrange "
+                            "program (build/bin/lagrange, or where cmake --install put it)" % explicit)
+    found = shutil.which("lagrange", path=environ.get("PATH", os.defpath))
+    if found:
+        return found
+    here = os.path.dirname(os.path.abspath(__file__))
+    checkout = os.path.normpath(os.path.join(here, "..", "..", "build", "bin", "lagrange"))
+    if os.path.isfile(checkout) and os.access(checkout, os.X_OK):
+        return checkout
+    raise LagrangeError("the lagrange program was not found: not in LAGRANGE_BIN, not on PATH, not at %s; "
+                        "build it (scripts/build.sh), install it (cmake --install build), or set LAGRANGE_BIN "
+                        "to its path" % checkout)
+
+
+def _sets(overrides):
+    args = []
+    for key, value in overrides.items():
+        args += ["--set", "%s=%s" % (key.replace("__", "."), json.dumps(value))]
+    return args
+
+
+def _call(args, out, what):
+    try:
+        done = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, check=False)
+    except OSError as e:
+        raise LagrangeError("cannot start %s: %s" % (args[0], e), out=out) from None
+    if done.returncode != 0:
+        tail = "\n".join((done.stderr.strip() or done.stdout.strip()).splitlines()[-15:])
+        raise LagrangeError("%s exited with %d:\n%s" % (what, done.returncode, tail), done.returncode, out)
+    return done
+
+
+def run(scenario, out=None, mode=None, **overrides):
+    """Runs `lagrange run SCENARIO` (a scenario file's path) and returns the
+    run as lagrange.log.load gives it (per-channel columns, `summary`,
+    `scenario`). out: the output directory (default: a new temporary one,
+    kept); mode: "lockstep", "realtime" or "inproc" (default: the
+    scenario's); **overrides: --set, with "__" for ".". Raises LagrangeError
+    when the program is missing or the run fails (exit code, last lines,
+    `out`)."""
+    if not os.path.isfile(str(scenario)):
+        raise LagrangeError("the scenario %s is not a file; expected the path of a scenario YAML file" % scenario)
+    out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-run-")
+    args = [program(), "run", str(scenario), "--out", str(out), "--quiet"]
+    if mode is not None:
+        args += ["--mode", mode]
+    _call(args + _sets(overrides), out, "lagrange run %s" % scenario)
+    return log.load(out)
+
+
+def sweep(spec, out=None, jobs=None):
+    """Runs `lagrange sweep SPEC` (a sweep file's path: it names its scenario
+    and axes, docs/sweeps.md) and returns its rows (OUT/sweep.jsonl, one dict
+    per run, in index order). out: the output directory (default: a new
+    temporary one; one that holds this sweep is resumed); jobs: runs at a
+    time (default: one per core). Raises LagrangeError as run() does."""
+    if not os.path.isfile(str(spec)):
+        raise LagrangeError("the sweep %s is not a file; expected the path of a sweep YAML file" % spec)
+    out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-sweep-")
+    args = [program(), "sweep", str(spec), "--out", str(out), "--quiet"]
+    if jobs is not None:
+        args += ["--jobs", str(int(jobs))]
+    _call(args, out, "lagrange sweep %s" % spec)
+    rows = []
+    with open(os.path.join(str(out), "sweep.jsonl"), encoding="utf-8") as f:
+        for line in f:
+            if line.strip():
+                rows.append(json.loads(line))
+    return sorted(rows, key=lambda r: r.get("index", 0))
