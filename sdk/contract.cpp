@@ -97,10 +97,12 @@ Headers::Headers(int64_t run_id, std::string publisher)
       pid_(static_cast<int32_t>(getpid())),
       clock_offset_us_(clockOffsetUs()) {}
 
+int64_t Headers::utime() const { return monotonicUs() + clock_offset_us_; }
+
 void Headers::stamp(lagrange::header_t& h, const std::string& channel, int64_t tick, double sim_time) {
   h.tick = std::max<int64_t>(0, tick);
   h.sim_time = sim_time;
-  h.publish_utime = monotonicUs() + clock_offset_us_;
+  h.publish_utime = utime();
   h.run_id = run_id_;
   h.publisher = publisher_;
   h.publisher_pid = pid_;

@@ -53,6 +53,8 @@ class Key {
 class Headers {
  public:
   Headers(int64_t run_id, std::string publisher);
+  /// The run's clock now [us]: CLOCK_MONOTONIC plus the launcher's offset.
+  int64_t utime() const;
   /// Fills `h` for the next message on `channel`, checksum 0 (seal it last).
   void stamp(lagrange::header_t& h, const std::string& channel, int64_t tick, double sim_time);
 
@@ -80,6 +82,8 @@ class Bus {
 
   lcm::LCM& lcm() { return lcm_; }
   int64_t runId() const { return run_id_; }
+  /// The run's clock now [us], as this process stamps publish_utime.
+  int64_t utime() const { return headers_.utime(); }
 
   /// Stamps `msg`'s header (a new seq: re-sent copies too), seals it, signs
   /// the encoding and publishes it. @throws ContractError when LCM cannot.

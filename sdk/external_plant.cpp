@@ -346,7 +346,10 @@ class Plant {
       return;
     }
     // The first answer of a tick is the answer: a re-sent copy changes nothing.
-    if (!newest_ || a.header.tick > newest_->first) newest_ = std::make_pair(a.header.tick, tau);
+    if (!newest_ || a.header.tick > newest_->first) {
+      newest_ = std::make_pair(a.header.tick, tau);
+      newest_utime_ = a.header.publish_utime;
+    }
   }
 
   void handle(int timeout_ms) { bus_.handle(timeout_ms); }
@@ -583,15 +586,27 @@ class Plant {
 
   // -- realtime --------------------------------------------------------
   struct LoopClock {
-    int64_t t0 = 0;
+    int64_t period_ns = 0, t0 = 0;  // deadline k: t0 + k period_ns [ns of CLOCK_MONOTONIC]
     Lateness lateness;
     int64_t misses = 0, miss_run = 0, longest = 0;
+    Lateness ages;           // how old each torque was when first applied [s]
+    int64_t used_tick = -1;  // the newest ACTUATOR_STATE tick applied
   };
 
-  // Sleeps to tick k's deadline on CLOCK_MONOTONIC (absolute: no drift), or
-  // counts a miss when it has passed; records how late it woke.
+  // Deadlines on whole periods of CLOCK_MONOTONIC, as the built-in loops'
+  // (transport/rate_loop.cpp): the actuator wakes half a period after each,
+  // when the controller has answered, and takes only a fresh command.
+  LoopClock startClock() const {
+    LoopClock c;
+    c.period_ns = std::llround(1e9 / scenario_.publish_rate);
+    c.t0 = (monotonicNs() / c.period_ns + 1) * c.period_ns;
+    return c;
+  }
+
+  // Sleeps to tick k's deadline (absolute: no drift), or counts a miss when
+  // it has passed; records how late it woke.
   void waitForTick(LoopClock& c, int64_t k) const {
-    const int64_t deadline = c.t0 + std::llround(static_cast<double>(k) * period_ * 1e9);
+    const int64_t deadline = c.t0 + k * c.period_ns;
     if (monotonicNs() > deadline) {
       ++c.misses;
       c.longest = std::max(c.longest, ++c.miss_run);
@@ -617,6 +632,9 @@ class Plant {
     st.jitter_max = c.lateness.max();
     st.deadline_misses = c.misses;
     st.longest_miss_run = c.longest;
+    st.input_age_p50 = c.ages.percentile(0.5);
+    st.input_age_p99 = c.ages.percentile(0.99);
+    st.input_age_max = c.ages.max();
     st.torque_held = choice_.held();
     st.torque_zeroed = choice_.zeroed();
     st.stale_inputs = choice_.held() + choice_.zeroed();
@@ -646,14 +664,23 @@ class Plant {
     TorqueChoice::Choice c =
         choice_.choose(k, newest_tick, newest_ ? newest_->second : std::vector<double>{}, joints_);
     if (c.tripped_now) {
+      const std::string newest =
+          newest_tick ? format("the newest torque (tick %lld)", static_cast<long long>(*newest_tick))
+                      : std::string("no torque yet");
       warn(format(
-          "watchdog: the newest torque (tick %s) is more than %d periods old at tick %lld (t = %.6g s); "
-          "commanding zero torque%s",
-          newest_tick ? std::to_string(*newest_tick).c_str() : "none", *choice_.watchdogPeriods(),
-          static_cast<long long>(k), static_cast<double>(k) * period_, options_.brake ? " and braking" : ""));
+          "watchdog: %s is more than %d periods old at tick %lld (t = %.6g s); commanding zero torque%s",
+          newest.c_str(), *choice_.watchdogPeriods(), static_cast<long long>(k),
+          static_cast<double>(k) * period_, options_.brake ? " and braking" : ""));
       if (options_.brake) options_.brake();
     }
     return c;
+  }
+
+  // A commanded torque's age when first applied: from its publication to now, on the run's clock.
+  void noteAge(LoopClock& c, const TorqueChoice::Choice& chosen) const {
+    if (chosen.source != TorqueSource::kCommanded || chosen.input_tick <= c.used_tick) return;
+    c.used_tick = chosen.input_tick;
+    c.ages.add(static_cast<double>(std::max<int64_t>(0, bus_.utime() - newest_utime_)) * 1e-6);
   }
 
   int serveRealtime() {
@@ -664,8 +691,7 @@ class Plant {
     }
     // The kernel's default 50 us timer slack would be 50 us of jitter on every wake-up.
     prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
-    LoopClock clock;
-    clock.t0 = monotonicNs();
+    LoopClock clock = startClock();
     int64_t next_status = clock.t0 + 500000000LL;
     std::vector<double> tau(static_cast<size_t>(joints_), 0.0);
     TorqueSource source = TorqueSource::kZero;
@@ -679,6 +705,7 @@ class Plant {
       if (k == last_tick_) break;
       drain();
       const TorqueChoice::Choice chosen = chooseTorque(k);
+      noteAge(clock, chosen);
       tau = advance(k, chosen.tau);
       source = chosen.source;
       input_tick = chosen.input_tick;
@@ -719,6 +746,7 @@ class Plant {
       peers_;                           // process -> (state, last_tick) of its newest STATUS
   std::optional<int64_t> logger_tick_;  // none: the logger not heard yet
   std::optional<std::pair<int64_t, std::vector<double>>> newest_;  // (tick, tau) of the newest ACTUATOR_STATE
+  int64_t newest_utime_ = 0;                                       // its publish_utime (the run's clock)
   std::map<std::string, int64_t> rejected_;                        // why -> datagrams dropped
   std::map<int64_t, Sample> unconfirmed_;                          // lockstep: until the logger confirms them
   int64_t retransmits_ = 0, log_resends_ = 0, clipped_ = 0;
