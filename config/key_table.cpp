@@ -181,7 +181,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "simulator of your own or a bridge to a real arm (keys `command`, `working_directory`, "
           "`publish_rate`; docs/external_programs.md, docs/hardware.md). The other `plant` keys and a "
           "`sensors` section are the simulated plant's and refused beside it; it needs rigid joints, "
-          "`mode` lockstep or realtime and one torque per period (`actuator.rate` = `publish_rate`)."),
+          "`mode` lockstep or realtime and one torque per period (the actuator's rate = `publish_rate`)."),
       only("external_plant",
            row("plant.command", "list of strings", "required for `external`",
                "the external plant's command line (argv, no shell): the launcher starts it in the plant's "

@@ -25,7 +25,7 @@ logs       : util model config transport messages
 wiring     : util model core config scenario lcm runtime transport messages
 process    : util model core config scenario lcm runtime transport messages logs wiring
 frontend   : util model core config scenario lcm runtime transport messages logs wiring process
-test       : util model core config scenario lcm runtime transport messages logs wiring process frontend
+test       : util model core config scenario lcm runtime transport messages logs wiring process frontend sdk
 sdk        : messages transport/checksum.hpp
 example    : messages sdk
 EOF

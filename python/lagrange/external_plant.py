@@ -194,13 +194,13 @@ class Plant:
             limits.check_sizes(self.joints)
         self.period = 1.0 / self.rate
         self.startup = 3.0 * self.stall  # plant/plant_loops.hpp startupTimeout
+        self.energy = (float("nan"), float("nan"))  # not known until a state gives them
         if initial is not None:
-            q, qdot = self._state(initial(), "initial()")
+            q, qdot = self._state(initial(), "initial()")  # with its energies, when it gives them
         else:
             q = [float(x) for x in s["initial_state"]["q"]]
             qdot = [float(x) for x in s["initial_state"]["qdot"]]
         self.q, self.qdot = q, qdot
-        self.energy = (float("nan"), float("nan"))
         self.headers = contract.Headers(self.run_id, "plant")
         self.lcm = LCM(self.url)
         self.lcm.subscribe("ACTUATOR_STATE", self._on_actuator_state)

@@ -96,7 +96,7 @@ TEST(ConfigDocs, RangeLookupNamesKeysAsTheReadersDo) {
 
 TEST(ConfigDocs, KnownKeysComeFromTheTable) {
   EXPECT_EQ(keysUnder("plant"),
-            (std::set<std::string>{"engine", "mujoco_integrator", "physics_step", "publish_rate", "max_rate",
+            (std::set<std::string>{"type", "engine", "mujoco_integrator", "physics_step", "publish_rate", "max_rate",
                                    "joint_damping", "joint_friction", "urdf_dynamics", "rotor_damping",
                                    "rotor_friction", "joint_limits", "payload", "model_error"}));
   EXPECT_EQ(keysUnder("plant.payload"), (std::set<std::string>{"mass", "com"}));
@@ -219,7 +219,10 @@ TEST(ConfigDocs, FieldSectionsAreTheTablesKeys) {
     EXPECT_EQ(keysUnder("controller.stages[i]").count(key), 1u) << key;
   std::set<std::string> plant = keysOf(sections::plantFields());
   for (const std::string& key : keysOf(sections::plantArmFields())) plant.insert(key);
+  plant.insert("type");  // read before the fields: it decides which apply (plant.type external)
   EXPECT_EQ(plant, keysUnder("plant"));
+  EXPECT_EQ(keysUnder("plant", "external_plant").count("command"), 1u);
+  EXPECT_EQ(keysUnder("plant").count("command"), 0u) << "the simulated plant has no command";
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSine)), keysUnder("reference", "sine"));
   EXPECT_EQ(keysOf(sections::referenceFields(model::ReferenceType::kSmoothSine)),
             keysUnder("reference", "sine"));

@@ -5,13 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-// In angle brackets, as a program outside the tree includes the installed
-// SDK: tests/check_layers.sh checks quoted includes, and its test layer does
-// not list the sdk layer.
-#include <lagrange/sdk/external_plant.hpp>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "lagrange/sdk/external_plant.hpp"
 
 namespace lagrange::testing {
 namespace {

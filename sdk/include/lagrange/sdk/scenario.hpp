@@ -35,7 +35,8 @@ inline nlohmann::json scenario() {
   if (path == nullptr || *path == '\0')
     throw ContractError(
         "LAGRANGE_CONFIG_JSON is not set: the resolved scenario is handed over by `lagrange run` and "
-        "`lagrange replay` (controller.type: external)");
+        "`lagrange replay` to a program in the controller's or the plant's place (controller.type or "
+        "plant.type external)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ContractError(std::string("cannot read the scenario ") + path + " (LAGRANGE_CONFIG_JSON)");
   std::ostringstream text;
