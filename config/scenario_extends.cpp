@@ -65,12 +65,18 @@ void anchorPaths(YAML::Node& root, const fs::path& folder) {
   };
   const YAML::Node robot = root["robot"];
   if (robot.IsDefined() && robot.IsMap()) anchor(robot["urdf"], "file");
-  YAML::Node controller = root["controller"];
-  anchor(controller, "working_directory");
-  // The program, when its first word is a path (a name is looked up on PATH).
-  if (controller.IsDefined() && controller.IsMap()) {
-    YAML::Node command = controller["command"];
-    if (command.IsDefined() && command.IsSequence() && command.size() > 0 && command[0].IsScalar()) {
+  // A program from outside (controller or plant): its folder, and its
+  // program when the first word is a path (a name is looked up on PATH).
+  for (const char* name : {"controller", "plant"}) {
+    YAML::Node section = root[name];
+    if (!section.IsDefined() || !section.IsMap()) continue;
+    YAML::Node command = section["command"];
+    if (!command.IsDefined()) continue;
+    // Its arguments are relative to where it starts, by default the folder
+    // of the file that gave the command: the base's, not the extending file's.
+    if (!section["working_directory"].IsDefined()) section["working_directory"] = folder.string();
+    anchor(section, "working_directory");
+    if (command.IsSequence() && command.size() > 0 && command[0].IsScalar()) {
       const std::string program = command[0].Scalar();
       if (program.find('/') != std::string::npos && fs::path(program).is_relative())
         command[0] = fs::absolute(folder / program).lexically_normal().string();
@@ -109,8 +115,18 @@ YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& f
   YAML::Node base =
       resolve(parseRoot(file.text, base_path.string()), base_path.string(), base_path.parent_path(), chain);
   if (base_path.parent_path() != folder) anchorPaths(base, base_path.parent_path());
+  // A plant section without a type is the simulated plant's: one that says
+  // `type: external` replaces it whole, as a controller of another type does.
+  if (YAML::Node plant = base["plant"]; plant.IsDefined() && plant.IsMap() && !plant["type"].IsDefined())
+    plant["type"] = "simulated";
   root.remove("extends");
-  return merged(base, root);
+  YAML::Node out = merged(base, root);
+  // A command this file gives starts, by default, in this file's folder.
+  for (const char* name : {"controller", "plant"})
+    if (root[name].IsDefined() && root[name].IsMap() && root[name]["command"].IsDefined() &&
+        !root[name]["working_directory"].IsDefined() && out[name].IsMap())
+      out[name].remove("working_directory");
+  return out;
 }
 
 fs::path folderOf(const std::string& source) {

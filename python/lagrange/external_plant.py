@@ -31,6 +31,7 @@ import os
 import signal
 import sys
 import time
+import traceback
 
 from . import contract
 from .actuator_state_t import actuator_state_t
@@ -207,12 +208,14 @@ class Plant:
         self.lcm.subscribe("STATUS", self._on_status)
         self.peers = {}  # process -> (state, last_tick) of its newest STATUS
         self.logger_tick = None  # None: the logger not heard yet
+        self.awaited, self.answer = -1, None  # lockstep: the tick awaited and its answer's torque
         self.newest = None  # (tick, tau) of the newest ACTUATOR_STATE
         self.newest_utime = 0  # its publish_utime (the run's clock)
         self.rejected = {}  # why -> how many datagrams dropped
         self.retransmits = self.log_resends = self.clipped = 0
         self.stop_signal = None
         self.resumed = False
+        self.braked_at_stop = False
 
     # -- receiving -------------------------------------------------------
     def _reject(self, why):
@@ -256,16 +259,22 @@ class Plant:
         tau = list(a.tau_applied[0])
         if not all(math.isfinite(x) for x in tau):
             return self._reject("non-finite torque (NaN or Inf) from %s" % a.header.publisher)
+        if a.header.tick == self.awaited and self.answer is None:
+            self.answer = tau  # lockstep: the first state of the awaited tick; a stale or repeated one is ignored
         if self.newest is None or a.header.tick > self.newest[0]:
-            self.newest = (a.header.tick, tau)
+            self.newest = (a.header.tick, tau)  # realtime: the newest, whichever tick
             self.newest_utime = a.header.publish_utime
 
     def _handle(self, timeout_ms):
         self.lcm.handle_timeout(max(0, int(timeout_ms)))
 
-    def _drain(self):
-        while self.lcm.handle_timeout(0) > 0:
-            pass
+    def _drain(self, until):
+        """What has arrived, at most 1000 datagrams and never past `until`
+        (time.monotonic()): a flood of forged ones, each refused by its MAC,
+        must not hold the loop (the built-in node's bound, transport/lcm_node.hpp)."""
+        for _ in range(1000):
+            if time.monotonic() >= until or self.lcm.handle_timeout(0) <= 0:
+                return
 
     # -- the arm ---------------------------------------------------------
     def _state(self, out, what):
@@ -284,8 +293,18 @@ class Plant:
                 if not math.isfinite(x):
                     raise ContractError("%s returned %r for %s of joint %d; expected finite numbers"
                                         % (what, x, name, j + 1))
-        if fields is not None and "kinetic_energy" in fields:
-            self.energy = (float(fields["kinetic_energy"]), float(fields.get("potential_energy", 0.0)))
+        energy = []
+        for name in ("kinetic_energy", "potential_energy"):  # each state its own; NaN: not known
+            value = fields.get(name) if fields is not None else None
+            try:
+                value = float("nan") if value is None else float(value)
+            except (TypeError, ValueError):
+                raise ContractError("%s returned %r for %s; expected a number [J]" % (what, value, name)) from None
+            if math.isinf(value):
+                raise ContractError("%s returned %r for %s; expected a finite number, or none (not known)"
+                                    % (what, value, name))
+            energy.append(value)
+        self.energy = tuple(energy)
         return q, qdot
 
     def _advance(self, k, tau):
@@ -298,10 +317,17 @@ class Plant:
     def _check_limits(self, k):
         why = self.limits.breach(self.q, self.qdot) if self.limits is not None else None
         if why is not None:
-            if self.brake is not None:
-                self.brake()
-            raise PlantStopped("%s at tick %d (t = %.6g s); the plant commanded zero torque%s and stopped the run "
-                               "(its limits)" % (why, k, k * self.period, " and braked" if self.brake else ""))
+            raise PlantStopped("%s at tick %d (t = %.6g s); the plant stopped the run (its limits)"
+                               % (why, k, k * self.period))
+
+    def safe_stop(self):
+        """Every end but "finished": brake() once, when given -- a bridge's
+        own way to make the arm safe (zero torque, the brakes). Says so."""
+        if self.brake is None or self.braked_at_stop:
+            return
+        self.braked_at_stop = True
+        print("plant: calling brake()", file=sys.stderr, flush=True)
+        self.brake()
 
     # -- publishing ------------------------------------------------------
     def _publish(self, channel, msg, tick, sim_time):
@@ -395,6 +421,7 @@ class Plant:
                 self._handle(5)
                 resend_at = self._resend_for_logger(unconfirmed, time.monotonic(), resend_at)
             sample = self._sample(k, tau, source, input_tick)
+            self.awaited, self.answer = k, None
             self._send(sample)
             published = time.monotonic()
             unconfirmed[k] = sample
@@ -405,7 +432,7 @@ class Plant:
                 next_status = published + 0.5
             deadline = published + (self.startup if k == 0 else self.stall)
             resend, braked = published + self.retransmit, False
-            while self.newest is None or self.newest[0] < k:
+            while self.answer is None:
                 if self._stop_requested():
                     self.publish_status("interrupted", k)
                     return 0
@@ -424,14 +451,14 @@ class Plant:
                     if self.brake is not None:
                         self.brake()
                 self._handle(5)
-                if self.newest is None or self.newest[0] < k:
+                if self.answer is None:
                     if time.monotonic() >= resend:
                         self._send(sample, truth=False)
                         self.retransmits += 1
                         resend = time.monotonic() + self.retransmit
             if k < self.last_tick:
-                tau = self._advance(k, self.newest[1])
-                source, input_tick = TORQUE_COMMANDED, self.newest[0]
+                tau = self._advance(k, self.answer)
+                source, input_tick = TORQUE_COMMANDED, k
                 self._check_limits(k + 1)
         # The end: every sample in the log first (bounded).
         deadline = time.monotonic() + self.stall
@@ -455,7 +482,7 @@ class Plant:
         return 0
 
     # -- realtime --------------------------------------------------------
-    def _loop_stats(self, cycles, started, lateness, misses, longest, ages):
+    def _loop_stats(self, cycles, started, lateness, misses, longest, ages, missing):
         st = loop_stats_t()
         st.period = self.period
         try:
@@ -475,6 +502,7 @@ class Plant:
         st.longest_miss_run = longest
         st.input_age_p50, st.input_age_p99, st.input_age_max = (ages.percentile(0.5), ages.percentile(0.99),
                                                                 ages.max)
+        st.missing_inputs = missing
         st.torque_held = self.choice.held
         st.torque_zeroed = self.choice.zeroed
         st.stale_inputs = self.choice.held + self.choice.zeroed
@@ -493,6 +521,7 @@ class Plant:
             self._handle(20)
         lateness, misses, miss_run, longest = _Histogram(), 0, 0, 0
         ages, used_tick = _Histogram(), -1  # how old each torque was when first applied [s]
+        missing, sent = 0, 0  # periods without a new torque; ticks published
         # Deadlines on whole periods of CLOCK_MONOTONIC, as the built-in loops'
         # (transport/rate_loop.cpp): the actuator wakes half a period after
         # each, when the controller has answered, and takes only a fresh command.
@@ -501,7 +530,6 @@ class Plant:
         t0 = t0_ns * 1e-9
         next_status = t0 + 0.5
         tau, source, input_tick = [0.0] * self.joints, TORQUE_ZERO, -1
-        k = 0
         for k in range(self.last_tick + 1):
             if self._stop_requested():
                 break
@@ -515,10 +543,13 @@ class Plant:
                 time.sleep(deadline - now)
             lateness.add(max(0.0, time.monotonic() - deadline))
             self._send(self._sample(k, tau, source, input_tick))
+            sent += 1
             if k == self.last_tick:
                 break
-            self._drain()
+            self._drain(until=deadline + self.period)
             newest_tick, newest_tau = self.newest if self.newest is not None else (None, None)
+            if newest_tick is None or newest_tick <= used_tick:
+                missing += 1
             chosen, source, input_tick, tripped = self.choice.choose(k, newest_tick, newest_tau, self.joints)
             if tripped:
                 newest = "no torque yet" if newest_tick is None else "the newest torque (tick %d)" % newest_tick
@@ -533,11 +564,12 @@ class Plant:
             tau = self._advance(k, chosen)
             self._check_limits(k + 1)
             if time.monotonic() >= next_status:
-                self.publish_status("running", k, loop=self._loop_stats(k + 1, t0, lateness, misses, longest, ages))
+                self.publish_status("running", k, loop=self._loop_stats(sent, t0, lateness, misses, longest, ages,
+                                                                        missing))
                 next_status += 0.5
-        loop = self._loop_stats(k + 1, t0, lateness, misses, longest, ages)
+        loop = self._loop_stats(sent, t0, lateness, misses, longest, ages, missing)
         if self._stop_requested():
-            self.publish_status("interrupted", k, loop=loop)
+            self.publish_status("interrupted", used_tick, loop=loop)  # as the built-in plant: the torque's tick
             return 0
         c = self.choice
         if c.held + c.zeroed > 0:
@@ -570,19 +602,29 @@ def _install_signals(plant):
 
 def run(step, initial=None, limits=None, watchdog_periods=None, brake=None):
     """Serves step(t, u, dt) -> (q, qdot) as the run's plant until the run
-    ends, then exits the program (0). A stall, a crossed limit or an error of
-    the contract is printed, published as STATUS "failed", and exits 1."""
+    ends, then exits the program (0). A stall, a crossed limit, an error of
+    the contract or of step() is printed, published as STATUS "failed", and
+    exits 1; every end but "finished" calls brake() first, when given."""
     plant = None
     try:
         plant = Plant(step, initial, limits, watchdog_periods, brake)
         _install_signals(plant)
         code = plant.serve()
-    except (ContractError, PlantStopped, ValueError, LCMError) as e:
-        print("%s: %s" % (os.path.basename(sys.argv[0]) or "plant", e), file=sys.stderr, flush=True)
+        if plant.stop_signal is not None:
+            plant.safe_stop()  # interrupted: the arm is left safe too
+    except Exception as e:  # noqa: BLE001 -- whatever ended it, the arm is made safe and the run told why
+        name = os.path.basename(sys.argv[0]) or "plant"
+        if isinstance(e, (ContractError, PlantStopped, ValueError, LCMError)):
+            print("%s: %s" % (name, e), file=sys.stderr, flush=True)
+        else:
+            traceback.print_exc()
+        code = 1
         if plant is not None:
             try:
-                plant.publish_status("failed", -1, str(e)[:500])
-            except LCMError:
-                pass
-        code = 1
+                plant.safe_stop()
+            finally:
+                try:
+                    plant.publish_status("failed", -1, ("%s" % e)[:500] or type(e).__name__)
+                except LCMError:
+                    pass
     sys.exit(code)

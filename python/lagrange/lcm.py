@@ -16,6 +16,7 @@ Set LAGRANGE_LIBLCM to the library's path to use another build of it.
 """
 
 import ctypes
+import errno
 import os
 
 
@@ -48,7 +49,7 @@ def library():
         return _lib
     path = os.environ.get("LAGRANGE_LIBLCM", _LIBRARY_NAME)
     try:
-        lib = ctypes.CDLL(path)
+        lib = ctypes.CDLL(path, use_errno=True)  # errno tells a signal (EINTR) from a failure
     except OSError as e:
         raise LCMError(
             "lagrange.lcm needs LCM's C library %s, which could not be loaded (%s); install the Debian "
@@ -159,6 +160,10 @@ class LCM:
             error, self._error = self._error, None
             raise error
         if status < 0:
+            # A signal in the wait (SIGCONT when the launcher restarts a peer,
+            # SIGTERM whose handler sets a flag) is no failure: nothing was handled.
+            if ctypes.get_errno() == errno.EINTR:
+                return 0
             raise LCMError("LCM failed while waiting for a message")
         return status
 

@@ -124,6 +124,30 @@ TEST_F(Extends, AControllerOfAnotherTypeReplacesTheSectionAndKeepsItsProgramPath
   EXPECT_EQ(s.controller.type, "external");
   ASSERT_EQ(s.controller.command.size(), 3u);
   EXPECT_EQ(s.controller.command[0], fs::weakly_canonical(program).string());
+  // It starts in the base's folder, where its arguments are (the default is
+  // the folder of the file that gave the command) ...
+  EXPECT_EQ(fs::path(s.controller.working_directory), fs::weakly_canonical(dir_ / "base"));
+  // ... and a command the extending file gives, in the extending file's.
+  const Scenario own = loadScenario(write(
+      "own.yaml", "extends: base/external.yaml\ncontroller: {type: external, command: [sh, -c, \'exit 0\']}\n"));
+  EXPECT_EQ(fs::path(own.controller.working_directory), fs::weakly_canonical(dir_));
+}
+
+// plant.type external over a base whose plant section has no type (the
+// simulated plant's): the section is replaced whole -- no physics_step is
+// left to refuse -- and the example extended from elsewhere starts its
+// program in the example's folder.
+TEST_F(Extends, AnExternalPlantReplacesTheSimulatedPlantsSection) {
+  const Scenario s = loadScenario(
+      write("external_plant.yaml", "extends: " + kConfigs +
+                                       "/rigid_2dof.yaml\nplant: {type: external, command: [sh, -c, \'exit 0\']}\n"));
+  EXPECT_TRUE(s.plant.external());
+  EXPECT_EQ(s.plant.publish_rate, 1000.0);
+  const std::string example = std::string(LAGRANGE_SOURCE_DIR) + "/examples/external_plant";
+  const Scenario e = loadScenario(write("sub/e.yaml", "extends: " + example + "/rigid_2dof_external.yaml\n"));
+  ASSERT_TRUE(e.plant.external());
+  EXPECT_EQ(fs::path(e.plant.working_directory), fs::weakly_canonical(example));
+  EXPECT_EQ(e.plant.command, (std::vector<std::string>{"python3", "two_link_plant.py"}));
 }
 
 TEST(SetErrors, NameTheOptionInsteadOfLineOne) {
