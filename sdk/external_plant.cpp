@@ -72,7 +72,47 @@ void checkCount(const char* what, const std::optional<V>& limits, int joints) {
                                limits->size(), what, joints));
 }
 
+void checkValues(const std::vector<double>& v, const char* name, int joints, const std::string& what) {
+  if (static_cast<int>(v.size()) != joints)
+    throw ContractError(format("%s returned %zu numbers for %s; expected %d (one per joint)", what.c_str(),
+                               v.size(), name, joints));
+  for (size_t j = 0; j < v.size(); ++j)
+    if (!std::isfinite(v[j]))
+      throw ContractError(format("%s returned %g for %s[%zu] (joint %zu); expected finite numbers",
+                                 what.c_str(), v[j], name, j, j + 1));
+}
+
 }  // namespace
+
+void PlantState::check(int joints, const std::string& what) const {
+  checkValues(q, "q", joints, what);
+  checkValues(qdot, "qdot", joints, what);
+  // Each state its own energies; NaN: not known. An infinite one is a mistake.
+  for (const auto& [name, value] : {std::make_pair("kinetic_energy", kinetic_energy),
+                                    std::make_pair("potential_energy", potential_energy)})
+    if (std::isinf(value))
+      throw ContractError(format("%s returned %g for %s; expected a finite number [J], or NaN (not known)",
+                                 what.c_str(), value, name));
+}
+
+void ActuatorAnswers::await(int64_t k) {
+  awaited_ = k;
+  answered_ = false;
+  answer_.clear();
+}
+
+bool ActuatorAnswers::take(int64_t tick, const std::vector<double>& tau, int64_t publish_utime) {
+  if (!newest_tick_ || tick > *newest_tick_) {  // realtime: the newest, whichever tick
+    newest_tick_ = tick;
+    newest_tau_ = tau;
+    newest_utime_ = publish_utime;
+  }
+  // Lockstep: the first state of the awaited tick; a stale, repeated or future one changes nothing.
+  if (answered_ || !awaited_ || tick != *awaited_) return false;
+  answered_ = true;
+  answer_ = tau;
+  return true;
+}
 
 void PlantLimits::check(int joints) const {
   checkPositive("torque", torque);
@@ -141,6 +181,25 @@ class PlantStopped : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// A user's function (step(), initial(), brake()) threw: what it said, with
+/// which function and when.
+class UserError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// f(), what it throws becoming a UserError naming `what` ("step() at t = 0.5 s").
+template <class F>
+auto callUser(const F& f, const std::string& what) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    throw UserError(what + " failed: " + (*e.what() != '\0' ? e.what() : "an exception without a message"));
+  } catch (...) {
+    throw UserError(what + " failed: it threw something that is not a std::exception");
+  }
+}
 
 int64_t monotonicNs() {
   timespec ts{};
@@ -277,7 +336,7 @@ class Plant {
         choice_(s.max_torque_age, s.hold_periods, s.hold, options.watchdog_periods) {
     checkSettings();
     if (options_.initial)
-      take(options_.initial(), "initial()");
+      take(callUser(options_.initial, "initial()"), "initial()");
     else
       take(
           {s.q0, s.qdot0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()},
@@ -290,6 +349,9 @@ class Plant {
     checkLimits(0);
     return scenario_.mode == "realtime" ? serveRealtime() : serveLockstep();
   }
+
+  /// Whether the run reached its end ("finished"), rather than a stop.
+  bool finished() const { return finished_; }
 
  private:
   void checkSettings() const {
@@ -345,33 +407,22 @@ class Plant {
       ++rejected_["non-finite torque (NaN or Inf) from " + a.header.publisher];
       return;
     }
-    // The first answer of a tick is the answer: a re-sent copy changes nothing.
-    if (!newest_ || a.header.tick > newest_->first) {
-      newest_ = std::make_pair(a.header.tick, tau);
-      newest_utime_ = a.header.publish_utime;
-    }
+    answers_.take(a.header.tick, tau, a.header.publish_utime);
   }
 
   void handle(int timeout_ms) { bus_.handle(timeout_ms); }
-  void drain() {
-    while (bus_.handle(0) > 0) {
-    }
+
+  // What has arrived, at most 1000 datagrams and never past `until_ns`
+  // (CLOCK_MONOTONIC): a flood of forged ones, each refused by its MAC, must
+  // not hold the loop (the built-in node's bound, transport/lcm_node.hpp).
+  void drain(int64_t until_ns) {
+    for (int i = 0; i < 1000; ++i)
+      if (monotonicNs() >= until_ns || bus_.handle(0) <= 0) return;
   }
 
   // -- the arm ---------------------------------------------------------
-  void checkValues(const std::vector<double>& v, const char* name, const std::string& what) const {
-    if (static_cast<int>(v.size()) != joints_)
-      throw ContractError(format("%s returned %zu numbers for %s; expected %d (one per joint)", what.c_str(),
-                                 v.size(), name, joints_));
-    for (size_t j = 0; j < v.size(); ++j)
-      if (!std::isfinite(v[j]))
-        throw ContractError(format("%s returned %g for %s[%zu] (joint %zu); expected finite numbers",
-                                   what.c_str(), v[j], name, j, j + 1));
-  }
-
   void take(const PlantState& state, const std::string& what) {
-    checkValues(state.q, "q", what);
-    checkValues(state.qdot, "qdot", what);
+    state.check(joints_, what);
     q_ = state.q;
     qdot_ = state.qdot;
     kinetic_ = state.kinetic_energy;
@@ -382,19 +433,22 @@ class Plant {
     const double t = static_cast<double>(k) * period_;
     auto [u, clipped] = options_.limits ? options_.limits->clip(tau) : std::make_pair(tau, false);
     if (clipped) ++clipped_;
-    take(step_(t, u, period_), format("step() at t = %.6g s", t));
+    const std::string what = format("step() at t = %.6g s", t);
+    take(callUser([&] { return step_(t, u, period_); }, what), what);
     return u;
   }
 
+  // A crossed limit ends the run; brake() is servePlant's, as on every end but "finished".
   void checkLimits(int64_t k) {
     const auto why = options_.limits ? options_.limits->breach(q_, qdot_) : std::nullopt;
     if (!why) return;
-    if (options_.brake) options_.brake();
-    throw PlantStopped(
-        format("%s at tick %lld (t = %.6g s); the plant commanded zero torque%s and stopped the "
-               "run (its limits)",
-               why->c_str(), static_cast<long long>(k), static_cast<double>(k) * period_,
-               options_.brake ? " and braked" : ""));
+    throw PlantStopped(format("%s at tick %lld (t = %.6g s); the plant stopped the run (its limits)",
+                              why->c_str(), static_cast<long long>(k), static_cast<double>(k) * period_));
+  }
+
+  // The watchdog's brake (the arm's time does not wait), apart from the one of the end.
+  void watchdogBrake() {
+    if (options_.brake) callUser(options_.brake, "brake() (the watchdog)");
   }
 
   // -- publishing ------------------------------------------------------
@@ -456,6 +510,7 @@ class Plant {
       warn(format("clipped the torque to its limits in %lld periods", static_cast<long long>(clipped_)));
     }
     for (int i = 0; i < 3; ++i) status("finished", last_tick_, message, loop);  // a datagram can be lost
+    finished_ = true;
     return 0;
   }
 
@@ -496,13 +551,11 @@ class Plant {
     return true;
   }
 
-  bool answered(int64_t k) const { return newest_ && newest_->first >= k; }
-
   // The arm's time does not wait: a bridge brakes (docs/hardware.md).
   void lockstepWatchdog(int64_t k, double waited) {
     warn(format("watchdog: no answer to tick %lld for %d periods (%.3f s)%s", static_cast<long long>(k),
                 *options_.watchdog_periods, waited, options_.brake ? "; braking" : ""));
-    if (options_.brake) options_.brake();
+    watchdogBrake();
   }
 
   // Until the actuator answers tick k, its position re-sent every
@@ -514,7 +567,7 @@ class Plant {
                                                ? std::optional<double>(*options_.watchdog_periods * period_)
                                                : std::nullopt;
     bool braked = false;
-    while (!answered(k)) {
+    while (!answers_.answered()) {
       if (stopRequested()) return false;
       const double now = seconds();
       if (takeResume()) deadline = std::max(deadline, now + startup_);
@@ -526,7 +579,7 @@ class Plant {
         lockstepWatchdog(k, now - published);
       }
       handle(5);
-      if (!answered(k) && seconds() >= resend) {
+      if (!answers_.answered() && seconds() >= resend) {
         send(s, false);
         ++retransmits_;
         resend = seconds() + scenario_.retransmit_timeout;
@@ -561,6 +614,7 @@ class Plant {
         return 0;
       }
       Sample& s = unconfirmed_[k] = sample(k, tau, source, input_tick);
+      answers_.await(k);
       send(s);
       const double published = seconds();
       if (published >= next_status) {
@@ -573,9 +627,9 @@ class Plant {
       }
       forgetConfirmed();  // after the wait: s stays valid while it is re-sent
       if (k < last_tick_) {
-        tau = advance(k, newest_->second);
+        tau = advance(k, answers_.answer());  // the awaited tick's first answer
         source = TorqueSource::kCommanded;
-        input_tick = newest_->first;
+        input_tick = k;
         checkLimits(k + 1);
       }
     }
@@ -591,6 +645,8 @@ class Plant {
     int64_t misses = 0, miss_run = 0, longest = 0;
     Lateness ages;           // how old each torque was when first applied [s]
     int64_t used_tick = -1;  // the newest ACTUATOR_STATE tick applied
+    int64_t missing = 0;     // periods without a torque newer than used_tick (the built-in's count)
+    int64_t sent = 0;        // ticks published
   };
 
   // Deadlines on whole periods of CLOCK_MONOTONIC, as the built-in loops'
@@ -620,10 +676,11 @@ class Plant {
     c.lateness.add(static_cast<double>(std::max<int64_t>(0, monotonicNs() - deadline)) * 1e-9);
   }
 
-  lagrange::loop_stats_t loopStats(int64_t cycles, const LoopClock& c) const {
+  lagrange::loop_stats_t loopStats(const LoopClock& c) const {
     lagrange::loop_stats_t st{};
     st.period = period_;
     st.scheduler = schedulerNow();
+    const int64_t cycles = c.sent;
     st.cycles = cycles;
     const double elapsed = static_cast<double>(monotonicNs() - c.t0) * 1e-9;
     st.achieved_rate = elapsed > 0.0 ? static_cast<double>(cycles) / elapsed : 0.0;
@@ -635,6 +692,7 @@ class Plant {
     st.input_age_p50 = c.ages.percentile(0.5);
     st.input_age_p99 = c.ages.percentile(0.99);
     st.input_age_max = c.ages.max();
+    st.missing_inputs = c.missing;
     st.torque_held = choice_.held();
     st.torque_zeroed = choice_.zeroed();
     st.stale_inputs = choice_.held() + choice_.zeroed();
@@ -659,10 +717,8 @@ class Plant {
 
   // The torque over the period after tick k, by the scenario's stale-torque policy and the watchdog.
   TorqueChoice::Choice chooseTorque(int64_t k) {
-    const std::optional<int64_t> newest_tick =
-        newest_ ? std::optional<int64_t>(newest_->first) : std::nullopt;
-    TorqueChoice::Choice c =
-        choice_.choose(k, newest_tick, newest_ ? newest_->second : std::vector<double>{}, joints_);
+    const std::optional<int64_t> newest_tick = answers_.newestTick();
+    TorqueChoice::Choice c = choice_.choose(k, newest_tick, answers_.newestTorque(), joints_);
     if (c.tripped_now) {
       const std::string newest =
           newest_tick ? format("the newest torque (tick %lld)", static_cast<long long>(*newest_tick))
@@ -671,7 +727,7 @@ class Plant {
           "watchdog: %s is more than %d periods old at tick %lld (t = %.6g s); commanding zero torque%s",
           newest.c_str(), *choice_.watchdogPeriods(), static_cast<long long>(k),
           static_cast<double>(k) * period_, options_.brake ? " and braking" : ""));
-      if (options_.brake) options_.brake();
+      watchdogBrake();
     }
     return c;
   }
@@ -680,7 +736,7 @@ class Plant {
   void noteAge(LoopClock& c, const TorqueChoice::Choice& chosen) const {
     if (chosen.source != TorqueSource::kCommanded || chosen.input_tick <= c.used_tick) return;
     c.used_tick = chosen.input_tick;
-    c.ages.add(static_cast<double>(std::max<int64_t>(0, bus_.utime() - newest_utime_)) * 1e-6);
+    c.ages.add(static_cast<double>(std::max<int64_t>(0, bus_.utime() - answers_.newestUtime())) * 1e-6);
   }
 
   int serveRealtime() {
@@ -696,14 +752,16 @@ class Plant {
     std::vector<double> tau(static_cast<size_t>(joints_), 0.0);
     TorqueSource source = TorqueSource::kZero;
     int64_t input_tick = -1;
-    int64_t k = 0;
-    for (; k <= last_tick_; ++k) {
+    for (int64_t k = 0; k <= last_tick_; ++k) {
       if (stopRequested()) break;
       waitForTick(clock, k);
       Sample s = sample(k, tau, source, input_tick);
       send(s);
+      ++clock.sent;
       if (k == last_tick_) break;
-      drain();
+      drain(clock.t0 + (k + 1) * clock.period_ns);  // never past the next tick's deadline
+      const std::optional<int64_t> newest_tick = answers_.newestTick();
+      if (!newest_tick || *newest_tick <= clock.used_tick) ++clock.missing;
       const TorqueChoice::Choice chosen = chooseTorque(k);
       noteAge(clock, chosen);
       tau = advance(k, chosen.tau);
@@ -711,13 +769,13 @@ class Plant {
       input_tick = chosen.input_tick;
       checkLimits(k + 1);
       if (monotonicNs() >= next_status) {
-        status("running", k, "", loopStats(k + 1, clock));
+        status("running", k, "", loopStats(clock));
         next_status += 500000000LL;
       }
     }
-    const lagrange::loop_stats_t loop = loopStats(k + 1, clock);
+    const lagrange::loop_stats_t loop = loopStats(clock);
     if (stopRequested()) {
-      status("interrupted", k, "", loop);
+      status("interrupted", clock.used_tick, "", loop);  // as the built-in plant: the torque's tick
       return 0;
     }
     if (choice_.held() + choice_.zeroed() > 0)
@@ -741,39 +799,68 @@ class Plant {
   double startup_;
   TorqueChoice choice_;
   std::vector<double> q_, qdot_;
-  double kinetic_ = 0.0, potential_ = 0.0;
+  double kinetic_ = std::numeric_limits<double>::quiet_NaN();  // [J]; NaN: not known
+  double potential_ = std::numeric_limits<double>::quiet_NaN();
   std::map<std::string, std::pair<std::string, int64_t>>
-      peers_;                           // process -> (state, last_tick) of its newest STATUS
-  std::optional<int64_t> logger_tick_;  // none: the logger not heard yet
-  std::optional<std::pair<int64_t, std::vector<double>>> newest_;  // (tick, tau) of the newest ACTUATOR_STATE
-  int64_t newest_utime_ = 0;                                       // its publish_utime (the run's clock)
-  std::map<std::string, int64_t> rejected_;                        // why -> datagrams dropped
-  std::map<int64_t, Sample> unconfirmed_;                          // lockstep: until the logger confirms them
+      peers_;                                // process -> (state, last_tick) of its newest STATUS
+  std::optional<int64_t> logger_tick_;       // none: the logger not heard yet
+  ActuatorAnswers answers_;                  // lockstep's answer, realtime's newest
+  std::map<std::string, int64_t> rejected_;  // why -> datagrams dropped
+  std::map<int64_t, Sample> unconfirmed_;    // lockstep: until the logger confirms them
   int64_t retransmits_ = 0, log_resends_ = 0, clipped_ = 0;
+  bool finished_ = false;  // STATUS "finished" sent: the one end without brake()
 };
 
 }  // namespace
 
 int servePlant(const PlantStep& step, const PlantOptions& options,
                const std::function<PlantScenario()>& read_scenario) {
+  // Installed first and kept to the end: a SIGTERM while brake() runs is noted, not fatal.
+  SignalScope signals;
   std::unique_ptr<contract::Bus> bus;
   double period = 0.0;
-  try {
-    bus = std::make_unique<contract::Bus>("plant");
-    const PlantScenario s = read_scenario();
-    period = s.publish_rate > 0.0 ? 1.0 / s.publish_rate : 0.0;
-    SignalScope signals;
-    Plant plant(*bus, step, options, s);
-    return plant.serve();
-  } catch (const std::exception& e) {
-    std::cerr << program_invocation_short_name << ": " << e.what() << std::endl;
+  bool braked = false;
+  // Every end but "finished": brake() once, when given -- the bridge's own way
+  // to make the arm safe. What it threw, if it did.
+  const auto safe_stop = [&]() -> std::optional<std::string> {
+    if (!options.brake || braked) return std::nullopt;
+    braked = true;
+    std::cerr << "plant: calling brake()" << std::endl;
+    try {
+      callUser(options.brake, "brake()");
+    } catch (const UserError& e) {
+      return std::string(e.what());
+    }
+    return std::nullopt;
+  };
+  // Said on stderr, the arm made safe, and the run told why (STATUS "failed").
+  const auto fail = [&](const std::string& why) {
+    std::cerr << program_invocation_short_name << ": " << why << std::endl;
+    if (const auto brake_error = safe_stop())
+      std::cerr << program_invocation_short_name << ": " << *brake_error << std::endl;
     if (bus) {
       try {
-        publishStatus(*bus, period, "failed", -1, std::string(e.what()).substr(0, 500), {});
+        publishStatus(*bus, period, "failed", -1, why.empty() ? std::string("failed") : why.substr(0, 500),
+                      {});
       } catch (const std::exception&) {  // LCM itself failing: stderr has said it
       }
     }
     return 1;
+  };
+  try {
+    bus = std::make_unique<contract::Bus>("plant");
+    const PlantScenario s = read_scenario();
+    period = s.publish_rate > 0.0 ? 1.0 / s.publish_rate : 0.0;
+    Plant plant(*bus, step, options, s);
+    const int code = plant.serve();
+    if (!plant.finished()) {  // interrupted (SIGTERM, SIGINT): the arm is left safe too
+      if (const auto brake_error = safe_stop()) return fail(*brake_error);
+    }
+    return code;
+  } catch (const std::exception& e) {
+    return fail(e.what());
+  } catch (...) {
+    return fail("an exception that is not a std::exception");
   }
 }
 

@@ -118,8 +118,7 @@ TEST(CppPlant, ACppPlantBuiltAgainstTheInstalledPackageMovesAsThePythonOneAndSto
   EXPECT_EQ(stopped.exit_code, 1) << stopped.output;
   const std::string said =
       "joint 2's position -1.39008 rad is outside its limits [-1.6, -1.4] at tick 12 (t = 0.012 s); the "
-      "plant "
-      "commanded zero torque and stopped the run (its limits)";
+      "plant stopped the run (its limits)";
   EXPECT_NE(readText(limited + "/plant.log").find("two_link_plant: " + said), std::string::npos)
       << readText(limited + "/plant.log");
   const auto statuses = plantStatuses(limited + "/run.lcm");

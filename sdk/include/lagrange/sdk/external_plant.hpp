@@ -48,6 +48,12 @@ struct PlantState {
   std::vector<double> q, qdot;
   double kinetic_energy = std::numeric_limits<double>::quiet_NaN();
   double potential_energy = std::numeric_limits<double>::quiet_NaN();
+
+  /// What runPlant asks of every state it is given: q and qdot one finite
+  /// value per joint; each energy finite, or NaN (not known) -- never
+  /// infinite. @throws ContractError naming `what` ("step() at t = 0.5 s",
+  /// "initial()"), the field, its joint and value.
+  void check(int joints, const std::string& what) const;
 };
 
 /// What a bridge enforces whatever the controller asks (docs/hardware.md);
@@ -55,8 +61,8 @@ struct PlantState {
 ///  - torque: |u_i| <= torque[i] [N m]; a larger command is clipped (counted);
 ///  - position: lower_i <= q_i <= upper_i [rad], as {lower, upper} per joint;
 ///  - rate: |qdot_i| <= rate[i] [rad/s].
-/// A state outside its position or rate limits stops the run: brake() when
-/// given, STATUS "failed" naming joint, value, limit and tick, exit 1.
+/// A state outside its position or rate limits stops the run: STATUS
+/// "failed" naming joint, value, limit and tick, brake() when given, exit 1.
 struct PlantLimits {
   std::optional<std::vector<double>> torque;
   std::optional<std::vector<std::pair<double, double>>> position;
@@ -70,6 +76,41 @@ struct PlantLimits {
   /// What the state crosses, as a sentence ("joint 2's rate 9 rad/s is
   /// beyond its limit 5"), or nothing.
   std::optional<std::string> breach(const std::vector<double>& q, const std::vector<double>& qdot) const;
+};
+
+/// The actuator's answers as a plant takes them (valid ACTUATOR_STATEs only):
+///  - lockstep: tick k is answered by the first state whose tick is k -- a
+///    stale (earlier tick), repeated (re-sent) or future tick's changes
+///    nothing --, and that state's torque is the one applied after k;
+///  - realtime: the newest state, whichever tick, is what TorqueChoice
+///    chooses from.
+class ActuatorAnswers {
+ public:
+  /// Lockstep: tick k went out and its answer is awaited (any earlier one forgotten).
+  void await(int64_t k);
+  /// A valid ACTUATOR_STATE of `tick`; whether it is the awaited tick's answer.
+  bool take(int64_t tick, const std::vector<double>& tau, int64_t publish_utime);
+
+  /// The awaited tick; none before the first await().
+  std::optional<int64_t> awaited() const { return awaited_; }
+  /// Whether the awaited tick has its answer.
+  bool answered() const { return answered_; }
+  /// The awaited tick's answer (empty while unanswered).
+  const std::vector<double>& answer() const { return answer_; }
+
+  /// The newest state's tick; none before the first.
+  std::optional<int64_t> newestTick() const { return newest_tick_; }
+  const std::vector<double>& newestTorque() const { return newest_tau_; }
+  /// Its publish_utime (the run's clock) [us].
+  int64_t newestUtime() const { return newest_utime_; }
+
+ private:
+  std::optional<int64_t> awaited_;
+  bool answered_ = false;
+  std::vector<double> answer_;
+  std::optional<int64_t> newest_tick_;
+  std::vector<double> newest_tau_;
+  int64_t newest_utime_ = 0;
 };
 
 /// How the torque of a period was chosen (plant_truth_t.torque_source).
@@ -122,7 +163,11 @@ struct PlantOptions {
   /// an answer older than this is replaced by zero torque (and brakes).
   /// Whole periods >= 1; none: off.
   std::optional<int> watchdog_periods;
-  std::function<void()> brake;  ///< called when a limit is crossed or the watchdog trips
+  /// The bridge's own way to make the arm safe (zero torque, the brakes):
+  /// called when the watchdog trips, and once on every end but "finished" --
+  /// a crossed limit, a stall, an error of step() or initial(), a stop by
+  /// SIGTERM or SIGINT --, "plant: calling brake()" on stderr first.
+  std::function<void()> brake;
   /// The state at t = 0 (a bridge reads the arm); none: the scenario's initial_state.
   std::function<PlantState()> initial;
 };
@@ -174,11 +219,13 @@ int servePlant(const PlantStep& step, const PlantOptions& options,
 
 /// Serves `step` as the run's plant until the run's last tick, then returns
 /// 0 (also when stopped by SIGTERM or SIGINT: STATUS "interrupted"). A
-/// stall (naming whom it waited for and what it heard), a crossed limit or a
-/// broken contract is printed to stderr, published as STATUS "failed", and
-/// returns 1: `return lagrange::sdk::runPlant(step);` from main. Installs
-/// handlers of SIGTERM, SIGINT and SIGCONT (the launcher restarted a peer:
-/// start-up time again) while it runs.
+/// stall (naming whom it waited for and what it heard), a crossed limit, a
+/// broken contract or an exception from step() or initial() is printed to
+/// stderr, published as STATUS "failed", and returns 1: `return
+/// lagrange::sdk::runPlant(step);` from main. Every end but "finished"
+/// calls options.brake once, when given. Installs handlers of SIGTERM,
+/// SIGINT and SIGCONT (the launcher restarted a peer: start-up time again)
+/// while it runs.
 inline int runPlant(const PlantStep& step, const PlantOptions& options = {}) {
   return servePlant(step, options, [] { return PlantScenario::from(scenario()); });
 }
