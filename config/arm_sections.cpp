@@ -509,7 +509,7 @@ namespace {
 // plant.type external: a program from outside takes the plant's place; of the
 // plant's keys only publish_rate (the run's clock) applies, and what a
 // program cannot be told -- a rotor, sensor models -- is refused.
-void readExternalPlant(MapReader& plant, Scenario& s, const std::string& base_dir) {
+void readExternalPlant(MapReader& plant, Scenario& s, const std::string& base_dir, bool check_programs) {
   if (s.mode == Mode::kInproc)
     plant.fail("type",
                "an external plant runs as its own process over LCM; expected mode lockstep or realtime, got "
@@ -525,14 +525,14 @@ void readExternalPlant(MapReader& plant, Scenario& s, const std::string& base_di
       plant.fail(key, "is a key of the simulated plant, and plant.type is external (the program simulates or "
                       "drives the arm itself); expected it left out");
   s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
-  ExternalCommand external = readExternalCommand(plant, base_dir, "plant");
+  ExternalCommand external = readExternalCommand(plant, base_dir, "plant", check_programs);
   s.plant.command = std::move(external.command);
   s.plant.working_directory = std::move(external.working_directory);
   plant.finish(own);
 }
 }  // namespace
 
-void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir) {
+void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir, bool check_programs) {
   if (root.has("plant")) {
     MapReader plant = root.map("plant");
     s.plant.type = plant.text("type", "simulated");
@@ -541,7 +541,7 @@ void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir)
   }
   if (s.plant.external()) {
     MapReader plant = root.map("plant");
-    readExternalPlant(plant, s, base_dir);
+    readExternalPlant(plant, s, base_dir, check_programs);
   } else if (root.has("plant")) {
     MapReader plant = root.map("plant");
     readFieldsAmongOthers(plant, s.plant, plantFields());

@@ -11,6 +11,7 @@
 #include "config/scenario_sections.hpp"
 #include "config/work_bounds.hpp"
 #include "model/urdf_arm.hpp"
+#include "util/number_text.hpp"
 
 namespace lagrange::config::sections {
 
@@ -114,15 +115,15 @@ void readActuatorSection(MapReader& root, Scenario& s) {
     MapReader act = root.map("actuator");
     readFieldsAmongOthers(act, s.actuator, actuatorChainFields());
     const double steps = s.actuator.rate / s.plant.publish_rate;
+    if (s.plant.external() && std::abs(steps - 1.0) > 1e-9)
+      act.fail("rate", "an external plant (plant.type external) applies one torque per period; expected "
+                       "actuator.rate left out or equal to plant.publish_rate (" +
+                           util::exactText(s.plant.publish_rate) + " Hz)");
     const double per_step = static_cast<double>(s.substepsPerTick()) / std::round(steps);
     if (steps < 1.0 - 1e-9 || std::abs(steps - std::round(steps)) > 1e-6 * steps)
       act.fail("rate", "expected a whole multiple of plant.publish_rate (" +
                            std::to_string(s.plant.publish_rate) + " Hz), got " +
                            std::to_string(s.actuator.rate) + " Hz");
-    if (s.plant.external() && std::abs(steps - 1.0) > 1e-9)
-      act.fail("rate", "an external plant (plant.type external) applies one torque per period; expected "
-                       "actuator.rate left out or equal to plant.publish_rate (" +
-                           std::to_string(s.plant.publish_rate) + " Hz)");
     if (std::abs(per_step - std::round(per_step)) > 1e-9)
       act.fail("rate", "the actuator period 1/rate must be a whole multiple of plant.physics_step (" +
                            std::to_string(s.plant.physics_step) +
@@ -148,6 +149,10 @@ void readRegisteredController(MapReader& ctl, Scenario& s, const std::vector<Con
     ctl.fail("type", "a registered controller commands the joint torque; expected actuator.order 0, got " +
                          std::to_string(s.actuator.order));
   const ControllerTraits traits = controllerTraits(s.controller.type);
+  if (traits.measures_velocity && s.plant.external())
+    ctl.fail("type", s.controller.type +
+                         " feeds back measured joint rates, and an external plant (plant.type external) "
+                         "publishes joint angles only; expected a position-only controller");
   if (traits.measures_velocity && !s.velocitySensor())
     ctl.fail("type", s.controller.type +
                          " feeds back measured joint rates, and this scenario declares no velocity sensor; "
@@ -174,7 +179,7 @@ namespace {
 // type external: a program from outside the project takes the controller's
 // place (docs/external_programs.md). Its command is checked here, before
 // anything starts; a relative path is taken from the scenario file's folder.
-void readExternalController(MapReader& ctl, Scenario& s, const std::string& base_dir) {
+void readExternalController(MapReader& ctl, Scenario& s, const std::string& base_dir, bool check_programs) {
   if (s.actuator.order != 0)
     ctl.fail("type", "an external controller commands the joint torque; expected actuator.order 0, got " +
                          std::to_string(s.actuator.order));
@@ -185,7 +190,7 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
         "type",
         "an external controller runs as its own process over LCM; expected mode lockstep or realtime, got "
         "inproc");
-  ExternalCommand external = readExternalCommand(ctl, base_dir, "controller");
+  ExternalCommand external = readExternalCommand(ctl, base_dir, "controller", check_programs);
   s.controller.command = std::move(external.command);
   s.controller.working_directory = std::move(external.working_directory);
   ctl.finish(keysUnder("controller", "external"));
@@ -194,10 +199,10 @@ void readExternalController(MapReader& ctl, Scenario& s, const std::string& base
 
 // controller: its type, then the section its registration reads (or, for
 // external, the command that takes the controller's place).
-void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir) {
+void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir, bool check_programs) {
   MapReader ctl = root.map("controller");
   s.controller.type = ctl.text("type");
-  if (s.controller.type == "external") return readExternalController(ctl, s, base_dir);
+  if (s.controller.type == "external") return readExternalController(ctl, s, base_dir, check_programs);
   const ControllerRegistration* registration = controllerRegistration(s.controller.type);
   if (registration == nullptr)
     ctl.fail("type",

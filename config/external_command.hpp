@@ -20,8 +20,11 @@ struct ExternalCommand {
 
 /// Reads `command` and `working_directory` from `section` (the controller's
 /// or the plant's): a relative path is taken from base_dir (the scenario
-/// file's folder); a program that does not exist is refused, naming `role`
-/// ("controller", "plant").
-ExternalCommand readExternalCommand(MapReader& section, const std::string& base_dir, const std::string& role);
+/// file's folder); a program or folder that does not exist is refused, naming
+/// `role` ("controller", "plant") -- unless `check_programs` is false: a
+/// log's scenario names programs of the host and time it ran, which its
+/// readers (replay, report, export, view) never run.
+ExternalCommand readExternalCommand(MapReader& section, const std::string& base_dir, const std::string& role,
+                                    bool check_programs = true);
 
 }  // namespace lagrange::config

@@ -87,7 +87,7 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
   chain.back()[parts.back()] = value;
 }
 
-Scenario readScenario(MapReader root, const std::string& source) {
+Scenario readScenario(MapReader root, const std::string& source, bool check_programs) {
   Scenario s;
   using namespace sections;
   readFieldsAmongOthers(root, s, headerFields());
@@ -95,9 +95,9 @@ Scenario readScenario(MapReader root, const std::string& source) {
   readSensorsSection(root, s);  // before the controller, which may need a velocity sensor
   readInitialStateSection(root, s);
   readReferenceSection(root, s);
-  readPlantSection(root, s, std::filesystem::path(source).parent_path().string());
+  readPlantSection(root, s, std::filesystem::path(source).parent_path().string(), check_programs);
   readActuatorSection(root, s);
-  readControllerSection(root, s, std::filesystem::path(source).parent_path().string());
+  readControllerSection(root, s, std::filesystem::path(source).parent_path().string(), check_programs);
   readMetricsSection(root, s);
   readLockstepSection(root, s);
   readRealtimeSection(root, s);
@@ -150,11 +150,12 @@ std::string namingTheChain(std::string what, const std::vector<std::string>& cha
   return what.replace(line, close + 1 - line, where);
 }
 
-Scenario readTree(ScenarioTree tree, const std::string& source, const std::vector<std::string>& overrides) {
+Scenario readTree(ScenarioTree tree, const std::string& source, const std::vector<std::string>& overrides,
+                  bool check_programs = true) {
   YAML::Node& root = tree.root;
   for (const auto& o : overrides) applyOverride(root, o);
   try {
-    return readScenario(MapReader(root, ""), source);
+    return readScenario(MapReader(root, ""), source, check_programs);
   } catch (const ConfigError& e) {
     std::string what = namingTheOption(e.what(), overrides);
     if (what.find("(from --set ") == std::string::npos) what = namingTheChain(what, tree.chain);
@@ -168,6 +169,11 @@ Scenario readTree(ScenarioTree tree, const std::string& source, const std::vecto
 Scenario parseScenario(const std::string& yaml_text, const std::string& source,
                        const std::vector<std::string>& overrides) {
   return readTree(parseScenarioTree(yaml_text, source), source, overrides);
+}
+
+Scenario parseLoggedScenario(const std::string& yaml_text, const std::string& source,
+                             const std::vector<std::string>& overrides) {
+  return readTree(parseScenarioTree(yaml_text, source), source, overrides, false);
 }
 
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {

@@ -290,6 +290,12 @@ struct Scenario {
 Scenario parseScenario(const std::string& yaml_text, const std::string& source,
                        const std::vector<std::string>& overrides = {});
 
+/// parseScenario of a log's SCENARIO: the same checks but that an external
+/// controller's or plant's program and folder exist -- they are the host's
+/// and the time's the run was on, and no reader of a log runs them.
+Scenario parseLoggedScenario(const std::string& yaml_text, const std::string& source,
+                             const std::vector<std::string>& overrides = {});
+
 /// Read a file and parse it. @throws ConfigError (also when unreadable).
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides = {});
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 
@@ -171,6 +172,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   auto next_flush = Clock::now() + std::chrono::milliseconds(100);
   auto next_status = Clock::now() + std::chrono::milliseconds(100);
   auto next_progress_line = Clock::now();
+  std::optional<std::string> plant_gone;  // why the plant is taken for gone (it ends the run)
   while (!runtime::stopRequested()) {
     node.handle(20);
     log.check();  // a write error (full disk) stops the run, naming run.lcm and the error
@@ -205,8 +207,8 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
     }
     if (end.due(now, confirmation.confirmed(metrics.lastTick()) >= s.lastTick())) break;
     if (const auto silent =
-            end.plantGone(now, asDuration(plant_silence_limit), asDuration(plant_start_limit)))
-      throw RuntimeFault(fmt::format(
+            end.plantGone(now, asDuration(plant_silence_limit), asDuration(plant_start_limit))) {
+      plant_gone = fmt::format(
           "the plant has not been heard for {:.0f} s ({} is allowed: {}); its process or its host is gone, "
           "or "
           "never started (last tick recorded: {}). The log so far is kept in {}",
@@ -215,7 +217,9 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
                                : fmt::format("{:g} s at the start", plant_start_limit),
           end.plantEverHeard() ? "4 x lockstep.stall_timeout; it re-sends or reports well within that"
                                : "6 x lockstep.stall_timeout, twice the plant's own start-up allowance",
-          metrics.lastTick(), log_path));
+          metrics.lastTick(), log_path);
+      break;  // the log and summary.json are written, then the run is stopped (below)
+    }
   }
   // Drain what is still queued, then close the log before the summary.
   // Bounded in time: other traffic on the URL (another publisher, a
@@ -260,6 +264,9 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const std::string summary_path = (std::filesystem::path(options.out_dir) / "summary.json").string();
   util::writeOutputFile(summary_path, summary.dump(2) + "\n");  // throws naming the file and the error
   spdlog::info(fmt::format("wrote {} events to {} and {}", facts.log_events, log_path, summary_path));
+  // A plant gone silent ends the run as an error, after its summary: the
+  // launcher marks it failed with this reason (tools/run/run_command.cpp).
+  if (plant_gone) throw RuntimeFault(*plant_gone);
   return 0;
 }
 

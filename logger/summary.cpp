@@ -233,17 +233,21 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
     processes[name] = {
         {"state", st.state}, {"last_tick", st.last_tick}, {"message", st.message}, {"channels", channels}};
   }
-  constexpr const char* kCommandChannel = "CONTROL_COMMAND";  // transport/channels.hpp's, a layer down
   // A program from outside reports no counts of its own: what it published
-  // is what reached its receivers -- the most any of them received.
-  if (s.controller.type == "external" && messages.contains(kCommandChannel) &&
-      messages[kCommandChannel]["published"].get<long long>() == 0) {
+  // is what reached its receivers -- the most any of them received. (The
+  // channels are transport/channels.hpp's, a layer down.)
+  std::vector<const char*> external_channels;
+  if (s.controller.type == "external") external_channels.push_back("CONTROL_COMMAND");
+  if (s.plant.external())
+    for (const char* channel : {"PLANT_POSITION", "PLANT_TRUTH"}) external_channels.push_back(channel);
+  for (const char* channel : external_channels) {
+    if (!messages.contains(channel) || messages[channel]["published"].get<long long>() != 0) continue;
     long long heard = 0;
     for (const auto& [name, p] : processes.items())
-      if (p["channels"].contains(kCommandChannel))
-        heard = std::max(heard, p["channels"][kCommandChannel]["received"].get<long long>());
-    messages[kCommandChannel]["published"] = heard;
-    messages[kCommandChannel]["published_counted_by"] =
+      if (p["channels"].contains(channel))
+        heard = std::max(heard, p["channels"][channel]["received"].get<long long>());
+    messages[channel]["published"] = heard;
+    messages[channel]["published_counted_by"] =
         "its receivers (a program from outside reports no counts): the most any of them received";
   }
   if (s.mode == config::Mode::kRealtime) {

@@ -30,7 +30,7 @@ EventBounds boundsOfLog(const std::string& path) {
     const std::optional<std::string> yaml = scenarioYaml(*ev);
     if (!yaml) continue;  // not a scenario_t: the next SCENARIO may be (as replay reads them)
     try {
-      const config::Scenario s = config::parseScenario(*yaml, path + ":SCENARIO");
+      const config::Scenario s = config::parseLoggedScenario(*yaml, path + ":SCENARIO");
       const MessageShape shape = shapeOf(s.dof(), s.actuator.order, s.torqueStepsPerTick());
       return EventBounds(shape, "the log's scenario (" + shape.describe() + ")");
     } catch (const std::exception&) {

@@ -36,7 +36,9 @@ std::string scenarioWith(const std::string& plant_arguments, const std::string& 
   if (at == std::string::npos) throw std::runtime_error("the example scenario's plant command moved");
   text.replace(at, from.size(),
                "command: [python3, -S, \"" + kExample + "/two_link_plant.py\"" + plant_arguments + "]");
-  const std::string path = freshDir("external-plant") + ".yaml";
+  const std::string dir = freshDir("external-plant");
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/scenario.yaml";  // its folder: the plant's working directory
   std::ofstream(path) << text << extra_yaml;
   return path;
 }
@@ -46,8 +48,11 @@ TEST(ExternalPlant, APythonRk4PlantMatchesTheOdePlantAndReplaysBitForBit) {
   const RunResult builtin =
       runScenario(std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml", ode, kShort + " --quiet");
   ASSERT_EQ(builtin.exit_code, 0) << builtin.output;
-  const RunResult external = runScenario(scenarioWith(""), python, kShort + " --quiet");
+  const std::string config = scenarioWith("");
+  const RunResult external = runScenario(config, python, kShort + " --quiet");
   ASSERT_EQ(external.exit_code, 0) << external.output;
+  // The folder the plant ran in is gone: a log's readers never run its programs.
+  std::filesystem::remove_all(std::filesystem::path(config).parent_path());
 
   // The same trajectory within 1e-3 rad at every tick (ODE's first-order
   // stepper at 2.5e-5 s is within 1 mrad of the exact dynamics; RK4 much closer).
@@ -100,6 +105,39 @@ TEST(ExternalPlant, APositionLimitStopsTheRunNamingJointValueAndTick) {
   ASSERT_FALSE(truth.empty());
   EXPECT_GE(truth.back().q(0), 1.5);
   EXPECT_LT(truth.back().t, 1.0);
+}
+
+// A plant that ends early with exit code 0 is no success: the others waited
+// for a "finished" that never came.
+TEST(ExternalPlant, APlantThatExitsZeroBeforeItsLastTickFailsTheRun) {
+  const std::string config = freshDir("external-plant-early") + ".yaml";
+  std::ofstream(config) << "extends: " << kExample
+                        << "/rigid_2dof_external.yaml\nplant: {type: external, command: [python3, -c, "
+                           "\"import sys; sys.exit(0)\"]}\n";
+  const std::string out = freshDir("external-plant-early-run");
+  const RunResult r = runScenario(config, out, kShort);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("the plant exited with code 0 before the run's last tick"), std::string::npos)
+      << r.output;
+  const nlohmann::json s = readSummary(out);
+  EXPECT_EQ(s["status"], "failed") << s.dump();
+  EXPECT_EQ(s["failure"]["process"], "plant") << s.dump();
+}
+
+// A plant that hangs: the logger stops the run, and summary.json says why.
+TEST(ExternalPlant, AHungPlantLeavesASummarySayingWhy) {
+  const std::string config = freshDir("external-plant-hung") + ".yaml";
+  std::ofstream(config) << "extends: " << kExample
+                        << "/rigid_2dof_external.yaml\nlockstep: {stall_timeout: 0.5}\n"
+                           "plant: {type: external, command: [sleep, \"60\"]}\n";
+  const std::string out = freshDir("external-plant-hung-run");
+  const RunResult r = runScenario(config, out, kShort);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const nlohmann::json s = readSummary(out);
+  EXPECT_EQ(s["status"], "failed") << s.dump();
+  EXPECT_EQ(s["failure"]["process"], "logger") << s.dump();
+  EXPECT_NE(s["failure"]["how"].get<std::string>().find("the plant has not been heard"), std::string::npos)
+      << s.dump();
 }
 
 // Realtime (by name: it runs alone): the controller stops answering for a

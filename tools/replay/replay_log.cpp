@@ -104,7 +104,7 @@ size_t outputCount(const Recorded& r, const std::string& outputs) {
 void parseScenarios(Opened& o, const std::string& log_path, const std::vector<std::string>& overrides) {
   const std::string source = log_path + ":SCENARIO";
   try {
-    const config::Scenario logged = config::parseScenario(*o.rec.scenario, source);
+    const config::Scenario logged = config::parseLoggedScenario(*o.rec.scenario, source);
     o.logged_shape = shapeOf(logged);
     o.logged_mode = logged.mode;
     if (overrides.empty()) o.scenario = logged;
@@ -113,7 +113,7 @@ void parseScenarios(Opened& o, const std::string& log_path, const std::vector<st
   }
   if (overrides.empty()) return;
   try {
-    o.scenario = config::parseScenario(*o.rec.scenario, source, overrides);
+    o.scenario = config::parseLoggedScenario(*o.rec.scenario, source, overrides);
   } catch (const config::ConfigError& e) {
     throw ReplayError(std::string("the log's SCENARIO changed by --set is not a valid scenario: ") +
                       e.what());

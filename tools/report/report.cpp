@@ -16,7 +16,7 @@ PlotSpec specOf(const CsvExport& csv, const std::string& log_path, const std::st
                 std::optional<config::Scenario>& scenario, std::vector<std::string>& warnings) {
   if (csv.scenario) {
     try {
-      scenario = config::parseScenario(*csv.scenario, log_path + ":SCENARIO");
+      scenario = config::parseLoggedScenario(*csv.scenario, log_path + ":SCENARIO");
     } catch (const config::ConfigError& e) {
       warnings.push_back(std::string("the log's SCENARIO is not a valid scenario (") + e.what() +
                          "); the plots describe what the CSV columns show");

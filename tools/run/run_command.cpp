@@ -183,6 +183,16 @@ void addLauncherFacts(const std::string& out_dir, int64_t run_id, const nlohmann
   util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
 }
 
+// Whether this run's summary.json (its run_id) says every tick was recorded.
+bool runCompleted(const std::string& out_dir, int64_t run_id) {
+  try {
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(fs::path(out_dir) / "summary.json"));
+    return j.is_object() && j.value("run_id", int64_t{0}) == run_id && j.value("status", "") == "completed";
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
 // The last `lines` lines of a process's log.
 std::vector<std::string> logTail(const std::string& path, int lines) {
   std::ifstream in(path);
@@ -496,6 +506,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // STATUS can never hang a run.
   constexpr double kFollowSeconds = 10.0;
   std::optional<std::chrono::steady_clock::time_point> plant_done;
+  bool followers_stopped = false;  // the others did not end on the plant's "finished"
   // How the external controller was scheduled (summary.json
   // timing.loops.controller.scheduler): looked at once it has answered, long
   // after its exec.
@@ -524,7 +535,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
         std::chrono::steady_clock::now() - *plant_done > std::chrono::duration<double>(kFollowSeconds)) {
       progress.finish();
       std::cerr << "lagrange run: warning: processes still running " << kFollowSeconds
-                << " s after the plant finished; stopping them\n";
+                << " s after the plant exited (code 0); stopping them\n";
+      followers_stopped = true;
       for (const wiring::ChildExit& e : supervisor.stopAll(5.0)) {
         addCpu(cpu, e);
         if (e.failed() && e.signal != SIGTERM) exit_code = kExitFailed;
@@ -553,6 +565,11 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
         // A write error: the log tail would be on the same full disk.
         std::cerr << "lagrange run: the logger stopped the run: " << progress_reader.loggerError()
                   << "; stopping the others\n";
+        // Its summary, when it could write one (a plant gone silent), says why.
+        failure = {{"process", "logger"},
+                   {"how", progress_reader.loggerError()},
+                   {"log", (fs::path(out_dir) / "logger.log").string()},
+                   {"last_lines", nlohmann::json::array()}};
       } else {
         const std::string log = (fs::path(out_dir) / (e.name + ".log")).string();
         std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
@@ -569,6 +586,16 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     }
   }
   key.reset();  // every process has ended: the run's secret goes with it
+  // A plant that exited 0 before its last tick (a program from outside can):
+  // the others waited for a "finished" that never came. Not a success.
+  if (exit_code == 0 && followers_stopped && runsHere(opt, "logger") && !runCompleted(out_dir, run_id)) {
+    const std::string log = (fs::path(out_dir) / "plant.log").string();
+    const std::string how = "exited with code 0 before the run's last tick (the others waited for its "
+                            "\"finished\" STATUS)";
+    std::cerr << "lagrange run: the plant " << how << "\n";
+    failure = failureRecord("plant", how, log, logTail(log, 15));
+    exit_code = kExitFailed;
+  }
   // The logger's last line (the final sample) may have come after the loop's last read.
   if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
   progress.finish();

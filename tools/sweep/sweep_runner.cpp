@@ -124,7 +124,9 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   config::Scenario s = config::loadScenario(plan_.spec.scenario_path, row.overrides);
   // A program of its own (controller or plant): lockstep over LCM.
   const bool external = s.controller.type == "external" || s.plant.external();
-  if (!external) s.mode = config::Mode::kInproc;  // the sampled-data check examines the wiring that runs
+  // The sampled-data check examines the wiring that runs: in process, or
+  // an external program's lockstep run (runExternal's --mode lockstep).
+  s.mode = external ? config::Mode::kLockstep : config::Mode::kInproc;
   const controller::GainReport& gains = gainsOf(s);
   const wiring::InProcessOutcome o = external
                                          ? runExternal(row, stop_requested)

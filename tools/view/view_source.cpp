@@ -54,7 +54,7 @@ ViewLog readViewLog(const std::string& path) {
   if (!described && scenario) {
     try {
       out.description =
-          config::robotDescriptionMessage(config::parseScenario(*scenario, path + " (SCENARIO)"));
+          config::robotDescriptionMessage(config::parseLoggedScenario(*scenario, path + " (SCENARIO)"));
       described = true;
       out.notes.push_back(
           "no ROBOT_DESCRIPTION in the log (recorded before it existed): the arm is drawn from "
