@@ -62,9 +62,17 @@ class Limits:
     limit and tick, exit 1. None: no limit of that kind."""
 
     def __init__(self, torque=None, position=None, rate=None):
-        self.torque = None if torque is None else [float(x) for x in torque]
-        self.position = None if position is None else [(float(lo), float(hi)) for lo, hi in position]
-        self.rate = None if rate is None else [float(x) for x in rate]
+        try:
+            self.torque = None if torque is None else [float(x) for x in torque]
+            self.rate = None if rate is None else [float(x) for x in rate]
+        except (TypeError, ValueError):
+            raise ContractError("Limits: torque and rate are one number per joint; got %r and %r"
+                                % (torque, rate)) from None
+        try:
+            self.position = None if position is None else [(float(lo), float(hi)) for lo, hi in position]
+        except (TypeError, ValueError):
+            raise ContractError("Limits: position is one (lower, upper) pair per joint, e.g. [(-2.8, 2.8), "
+                                "(-1.7, 1.7)]; got %r" % (position,)) from None
         for what, values in (("torque", self.torque), ("rate", self.rate)):
             if values is not None and not all(v > 0.0 for v in values):
                 raise ContractError("Limits: every %s limit must be > 0; got %r" % (what, values))
@@ -173,7 +181,10 @@ class Plant:
         self.url = _environment("LAGRANGE_LCM_URL", environ)
         self.run_id = int(_environment("LAGRANGE_RUN_ID", environ))
         self.joints = int(_environment("LAGRANGE_JOINTS", environ))
-        self.key = contract.Key.from_file(_environment("LAGRANGE_KEY_FILE", environ))
+        try:
+            self.key = contract.Key.from_file(_environment("LAGRANGE_KEY_FILE", environ))
+        except ValueError as e:
+            raise ContractError(str(e)) from None
         self.scenario = _scenario(environ)
         s = self.scenario
         try:
@@ -188,7 +199,8 @@ class Plant:
                                        rt["stale_torque"] == "hold", watchdog_periods)
         except (KeyError, TypeError, ValueError) as e:
             raise ContractError("the run's scenario lacks %s; expected the resolved scenario lagrange wrote" % e)
-        if watchdog_periods is not None and not (isinstance(watchdog_periods, int) and watchdog_periods >= 1):
+        if watchdog_periods is not None and (isinstance(watchdog_periods, bool) or
+                                             not (isinstance(watchdog_periods, int) and watchdog_periods >= 1)):
             raise ContractError("watchdog_periods must be a whole number of periods >= 1; got %r"
                                 % (watchdog_periods,))
         if limits is not None:
@@ -614,7 +626,7 @@ def run(step, initial=None, limits=None, watchdog_periods=None, brake=None):
             plant.safe_stop()  # interrupted: the arm is left safe too
     except Exception as e:  # noqa: BLE001 -- whatever ended it, the arm is made safe and the run told why
         name = os.path.basename(sys.argv[0]) or "plant"
-        if isinstance(e, (ContractError, PlantStopped, ValueError, LCMError)):
+        if isinstance(e, (ContractError, PlantStopped, LCMError)):  # said in full; anything else is a bug to trace
             print("%s: %s" % (name, e), file=sys.stderr, flush=True)
         else:
             traceback.print_exc()

@@ -513,6 +513,8 @@ class PlantGuards(unittest.TestCase):
             lagrange.external_plant.Limits(torque=[1.0, 0.0])
         with self.assertRaisesRegex(lagrange.external.ContractError, "lower < upper"):
             lagrange.external_plant.Limits(position=[(1.0, -1.0)])
+        with self.assertRaisesRegex(lagrange.external.ContractError, r"one \(lower, upper\) pair per joint"):
+            lagrange.external_plant.Limits(position=[-1.0, 1.0])
         with self.assertRaisesRegex(lagrange.external.ContractError, "3 torque limits for 2 joints"):
             lagrange.external_plant.Limits(torque=[1.0, 1.0, 1.0]).check_sizes(2)
 
