@@ -19,6 +19,7 @@
 #include "transport/messages.hpp"
 #include "transport/rate_loop.hpp"
 #include "util/error.hpp"
+#include "util/text_wrap.hpp"
 
 namespace lagrange::runtime {
 
@@ -58,6 +59,16 @@ int runProcess(const std::string& name, const std::string& description, int argc
                const std::vector<ProcessOption>& options, const ProcessPrepare& prepare,
                const ProcessBody& body, int receive_buffer_bytes) {
   CLI::App app{description, "lagrange-" + name};
+  // Started by `lagrange run`; by hand, as docs/deployment.md shows, every
+  // process of a run takes the same four options.
+  app.footer(util::helpFooter(
+      "One process of a run, normally started by `lagrange run`, which gives it the run's resolved "
+      "scenario, LCM URL, run id and key. Started by hand (docs/deployment.md: the processes of one "
+      "run on several hosts), every process of the run takes the same --config, --lcm-url, --run-id "
+      "and --key-file (a key file from `lagrange keygen`).",
+      {"lagrange-" + name +
+       " --config runs/rigid_2dof/config.resolved.yaml --lcm-url 'udpm://239.255.76.67:7667?ttl=0' --run-id "
+       "7 --key-file runs/shared.key"}));
   std::string config_path;
   std::string url = kDefaultLcmUrl;
   std::vector<std::string> overrides;

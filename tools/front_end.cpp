@@ -7,12 +7,21 @@
 
 #include "tools/command_error.hpp"
 #include "util/error.hpp"
+#include "util/text_wrap.hpp"
 
 namespace lagrange::tools {
+
+void describeCommand(CLI::App& cmd, const std::string& details, const std::vector<std::string>& examples) {
+  cmd.footer(util::helpFooter(details, examples));
+}
 
 int dispatch(int argc, char** argv, const std::vector<AddSubcommand>& commands, const FrontEnd& front_end) {
   CLI::App app{front_end.description, front_end.name};
   app.require_subcommand(1);
+  app.footer("\n" + util::wrapped("'" + std::string(front_end.name) +
+                                      " COMMAND --help' shows a command's options and examples; "
+                                      "docs/README.md maps the documentation.",
+                                  "", 80));
   std::vector<Subcommand> declared;
   for (const AddSubcommand add : commands) declared.push_back(add(app));
   try {

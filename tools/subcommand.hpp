@@ -37,4 +37,11 @@ struct Subcommand {
 /// `app` (bound to state the returned `run` owns).
 using AddSubcommand = Subcommand (*)(CLI::App& app);
 
+/// The end of `lagrange COMMAND --help`, after its one-line summary (the
+/// command's description, which `lagrange --help` lists) and its options:
+/// what the command does in full, wrapped to 80 columns, then "Examples:"
+/// with one command line each -- run from the repository's root, they work
+/// (tests/integration/help_test.cpp runs every one).
+void describeCommand(CLI::App& cmd, const std::string& details, const std::vector<std::string>& examples);
+
 }  // namespace lagrange::tools

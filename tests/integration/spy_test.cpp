@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "support/child.hpp"
+#include "support/help_examples.hpp"
 #include "support/launch.hpp"
 #include "support/wait.hpp"
 
@@ -60,8 +61,9 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
       << "Xvfb did not start: " << slurp(dir + "/xvfb.log");
   setenv("DISPLAY", display.c_str(), 1);
 
-  // A run long enough to watch, in its own network namespace (the default).
-  const std::string run = dir + "/run";
+  // A run long enough to watch, in its own network namespace (the default),
+  // where `lagrange spy --help`'s example looks for it.
+  const std::string run = dir + "/runs/live";
   Child scenario({kBin + "/lagrange", "run", std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml",
                   "-o", run, "--mode", "realtime", "--set", "duration=60", "-q"},
                  dir + "/run.out");
@@ -69,7 +71,12 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
 
   std::string letters;
   {
-    Child spy({kBin + "/lagrange", "spy", run}, dir + "/spy.out");
+    // The example `lagrange spy --help` ends with, typed in the run's folder.
+    const CommandHelp help = commandHelp("spy");
+    ASSERT_EQ(help.examples, std::vector<std::string>{"lagrange spy runs/live"}) << help.text;
+    Child spy(
+        {"sh", "-c", "cd " + quote(dir) + " && PATH=" + quote(kBin) + ":\"$PATH\" exec " + help.examples[0]},
+        dir + "/spy.out");
     ASSERT_TRUE(waitFor([&] { return slurp(dir + "/spy.out").find("LCM types") != std::string::npos; }, 30))
         << slurp(dir + "/spy.out");
     // Traffic fills the table: read it until four of the types show (a

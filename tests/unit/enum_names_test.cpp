@@ -46,7 +46,7 @@ TEST(EnumNames, EveryEnumeratorHasAName) {
   EXPECT_EQ(std::size(model::kReferenceTypeNames),
             static_cast<size_t>(model::ReferenceType::kFreeMotion) + 1);
   EXPECT_EQ(std::size(transport::kProcessStateNames),
-            static_cast<size_t>(transport::ProcessState::kInterrupted) + 1);
+            static_cast<size_t>(transport::ProcessState::kFailed) + 1);
 }
 
 TEST(EnumNames, ChoicesReadAsAList) {

@@ -20,15 +20,17 @@ struct CheckGainsCommandLine {
 
 Subcommand addCheckGainsCommand(CLI::App& app) {
   auto o = std::make_shared<CheckGainsCommandLine>();
-  CLI::App* cmd = app.add_subcommand(
-      "check-gains",
+  CLI::App* cmd = app.add_subcommand("check-gains", "Check a scenario's gains and sampling rate");
+  describeCommand(
+      *cmd,
       "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; "
       "eta and eq. 632 for m = 1; Theorem 3 and Proposition 1 "
       "for m >= 2) and whether the sampled implementation at the configured rate is adequate "
       "(the loop simulated in process from the initial state and seeded states against the same loop "
       "at a fine rate, and linearised near the reference); exit 1 if a condition is violated, the "
       "sampled loop diverges in simulation or converges at no rate tried, or is unstable near the "
-      "reference");
+      "reference",
+      {"lagrange check-gains configs/rigid_2dof.yaml"});
   cmd->add_option("config", o->config_path, "Scenario YAML file")->required();
   cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
   cmd->add_flag("--suggest", o->suggest,

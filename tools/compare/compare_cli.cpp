@@ -9,12 +9,14 @@ namespace lagrange::tools {
 
 Subcommand addCompareCommand(CLI::App& app) {
   auto compare = std::make_shared<CompareOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "compare",
+  CLI::App* cmd = app.add_subcommand("compare", "Run one scenario for several controllers");
+  describeCommand(
+      *cmd,
       "Run one scenario for several controllers (in-process, several at a time), each tuned by its section "
       "compare.controllers.TYPE; write a table (Markdown and CSV: convergence time, final and RMS error, max "
       "torque, torque total variation, control energy), overlay plots of the error and the torques, and with "
-      "--sweep the steady-state error against one key (docs/comparison.md)");
+      "--sweep the steady-state error against one key (docs/comparison.md)",
+      {"lagrange compare configs/compare_pelican.yaml --out runs/compare"});
   cmd->add_option("config", compare->config_path, "Scenario YAML file, e.g. configs/compare_pelican.yaml")
       ->required()
       ->check(CLI::ExistingFile);

@@ -33,11 +33,13 @@ int exportRun(const ExportCommandLine& o) {
 
 Subcommand addExportCommand(CLI::App& app) {
   auto o = std::make_shared<ExportCommandLine>();
-  CLI::App* cmd = app.add_subcommand(
-      "export",
+  CLI::App* cmd = app.add_subcommand("export", "Write a run as one HDF5 file");
+  describeCommand(
+      *cmd,
       "Write a run's log as one HDF5 file (one group per channel, one dataset per field, one row per tick; "
       "units and joint names as attributes, the resolved scenario and summary.json as root attributes), "
-      "for h5py, MATLAB and Julia (docs/export.md)");
+      "for h5py, MATLAB and Julia (docs/export.md)",
+      {"lagrange export runs/rigid_2dof -o runs/rigid_2dof.h5"});
   cmd->add_option("target", o->target, "A run directory (its run.lcm) or an LCM log file")
       ->required()
       ->check(CLI::ExistingPath);

@@ -13,10 +13,12 @@ namespace lagrange::tools {
 
 Subcommand addKeygenCommand(CLI::App& app) {
   auto file = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand(
-      "keygen",
+  CLI::App* cmd = app.add_subcommand("keygen", "Write a secret key for a run spread over hosts");
+  describeCommand(
+      *cmd,
       "Write a fresh secret key (64 hex digits, mode 600) for runs spread over hosts: give the same file to "
-      "each host's `lagrange run --processes ... --key-file FILE`");
+      "each host's `lagrange run --processes ... --key-file FILE`",
+      {"lagrange keygen runs/shared.key"});
   cmd->add_option("file", *file, "The key file to create (never overwritten)")->required();
   // An error ends in tools::dispatch: "lagrange keygen: ...", exit by its kind.
   return {cmd, [file](const Invocation&) {

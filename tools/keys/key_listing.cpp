@@ -1,10 +1,9 @@
 #include "tools/keys/key_listing.hpp"
 
-#include <sstream>
-
 #include "config/key_reference.hpp"
 #include "config/key_table.hpp"
 #include "util/error.hpp"
+#include "util/text_wrap.hpp"
 
 namespace lagrange::tools {
 
@@ -15,28 +14,7 @@ bool inSection(const std::string& key, const std::string& section) {
   return key.size() == section.size() || key[section.size()] == '.' || key[section.size()] == '[';
 }
 
-// The columns UTF-8 text takes on a terminal: one per character, not per
-// byte ("≥", "²" and "á" are two or three bytes each).
-int columns(const std::string& text) {
-  int n = 0;
-  for (const char c : text) n += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-  return n;
-}
-
-// Words of `text` on lines of at most `width` columns (a longer word has its own line).
-std::string wrapped(const std::string& text, const std::string& indent, int width) {
-  std::istringstream words(text);
-  std::string out, line, word;
-  while (words >> word) {
-    if (!line.empty() && columns(indent) + columns(line) + 1 + columns(word) > width) {
-      out += indent + line + "\n";
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + word;
-  }
-  if (!line.empty()) out += indent + line + "\n";
-  return out;
-}
+using util::wrapped;
 
 }  // namespace
 

@@ -22,9 +22,11 @@ struct KeysCommandLine {
 
 Subcommand addKeysCommand(CLI::App& app) {
   auto options = std::make_shared<KeysCommandLine>();
-  CLI::App* cmd = app.add_subcommand(
-      "keys",
-      "Every key a scenario file may hold: its type, default, range and meaning (docs/configuration.md)");
+  CLI::App* cmd = app.add_subcommand("keys", "List the scenario keys: type, default, meaning");
+  describeCommand(
+      *cmd,
+      "Every key a scenario file may hold: its type, default, range and meaning (docs/configuration.md)",
+      {"lagrange keys plant", "lagrange keys controller.stages"});
   cmd->add_option("section", options->sections,
                   "Only the keys in these sections or under these keys (e.g. plant, controller.stages)");
   cmd->add_flag("--markdown", options->markdown,

@@ -118,13 +118,15 @@ int replay(const ReplayCommandLine& o, const std::vector<std::string>& self_argv
 
 Subcommand addReplayCommand(CLI::App& app) {
   auto o = std::make_shared<ReplayCommandLine>();
-  CLI::App* cmd = app.add_subcommand(
-      "replay",
+  CLI::App* cmd = app.add_subcommand("replay", "Replay a log through a component, bit for bit");
+  describeCommand(
+      *cmd,
       "Feed a component's recorded inputs from an LCM log into its core and compare every output with the "
       "recorded one; print the first divergence (tick, time, field, both values); exit 1 on any, 2 when the "
       "log is damaged or has gaps (named: tick, byte offset). An external controller (or, with --component "
       "plant, an external plant) is replayed only by a program named after --, never by the command the log "
-      "holds");
+      "holds",
+      {"lagrange replay runs/rigid_2dof", "lagrange replay runs/rigid_2dof --component plant"});
   cmd->add_option("log", o->log,
                   "A run's output directory (its run.lcm) or an LCM log (run.lcm, a stock lcm-logger's)")
       ->required()

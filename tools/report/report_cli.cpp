@@ -30,11 +30,13 @@ int report(const ReportCommandLine& o) {
 
 Subcommand addReportCommand(CLI::App& app) {
   auto o = std::make_shared<ReportCommandLine>();
-  CLI::App* cmd = app.add_subcommand(
-      "report",
+  CLI::App* cmd = app.add_subcommand("report", "Write a run's CSV tables and PNG plots");
+  describeCommand(
+      *cmd,
       "Write one CSV file per channel of a run's log (rows: first copy of each tick; columns: the "
       "message fields per joint) and PNG plots drawn by gnuplot (tracking error, joints, torques, filter, "
-      "actuator and, for realtime runs, timing histograms)");
+      "actuator and, for realtime runs, timing histograms)",
+      {"lagrange report runs/rigid_2dof"});
   cmd->add_option("target", o->target, "A run directory (its run.lcm) or an LCM log file")
       ->required()
       ->check(CLI::ExistingPath);

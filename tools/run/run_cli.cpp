@@ -41,8 +41,17 @@ bool scenarioFromCheck(RunOptions& options) {
 Subcommand addRunCommand(CLI::App& app) {
   auto o = std::make_shared<RunCommandLine>();
   RunOptions& run = o->run;
-  CLI::App* cmd =
-      app.add_subcommand("run", "Run a scenario: plant, actuator, controller and logger as LCM processes");
+  CLI::App* cmd = app.add_subcommand("run", "Run a scenario: its four processes over LCM");
+  describeCommand(
+      *cmd,
+      "Start the plant, actuator, controller and logger of a scenario as processes over LCM, in a private "
+      "network namespace (mode lockstep or realtime; mode inproc runs them in this process), with "
+      "the run's own key; show the progress; write run.lcm, summary.json and each process's log "
+      "to OUT; print the result. Exit 0 when the run completed, 1 when it failed (a process "
+      "died or stopped it), 2 on bad input, 3 when --check misses, 130 when interrupted "
+      "(docs/summary.md)",
+      {"lagrange run configs/rigid_2dof.yaml --out runs/rigid_2dof",
+       "lagrange run configs/rigid_2dof.yaml --out runs/fast --mode inproc --set 'controller.kp=[200,12]'"});
   // Not ->required(): `--check SCENARIO.yaml` hands the path to --check,
   // whose value is optional; the callback takes it back (scenarioFromCheck).
   cmd->add_option("config", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml (required)");

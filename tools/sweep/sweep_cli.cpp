@@ -28,13 +28,16 @@ struct ShardCommandLine {
 Subcommand addSweepCommand(CLI::App& app) {
   auto o = std::make_shared<SweepCommandLine>();
   SweepOptions& options = o->sweep;
-  CLI::App* cmd = app.add_subcommand(
-      "sweep",
+  CLI::App* cmd = app.add_subcommand("sweep", "Run a scenario many times over axes of its keys");
+  describeCommand(
+      *cmd,
       "Run a scenario many times in-process over axes of its keys (lists, linear and log ranges, initial "
       "errors by norm and random direction; grids, seeded random or Halton samples), on every core or as a "
       "Slurm job array; write one row per run (parameters, convergence time, final and max error, diverged, "
       "the gain verdicts, wall time) to OUT/sweep.csv and OUT/sweep.jsonl, and maps as PNGs. Resumable: run "
-      "the same command again after a stop (docs/sweeps.md)");
+      "the same command again after a stop (docs/sweeps.md)",
+      {"lagrange sweep sweeps/first_sweep.yaml --out runs/first_sweep",
+       "lagrange sweep sweeps/rigid_rates.yaml --out runs/rates --dry-run"});
   cmd->add_option("sweep_file", options.sweep_file, "Sweep YAML file, e.g. sweeps/rigid_rates.yaml")
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--out", options.out_dir,

@@ -9,10 +9,12 @@ namespace lagrange::tools {
 
 Subcommand addViewCommand(CLI::App& app) {
   auto view = std::make_shared<ViewOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "view",
+  CLI::App* cmd = app.add_subcommand("view", "Draw the arm in a web browser, from a log or live");
+  describeCommand(
+      *cmd,
       "Draw the arm in a web browser: from a log (play, pause, speed, seek) or live from a running scenario "
-      "(joining its private network namespace); prints the page's URL");
+      "(joining its private network namespace); prints the page's URL",
+      {"lagrange view runs/rigid_2dof"});
   cmd->add_option("source", view->source,
                   "A run's output directory (live while the run goes, else its run.lcm) or a log file");
   cmd->add_option("--host", view->host,
