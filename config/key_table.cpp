@@ -198,7 +198,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "the physics engine that simulates the arm: `ode` (the Open Dynamics Engine, maximal "
           "coordinates: the design's engine, and the golden logs') or `mujoco` (MuJoCo 2.2, generalized "
           "coordinates, the model generated from the arm's parameters or its URDF: "
-          "docs/architecture.md, \"Physics engines\"), or one a program registers. Every wiring and "
+          "docs/extending.md, \"Physics engines\"), or one a program registers. Every wiring and "
           "replay builds the engine the scenario names. Written to config.resolved.yaml only when not "
           "`ode`."),
       row("plant.mujoco_integrator", "string", "`rk4`",
@@ -213,7 +213,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
       row("plant.publish_rate", "number > 0", "`1000`",
           "position samples per second [Hz]; one lockstep tick per sample, the controller runs at this "
           "rate. Whether the sampled implementation is adequate at this rate is `check-gains`' "
-          "sampled-data check (docs/architecture.md, \"Sampled-data check\").",
+          "sampled-data check (docs/sampled_data.md, \"Sampled-data check\").",
           {0.1, 1e5, false, "Hz", ""}),
       row("plant.max_rate", "number > 0", "none",
           "a limit on any body's angular rate [rad/s]: the plant stops the run when it is crossed "
@@ -329,7 +329,7 @@ std::vector<KeyInfo> controllerKeys() {
           "from outside the project in the controller's place, over LCM (keys `command`, "
           "`working_directory`; [external_programs.md](external_programs.md)); or a type "
           "registered by `controller::registerControllerKind` in programs built with it "
-          "(docs/architecture.md, \"Adding a controller\"): its own per-joint keys instead of the ones "
+          "(docs/extending.md, \"Adding a controller\"): its own per-joint keys instead of the ones "
           "below, `actuator.order` 0."),
       only("external",
            row("controller.command", "list of strings", "required for `external`",
@@ -436,7 +436,7 @@ std::vector<KeyInfo> judgementKeys() {
           "back from wherever the gap left it. That it does is what the tests show for the shipped "
           "configs; the paper's *global* result is about the continuous-time loop, and the sampled 1 "
           "kHz loop is only covered locally, by the linearised sampled-data check, and from three "
-          "starts by the simulated one (`check-gains`; docs/architecture.md), so a gap that throws the arm "
+          "starts by the simulated one (`check-gains`; docs/sampled_data.md), so a gap that throws the arm "
           "far enough can leave it outside what "
           "the implementation recovers from. In lockstep the plant waits, re-sending its position, and "
           "the actuator re-sends its last state (which a fresh cascaded controller needs) until the "
@@ -499,7 +499,7 @@ std::vector<KeyInfo> faultAndSensorKeys() {
           "seeds the sensor noise's draws: the same seed gives the same readings in lockstep, "
           "realtime, in-process and replay. Without a `sensors` section PLANT_POSITION carries the "
           "true angles. A sensor model registered by `plant::registerSensorModel` in programs built "
-          "with it (docs/architecture.md, \"Adding a sensor model\") adds its own per-joint keys to "
+          "with it (docs/extending.md, \"Adding a sensor model\") adds its own per-joint keys to "
           "every sensor's section below.",
           seed()),
       row("sensors.position.counts_per_revolution", "vector or scalar, whole numbers ≥ 0", "0",

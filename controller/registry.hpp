@@ -13,7 +13,7 @@
 /// and every wiring (lockstep, realtime, inproc, replay) runs it. Every
 /// process of a run must know the type: build the project's process mains
 /// with the file linked in (tests/CMakeLists.txt does this for the test
-/// controller) -- see docs/architecture.md, "Adding a controller".
+/// controller) -- see docs/extending.md, "Adding a controller".
 
 #include <functional>
 #include <memory>

@@ -451,7 +451,7 @@ std::string describe(const SampledDataCheck& c) {
                              : "; no rate up to 1024 x this one suffices";
   out += "  [estimate, local: the discretised loop linearised along the reference at " +
          std::to_string(SampledDataCheck::kInstants) +
-         " instants, the cores as implemented, the plant's model by RK4; see docs/architecture.md]";
+         " instants, the cores as implemented, the plant's model by RK4; see docs/sampled_data.md]";
   return out;
 }
 
@@ -491,7 +491,7 @@ std::string describe(const SampledSimulation& c) {
       tail, sizeof tail,
       "\n  [evidence from these %zu states, not a proof for all: in-process simulations of %g s, the "
       "loop as configured at %g Hz against the same plant and controller at %g Hz with exact sensors "
-      "(%s); %.1f s; see docs/architecture.md]",
+      "(%s); %.1f s; see docs/sampled_data.md]",
       c.starts.size(), c.duration, c.rate, c.fine_rate,
       c.confirmed_at
           ? ("the same loop at " + std::to_string(static_cast<long long>(*c.confirmed_at)) + " Hz agrees")

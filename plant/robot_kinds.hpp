@@ -12,7 +12,7 @@
 /// writes its section (config/robot_kinds.hpp), the controllers, bounds and
 /// reports take its model, and every wiring and replay build its plant here.
 /// Every program of a run that reads the scenario must be built with the
-/// file (docs/architecture.md, "Adding a robot kind").
+/// file (docs/extending.md, "Adding a robot kind").
 
 #include <any>
 #include <functional>

@@ -15,7 +15,7 @@
 /// whose section gives the keys applies the effect after its delay and before
 /// its noise and quantisation. Every program of a run that reads the
 /// scenario must be built with the file (as for a controller,
-/// docs/architecture.md, "Adding a sensor model").
+/// docs/extending.md, "Adding a sensor model").
 
 #include <Eigen/Dense>
 #include <cstdint>

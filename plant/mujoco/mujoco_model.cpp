@@ -69,7 +69,7 @@ std::string mujocoModelXml(const ArmBodies& arm, const EngineSetup& setup) {
     // Friction and stops as stiff as MuJoCo advises (a time constant of two
     // steps, impedance up to 0.999): its defaults let a link creep through
     // friction at 2 % of its free motion and 0.09 rad into a stop
-    // (docs/architecture.md, "Physics engines").
+    // (docs/extending.md, "Physics engines").
     << "  <default><joint solreffriction=\"" << num(2 * setup.physics_step)
     << " 1\" solimpfriction=\"0.99 0.999 0.001\" solreflimit=\"" << num(2 * setup.physics_step)
     << " 1\" solimplimit=\"0.99 0.999 0.001\"/></default>\n"

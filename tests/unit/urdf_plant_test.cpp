@@ -58,7 +58,7 @@ double gapToRk4(double step, double* separation, const EngineChoice& engine = {}
 
 // ODE's integrator is first order: the gap shrinks about as the step does.
 // The motion is wide (the arm sags by radians within the second), so the gap
-// is a fraction of a radian at 0.1 ms: docs/architecture.md, "Accuracy of
+// is a fraction of a radian at 0.1 ms: docs/extending.md, "Accuracy of
 // the plant", quotes the numbers.
 TEST(UrdfPlant, FollowsTheModelCloserWithASmallerStep) {
   double separation[3] = {};

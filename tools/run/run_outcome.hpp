@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// What `lagrange run` says about a finished run, from the logger's
-/// summary.json (docs/architecture.md lists its fields): the result block it
+/// summary.json (docs/summary.md lists its fields): the result block it
 /// prints, and the stated metrics `--check` finds missed. Pure: the caller
 /// reads the file and prints.
 
