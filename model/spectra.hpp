@@ -3,7 +3,7 @@
 /// The matrix decompositions the checks need, each instantiated in this one
 /// file (spectra.cpp): an Eigen decomposition costs 10-17 s of compile time in
 /// every file that instantiates one, so the rest of the code, tests included,
-/// calls these functions instead (README, "Building").
+/// calls these functions instead (docs/development.md, "Building").
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Configures build/ the one way every script builds it: RelWithDebInfo at
-# -O2 -g1 (line tables: a quarter faster to build than -g, README "Building").
+# -O2 -g1 (line tables: a quarter faster to build than -g, docs/development.md, "Building").
 # The demo and scripts/build.sh share it, so that a build/ the demo made is
 # not rebuilt from scratch by a later scripts/test.sh for a flag of its own.
 # Extra arguments go to cmake (e.g. -DLAGRANGE_BUILD_TESTS=OFF).

@@ -48,7 +48,7 @@ class RuntimeFault : public Error {
   explicit RuntimeFault(const std::string& what) : Error(ErrorKind::kRuntimeFault, what) {}
 };
 
-/// Exit codes of `lagrange` and of the processes (README, "Exit codes").
+/// Exit codes of `lagrange` and of the processes (docs/reliability.md, "Errors and exit codes").
 enum ExitCode : int {
   kExitOk = 0,
   kExitFailed = 1,    ///< the run failed (a process died, the plant stopped it), a condition or replay failed
