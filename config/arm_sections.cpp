@@ -522,8 +522,9 @@ void readExternalPlant(MapReader& plant, Scenario& s, const std::string& base_di
   const std::set<std::string> own = {"type", "publish_rate", "command", "working_directory"};
   for (const std::string& key : plant.keys())
     if (own.count(key) == 0 && keysUnder("plant").count(key) != 0)
-      plant.fail(key, "is a key of the simulated plant, and plant.type is external (the program simulates or "
-                      "drives the arm itself); expected it left out");
+      plant.fail(key,
+                 "is a key of the simulated plant, and plant.type is external (the program simulates or "
+                 "drives the arm itself); expected it left out");
   s.plant.publish_rate = plant.positive("publish_rate", s.plant.publish_rate);
   ExternalCommand external = readExternalCommand(plant, base_dir, "plant", check_programs);
   s.plant.command = std::move(external.command);

@@ -3,8 +3,6 @@
 /// controller -- its type, and the section its registration reads
 /// (config/controller_params.hpp) (config/scenario_sections.hpp).
 
-
-
 #include "config/controller_params.hpp"
 #include "config/external_command.hpp"
 #include "config/key_table.hpp"
@@ -116,9 +114,10 @@ void readActuatorSection(MapReader& root, Scenario& s) {
     readFieldsAmongOthers(act, s.actuator, actuatorChainFields());
     const double steps = s.actuator.rate / s.plant.publish_rate;
     if (s.plant.external() && std::abs(steps - 1.0) > 1e-9)
-      act.fail("rate", "an external plant (plant.type external) applies one torque per period; expected "
-                       "actuator.rate left out or equal to plant.publish_rate (" +
-                           util::exactText(s.plant.publish_rate) + " Hz)");
+      act.fail("rate",
+               "an external plant (plant.type external) applies one torque per period; expected "
+               "actuator.rate left out or equal to plant.publish_rate (" +
+                   util::exactText(s.plant.publish_rate) + " Hz)");
     const double per_step = static_cast<double>(s.substepsPerTick()) / std::round(steps);
     if (steps < 1.0 - 1e-9 || std::abs(steps - std::round(steps)) > 1e-6 * steps)
       act.fail("rate", "expected a whole multiple of plant.publish_rate (" +

@@ -300,9 +300,10 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       // and receive: a program from outside injects none.
       const bool plants = name == "all" || name.rfind("PLANT_", 0) == 0;
       if (s.plant.external() && plants)
-        channels.fail(name, "faults on the plant's channels are injected by the built-in plant, and plant.type "
-                            "is external; expected faults on CONTROL_COMMAND, ACTUATOR_STATE, STATUS or "
-                            "SCENARIO only");
+        channels.fail(name,
+                      "faults on the plant's channels are injected by the built-in plant, and plant.type "
+                      "is external; expected faults on CONTROL_COMMAND, ACTUATOR_STATE, STATUS or "
+                      "SCENARIO only");
       names.insert(name);
       ChannelFaults rule;
       readFields(channels.map(name), rule, channelFaultFields());
@@ -317,7 +318,8 @@ void readFaultsSection(MapReader& root, Scenario& s) {
       if (name != "plant" && name != "controller" && name != "actuator" && name != "logger")
         receivers.fail(name, "unknown process; expected plant, controller, actuator or logger");
       if (name == "plant" && s.plant.external())
-        receivers.fail(name, "is injected by the built-in plant, and plant.type is external; expected it left out");
+        receivers.fail(name,
+                       "is injected by the built-in plant, and plant.type is external; expected it left out");
       names.insert(name);
       ReceiverFaults r;
       readFields(receivers.map(name), r, receiverFaultFields());

@@ -16,7 +16,8 @@ namespace lagrange::config::sections {
 void readRobotSection(MapReader& root, Scenario& s, const std::string& base_dir);
 void readInitialStateSection(MapReader& root, Scenario& s);  ///< after robot
 void readReferenceSection(MapReader& root, Scenario& s);     ///< after robot and duration
-void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir, bool check_programs);  ///< after duration, mode, robot, sensors
+void readPlantSection(MapReader& root, Scenario& s, const std::string& base_dir,
+                      bool check_programs);  ///< after duration, mode, robot, sensors
 
 /// name, description, duration, mode: the top level's own keys.
 const Fields<Scenario>& headerFields();
@@ -38,7 +39,8 @@ void readActuatorSection(MapReader& root, Scenario& s);  ///< after plant
 const Fields<ActuatorConfig>& actuatorChainFields();
 const Fields<ActuatorConfig>& actuatorDriveFields();
 /// `base_dir`: where a relative controller.command (type external) is looked for.
-void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir, bool check_programs);  ///< after actuator
+void readControllerSection(MapReader& root, Scenario& s, const std::string& base_dir,
+                           bool check_programs);  ///< after actuator
 
 // How the run is judged and run (run_sections.cpp): the sections described
 // field by field (config/fields.hpp), read and written from one description.

@@ -25,8 +25,8 @@ int DoMain(int argc, char** argv) {
   std::string gains_path;
   controller::GainReport gains;
   return runtime::runProcess(
-      "controller", "The scenario's controller.type over LCM (Theorem 1, eq. 90; eq. 750; eq. 830)",
-      argc, argv,
+      "controller", "The scenario's controller.type over LCM (Theorem 1, eq. 90; eq. 750; eq. 830)", argc,
+      argv,
       {{"--strict", &strict,
         "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated"},
        {"--gains", &gains_path,

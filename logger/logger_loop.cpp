@@ -5,9 +5,9 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <optional>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "config/robot_description_lcm.hpp"
 #include "config/scenario_lcm.hpp"

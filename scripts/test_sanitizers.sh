@@ -22,7 +22,11 @@
 #    without the sanitizers' runtime its instrumented library would need;
 #  - the sweep's Slurm test: most of its time is the scheduler's polling, and
 #    what its array tasks run is the sweep's own shard code, which the local
-#    sweep's tests (Sweep.*) run under the sanitizers.
+#    sweep's tests (Sweep.*) run under the sanitizers;
+#  - the C++ plant helper's run (CppPlant.*), built outside the tree against
+#    the installed package as the C++ controller is; and the front door's
+#    tests (Help.*, Readme.*): every command's examples and the demo's run,
+#    code paths the tests kept run already, at a minute of this pass.
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
@@ -36,7 +40,8 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 timing='Progress\.|Spy\.|RealtimeUnderAttack|OrdinaryRunSaysItsLogIsComplete|StoppedLoggerIsCounted|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay|AVelocityControllerRunsInRealtime'
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*(panda|flexible)|FilteredMotorRateConverges'
-java='ExternalController\.'
+java='ExternalController\.|CppPlant\.'
 slurm='SlurmSweep\.'
+front='Help\.|Readme\.'
 # In parallel as scripts/test.sh runs them (those labelled `serial` alone).
-exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm" "$@"
+exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm|$front" "$@"

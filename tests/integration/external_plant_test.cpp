@@ -65,7 +65,8 @@ TEST(ExternalPlant, APythonRk4PlantMatchesTheOdePlantAndReplaysBitForBit) {
   });
   EXPECT_EQ(common, 2001u);
   EXPECT_LT(worst, 1e-3);
-  EXPECT_GT(worst, 0.0) << "two different integrators cannot agree to the bit: the run was not the external plant's";
+  EXPECT_GT(worst, 0.0)
+      << "two different integrators cannot agree to the bit: the run was not the external plant's";
   // ... and the same convergence time within 2 %.
   const nlohmann::json sa = readSummary(ode), sb = readSummary(python);
   ASSERT_TRUE(sa["tracking"]["convergence_time"].is_number()) << sa.dump();

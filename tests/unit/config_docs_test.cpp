@@ -95,10 +95,11 @@ TEST(ConfigDocs, RangeLookupNamesKeysAsTheReadersDo) {
 }
 
 TEST(ConfigDocs, KnownKeysComeFromTheTable) {
-  EXPECT_EQ(keysUnder("plant"),
-            (std::set<std::string>{"type", "engine", "mujoco_integrator", "physics_step", "publish_rate", "max_rate",
-                                   "joint_damping", "joint_friction", "urdf_dynamics", "rotor_damping",
-                                   "rotor_friction", "joint_limits", "payload", "model_error"}));
+  EXPECT_EQ(
+      keysUnder("plant"),
+      (std::set<std::string>{"type", "engine", "mujoco_integrator", "physics_step", "publish_rate",
+                             "max_rate", "joint_damping", "joint_friction", "urdf_dynamics", "rotor_damping",
+                             "rotor_friction", "joint_limits", "payload", "model_error"}));
   EXPECT_EQ(keysUnder("plant.payload"), (std::set<std::string>{"mass", "com"}));
   EXPECT_EQ(keysOf(sections::modelErrorFields()), keysUnder("plant.model_error"));
   EXPECT_EQ(keysUnder("robot.links[i]"), (std::set<std::string>{"length", "com", "mass", "inertia"}));

@@ -61,7 +61,8 @@ TEST(EnumNames, AStatusWithAnUnknownStateIsRejected) {
   m.state = "finished";
   EXPECT_EQ(transport::validate(m), "");
   m.state = "done";
-  EXPECT_EQ(transport::validate(m), "unknown state 'done'; expected ready, running, finished, interrupted or failed");
+  EXPECT_EQ(transport::validate(m),
+            "unknown state 'done'; expected ready, running, finished, interrupted or failed");
 }
 
 }  // namespace

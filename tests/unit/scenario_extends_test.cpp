@@ -128,8 +128,9 @@ TEST_F(Extends, AControllerOfAnotherTypeReplacesTheSectionAndKeepsItsProgramPath
   // the folder of the file that gave the command) ...
   EXPECT_EQ(fs::path(s.controller.working_directory), fs::weakly_canonical(dir_ / "base"));
   // ... and a command the extending file gives, in the extending file's.
-  const Scenario own = loadScenario(write(
-      "own.yaml", "extends: base/external.yaml\ncontroller: {type: external, command: [sh, -c, \'exit 0\']}\n"));
+  const Scenario own = loadScenario(
+      write("own.yaml",
+            "extends: base/external.yaml\ncontroller: {type: external, command: [sh, -c, \'exit 0\']}\n"));
   EXPECT_EQ(fs::path(own.controller.working_directory), fs::weakly_canonical(dir_));
 }
 
@@ -138,9 +139,9 @@ TEST_F(Extends, AControllerOfAnotherTypeReplacesTheSectionAndKeepsItsProgramPath
 // left to refuse -- and the example extended from elsewhere starts its
 // program in the example's folder.
 TEST_F(Extends, AnExternalPlantReplacesTheSimulatedPlantsSection) {
-  const Scenario s = loadScenario(
-      write("external_plant.yaml", "extends: " + kConfigs +
-                                       "/rigid_2dof.yaml\nplant: {type: external, command: [sh, -c, \'exit 0\']}\n"));
+  const Scenario s = loadScenario(write(
+      "external_plant.yaml",
+      "extends: " + kConfigs + "/rigid_2dof.yaml\nplant: {type: external, command: [sh, -c, \'exit 0\']}\n"));
   EXPECT_TRUE(s.plant.external());
   EXPECT_EQ(s.plant.publish_rate, 1000.0);
   const std::string example = std::string(LAGRANGE_SOURCE_DIR) + "/examples/external_plant";

@@ -236,7 +236,7 @@ class PlantEnvironment {
   PlantEnvironment() {
     const std::string key_file = ::testing::TempDir() + "sdk_plant_key_" + std::to_string(getpid());
     std::ofstream(key_file) << std::string(64, 'a') << "\n";
-    set("LAGRANGE_LCM_URL", kUrl);
+    set("LAGRANGE_LCM_URL", url());
     set("LAGRANGE_RUN_ID", "4242");
     set("LAGRANGE_KEY_FILE", key_file);
     set("LAGRANGE_JOINTS", "2");
@@ -252,7 +252,11 @@ class PlantEnvironment {
   PlantEnvironment(const PlantEnvironment&) = delete;
   PlantEnvironment& operator=(const PlantEnvironment&) = delete;
 
-  static constexpr const char* kUrl = "udpm://239.255.76.67:7693?ttl=0";
+  // A port of this process's own: ctest runs these tests side by side in one
+  // network namespace, and one test's STATUS must never reach another's listener.
+  static std::string url() {
+    return "udpm://239.255.76.67:" + std::to_string(20000 + getpid() % 40000) + "?ttl=0";
+  }
 
  private:
   void set(const std::string& name, const std::string& value) {
@@ -287,7 +291,7 @@ struct Ended {
 // servePlant on the lockstep scenario, what it printed and the STATUS it published.
 Ended serve(const sdk::PlantOptions& options) {
   PlantEnvironment environment;
-  lcm::LCM listener(PlantEnvironment::kUrl);
+  lcm::LCM listener(PlantEnvironment::url());
   EXPECT_TRUE(listener.good());
   Ended ended;
   struct Collect {

@@ -243,7 +243,8 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
   std::vector<std::string> joint_names;
   if (scenario_text) {
     try {
-      joint_names = config::parseLoggedScenario(*scenario_text, "the run's scenario").robotModel()->jointNames();
+      joint_names =
+          config::parseLoggedScenario(*scenario_text, "the run's scenario").robotModel()->jointNames();
     } catch (const std::exception& e) {
       result.warnings.push_back(std::string("joint_names left out: the run's scenario does not read (") +
                                 e.what() + ")");

@@ -64,38 +64,26 @@ int replay(const ReplayCommandLine& o, const std::vector<std::string>& self_argv
                              "; expected nothing there, or -- and the command of an external controller "
                              "to replay (lagrange replay LOG -- COMMAND ARGS...)"));
   const LoggedController logged = loggedController(o.log);
-  if (command_given && o.component == "plant") {
-    const LoggedController plant = loggedController(o.log, "plant");
-    if (!plant.type.empty() && !plant.external())
-      return failWith("lagrange replay",
-                      BadInput("the log's plant is " + plant.type +
-                               ", which replay builds itself; a command after -- with --component plant is "
-                               "for a log whose plant.type is external, and none was run"));
-    if (!wiring::insidePrivateNetns()) {
-      const std::string why = wiring::reexecInPrivateNetns(self_argv);  // returns only on failure
-      std::cerr << "lagrange replay: " << why << "; install util-linux to replay an external plant\n";
-      return kExitFailed;
-    }
-    return replayComponent(o, "plant");
-  }
   if (command_given) {
-    if (o.component != "controller")
+    if (o.component != "controller" && o.component != "plant")
       return failWith("lagrange replay",
                       BadInput("a command after -- replays an external controller or (with --component "
                                "plant) an external plant; --component " +
                                o.component + " runs none (drop the command)"));
-    if (!logged.type.empty() && !logged.external())
+    const LoggedController program = o.component == "plant" ? loggedController(o.log, "plant") : logged;
+    if (!program.type.empty() && !program.external())
       return failWith("lagrange replay",
-                      BadInput("the log's controller is '" + logged.type +
-                               "', which replay builds itself; a command after -- is for a log whose "
-                               "controller.type is external, and none was run"));
+                      BadInput("the log's " + o.component + " is '" + program.type +
+                               "', which replay builds itself; a command after -- is for a log whose " +
+                               o.component + ".type is external, and none was run"));
     // The program runs on a bus of its own: in a private network namespace, as `lagrange run` does.
     if (!wiring::insidePrivateNetns()) {
       const std::string why = wiring::reexecInPrivateNetns(self_argv);  // returns only on failure
-      std::cerr << "lagrange replay: " << why << "; install util-linux to replay an external controller\n";
+      std::cerr << "lagrange replay: " << why << "; install util-linux to replay an external " << o.component
+                << "\n";
       return kExitFailed;
     }
-    return replayComponent(o, "controller");
+    return replayComponent(o, o.component);
   }
   if (o.component == "controller" && logged.external()) {
     if (o.component_option->count() > 0)  // asked for by name: nothing else would answer the question

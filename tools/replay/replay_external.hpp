@@ -49,6 +49,7 @@ LoggedController loggedController(const std::string& log_path, const std::string
 /// input_actuator_tick and torque_source say which answer arrived in time,
 /// not what the plant did, and are not compared). @throws ReplayError as
 /// replayExternalController does.
-void replayExternalPlant(const replay_log::Opened& o, ReplayResult& result, const std::vector<std::string>& command);
+void replayExternalPlant(const replay_log::Opened& o, ReplayResult& result,
+                         const std::vector<std::string>& command);
 
 }  // namespace lagrange::tools

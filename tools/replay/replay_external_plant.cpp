@@ -38,13 +38,16 @@ lagrange::actuator_state_t answerOf(int64_t k, double t, const Eigen::VectorXd& 
 
 // First difference between the recorded sample of a tick and the program's.
 std::string firstDifference(const Opened& o, const lagrange::plant_truth_t& recorded,
-                            const lagrange::plant_truth_t& truth, const lagrange::plant_position_t& position) {
+                            const lagrange::plant_truth_t& truth,
+                            const lagrange::plant_position_t& position) {
   std::string d = compare("PLANT_TRUTH.sim_time", recorded.header.sim_time, truth.header.sim_time);
   if (d.empty()) d = compare("PLANT_TRUTH.q", recorded.q, transport::toEigen(truth.q));
   if (d.empty()) d = compare("PLANT_TRUTH.qdot", recorded.qdot, transport::toEigen(truth.qdot));
-  if (d.empty()) d = compare("PLANT_TRUTH.tau_applied", recorded.tau_applied, transport::toEigen(truth.tau_applied));
+  if (d.empty())
+    d = compare("PLANT_TRUTH.tau_applied", recorded.tau_applied, transport::toEigen(truth.tau_applied));
   if (d.empty()) d = compare("PLANT_TRUTH.kinetic_energy", recorded.kinetic_energy, truth.kinetic_energy);
-  if (d.empty()) d = compare("PLANT_TRUTH.potential_energy", recorded.potential_energy, truth.potential_energy);
+  if (d.empty())
+    d = compare("PLANT_TRUTH.potential_energy", recorded.potential_energy, truth.potential_energy);
   if (d.empty()) d = compare("PLANT_TRUTH.total_energy", recorded.total_energy, truth.total_energy);
   // Which answer a realtime plant applied is the live loop's; a lockstep one always the tick's.
   if (d.empty() && o.logged_mode == config::Mode::kLockstep) {
@@ -128,7 +131,8 @@ void replayExternalPlant(const Opened& o, ReplayResult& result, const std::vecto
       chooseTorque(o, recorded, tau);
       answer = answerOf(k - 1, static_cast<double>(k - 1) * s.tickPeriod(), tau.row(0).transpose());
     }
-    serve(k - 1, answer ? &*answer : nullptr, "publish PLANT_TRUTH and PLANT_POSITION of tick " + std::to_string(k),
+    serve(k - 1, answer ? &*answer : nullptr,
+          "publish PLANT_TRUTH and PLANT_POSITION of tick " + std::to_string(k),
           [&] { return truths.count(k) != 0 && positions.count(k) != 0; });
     ++result.commands;
     last = k;
@@ -141,12 +145,13 @@ void replayExternalPlant(const Opened& o, ReplayResult& result, const std::vecto
   // The program awaits an answer to the last tick too, and the logger's word
   // on every tick, before it finishes; its end is not compared.
   if (!result.divergence && last >= 0 && last == s.lastTick()) {
-    const lagrange::actuator_state_t end = answerOf(last, static_cast<double>(last) * s.tickPeriod(),
-                                                    Eigen::VectorXd::Zero(n));
+    const lagrange::actuator_state_t end =
+        answerOf(last, static_cast<double>(last) * s.tickPeriod(), Eigen::VectorXd::Zero(n));
     try {
       serve(last, &end, "finish after the log's last tick", [&] { return finished; });
     } catch (const ReplayError& e) {
-      result.warnings.push_back(e.what());  // every recorded sample matched; the end is the run's, not the log's
+      result.warnings.push_back(
+          e.what());  // every recorded sample matched; the end is the run's, not the log's
     }
   }
   program.finish();

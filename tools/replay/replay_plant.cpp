@@ -91,8 +91,9 @@ ReplayResult replayPlant(const std::string& log_path, const std::vector<std::str
     const config::Scenario& s = o.scenario;
     if (s.plant.external()) return replayExternalPlant(o, result, external_command);
     if (!external_command.empty())
-      throw ReplayError("the log's plant is simulated, which replay builds itself; a command after -- "
-                        "replays an external plant (plant.type external) only, and none was run");
+      throw ReplayError(
+          "the log's plant is simulated, which replay builds itself; a command after -- "
+          "replays an external plant (plant.type external) only, and none was run");
     plant::PlantSim sim = plant::plantFor(s);
     plant::ScenarioSensors sensors = plant::sensorsFor(s);  // their draws again, tick by tick
     Eigen::MatrixXd tau = Eigen::MatrixXd::Zero(s.torqueStepsPerTick(), s.dof());

@@ -69,14 +69,15 @@ ReplayedProgram::ReplayedProgram(const config::Scenario& s, const std::string& r
   spec.argv = command;  // the user's, never the log's; it starts where the user is
   spec.log_path = scratch_.outputFile();
   spec.append_log = true;
-  spec.env = {"LAGRANGE_LCM_URL=" + url_,
-              "LAGRANGE_RUN_ID=" + std::to_string(run_id_),
-              "LAGRANGE_KEY_FILE=" + scratch_.keyFile(),
-              "LAGRANGE_CONFIG=" + scratch_.configFile(),
-              "LAGRANGE_CONFIG_JSON=" + scratch_.configJsonFile(),
-              "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
-              "LAGRANGE_MODE=lockstep",
-              std::string(transport::kClockOffsetVariable) + "=" + std::to_string(transport::clockOffsetUs())};
+  spec.env = {
+      "LAGRANGE_LCM_URL=" + url_,
+      "LAGRANGE_RUN_ID=" + std::to_string(run_id_),
+      "LAGRANGE_KEY_FILE=" + scratch_.keyFile(),
+      "LAGRANGE_CONFIG=" + scratch_.configFile(),
+      "LAGRANGE_CONFIG_JSON=" + scratch_.configJsonFile(),
+      "LAGRANGE_JOINTS=" + std::to_string(s.dof()),
+      "LAGRANGE_MODE=lockstep",
+      std::string(transport::kClockOffsetVariable) + "=" + std::to_string(transport::clockOffsetUs())};
   std::printf(
       "lagrange replay: starting %s with a run's environment: LAGRANGE_LCM_URL, LAGRANGE_RUN_ID, "
       "LAGRANGE_KEY_FILE (a key of this replay), LAGRANGE_CONFIG and LAGRANGE_CONFIG_JSON (the log's "
@@ -94,14 +95,15 @@ std::unique_ptr<transport::LcmNode> ReplayedProgram::node(const std::string& pro
 
 void ReplayedProgram::requireRunning(long long done, size_t of, const std::string& outputs) {
   for (const wiring::ChildExit& e : supervisor_.reap())
-    throw ReplayError("the external " + role_ + " " + e.describe() + " after " + std::to_string(done) + " of " +
-                          std::to_string(of) + " " + outputs + " (its output: " + scratch_.keepOutput() + ")",
+    throw ReplayError("the external " + role_ + " " + e.describe() + " after " + std::to_string(done) +
+                          " of " + std::to_string(of) + " " + outputs +
+                          " (its output: " + scratch_.keepOutput() + ")",
                       {}, ErrorKind::kRuntimeFault);
 }
 
 void ReplayedProgram::silent(const std::string& what) {
-  throw ReplayError("the external " + role_ + " did not " + what + " within 10 s (its output: " +
-                        scratch_.keepOutput() + ")",
+  throw ReplayError("the external " + role_ + " did not " + what +
+                        " within 10 s (its output: " + scratch_.keepOutput() + ")",
                     {}, ErrorKind::kRuntimeFault);
 }
 

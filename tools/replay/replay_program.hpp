@@ -52,7 +52,8 @@ class ScratchDirectory {
 /// namespace, or when it cannot be set up.
 class ReplayedProgram {
  public:
-  ReplayedProgram(const config::Scenario& s, const std::string& role, const std::vector<std::string>& command);
+  ReplayedProgram(const config::Scenario& s, const std::string& role,
+                  const std::vector<std::string>& command);
   ReplayedProgram(const ReplayedProgram&) = delete;
   ReplayedProgram& operator=(const ReplayedProgram&) = delete;
 

@@ -590,8 +590,9 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // the others waited for a "finished" that never came. Not a success.
   if (exit_code == 0 && followers_stopped && runsHere(opt, "logger") && !runCompleted(out_dir, run_id)) {
     const std::string log = (fs::path(out_dir) / "plant.log").string();
-    const std::string how = "exited with code 0 before the run's last tick (the others waited for its "
-                            "\"finished\" STATUS)";
+    const std::string how =
+        "exited with code 0 before the run's last tick (the others waited for its "
+        "\"finished\" STATUS)";
     std::cerr << "lagrange run: the plant " << how << "\n";
     failure = failureRecord("plant", how, log, logTail(log, 15));
     exit_code = kExitFailed;
