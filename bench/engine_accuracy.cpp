@@ -1,6 +1,6 @@
 /// @file
 /// `lagrange-bench-engines`: accuracy per CPU second of the physics engines
-/// (docs/performance.md, "Two engines: accuracy per CPU second";
+/// (docs/engines_and_arms.md, "Two engines: accuracy per CPU second";
 /// bench/engine_accuracy.sh runs it). One scenario's closed loop -- the same
 /// controller, actuator and tick order as wiring::simulateInProcess, without
 /// the messages (the table's header shows both give the same numbers) -- on

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Accuracy per CPU second of the two physics engines (docs/performance.md, "Two
+# Accuracy per CPU second of the two physics engines (docs/engines_and_arms.md, "Two
 # engines: accuracy per CPU second"): the Panda (configs/panda_theorem1.yaml) and a
 # 7-link planar chain (bench/rigid_7link.yaml), both under the Theorem 1 controller
 # at 1 kHz, on ODE and on MuJoCo (RK4) at physics steps from 1 ms to 10 us, against

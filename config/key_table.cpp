@@ -213,7 +213,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
       row("plant.publish_rate", "number > 0", "`1000`",
           "position samples per second [Hz]; one lockstep tick per sample, the controller runs at this "
           "rate. Whether the sampled implementation is adequate at this rate is `check-gains`' "
-          "sampled-data check (docs/sampled_data.md, \"Sampled-data check\").",
+          "sampled-data check (docs/sampled_data.md).",
           {0.1, 1e5, false, "Hz", ""}),
       row("plant.max_rate", "number > 0", "none",
           "a limit on any body's angular rate [rad/s]: the plant stops the run when it is crossed "
@@ -420,7 +420,7 @@ std::vector<KeyInfo> judgementKeys() {
           "realtime: the CPUs the process PROCESS (`plant`, `controller`, `actuator` or `logger`) may run "
           "on (`sched_setaffinity`, before its loop starts), e.g. `realtime: {cpus: {plant: [2], "
           "controller: [3], actuator: [3], logger: [0]}}` to keep the logger off the loops' cores on a "
-          "machine with cores to spare (docs/performance.md, \"A real machine\"). A CPU the machine does "
+          "machine with cores to spare (docs/engines_and_arms.md, \"A real machine\"). A CPU the machine does "
           "not have stops the process at start (exit 2, naming the key and the machine's CPUs); "
           "`timing.loops.NAME.scheduler` shows the CPUs a loop ran on (`fifo:50 cpus 3`). An external "
           "controller is pinned by the launcher before its program starts.",

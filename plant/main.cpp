@@ -16,14 +16,14 @@ namespace lagrange {
 namespace {
 
 int DoMain(int argc, char** argv) {
-  return runtime::runProcess("plant", "ODE simulation of the robot arm; drives the clock of the run.", argc,
-                             argv, {}, nullptr, [&](const config::Scenario& s, transport::LcmNode& node) {
-                               plant::PlantSim sim = plant::plantFor(s);
-                               runtime::StatusReporter status(node);
-                               return s.mode == config::Mode::kRealtime
-                                          ? plant::runRealtime(s, node, sim, status)
-                                          : plant::runLockstep(s, node, sim, status);
-                             });
+  return runtime::runProcess(
+      "plant", "The simulated robot arm (ODE or MuJoCo); drives the clock of the run.", argc, argv, {},
+      nullptr, [&](const config::Scenario& s, transport::LcmNode& node) {
+        plant::PlantSim sim = plant::plantFor(s);
+        runtime::StatusReporter status(node);
+        return s.mode == config::Mode::kRealtime ? plant::runRealtime(s, node, sim, status)
+                                                 : plant::runLockstep(s, node, sim, status);
+      });
 }
 
 }  // namespace

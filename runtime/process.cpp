@@ -65,10 +65,12 @@ int runProcess(const std::string& name, const std::string& description, int argc
       "One process of a run, normally started by `lagrange run`, which gives it the run's resolved "
       "scenario, LCM URL, run id and key. Started by hand (docs/deployment.md: the processes of one "
       "run on several hosts), every process of the run takes the same --config, --lcm-url, --run-id "
-      "and --key-file (a key file from `lagrange keygen`).",
+      "and --key-file (a key file from `lagrange keygen`); the example's files are a run's resolved "
+      "scenario and such a key.",
       {"lagrange-" + name +
        " --config runs/rigid_2dof/config.resolved.yaml --lcm-url 'udpm://239.255.76.67:7667?ttl=0' --run-id "
-       "7 --key-file runs/shared.key"}));
+       "7 --key-file runs/shared.key" +
+       (name == "logger" ? " --out runs/by_hand" : "")}));
   std::string config_path;
   std::string url = kDefaultLcmUrl;
   std::vector<std::string> overrides;

@@ -12,7 +12,7 @@ namespace lagrange::tools {
 /// The program's name and one-line description, as --help shows them.
 struct FrontEnd {
   const char* name = "lagrange";
-  const char* description = "lagrange: observer-less output-feedback tracking control testbed (LCM + ODE)";
+  const char* description = "lagrange: observer-less output-feedback tracking testbed (LCM; ODE or MuJoCo)";
   bool sign = true;  ///< Invocation::sign
 };
 

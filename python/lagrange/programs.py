@@ -5,18 +5,23 @@ programs, standard library only.
     run = lagrange.run("configs/rigid_2dof.yaml", mode="inproc", duration=2.0, controller__kp=[100, 8])
     run.summary["tracking"]["convergence_time"], run.channels["PLANT_TRUTH"]["q"][-1]
 
-    rows = lagrange.sweep("sweeps/rigid_rates.yaml", jobs=2)
+    rows = lagrange.sweep("sweeps/first_sweep.yaml", jobs=2)
     [(r["index"], r["status"], r["convergence_time"]) for r in rows]
 
 A keyword override is a scenario key with "__" for each "." (controller__kp
-is controller.kp); its value goes to --set as JSON (which is YAML). The
-program is `lagrange` on PATH, or LAGRANGE_BIN, or the build of this
-checkout (build/bin/lagrange beside python/).
+is controller.kp); its value goes to --set as JSON (which is YAML); args
+are more options as they are (args=["--no-netns"] where user namespaces are
+refused, ["--report"], ["--check-sampled"]). The program is LAGRANGE_BIN,
+else `lagrange` on PATH, else the build of this checkout (build/bin/lagrange
+beside python/). Interrupted (Ctrl-C, a notebook's stop), the program is
+stopped as Ctrl-C stops it -- its summary and log kept -- and
+KeyboardInterrupt raised again.
 """
 
 import json
 import os
 import shutil
+import signal
 import subprocess
 import tempfile
 
@@ -34,6 +39,7 @@ class LagrangeError(RuntimeError):
         super().__init__(message)
         self.exit_code = exit_code
         self.out = out
+        self.rows = None  # lagrange.sweep: the rows the table holds, when it was written
 
 
 def program(environ=None):
@@ -68,49 +74,74 @@ def _sets(overrides):
 
 def _call(args, out, what):
     try:
-        done = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, check=False)
+        child = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                 errors="replace")
     except OSError as e:
         raise LagrangeError("cannot start %s: %s" % (args[0], e), out=out) from None
-    if done.returncode != 0:
-        tail = "\n".join((done.stderr.strip() or done.stdout.strip()).splitlines()[-15:])
-        raise LagrangeError("%s exited with %d:\n%s" % (what, done.returncode, tail), done.returncode, out)
-    return done
+    try:
+        stdout, stderr = child.communicate()
+    except KeyboardInterrupt:
+        # As Ctrl-C at a terminal: the program stops its processes, writes
+        # what it has and exits 130; never a kill that would leave its key.
+        child.send_signal(signal.SIGINT)
+        child.communicate()
+        raise
+    if child.returncode != 0:
+        tail = "\n".join((stderr.strip() or stdout.strip()).splitlines()[-15:])
+        raise LagrangeError("%s exited with %d:\n%s" % (what, child.returncode, tail), child.returncode, out)
+    return stdout
 
 
-def run(scenario, out=None, mode=None, **overrides):
+def run(scenario, out=None, mode=None, args=(), **overrides):
     """Runs `lagrange run SCENARIO` (a scenario file's path) and returns the
     run as lagrange.log.load gives it (per-channel columns, `summary`,
     `scenario`). out: the output directory (default: a new temporary one,
     kept); mode: "lockstep", "realtime" or "inproc" (default: the
-    scenario's); **overrides: --set, with "__" for ".". Raises LagrangeError
+    scenario's); args: more options as they are (["--no-netns"],
+    ["--report"]); **overrides: --set, with "__" for ".". Raises LagrangeError
     when the program is missing or the run fails (exit code, last lines,
     `out`)."""
     if not os.path.isfile(str(scenario)):
         raise LagrangeError("the scenario %s is not a file; expected the path of a scenario YAML file" % scenario)
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-run-")
-    args = [program(), "run", str(scenario), "--out", str(out), "--quiet"]
+    command = [program(), "run", str(scenario), "--out", str(out), "--quiet"]
     if mode is not None:
-        args += ["--mode", mode]
-    _call(args + _sets(overrides), out, "lagrange run %s" % scenario)
+        command += ["--mode", mode]
+    _call(command + _sets(overrides) + [str(a) for a in args], out, "lagrange run %s" % scenario)
     return log.load(out)
 
 
-def sweep(spec, out=None, jobs=None):
+def sweep(spec, out=None, jobs=None, args=()):
     """Runs `lagrange sweep SPEC` (a sweep file's path: it names its scenario
     and axes, docs/sweeps.md) and returns its rows (OUT/sweep.jsonl, one dict
     per run, in index order). out: the output directory (default: a new
     temporary one; one that holds this sweep is resumed); jobs: runs at a
-    time (default: one per core). Raises LagrangeError as run() does."""
+    time (default: one per core); args: more options as they are. Raises
+    LagrangeError as run() does; when rows failed (exit 1), its `rows` are
+    those the table holds."""
     if not os.path.isfile(str(spec)):
         raise LagrangeError("the sweep %s is not a file; expected the path of a sweep YAML file" % spec)
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-sweep-")
-    args = [program(), "sweep", str(spec), "--out", str(out), "--quiet"]
+    command = [program(), "sweep", str(spec), "--out", str(out), "--quiet"]
     if jobs is not None:
-        args += ["--jobs", str(int(jobs))]
-    _call(args, out, "lagrange sweep %s" % spec)
+        command += ["--jobs", str(int(jobs))]
+    try:
+        _call(command + [str(a) for a in args], out, "lagrange sweep %s" % spec)
+    except LagrangeError as e:
+        if e.exit_code == 1:  # rows failed or are missing: the table holds the others
+            e.rows = _rows(out)
+        raise
+    return _rows(out)
+
+
+def _rows(out):
+    """OUT/sweep.jsonl's rows in index order ([] when there is none)."""
     rows = []
-    with open(os.path.join(str(out), "sweep.jsonl"), encoding="utf-8") as f:
-        for line in f:
-            if line.strip():
-                rows.append(json.loads(line))
+    try:
+        with open(os.path.join(str(out), "sweep.jsonl"), encoding="utf-8") as f:
+            for line in f:
+                if line.strip():
+                    rows.append(json.loads(line))
+    except FileNotFoundError:
+        return []
     return sorted(rows, key=lambda r: r.get("index", 0))

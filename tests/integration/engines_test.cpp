@@ -115,7 +115,7 @@ TEST_P(EngineAgreement, EveryShippedConfigRunsOnBothEnginesToTheSameVerdict) {
   const std::string config = kConfigs + "/" + name + ".yaml";
   const std::string ode = freshDir("engine-ode"), mujoco = freshDir("engine-mujoco");
   // A config shipped on MuJoCo at 1 ms (the URDF arms) runs on ODE at 0.1 ms,
-  // the step it had on ODE (docs/performance.md, "Two engines").
+  // the step it had on ODE (docs/engines_and_arms.md, "Two engines").
   const bool ships_on_mujoco = slurp(config).find("\n  engine: mujoco") != std::string::npos;
   const RunResult a = runScenario(config, ode,
                                   std::string("-q --mode inproc --set plant.engine=ode") +

@@ -86,6 +86,13 @@ TEST(Help, EveryCommandStartsWithItsSummaryAndItsExamplesRun) {
       ++examples_run;
     }
   }
+  // A command's own subcommand: `sweep collect` merges the sweep the examples above wrote.
+  const CommandHelp collect = commandHelp("sweep collect");
+  EXPECT_LE(columns(collect.summary), 80u) << collect.summary;
+  EXPECT_TRUE(collect.ends_with_examples) << collect.text;
+  ASSERT_EQ(collect.examples.size(), 1u) << collect.text;
+  const RunResult merged = runExample(collect.examples[0], work);
+  EXPECT_EQ(merged.exit_code, 0) << collect.examples[0] << "\n" << merged.output;
   EXPECT_GE(examples_run, 14);
   fs::remove_all(work);
 }

@@ -49,7 +49,7 @@ Subcommand addRunCommand(CLI::App& app) {
       "the run's own key; show the progress; write run.lcm, summary.json and each process's log "
       "to OUT; print the result. Exit 0 when the run completed, 1 when it failed (a process "
       "died or stopped it), 2 on bad input, 3 when --check misses, 130 when interrupted "
-      "(docs/summary.md)",
+      "(docs/reliability.md, \"Errors and exit codes\"; the run's status: docs/summary.md)",
       {"lagrange run configs/rigid_2dof.yaml --out runs/rigid_2dof",
        "lagrange run configs/rigid_2dof.yaml --out runs/fast --mode inproc --set 'controller.kp=[200,12]'"});
   // Not ->required(): `--check SCENARIO.yaml` hands the path to --check,

@@ -59,10 +59,12 @@ Subcommand addSweepCommand(CLI::App& app) {
   cmd->add_option("--account", options.account, "--slurm: sbatch --account");
   cmd->add_option("--sbatch-arg", options.sbatch_args,
                   "--slurm: one more sbatch option as it is, e.g. --sbatch-arg=--qos=long; repeatable");
-  o->collect = cmd->add_subcommand(
-      "collect",
-      "Merge the rows a sweep's shards wrote (a Slurm sweep run with --no-wait, or a stopped one) into "
-      "OUT/sweep.csv, OUT/sweep.jsonl and the maps; exit 1 if rows are missing");
+  o->collect = cmd->add_subcommand("collect", "Merge a sweep's rows into its table and maps");
+  describeCommand(
+      *o->collect,
+      "Merge the rows a sweep's shards wrote (a Slurm sweep run with --no-wait, or a stopped one) "
+      "into OUT/sweep.csv, OUT/sweep.jsonl and the maps; exit 1 if rows are missing (docs/sweeps.md)",
+      {"lagrange sweep collect runs/first_sweep"});
   o->collect->add_option("out", o->collect_dir, "The sweep's output directory")
       ->required()
       ->check(CLI::ExistingDirectory);
