@@ -294,16 +294,18 @@ Ended serve(const sdk::PlantOptions& options) {
   lcm::LCM listener(PlantEnvironment::url());
   EXPECT_TRUE(listener.good());
   Ended ended;
+  // Through LCM's C API with a plain function: lcm-cpp's member-handler
+  // subscription, on a function-local class, trips UBSan's vptr check.
   struct Collect {
-    Ended* into;
-    void onStatus(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    static void onStatus(const lcm_recv_buf_t* rbuf, const char*, void* user) {
       lagrange::status_t s;
       if (rbuf->data_size > 32 && s.decode(rbuf->data, 0, static_cast<int>(rbuf->data_size - 32)) >= 0 &&
           s.process == "plant")
-        into->statuses.emplace_back(s.state, s.message);
+        static_cast<Ended*>(user)->statuses.emplace_back(s.state, s.message);
     }
-  } collect{&ended};
-  listener.subscribe("STATUS", &Collect::onStatus, &collect);
+  };
+  lcm_subscription_t* subscription =
+      lcm_subscribe(listener.getUnderlyingLCM(), "STATUS", &Collect::onStatus, &ended);
   const sdk::PlantStep step = [](double, const std::vector<double>&, double) -> sdk::PlantState {
     throw std::logic_error("step() is not reached before a logger answers");
   };
@@ -312,6 +314,7 @@ Ended serve(const sdk::PlantOptions& options) {
   ended.stderr_text = ::testing::internal::GetCapturedStderr();
   while (listener.handleTimeout(100) > 0) {
   }
+  lcm_unsubscribe(listener.getUnderlyingLCM(), subscription);
   return ended;
 }
 
