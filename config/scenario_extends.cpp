@@ -70,13 +70,9 @@ void anchorPaths(YAML::Node& root, const fs::path& folder) {
   for (const char* name : {"controller", "plant"}) {
     YAML::Node section = root[name];
     if (!section.IsDefined() || !section.IsMap()) continue;
-    YAML::Node command = section["command"];
-    if (!command.IsDefined()) continue;
-    // Its arguments are relative to where it starts, by default the folder
-    // of the file that gave the command: the base's, not the extending file's.
-    if (!section["working_directory"].IsDefined()) section["working_directory"] = folder.string();
     anchor(section, "working_directory");
-    if (command.IsSequence() && command.size() > 0 && command[0].IsScalar()) {
+    YAML::Node command = section["command"];
+    if (command.IsDefined() && command.IsSequence() && command.size() > 0 && command[0].IsScalar()) {
       const std::string program = command[0].Scalar();
       if (program.find('/') != std::string::npos && fs::path(program).is_relative())
         command[0] = fs::absolute(folder / program).lexically_normal().string();
@@ -121,11 +117,16 @@ YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& f
     plant["type"] = "simulated";
   root.remove("extends");
   YAML::Node out = merged(base, root);
-  // A command this file gives starts, by default, in this file's folder.
-  for (const char* name : {"controller", "plant"})
-    if (root[name].IsDefined() && root[name].IsMap() && root[name]["command"].IsDefined() &&
-        !root[name]["working_directory"].IsDefined() && out[name].IsMap())
-      out[name].remove("working_directory");
+  // A command starts, by default, in the folder of the file that gave it:
+  // one from the base (this file gives none, nor a folder) in the base's --
+  // not the extending file's, where its relative arguments are not.
+  for (const char* name : {"controller", "plant"}) {
+    const YAML::Node own = root[name], from_base = base[name];
+    const bool own_command = own.IsDefined() && own.IsMap() && own["command"].IsDefined();
+    if (!own_command && from_base.IsDefined() && from_base.IsMap() && from_base["command"].IsDefined() &&
+        out[name].IsMap() && !out[name]["working_directory"].IsDefined())
+      out[name]["working_directory"] = fs::absolute(base_path.parent_path()).lexically_normal().string();
+  }
   return out;
 }
 

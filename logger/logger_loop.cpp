@@ -240,15 +240,16 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   if (facts.status == "completed" && !end.allReported(runtime::State::kFinished))
     spdlog::warn(
         fmt::format("not every process reported 'finished' within {} s of the plant", options.finish_grace));
-  report(runtime::stopRequested() ? runtime::State::kInterrupted : runtime::State::kFinished);
+  // A plant taken for gone ends the logger as interrupted, whatever it recorded.
+  report(runtime::stopRequested() || plant_gone ? runtime::State::kInterrupted : runtime::State::kFinished);
   writeProgress(options.progress_fd, metrics);  // the final sample, for the launcher's last progress line
   log.close();  // throws naming run.lcm if its last bytes could not be written
   facts.log_events = log.events();
   facts.missing_ticks = confirmation.missingUpTo(metrics.newestTick());
   lagrange::status_t own{};  // zeroed: its loop statistics are not measured
   own.process = "logger";
-  own.state = transport::toString(facts.status == "completed" ? runtime::State::kFinished
-                                                              : runtime::State::kInterrupted);
+  own.state = transport::toString(facts.status == "completed" && !plant_gone ? runtime::State::kFinished
+                                                                             : runtime::State::kInterrupted);
   own.last_tick = metrics.lastTick();
   own.channels = node.channelStats();
   own.num_channels = static_cast<int32_t>(own.channels.size());

@@ -55,8 +55,9 @@ class RunEnd {
   }
   /// True when plant, controller and actuator have all reported an end (finished or interrupted).
   bool allEnded() const {
-    return allOthers(
-        [](State reported) { return reported == State::kFinished || reported == State::kInterrupted; });
+    return allOthers([](State reported) {
+      return reported == State::kFinished || reported == State::kInterrupted || reported == State::kFailed;
+    });
   }
 
   /// Whether to stop recording at `now`; `every_tick_confirmed` says whether

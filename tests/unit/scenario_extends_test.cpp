@@ -134,6 +134,27 @@ TEST_F(Extends, AControllerOfAnotherTypeReplacesTheSectionAndKeepsItsProgramPath
   EXPECT_EQ(fs::path(own.controller.working_directory), fs::weakly_canonical(dir_));
 }
 
+// Through relative paths, as a user types them: a base's command starts in
+// the base's folder, and a folder the base names itself stays the base's
+// when the extending file changes only the command.
+TEST_F(Extends, ABasesProgramStartsInItsFolderThroughRelativePathsAndKeepsItsOwnFolder) {
+  fs::create_directories(dir_ / "base" / "ctrl");
+  const std::string head = "extends: " + kConfigs + "/rigid_2dof.yaml\nmode: lockstep\n";
+  write("base/ext.yaml", head + "controller: {type: external, command: [sh, -c, 'exit 0']}\n");
+  write("base/ext_wd.yaml",
+        head + "controller: {type: external, command: [sh, -c, 'exit 0'], working_directory: ctrl}\n");
+  write("sub/child.yaml", "extends: ../base/ext.yaml\n");
+  write("sub/child_wd.yaml", "extends: ../base/ext_wd.yaml\ncontroller: {command: [sh, -c, 'exit 1']}\n");
+  const fs::path was = fs::current_path();
+  fs::current_path(dir_);
+  const Scenario s = loadScenario("sub/child.yaml");
+  const Scenario t = loadScenario("sub/child_wd.yaml");
+  fs::current_path(was);
+  EXPECT_EQ(fs::path(s.controller.working_directory), fs::weakly_canonical(dir_ / "base"));
+  EXPECT_EQ(fs::path(t.controller.working_directory), fs::weakly_canonical(dir_ / "base" / "ctrl"));
+  EXPECT_EQ(t.controller.command.back(), "exit 1");
+}
+
 // plant.type external over a base whose plant section has no type (the
 // simulated plant's): the section is replaced whole -- no physics_step is
 // left to refuse -- and the example extended from elsewhere starts its

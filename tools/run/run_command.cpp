@@ -588,7 +588,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   key.reset();  // every process has ended: the run's secret goes with it
   // A plant that exited 0 before its last tick (a program from outside can):
   // the others waited for a "finished" that never came. Not a success.
-  if (exit_code == 0 && followers_stopped && runsHere(opt, "logger") && !runCompleted(out_dir, run_id)) {
+  if (exit_code == 0 && followers_stopped && scenario.plant.external() && runsHere(opt, "logger") &&
+      !runCompleted(out_dir, run_id)) {
     const std::string log = (fs::path(out_dir) / "plant.log").string();
     const std::string how =
         "exited with code 0 before the run's last tick (the others waited for its "
