@@ -420,7 +420,8 @@ std::vector<KeyInfo> judgementKeys() {
           "realtime: the CPUs the process PROCESS (`plant`, `controller`, `actuator` or `logger`) may run "
           "on (`sched_setaffinity`, before its loop starts), e.g. `realtime: {cpus: {plant: [2], "
           "controller: [3], actuator: [3], logger: [0]}}` to keep the logger off the loops' cores on a "
-          "machine with cores to spare (docs/engines_and_arms.md, \"A real machine\"). A CPU the machine does "
+          "machine with cores to spare (docs/engines_and_arms.md, \"A real machine\"). A CPU the machine "
+          "does "
           "not have stops the process at start (exit 2, naming the key and the machine's CPUs); "
           "`timing.loops.NAME.scheduler` shows the CPUs a loop ran on (`fifo:50 cpus 3`). An external "
           "controller is pinned by the launcher before its program starts.",

@@ -51,7 +51,8 @@ EtaEstimate estimateEta(const RobotModel& arm, const Reference& reference, const
 /// The proof's bound (700), -[a1 - b1^2 (eta_2^2 + eta_3^2) / 2] |theta_1|^2, and
 /// the alpha_3 it defines before (745) from the triangle inequality, with its
 /// [1 + eta_2^2 b1^2 + eta_3^2 b1^2], both carry it; so does (795c) at i = 1.
-/// This code uses the corrected form (docs/paper_in_code.md, "Choices where the paper is silent": its two typos of the paper).
+/// This code uses the corrected form (docs/paper_in_code.md, "Choices where the paper is silent": its two
+/// typos of the paper).
 std::vector<ConditionReport> theorem2Conditions(double kc, double kdelta, const EtaEstimate& eta,
                                                 const Eigen::VectorXd& kd0, const Eigen::VectorXd& a0,
                                                 const Eigen::VectorXd& b0, const Eigen::VectorXd& kp1,
