@@ -47,6 +47,15 @@ TORQUE_COMMANDED = plant_truth_t.TORQUE_COMMANDED
 TORQUE_HELD = plant_truth_t.TORQUE_HELD
 TORQUE_ZERO = plant_truth_t.TORQUE_ZERO
 
+# A realtime period's reading of what arrived: DRAIN_LATE datagrams even when
+# the loop is behind schedule (one ACTUATOR_STATE a period and a few STATUS
+# fit many times over), up to DRAIN_MAX while the period lasts.
+DRAIN_LATE = 64
+DRAIN_MAX = 1000
+# Publication times of the recent positions, for the latency (a ring, as the
+# built-in plant's).
+_LATENCY_RING = 4096
+
 
 class PlantStopped(RuntimeError):
     """The plant ended the run: a stall (whom it waited for), a limit crossed."""
@@ -143,25 +152,30 @@ class TorqueChoice:
         return [0.0] * joints, TORQUE_ZERO, -1, False
 
 
+_NAN = float("nan")
+
+
 class _Histogram:
-    """Percentiles of non-negative durations in fixed memory (1 % buckets)."""
+    """Percentiles of non-negative durations in fixed memory (1 % buckets).
+    NaN while empty: loop_stats_t says "not measured" so, never 0 s."""
 
     _STEP = math.log(1.01)
 
     def __init__(self):
         self.counts = {}
         self.n = 0
-        self.max = 0.0
+        self.max = _NAN
 
     def add(self, seconds):
         b = int(math.log1p(max(0.0, seconds) * 1e7) / self._STEP)
         self.counts[b] = self.counts.get(b, 0) + 1
         self.n += 1
-        self.max = max(self.max, seconds)
+        if not seconds <= self.max:  # also the first (max NaN)
+            self.max = seconds
 
     def percentile(self, p):
         if self.n == 0:
-            return 0.0
+            return _NAN
         want, seen = p * self.n, 0
         for b in sorted(self.counts):
             seen += self.counts[b]
@@ -223,10 +237,18 @@ class Plant:
         self.awaited, self.answer = -1, None  # lockstep: the tick awaited and its answer's torque
         self.newest = None  # (tick, tau) of the newest ACTUATOR_STATE
         self.newest_utime = 0  # its publish_utime (the run's clock)
+        # Realtime's end-to-end latency, as the built-in plant measures it:
+        # from publishing a position to receiving the actuator state of its tick.
+        self.latencies = _Histogram()
+        self._published = [None] * _LATENCY_RING  # (tick, publish_utime) of each tick's first position
         self.rejected = {}  # why -> how many datagrams dropped
         self.retransmits = self.log_resends = self.clipped = 0
         self.stop_signal = None
         self.resumed = False
+        self.step_seconds = 0.0  # how long the last step() took [s]
+        # Realtime: the time a period takes besides step() (this module's own
+        # cost: messages, MACs, the rule) and step()'s, said at the end [s].
+        self.own_cost, self.step_cost = _Histogram(), _Histogram()
         self.braked_at_stop = False
 
     # -- receiving -------------------------------------------------------
@@ -276,17 +298,30 @@ class Plant:
         if self.newest is None or a.header.tick > self.newest[0]:
             self.newest = (a.header.tick, tau)  # realtime: the newest, whichever tick
             self.newest_utime = a.header.publish_utime
+            sent = self._published[a.header.tick % _LATENCY_RING] if a.header.tick >= 0 else None
+            if sent is not None and sent[0] == a.header.tick:
+                # LCM's receive time (wall clock) against the run's clock, as plant/plant_loops.cpp does.
+                self.latencies.add(max(0, self.lcm.recv_utime - sent[1]) * 1e-6)
 
     def _handle(self, timeout_ms):
         self.lcm.handle_timeout(max(0, int(timeout_ms)))
 
     def _drain(self, until):
-        """What has arrived, at most 1000 datagrams and never past `until`
-        (time.monotonic()): a flood of forged ones, each refused by its MAC,
-        must not hold the loop (the built-in node's bound, transport/lcm_node.hpp)."""
-        for _ in range(1000):
-            if time.monotonic() >= until or self.lcm.handle_timeout(0) <= 0:
-                return
+        """What has arrived, without waiting: at least DRAIN_LATE datagrams
+        whatever the time -- a loop behind schedule must still read the
+        actuator's newest torque, or the torque goes stale while it is on the
+        socket --, then more while before `until` (time.monotonic()), at most
+        DRAIN_MAX: a flood of forged datagrams, each refused by its MAC, must
+        not hold the loop (the built-in node's bound, transport/lcm_node.hpp).
+        Returns how many were handled."""
+        handled = 0
+        while handled < DRAIN_MAX:
+            if handled >= DRAIN_LATE and time.monotonic() >= until:
+                break
+            if self.lcm.handle_timeout(0) <= 0:
+                break
+            handled += 1
+        return handled
 
     # -- the arm ---------------------------------------------------------
     def _state(self, out, what):
@@ -323,7 +358,10 @@ class Plant:
         t = k * self.period
         u, clipped = self.limits.clip(tau) if self.limits is not None else (list(tau), False)
         self.clipped += 1 if clipped else 0
-        self.q, self.qdot = self._state(self.step(t, u, self.period), "step() at t = %.6g s" % t)
+        began = time.perf_counter()
+        out = self.step(t, u, self.period)
+        self.step_seconds = time.perf_counter() - began  # the arm's share of the period, apart from ours
+        self.q, self.qdot = self._state(out, "step() at t = %.6g s" % t)
         return u
 
     def _check_limits(self, k):
@@ -365,6 +403,10 @@ class Plant:
     def _send(self, sample, truth=True):
         k, t, p, tr = sample
         self._publish("PLANT_POSITION", p, k, t)
+        slot = k % _LATENCY_RING
+        sent = self._published[slot]
+        if sent is None or sent[0] != k:  # the first copy: a re-sent one is not what was answered first
+            self._published[slot] = (k, p.header.publish_utime)
         if truth:
             self._publish("PLANT_TRUTH", tr, k, t)
 
@@ -416,7 +458,13 @@ class Plant:
         unconfirmed = {}  # tick -> its sample, until the logger confirms it
         tau, source, input_tick = [0.0] * self.joints, TORQUE_ZERO, -1
         next_status = time.monotonic()
-        watchdog = None if self.choice.watchdog is None else self.choice.watchdog * self.period
+        if self.choice.watchdog is not None:
+            # Waiting is lockstep's protocol: an answer late by scheduling is no
+            # silence of the controller's, and a brake there would be one the
+            # summary never counts. lockstep.stall_timeout ends a run that stalls.
+            print("plant: watchdog_periods=%d applies in realtime only; in lockstep the plant waits for each answer "
+                  "(lockstep.stall_timeout %g s ends a stalled run)" % (self.choice.watchdog, self.stall),
+                  file=sys.stderr, flush=True)
         for k in range(self.last_tick + 1):
             wait_start = time.monotonic()
             resend_at, resumed = wait_start + self.retransmit, False
@@ -443,7 +491,7 @@ class Plant:
                 self.publish_status("running", k)
                 next_status = published + 0.5
             deadline = published + (self.startup if k == 0 else self.stall)
-            resend, braked = published + self.retransmit, False
+            resend = published + self.retransmit
             while self.answer is None:
                 if self._stop_requested():
                     self.publish_status("interrupted", k)
@@ -453,15 +501,6 @@ class Plant:
                     deadline = max(deadline, now + self.startup)
                 if now > deadline:
                     raise self._stalled("no ACTUATOR_STATE of tick %d" % k, k, now - published)
-                if watchdog is not None and not braked and k > 0 and now - published > watchdog:
-                    # The arm's time does not wait: a bridge brakes (docs/hardware.md).
-                    braked = True
-                    self.choice.watchdog_trips += 1
-                    print("plant: watchdog: no answer to tick %d for %d periods (%.3f s)%s"
-                          % (k, self.choice.watchdog, now - published, "; braking" if self.brake else ""),
-                          file=sys.stderr, flush=True)
-                    if self.brake is not None:
-                        self.brake()
                 self._handle(5)
                 if self.answer is None:
                     if time.monotonic() >= resend:
@@ -518,6 +557,8 @@ class Plant:
         st.torque_held = self.choice.held
         st.torque_zeroed = self.choice.zeroed
         st.stale_inputs = self.choice.held + self.choice.zeroed
+        lat = self.latencies
+        st.latency_p50, st.latency_p99, st.latency_max = lat.percentile(0.5), lat.percentile(0.99), lat.max
         return st
 
     def serve_realtime(self):
@@ -553,6 +594,7 @@ class Plant:
             else:
                 miss_run = 0
                 time.sleep(deadline - now)
+            woke = time.perf_counter()
             lateness.add(max(0.0, time.monotonic() - deadline))
             self._send(self._sample(k, tau, source, input_tick))
             sent += 1
@@ -579,7 +621,10 @@ class Plant:
                 self.publish_status("running", k, loop=self._loop_stats(sent, t0, lateness, misses, longest, ages,
                                                                         missing))
                 next_status += 0.5
+            self.step_cost.add(self.step_seconds)
+            self.own_cost.add(time.perf_counter() - woke - self.step_seconds)
         loop = self._loop_stats(sent, t0, lateness, misses, longest, ages, missing)
+        self._say_cost()
         if self._stop_requested():
             self.publish_status("interrupted", used_tick, loop=loop)  # as the built-in plant: the torque's tick
             return 0
@@ -591,6 +636,17 @@ class Plant:
         if c.watchdog_trips:
             message += " watchdog_trips=%d" % c.watchdog_trips
         return self._finish(message, loop)
+
+    def _say_cost(self):
+        """plant.log's line on what a period cost: whether a rate can be held
+        is step()'s time plus this module's (bench/python_helper_cost.sh reads it)."""
+        if self.own_cost.n == 0:
+            return
+        print("plant: per period: this helper %.3f ms (median; 99 %%: %.3f ms), step() %.3f ms (median; 99 %%: "
+              "%.3f ms); the period %.3f ms" % (self.own_cost.percentile(0.5) * 1e3, self.own_cost.percentile(0.99) * 1e3,
+                                               self.step_cost.percentile(0.5) * 1e3,
+                                               self.step_cost.percentile(0.99) * 1e3, self.period * 1e3),
+              file=sys.stderr, flush=True)
 
     def serve(self):
         """Runs the plant until the run's last tick (or a stop); returns the exit code."""

@@ -92,6 +92,9 @@ class LCM:
                            "file:///path/to/log?mode=r or memq://" % (url or "the default URL"))
         self._subscriptions = []
         self._error = None
+        # LCM's receive time [us, wall clock] of the message being handled
+        # (lcm_recv_buf_t.recv_utime), for a handler that times its input.
+        self.recv_utime = 0
 
     def close(self):
         if self._lcm:
@@ -133,6 +136,7 @@ class LCM:
             try:
                 buf = rbuf.contents
                 data = ctypes.string_at(buf.data, buf.data_size) if buf.data_size else b""
+                self.recv_utime = buf.recv_utime
                 handler(channel_name.decode("utf-8", "replace"), data)
             except BaseException as e:  # not across the C frames: raised after them
                 self._error = e
