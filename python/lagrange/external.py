@@ -29,6 +29,7 @@ from the JSON file LAGRANGE_CONFIG_JSON names, which `lagrange run` and
     offset = s["reference"]["offset"]           # b_i [rad], one per joint
 """
 
+import io
 import json
 import math
 import os
@@ -101,22 +102,26 @@ class Controller:
 
     # -- receiving -------------------------------------------------------
     def _message(self, kind, data):
+        """The message and the bytes it was decoded from (for contract.intact), or (None, None)."""
         payload = self.key.authenticate(data)
         if payload is None:
-            return None  # forged, altered or of another run: never decoded
+            return None, None  # forged, altered or of another run: never decoded
+        buf = io.BytesIO(payload)
         try:
-            return kind.decode(payload)
+            return kind.decode(buf), payload[:buf.tell()]
         except Exception:
-            return None
+            return None, None
 
     def _on_status(self, _channel, data):
-        s = self._message(status_t, data)
+        s, _ = self._message(status_t, data)
         if s is not None and s.header.run_id == self.run_id and s.process == "plant" and s.state == "finished":
             self.plant_finished = True
 
     def _on_position(self, _channel, data):
-        p = self._message(plant_position_t, data)
-        if (p is None or p.header.run_id != self.run_id or p.header.publisher != "plant" or not contract.intact(p)
+        p, encoding = self._message(plant_position_t, data)
+        # The bytes decoded, hashed as they are: no second encoding per message.
+        if (p is None or p.header.run_id != self.run_id or p.header.publisher != "plant"
+                or not contract.intact(p, encoding)
                 or p.num_joints != self.joints or len(p.q) != self.joints):
             self.rejected += 1
             return
@@ -173,7 +178,7 @@ class Controller:
 
     # -- publishing ------------------------------------------------------
     def _publish(self, channel, msg):
-        self.lcm.publish(channel, self.key.sign(contract.seal(msg).encode()))
+        self.lcm.publish(channel, self.key.sign(contract.sealed_encoding(msg)))
 
     def _publish_command(self, c):
         self.headers.stamp(c.header, "CONTROL_COMMAND", c.header.tick, c.header.sim_time)

@@ -26,6 +26,7 @@ step may also return a dict {"q": [...], "qdot": [...]} with the arm's
 scenario is Plant.scenario (a dict). See examples/external_plant/.
 """
 
+import io
 import math
 import os
 import signal
@@ -260,15 +261,17 @@ class Plant:
         if payload is None:
             self._reject("MAC")  # forged, altered or of another run: never decoded
             return None
+        buf = io.BytesIO(payload)
         try:
-            m = kind.decode(payload)
+            m = kind.decode(buf)
         except Exception:
             self._reject("undecodable")
             return None
         if m.header.run_id != self.run_id:
             self._reject("another run")
             return None
-        if not contract.intact(m):
+        # The bytes decoded, hashed as they are: no second encoding per message.
+        if not contract.intact(m, payload[:buf.tell()]):
             self._reject("checksum")
             return None
         return m
@@ -382,7 +385,7 @@ class Plant:
     # -- publishing ------------------------------------------------------
     def _publish(self, channel, msg, tick, sim_time):
         self.headers.stamp(msg.header, channel, tick, sim_time)
-        self.lcm.publish(channel, self.key.sign(contract.seal(msg).encode()))
+        self.lcm.publish(channel, self.key.sign(contract.sealed_encoding(msg)))
 
     def _sample(self, k, tau, source, input_tick):
         t = k * self.period
