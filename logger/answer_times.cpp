@@ -30,16 +30,16 @@ void AnswerTimes::arrived(const std::string& channel, int64_t tick, double t) {
       r.asked.emplace(tick, t);
       if (r.asked.size() > kMaxWaiting) r.asked.erase(r.asked.begin());
     } else if (channel == r.who.answer) {
-      const auto it = r.asked.find(tick);
+      const auto it = r.asked.find(tick - r.who.tick_offset);
       if (it == r.asked.end()) continue;  // a copy, or an answer to nothing heard
       const double took = t - it->second;
       r.times.add(took);
       if (took > r.worst || r.worst_tick < 0) {
         r.worst = took;
-        r.worst_tick = tick;
+        r.worst_tick = it->first;
       }
       if (took > threshold_) ++r.slow;
-      r.answered_tick = std::max(r.answered_tick, tick);
+      r.answered_tick = std::max(r.answered_tick, it->first);
       r.asked.erase(r.asked.begin(), std::next(it));  // older ones were passed by
     }
   }

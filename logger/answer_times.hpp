@@ -2,7 +2,9 @@
 /// @file
 /// How long each process took to answer, tick by tick, as the logger hears
 /// it: the controller answers the plant's position of tick k with its
-/// command of tick k, the actuator that command with its state of tick k.
+/// command of tick k, the actuator that command with its state of tick k,
+/// and in lockstep the plant that state with its position of tick k + 1
+/// (a plant that takes seconds a step is named as a slow controller is).
 /// The logger hears every channel, so this holds for a program from outside
 /// (an external controller reports nothing itself) as for the built-in ones.
 /// A wait longer than `supervision.slow_answer` is said while it lasts --
@@ -23,13 +25,15 @@ namespace lagrange::logger {
 
 class AnswerTimes {
  public:
-  /// One who answers: `name` (controller, actuator) answers `question`
-  /// (a channel) of tick k with `answer` of tick k; `program` names it.
+  /// One who answers: `name` (controller, actuator, plant) answers
+  /// `question` (a channel) of tick k with `answer` of tick k +
+  /// `tick_offset` (the plant: 1); `program` names it.
   struct Answerer {
     std::string name;
     std::string program;
     std::string question;
     std::string answer;
+    int64_t tick_offset = 0;
   };
   /// A wait past the threshold, to say while it lasts.
   struct Slow {

@@ -56,17 +56,28 @@ void writeProgress(int fd, const TrackingMetrics& metrics) {
   [[maybe_unused]] const ssize_t written = write(fd, line.data(), line.size());
 }
 
-// What the controller and the actuator are, for the slow-answer lines:
-// a program from outside by its command line.
+// Who answers whom, for the slow-answer lines: a program from outside by
+// its command line. In lockstep the plant answers each ACTUATOR_STATE with
+// its next tick's position; in realtime it runs on its own clock and asks
+// nobody, so only the others are timed there.
+std::string programOf(const std::string& builtin, const std::vector<std::string>& command) {
+  if (command.empty()) return builtin;
+  std::string program;
+  for (const std::string& arg : command) program += (program.empty() ? "" : " ") + arg;
+  return program.size() > 120 ? program.substr(0, 117) + "..." : program;
+}
+
 std::vector<AnswerTimes::Answerer> answerersOf(const config::Scenario& s) {
-  std::string controller = "lagrange-controller";
-  if (s.controller.type == "external") {
-    controller.clear();
-    for (const std::string& arg : s.controller.command) controller += (controller.empty() ? "" : " ") + arg;
-    if (controller.size() > 120) controller = controller.substr(0, 117) + "...";
-  }
-  return {{"controller", controller, transport::kPlantPosition, transport::kControlCommand},
-          {"actuator", "lagrange-actuator", transport::kControlCommand, transport::kActuatorState}};
+  const std::vector<std::string> none;
+  std::vector<AnswerTimes::Answerer> out = {
+      {"controller",
+       programOf("lagrange-controller", s.controller.type == "external" ? s.controller.command : none),
+       transport::kPlantPosition, transport::kControlCommand},
+      {"actuator", "lagrange-actuator", transport::kControlCommand, transport::kActuatorState}};
+  if (s.mode == config::Mode::kLockstep)
+    out.push_back({"plant", programOf("lagrange-plant", s.plant.external() ? s.plant.command : none),
+                   transport::kActuatorState, transport::kPlantPosition, 1});
+  return out;
 }
 
 }  // namespace
@@ -83,7 +94,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
 
   TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
                           s.tickPeriod());
-  watchVelocityLimits(metrics, s);
+  watchLimits(metrics, s);
   runtime::StatusReporter status(node);
   RunFacts facts;
   facts.log_path = log_path;

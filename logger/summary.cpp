@@ -1,15 +1,21 @@
 #include "logger/summary.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "controller/gain_report_json.hpp"
 #include "controller/paper_section.hpp"
+#include "logger/verdict.hpp"
 #include "model/urdf_arm.hpp"
 
 namespace lagrange::logger {
 
 namespace {
+// A figure nothing measured is null, never a number that reads as perfect
+// (a program from outside reports NaN for what it does not measure).
+nlohmann::json measured(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
 nlohmann::json conditionJson(const model::ConditionReport& c) {
   return {{"name", c.name}, {"expression", c.expression}, {"lhs", c.lhs},
           {"rhs", c.rhs},   {"holds", c.holds},           {"margin", c.margin()}};
@@ -110,7 +116,8 @@ nlohmann::json plantJson(const config::Scenario& s) {
 }
 }  // namespace
 
-void watchVelocityLimits(TrackingMetrics& metrics, const config::Scenario& s) {
+void watchLimits(TrackingMetrics& metrics, const config::Scenario& s) {
+  if (s.actuator.saturation) metrics.watchSaturation(*s.actuator.saturation);
   if (!s.urdf_model) return;
   const auto& joints = s.urdf_model->jointProperties();
   Eigen::VectorXd limits = Eigen::VectorXd::Constant(s.dof(), std::numeric_limits<double>::infinity());
@@ -141,12 +148,18 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
           std::vector<double>(c.motor_rate_pole.data(), c.motor_rate_pole.data() + c.motor_rate_pole.size());
   }
   j["status"] = f.status;
+  // With no sample the tracking figures are unknown, not the zero a fresh
+  // summary holds; `span` says which stretch of the run they cover.
+  const bool sampled = t.samples > 0;
+  const auto figure = [sampled](double v) { return sampled ? measured(v) : nlohmann::json(); };
   j["tracking"] = {
       {"tolerance", t.tolerance},
-      {"final_error", t.final_error},
-      {"max_error", t.max_error},
+      {"final_error", figure(t.final_error)},
+      {"max_error", figure(t.max_error)},
+      {"max_error_time", figure(t.max_error_time)},
+      {"initial_error", figure(t.initial_error)},
       {"convergence_time", t.convergence_time ? json(*t.convergence_time) : json(nullptr)},
-      {"rms_last_second", t.rms_last_second},
+      {"rms_last_second", figure(t.rms_last_second)},
       {"convergence_deadline", s.metrics.convergence_deadline},
       {"met",
        [&] {
@@ -158,6 +171,11 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
          return met;
        }()},
       {"samples", t.samples},
+      {"span",
+       {{"from", figure(t.first_time)},
+        {"to", figure(t.sim_time)},
+        {"of", s.duration},
+        {"whole_run", sampled && t.sim_time >= s.lastTick() * s.tickPeriod() - 0.5 * s.tickPeriod()}}},
   };
   if (!t.chain.empty()) {
     json chain = json::array();
@@ -184,13 +202,15 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
   if (json plant = plantJson(s); !plant.empty()) j["plant"] = plant;
   j["torque"] = {{"max_abs", t.max_abs_torque},
                  {"total_variation", t.torque_total_variation},
-                 {"energy", t.control_energy}};
+                 {"energy", t.control_energy},
+                 {"saturated_fraction", t.saturated_fraction ? json(*t.saturated_fraction) : json(nullptr)}};
   j["gains"] = gainsJson(g);
   j["run_id"] = f.run_id;
   j["timing"] = {
       {"sim_time", t.sim_time},
       {"wall_time", f.wall_time},
-      {"realtime_factor", f.wall_time > 0.0 ? t.sim_time / f.wall_time : 0.0},
+      {"realtime_factor", f.wall_time > 0.0 ? json(t.sim_time / f.wall_time) : json(nullptr)},
+      {"publish_rate", s.plant.publish_rate},
   };
   if (s.mode == config::Mode::kLockstep) j["timing"]["logger_nice"] = f.nice;
   json messages = json::object();
@@ -265,11 +285,15 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
           {"deadline_misses", l.deadline_misses},
           {"on_time_fraction", 1.0 - static_cast<double>(l.deadline_misses) / static_cast<double>(l.cycles)},
           {"longest_miss_run", l.longest_miss_run},
-          {"input_age", {{"p50", l.input_age_p50}, {"p99", l.input_age_p99}, {"max", l.input_age_max}}},
+          {"input_age",
+           {{"p50", measured(l.input_age_p50)},
+            {"p99", measured(l.input_age_p99)},
+            {"max", measured(l.input_age_max)}}},
       };
       stale[name] = {{"missing_inputs", l.missing_inputs}, {"stale_inputs", l.stale_inputs}};
       if (name == "plant") {
-        j["timing"]["latency"] = {{"p50", l.latency_p50}, {"p99", l.latency_p99}, {"max", l.latency_max}};
+        j["timing"]["latency"] = {
+            {"p50", measured(l.latency_p50)}, {"p99", measured(l.latency_p99)}, {"max", measured(l.latency_max)}};
         stale[name]["torque_held"] = l.torque_held;
         stale[name]["torque_zeroed"] = l.torque_zeroed;
       }
@@ -303,6 +327,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                           " messages the run's processes published are not in the log (per channel in "
                           "log.missing_records): the logger did not receive them -- lost on the way, or "
                           "sent while the logger was not reading (stopped, overloaded) and dropped");
+  j["verdict"] = runVerdict(j);
   return j;
 }
 

@@ -37,8 +37,10 @@ struct RunFacts {
 };
 
 /// Makes `metrics` watch the joints' rates against the URDF's <limit
-/// velocity> when the arm has any (summary.json limits.velocity).
-void watchVelocityLimits(TrackingMetrics& metrics, const config::Scenario& scenario);
+/// velocity> when the arm has any (summary.json limits.velocity), and the
+/// applied torque against actuator.saturation when set
+/// (torque.saturated_fraction).
+void watchLimits(TrackingMetrics& metrics, const config::Scenario& scenario);
 
 nlohmann::json makeSummary(const config::Scenario& scenario, const TrackingSummary& tracking,
                            const controller::GainReport& gains, const RunFacts& facts);

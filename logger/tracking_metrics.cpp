@@ -88,7 +88,15 @@ TrackingSummary TrackingMetrics::summary() const {
   // The torques in tick order: a re-sent or late ACTUATOR_STATE counts once.
   const Eigen::RowVectorXd* previous = nullptr;
   Eigen::RowVectorXd last;
+  long long saturated = 0;
   for (const auto& [tick, tau] : torques_) {
+    if (saturation_ && tau.cols() == saturation_->size()) {
+      const Eigen::RowVectorXd at_limit = saturation_->transpose() * (1.0 - 1e-9);
+      bool any = false;
+      for (Eigen::Index r = 0; r < tau.rows() && !any; ++r)
+        any = (tau.row(r).cwiseAbs().array() >= at_limit.array()).any();
+      saturated += any ? 1 : 0;
+    }
     s.max_abs_torque = std::max(s.max_abs_torque, tau.cwiseAbs().maxCoeff());
     s.control_energy += tau.rowwise().squaredNorm().sum() * tick_period_ / static_cast<double>(tau.rows());
     for (Eigen::Index r = 0; r < tau.rows(); ++r) {
@@ -97,6 +105,9 @@ TrackingSummary TrackingMetrics::summary() const {
       previous = &last;
     }
   }
+  if (saturation_)
+    s.saturated_fraction =
+        torques_.empty() ? 0.0 : static_cast<double>(saturated) / static_cast<double>(torques_.size());
   std::vector<double> times, errors;  // in tick order
   for (const auto& [tick, sample] : samples_) {
     times.push_back(sample.t);
@@ -106,13 +117,18 @@ TrackingSummary TrackingMetrics::summary() const {
   if (errors.empty()) return s;
   s.sim_time = times.back();
   s.final_error = errors.back();
+  s.first_time = times.front();
+  s.initial_error = errors.front();
   double sum_sq = 0.0;
   long long in_window = 0;
   // Walk backwards: the convergence time is the sample after the last one at
   // or above the tolerance.
   std::optional<size_t> last_violation;
   for (size_t i = errors.size(); i-- > 0;) {
-    s.max_error = std::max(s.max_error, errors[i]);
+    if (errors[i] >= s.max_error) {  // walking backwards: the earliest time of the largest
+      s.max_error = errors[i];
+      s.max_error_time = times[i];
+    }
     if (!last_violation && errors[i] >= tolerance_) last_violation = i;
     if (times[i] >= s.sim_time - 1.0 - 1e-12) {
       sum_sq += errors[i] * errors[i];

@@ -33,11 +33,18 @@ struct TrackingSummary {
   double tolerance = 0.0;
   double final_error = 0.0;  ///< ||q~(T)|| [rad]
   double max_error = 0.0;    ///< max_t ||q~(t)|| [rad]
+  double max_error_time = 0.0;  ///< the first sample time at which max_error was reached [s]
+  double initial_error = 0.0;   ///< ||q~|| of the first sample [rad]
+  double first_time = 0.0;      ///< time of the first sample [s]
   /// First sample time after which ||q~|| stays below the tolerance [s];
   /// empty if the last sample is not below it.
   std::optional<double> convergence_time;
   double rms_last_second = 0.0;  ///< RMS of ||q~|| over t >= T - 1 s [rad]
   double max_abs_torque = 0.0;   ///< max |tau_i| applied [N m]
+  /// With watchSaturation: the share of the ticks recorded whose torque put
+  /// some joint at its limit (|tau_j| within 1e-9 relative of it) in any
+  /// step of the period; empty without limits.
+  std::optional<double> saturated_fraction;
   /// sum over joints of the total variation of the applied torque, step to
   /// step in tick order: sum_j sum_s |tau_j(s) - tau_j(s-1)| [N m] (chattering)
   double torque_total_variation = 0.0;
@@ -64,6 +71,8 @@ class TrackingMetrics {
                                   const Eigen::VectorXd& qdot = Eigen::VectorXd());
   /// Watches each joint's |q'| against limits(i) (+inf: none) [rad/s].
   void watchVelocities(std::vector<std::string> joints, Eigen::VectorXd limits);
+  /// Counts the ticks whose applied torque sat at a limit (actuator.saturation) [N m].
+  void watchSaturation(Eigen::VectorXd limits) { saturation_ = std::move(limits); }
   /// The torque profile applied after tick `tick` (rows: steps of the
   /// period); a tick already recorded is ignored.
   void addTorque(long long tick, const Eigen::MatrixXd& tau);
@@ -93,6 +102,7 @@ class TrackingMetrics {
   long long contiguous_tick_ = -1;
   double tick_period_;
   std::map<long long, Eigen::MatrixXd> torques_;  ///< by tick
+  std::optional<Eigen::VectorXd> saturation_;     ///< per-joint |tau| limits
   double xi_tolerance_;
   long long last_chain_tick_ = -1;
   std::vector<double> chain_times_;

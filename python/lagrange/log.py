@@ -8,6 +8,7 @@ per-channel arrays, with summary.json and the resolved scenario beside them.
     truth["q"]            # one row per sample, one column per joint (0-based, as in Python)
     truth["q"][k][1]      # joint 2's angle at sample k
     run.summary["tracking"]["final_error"]
+    run.verdict["tracking"]  # "met", "NOT met" or "not judged"; run.verdict["reasons"] say why
 
 Every event is first held to the largest its channel's message can be in the
 log's scenario (lagrange/log_bounds.py): a larger one is skipped unread and
@@ -135,6 +136,10 @@ class Run:
         self.unknown_channels = {}  # channel -> count
         self.scan = None
         self.summary = None
+        # summary.json's `verdict` as the run wrote it (docs/summary.md, "The
+        # verdict"): {tracking, met, headline, reasons, warnings}; None when
+        # there is no summary, or one written before verdicts existed.
+        self.verdict = None
         self.scenario_yaml = None  # config.resolved.yaml's text
         self.scenario = None  # config.resolved.json as a dict (the same scenario; None for older runs)
 
@@ -203,6 +208,8 @@ def _load(run, path, numpy, verify, with_outputs=True):
     if os.path.exists(summary):
         with open(summary, "r", encoding="utf-8") as f:
             run.summary = json.load(f)
+        if isinstance(run.summary, dict) and isinstance(run.summary.get("verdict"), dict):
+            run.verdict = run.summary["verdict"]
     resolved = os.path.join(run.dir, "config.resolved.yaml")
     if os.path.exists(resolved):
         with open(resolved, "r", encoding="utf-8") as f:

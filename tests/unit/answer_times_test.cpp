@@ -99,3 +99,32 @@ TEST(AnswerTimes, NoAnswerGivesNullTimes) {
 
 }  // namespace
 }  // namespace lagrange::logger
+
+namespace lagrange::logger {
+namespace {
+
+// The plant answers the actuator's state of tick k with its position of
+// tick k + 1: a plant that takes seconds a step is timed, said while it
+// lasts, and counted as a slow controller is.
+TEST(AnswerTimes, ThePlantAnswersEachTorqueWithItsNextTick) {
+  AnswerTimes a({{"plant", "python3 arm.py", "ACTUATOR_STATE", "PLANT_POSITION", 1}}, 1.0);
+  a.arrived("PLANT_POSITION", 0, 0.0);  // the first position answers nothing
+  a.arrived("ACTUATOR_STATE", 0, 0.1);
+  a.arrived("PLANT_POSITION", 1, 0.3);  // 0.2 s
+  a.arrived("ACTUATOR_STATE", 1, 0.4);
+  EXPECT_TRUE(a.newlySlow(1.0).empty()) << "0.6 s is within the threshold";
+  const std::vector<AnswerTimes::Slow> slow = a.newlySlow(15.4);
+  ASSERT_EQ(slow.size(), 1u);
+  EXPECT_EQ(slow[0].name, "plant");
+  EXPECT_EQ(slow[0].tick, 1);
+  EXPECT_NEAR(slow[0].waited, 15.0, 1e-9);
+  a.arrived("PLANT_POSITION", 2, 15.4);  // tick 1's torque answered after 15 s
+  const nlohmann::json j = a.summary()["plant"];
+  EXPECT_EQ(j["answered"], 2);
+  EXPECT_NEAR(j["worst"].get<double>(), 15.0, 1e-9);
+  EXPECT_EQ(j["worst_tick"], 1);
+  EXPECT_EQ(j["slow"], 1);
+}
+
+}  // namespace
+}  // namespace lagrange::logger

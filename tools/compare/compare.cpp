@@ -159,6 +159,12 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
   }
   const nlohmann::json j = nlohmann::json::parse(in);
   n.status = j.at("status").get<std::string>();
+  // The run's verdict as its summary has it (logger/verdict.hpp), never decided here again.
+  if (const auto v = j.find("verdict"); v != j.end() && v->is_object()) {
+    n.verdict = v->value("tracking", std::string());
+    const nlohmann::json reasons = v->value("reasons", nlohmann::json::array());
+    if (reasons.is_array() && !reasons.empty()) n.verdict_reason = reasons[0].value("text", std::string());
+  }
   // A process that died: the launcher says which in summary.json's
   // `failure`; an older or killed launcher left only its exit code.
   if (const auto f = j.find("failure"); f != j.end() && f->is_object() && n.status == "failed") {

@@ -26,9 +26,18 @@ std::string number(double x) {
 
 std::string full(double x) { return std::isfinite(x) ? util::exactText(x) : ""; }
 
+// The verdict's word and its likeliest reason, as the run's own block says them.
+std::string verdictCell(const RunNumbers& n) {
+  std::string cell = n.verdict.empty() ? "—" : n.verdict;
+  if (!n.verdict_reason.empty()) cell += ": " + n.verdict_reason;
+  std::string escaped;  // a table cell: a '|' would split it
+  for (char c : cell) escaped += c == '|' ? std::string("\\|") : std::string(1, c);
+  return escaped;
+}
+
 std::string markdownRow(const RunNumbers& n, bool with_value) {
   std::string row = "| " + n.type + (with_value ? " | " + n.value.value_or("") : "") + " | " + n.status +
-                    " | " +
+                    " | " + verdictCell(n) + " | " +
                     (n.convergence_time                 ? number(*n.convergence_time)
                      : n.status.rfind("failed", 0) == 0 ? "—"
                                                         : "not within the run") +
@@ -40,10 +49,10 @@ std::string markdownRow(const RunNumbers& n, bool with_value) {
 
 std::string markdownHeader(const std::string& first) {
   return "| controller" + first +
-         " | status | converged at [s] | final ‖q̃‖ [rad] | RMS ‖q̃‖, last second [rad] | max \\|τ\\| [N m] | "
+         " | status | verdict | converged at [s] | final ‖q̃‖ [rad] | RMS ‖q̃‖, last second [rad] | max \\|τ\\| [N m] | "
          "torque total variation [N m] | ∫‖τ‖² dt [N² m² s] |\n"
          "| --- " +
-         (first.empty() ? "" : "| --- ") + "| --- | --- | --- | --- | --- | --- | --- |\n";
+         (first.empty() ? "" : "| --- ") + "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
 }
 
 // The number a sweep value plots at: a number, or the first of a list of
@@ -78,13 +87,15 @@ std::string writeComparison(const ComparisonTables& t, const std::string& out_di
   util::OutputStream csv(fs::path(out_dir) / "comparison.csv");
   csv << "controller,sweep_key,sweep_value,status,convergence_time,final_error,rms_last_second,max_abs_"
          "torque,"
-         "torque_total_variation,control_energy\n";
+         "torque_total_variation,control_energy,verdict,verdict_reason\n";
   for (const RunNumbers& n : t.runs) {
     csv << n.type << "," << (n.value ? t.sweep_key : "") << ",\"" << n.value.value_or("") << "\"," << n.status
         << "," << (n.convergence_time ? full(*n.convergence_time) : "");
     for (double x : {n.final_error, n.rms_last_second, n.max_torque, n.total_variation, n.energy})
       csv << "," << full(x);
-    csv << "\n";
+    std::string reason;  // a CSV field: quoted, its quotes doubled
+    for (char c : n.verdict_reason) reason += c == '"' ? std::string("\"\"") : std::string(1, c);
+    csv << "," << n.verdict << ",\"" << reason << "\"\n";
   }
   if (!out_md.flush() || !csv.flush()) throw RuntimeFault("cannot write the comparison into " + out_dir);
   return md;

@@ -86,8 +86,8 @@ MetricCheck parseMetricCheck(const std::string& raw) {
   const std::string text = trimmed(raw);
   MetricCheck c;
   c.text = text;
-  if (text == "met") {
-    c.key = "met";
+  if (text == "met" || text == "no_warnings") {
+    c.key = text;
     return c;
   }
   const size_t at = text.find_first_of("<>");
@@ -98,7 +98,7 @@ MetricCheck parseMetricCheck(const std::string& raw) {
           " (it is a file: was the scenario taken for --check's value? write --check=LIST, or --check after "
           "it)";
     return config::ConfigError("--check '" + raw + "': " + what +
-                               "; expected met, or KEY OP NUMBER with OP one of < <= > >= and KEY a number "
+                               "; expected met, no_warnings, or KEY OP NUMBER with OP one of < <= > >= and KEY a number "
                                "of summary.json (e.g. tracking.final_error) or one of final_error, "
                                "max_error, convergence_time, rms_last_second, max_torque: "
                                "--check 'met,final_error<1e-4,max_torque<=300'");
@@ -112,7 +112,7 @@ MetricCheck parseMetricCheck(const std::string& raw) {
   if (value.empty() || end == nullptr || *end != '\0' || !std::isfinite(c.threshold))
     throw grammar("'" + value + "' is not a finite number");
   if (c.key.empty() || c.key.find_first_of(" <>=") != std::string::npos) throw grammar("no key");
-  if (c.key == "met") throw grammar("met takes no comparison");
+  if (c.key == "met" || c.key == "no_warnings") throw grammar(c.key + " takes no comparison");
   return c;
 }
 
@@ -132,6 +132,14 @@ std::vector<CheckResult> evaluateChecks(const std::vector<MetricCheck>& checks,
       r.passed = missed.empty();
       r.message = r.passed ? "the stated metric is met" : missed.front();
       for (size_t i = 1; i < missed.size(); ++i) r.message += "; " + missed[i];
+    } else if (c.key == "no_warnings") {
+      const nlohmann::json* warnings = find(summary, "verdict.warnings");
+      r.passed = warnings != nullptr && warnings->is_array() && warnings->empty();
+      r.message = warnings == nullptr || !warnings->is_array()
+                      ? "no_warnings: summary.json has no verdict.warnings"
+                  : r.passed ? "the run's verdict has no warnings"
+                             : "the run's verdict has " + std::to_string(warnings->size()) +
+                                   " warning(s): " + (*warnings)[0].value("text", std::string());
     } else if (const nlohmann::json* v = find(summary, c.key); v == nullptr) {
       r.message = c.text + ": summary.json has no " + c.key;
     } else if (v->is_null()) {

@@ -5,7 +5,10 @@
 ///
 /// A check is `met` -- the scenario's stated metric, ||q~|| below
 /// metrics.tolerance by metrics.convergence_deadline and staying there (and
-/// every chain stage's) -- or `KEY OP NUMBER`: KEY a number of summary.json
+/// every chain stage's); a miss names the verdict's reasons --,
+/// `no_warnings` -- the run's verdict (summary.json `verdict.warnings`)
+/// lists none: no timing fault, stale torque, slow answer, missing tick --
+/// or `KEY OP NUMBER`: KEY a number of summary.json
 /// by its dotted path (`tracking.final_error`, `torque.max_abs`) or by the
 /// last part where that is one of the common ones (final_error, max_error,
 /// convergence_time, rms_last_second, max_torque), OP one of < <= > >=.

@@ -1,8 +1,11 @@
 #include "tools/run/run_outcome.hpp"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <sstream>
+
+#include "logger/verdict.hpp"
 
 namespace lagrange::tools {
 
@@ -25,32 +28,87 @@ std::string when(const nlohmann::json& convergence_time) {
   return convergence_time.is_null() ? std::string("never")
                                     : std::to_string(convergence_time.get<double>()) + " s";
 }
+
+
+// The verdict summary.json carries (logger/verdict.hpp decides it); a
+// summary written before verdicts existed gets one decided the same way.
+nlohmann::json verdictOf(const nlohmann::json& j) {
+  return j.contains("verdict") && j.at("verdict").is_object() ? j.at("verdict") : logger::runVerdict(j);
+}
+
+std::string numberOr(const nlohmann::json& v, const char* fmt, const char* otherwise) {
+  return v.is_number() ? format(fmt, v.get<double>()) : std::string(otherwise);
+}
+
+// The gain-condition line: the continuous-time condition beside the
+// linearised check of the loop sampled at the run's rate -- two different
+// claims, never one standing for the other.
+std::string gainLine(const nlohmann::json& gains) {
+  if (!gains.value("checked", true))
+    return format("  gain condition        not checked (%s)\n", gains.value("why", "").c_str());
+  std::string line = format("  gain condition        %s%s (continuous time; margin %.4g)",
+                            gains.contains("condition") ? (gains.at("condition").get<std::string>() + " ").c_str()
+                                                        : "",
+                            gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED",
+                            gains.at("margin").get<double>());
+  if (const auto sd = gains.find("sampled_data"); sd != gains.end() && sd->is_object()) {
+    std::string word = sd->value("verdict", std::string("not assessed"));
+    std::transform(word.begin(), word.end(), word.begin(), ::toupper);
+    line += format("; sampled at %s Hz: %s (linearised check)",
+                   numberOr(sd->value("rate", nlohmann::json()), "%g", "?").c_str(), word.c_str());
+  }
+  return line + "\n";
+}
+
+std::string findings(const char* title, const nlohmann::json& list) {
+  if (!list.is_array() || list.empty()) return "";
+  std::string out = format("  %s\n", title);
+  for (const auto& f : list) out += "    - " + f.value("text", std::string()) + "\n";
+  return out;
+}
+
 }  // namespace
 
 std::string resultText(const nlohmann::json& j) {
   const auto& t = j.at("tracking");
-  std::string out = format("\nscenario %s: %s\n", j.at("scenario").get<std::string>().c_str(),
-                           j.at("status").get<std::string>().c_str());
-  out += format("  final tracking error  %.3e rad (tolerance %.1e)\n", t.at("final_error").get<double>(),
-                t.at("tolerance").get<double>());
+  const nlohmann::json verdict = verdictOf(j);
+  std::string out = format("\nscenario %s: %s -- %s\n", j.at("scenario").get<std::string>().c_str(),
+                           j.at("status").get<std::string>().c_str(),
+                           verdict.value("headline", std::string()).c_str());
+  // A run cut short: its figures cover only what was recorded, and say so.
+  const auto span = t.find("span");
+  const bool partial = span != t.end() && span->is_object() && !span->value("whole_run", true);
+  const std::string until =
+      partial ? " at t = " + numberOr(span->value("to", nlohmann::json()), "%.3f", "?") + " s, where the record ends"
+              : "";
+  out += format("  final tracking error  %s rad (tolerance %.1e)%s\n",
+                numberOr(t.at("final_error"), "%.3e", "not measured (no sample)").c_str(),
+                t.at("tolerance").get<double>(), until.c_str());
+  if (t.contains("max_error") && t.at("max_error").is_number())
+    out += format("  max tracking error    %.3e rad%s\n", t.at("max_error").get<double>(),
+                  t.contains("max_error_time") && t.at("max_error_time").is_number()
+                      ? format(" at t = %.3f s", t.at("max_error_time").get<double>()).c_str()
+                      : "");
   if (t.at("convergence_time").is_null())
     out += "  convergence time      never (the error did not stay below the tolerance)\n";
   else
     out += format("  convergence time      %.3f s (deadline %.3f s: %s)\n",
                   t.at("convergence_time").get<double>(), t.at("convergence_deadline").get<double>(),
                   t.at("met").get<bool>() ? "met" : "MISSED");
-  out += format("  max |torque|          %.3f N m\n", j.at("torque").at("max_abs").get<double>());
-  // A controller without a known stability condition has no verdict to print.
-  const auto& gains = j.at("gains");
-  if (gains.value("checked", true))
-    out += format("  gain condition        %s (margin %.4g)\n",
-                  gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED",
-                  gains.at("margin").get<double>());
-  else
-    out += format("  gain condition        not checked (%s)\n", gains.value("why", "").c_str());
+  const auto& torque = j.at("torque");
+  out += format("  max |torque|          %.3f N m%s\n", torque.at("max_abs").get<double>(),
+                torque.contains("saturated_fraction") && torque.at("saturated_fraction").is_number()
+                    ? format(" (at the saturation limit on %.1f %% of the ticks)",
+                             100.0 * torque.at("saturated_fraction").get<double>())
+                          .c_str()
+                    : "");
+  out += gainLine(j.at("gains"));
   const auto& timing = j.at("timing");
-  out += format("  sim %.2f s in %.2f s wall (%.1fx real time)\n", timing.at("sim_time").get<double>(),
-                timing.at("wall_time").get<double>(), timing.at("realtime_factor").get<double>());
+  out += format("  sim %.2f s in %.2f s wall (%s real time)\n", timing.at("sim_time").get<double>(),
+                timing.at("wall_time").get<double>(),
+                numberOr(timing.value("realtime_factor", nlohmann::json()), "%.1fx", "?").c_str());
+  out += findings("why not met (most likely first):", verdict.value("reasons", nlohmann::json()));
+  out += findings("warnings:", verdict.value("warnings", nlohmann::json()));
   return out;
 }
 
@@ -62,7 +120,7 @@ std::vector<std::string> missedMetrics(const nlohmann::json& j) {
   std::ostringstream line;
   line << "metric MISSED: ||q~|| below " << t.at("tolerance").get<double>() << " rad by t = " << deadline
        << " s and staying there: converged " << when(t.at("convergence_time")) << ", final error "
-       << t.at("final_error").get<double>() << " rad";
+       << numberOr(t.at("final_error"), "%g", "not measured") << " rad";
   missed.push_back(line.str());
   if (t.contains("chain"))
     for (const auto& c : t.at("chain"))
@@ -70,9 +128,13 @@ std::vector<std::string> missedMetrics(const nlohmann::json& j) {
         std::ostringstream stage;
         stage << "metric MISSED: ||xit_" << c.at("stage").get<int>() << "|| below "
               << c.at("tolerance").get<double>() << " by t = " << deadline << " s: converged "
-              << when(c.at("convergence_time")) << ", final error " << c.at("final_error").get<double>();
+              << when(c.at("convergence_time")) << ", final error "
+              << numberOr(c.at("final_error"), "%g", "not measured");
         missed.push_back(stage.str());
       }
+  // Why, as the verdict has it (the same reasons the result block lists).
+  for (const auto& reason : verdictOf(j).value("reasons", nlohmann::json::array()))
+    missed.push_back("why: " + reason.value("text", std::string()));
   return missed;
 }
 

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "controller/paper_section.hpp"
+#include "logger/summary.hpp"
 #include "model/reference.hpp"
 #include "tools/sweep/sweep_files.hpp"
 #include "util/error.hpp"
@@ -84,7 +85,9 @@ const std::vector<std::string>& resultColumns() {
                                                    "fine_convergence_time",
                                                    "fine_error_last_second",
                                                    "wall_time",
-                                                   "stop_reason"};
+                                                   "stop_reason",
+                                                   "verdict",
+                                                   "verdict_reason"};
   return columns;
 }
 
@@ -181,6 +184,19 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   }
   j["wall_time"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["stop_reason"] = o.stop_message;
+  // The run's verdict as `lagrange run` would write it (logger/verdict.hpp):
+  // an in-process row's summary made here, an external row's from its run.
+  nlohmann::json verdict = external_verdict_;
+  if (!external) {
+    logger::RunFacts facts;
+    facts.status = o.status;
+    facts.wall_time = o.wall_time;
+    verdict = logger::makeSummary(s, o.tracking, gains, facts)["verdict"];
+  }
+  j["verdict"] = verdict.is_object() ? verdict.value("tracking", nlohmann::json()) : nlohmann::json();
+  const nlohmann::json reasons = verdict.is_object() ? verdict.value("reasons", nlohmann::json()) : nlohmann::json();
+  j["verdict_reason"] = reasons.is_array() && !reasons.empty() ? reasons[0].value("text", nlohmann::json())
+                                                              : nlohmann::json();
   return j;
 }
 
@@ -231,6 +247,7 @@ wiring::InProcessOutcome SweepRunner::runExternal(const SweepRow& row, bool (*st
                        launcherError(dir / "run.out") + "); see " + dir.string());
   }
   o.status = summary.value("status", std::string("failed"));
+  external_verdict_ = summary.value("verdict", nlohmann::json());
   const int exit_code = WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : 128 + WTERMSIG(wstatus);
   // Stopped by a signal (Ctrl-C, scancel reaching the row's run directly
   // before this loop saw the shard's stop): run again on a restart. Stopped

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "config/input_file.hpp"
 #include "runtime/key_file.hpp"
 #include "tools/command_error.hpp"
 #include "tools/spy/spy.hpp"
@@ -137,7 +138,31 @@ std::vector<std::string> warnings(const ViewLog& log) {
   return all;
 }
 
-std::string logJson(const ViewLog& log) {
+// The verdict of the run whose log this is (summary.json beside a run.lcm),
+// as the run wrote it: shown, never decided here. Null when there is none,
+// or when the file is not a regular one of a summary's size (a warning says so).
+nlohmann::json runVerdictBeside(const std::string& log_path, std::vector<std::string>& notes) {
+  const fs::path log(log_path);
+  const fs::path summary = log.parent_path() / "summary.json";
+  std::error_code ec;
+  if (log.filename() != "run.lcm" || !fs::exists(fs::symlink_status(summary, ec))) return nullptr;
+  const config::FileText file = config::readRegularFile(summary.string(), 16u << 20, "the run's summary.json");
+  if (!file.error.empty()) {
+    notes.push_back(file.error + "; the run's verdict is not shown");
+    return nullptr;
+  }
+  try {
+    const nlohmann::json j = nlohmann::json::parse(file.text);
+    if (j.is_object() && j.contains("verdict") && j["verdict"].is_object() &&
+        j["verdict"].value("headline", nlohmann::json()).is_string())
+      return {{"headline", j["verdict"]["headline"]}, {"met", j["verdict"].value("met", false)}};
+  } catch (const nlohmann::json::exception&) {
+    notes.push_back(summary.string() + " is not JSON; the run's verdict is not shown");
+  }
+  return nullptr;
+}
+
+std::string logJson(const ViewLog& log, const nlohmann::json& verdict) {
   // Every k-th frame and the last one, at most kMaxLogFrames.
   const size_t n = log.frames.size();
   const size_t stride = std::max<size_t>(1, (n + kMaxLogFrames - 1) / kMaxLogFrames);
@@ -149,7 +174,8 @@ std::string logJson(const ViewLog& log) {
   nlohmann::json j = {{"description", descriptionJson(log.description)},
                       {"frames", framesJson(frames)},
                       {"stride", stride},
-                      {"warnings", warnings(log)}};
+                      {"warnings", warnings(log)},
+                      {"verdict", verdict}};
   // The plots' peaks between the frames sent (view_frames.hpp).
   if (stride > 1) j["envelope"] = envelopeJson(log.frames, sent);
   return j.dump();
@@ -269,7 +295,10 @@ int runView(const ViewOptions& opt) {
     res.set_content(session.dump(), "application/json");
   });
   if (log) {
-    const std::string body = logJson(*log);
+    std::vector<std::string> notes;
+    const nlohmann::json verdict = runVerdictBeside(source.log_path, notes);
+    for (const std::string& n : notes) std::cerr << "lagrange view: " << n << "\n";
+    const std::string body = logJson(*log, verdict);
     server.Get("/api/log", [body](const httplib::Request&, httplib::Response& res) {
       res.set_content(body, "application/json");
     });

@@ -320,6 +320,12 @@ async function start() {
       view.envelope = {error_min: log.envelope.error_min, error_max: log.envelope.error_max,
                        tauMin: byJoint(log.envelope.tau_min), tauMax: byJoint(log.envelope.tau_max)};
     }
+    if (log.verdict) {  // summary.json's verdict, as the run's last block says it
+      const line = document.getElementById('verdict');
+      line.textContent = log.verdict.headline;
+      line.className = log.verdict.met ? 'met' : 'not-met';
+      line.hidden = false;
+    }
     describe(log.description);
     appendFrames(log.frames);
     setTime(view.frames.t[0]);

@@ -1,0 +1,252 @@
+#include "logger/verdict.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace lagrange::logger {
+
+namespace {
+
+using nlohmann::json;
+
+// A field by JSON pointer, or null when any part is missing: a summary of an
+// older version, or of a run that never reached a part, still gets a verdict.
+const json& at(const json& j, const char* pointer) {
+  static const json none;
+  const json::json_pointer p(pointer);
+  return j.is_object() && j.contains(p) ? j.at(p) : none;
+}
+
+double number(const json& v, double otherwise = std::nan("")) {
+  return v.is_number() ? v.get<double>() : otherwise;
+}
+
+long long count(const json& v) { return v.is_number() ? v.get<long long>() : 0; }
+
+std::string text(const json& v) { return v.is_string() ? v.get<std::string>() : std::string(); }
+
+// 3 significant figures, but whole numbers from 1000 on (a rate reads
+// "3200 Hz", not "3.2e+03 Hz").
+std::string g(double v) {
+  return std::abs(v) >= 1000.0 && std::abs(v) < 1e9 ? fmt::format("{:.0f}", v) : fmt::format("{:.3g}", v);
+}
+
+// 4 significant figures: 98.9 % stays below a 99 % threshold in print too.
+std::string percent(double fraction) { return fmt::format("{:.4g} %", 100.0 * fraction); }
+
+struct Finding {
+  std::string kind, text;
+};
+
+class Verdict {
+ public:
+  Verdict(const json& summary, const VerdictThresholds& limits) : s_(summary), limits_(limits) {}
+
+  json decide() {
+    const std::string status = text(at(s_, "/status"));
+    const bool met = status == "completed" && at(s_, "/tracking/met") == true;
+    judged_ = status == "completed" || status == "failed" || status == "diverged";
+    met_ = met;
+    processFailed();
+    diverged();
+    samplingRate();
+    timing();
+    saturated();
+    condition();
+    notConverged();
+    otherWarnings();
+    json out;
+    out["tracking"] = met ? "met" : judged_ ? "NOT met" : "not judged";
+    out["met"] = met;
+    out["headline"] = headline(status);
+    out["reasons"] = asJson(reasons_);
+    out["warnings"] = asJson(warnings_);
+    return out;
+  }
+
+ private:
+  const json& s_;
+  VerdictThresholds limits_;
+  bool judged_ = false, met_ = false;
+  std::vector<Finding> reasons_, warnings_;
+
+  // A finding is a reason when the metric was missed, else a warning: what
+  // explains a miss still deserves a word when the run got away with it.
+  void found(const std::string& kind, const std::string& what, bool only_a_warning = false) {
+    (met_ || only_a_warning || !judged_ ? warnings_ : reasons_).push_back({kind, what});
+  }
+
+  static json asJson(const std::vector<Finding>& findings) {
+    json out = json::array();
+    for (const Finding& f : findings) out.push_back({{"kind", f.kind}, {"text", f.text}});
+    return out;
+  }
+
+  std::string headline(const std::string& status) const {
+    if (met_) return "tracking met";
+    if (!judged_) {
+      const double t = number(at(s_, "/timing/sim_time"), 0.0);
+      return fmt::format("tracking not judged: the run was {} at t = {} s, before its last tick",
+                         status.empty() ? "not finished" : status, g(t));
+    }
+    std::string line = "tracking NOT met";
+    for (size_t i = 0; i < reasons_.size() && i < 2; ++i) line += (i == 0 ? ": " : "; ") + reasons_[i].text;
+    return line;
+  }
+
+  void processFailed() {
+    const json& failure = at(s_, "/failure");
+    if (!failure.is_object() || failure.value("diverged", false)) return;  // a divergence: diverged()
+    const std::string process = text(at(failure, "/process"));
+    const std::string how = text(at(failure, "/how"));
+    found("process_failed",
+          fmt::format("the {} failed{}{}", process.empty() ? "run" : process, how.empty() ? "" : ": ", how),
+          text(at(s_, "/status")) == "completed");
+  }
+
+  void diverged() {
+    const std::string status = text(at(s_, "/status"));
+    const double max_error = number(at(s_, "/tracking/max_error"));
+    const double when = number(at(s_, "/tracking/max_error_time"));
+    const std::string reached =
+        std::isfinite(max_error)
+            ? fmt::format("|q~| reached {} rad{}", g(max_error),
+                          std::isfinite(when) ? fmt::format(" at t = {} s", g(when)) : std::string())
+            : std::string();
+    if (status == "diverged") {
+      const std::string why = text(at(s_, "/failure/reason"));
+      found("diverged", "diverged: the plant stopped the run" + (why.empty() ? "" : " (" + why + ")") +
+                            (reached.empty() ? "" : "; " + reached));
+      return;
+    }
+    const double start = number(at(s_, "/tracking/initial_error"));
+    const double final_error = number(at(s_, "/tracking/final_error"));
+    const double tolerance = number(at(s_, "/tracking/tolerance"), 0.0);
+    if (!std::isfinite(max_error) || !std::isfinite(start) || !std::isfinite(final_error)) return;
+    const double bound = limits_.growth * std::max(start, tolerance);
+    if (max_error > bound && final_error > start)
+      found("diverged", fmt::format("diverged ({}, from {} rad at the start)", reached, g(start)));
+  }
+
+  // The implementation at the run's rate: the linearised check (always
+  // there for the paper's controllers) and the simulated one when it ran.
+  void samplingRate() {
+    const json& sd = at(s_, "/gains/sampled_data");
+    const std::string word = text(at(sd, "/verdict"));
+    const double rate = number(at(sd, "/rate"));
+    const json& enough = at(sd, "/sufficient_rate");
+    const std::string suffice =
+        enough.is_number() ? fmt::format("; {} Hz would suffice: plant.publish_rate", g(enough.get<double>()))
+                           : std::string();
+    if (word == "unstable")
+      found("unstable_at_rate", fmt::format("the sampled loop at {} Hz is unstable (linearised check{})",
+                                            g(rate), suffice));
+    else if (word == "slow")
+      found("slow_at_rate", fmt::format("the sampled loop at {} Hz converges slower than the continuous one "
+                                        "(linearised check{})",
+                                        g(rate), suffice),
+            true);
+    const json& sim = at(s_, "/gains/sampled_simulation");
+    const std::string simulated = text(at(sim, "/verdict"));
+    if (!simulated.empty() && simulated != "adequate" && simulated != "not assessed")
+      found("sampled_check", fmt::format("the simulated sampled-data check at {} Hz says {}: {}",
+                                         g(number(at(sim, "/rate"))), simulated, text(at(sim, "/why"))));
+  }
+
+  void timing() {
+    const json& loops = at(s_, "/timing/loops");
+    if (loops.is_object())
+      for (const auto& [name, loop] : loops.items()) {
+        const double on_time = number(at(loop, "/on_time_fraction"), 1.0);
+        const long long run = count(at(loop, "/longest_miss_run"));
+        const long long misses = count(at(loop, "/deadline_misses"));
+        const bool fault = on_time < limits_.on_time_fraction || run >= limits_.longest_miss_run;
+        if (fault || misses > 0)
+          found("timing",
+                fmt::format("the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods)",
+                            name, percent(on_time), misses, run),
+                !fault);
+      }
+    const json& stale = at(s_, "/messages/stale/plant");
+    const long long held = count(at(stale, "/torque_held")), zeroed = count(at(stale, "/torque_zeroed"));
+    const long long cycles = count(at(s_, "/timing/loops/plant/cycles"));
+    if (held + zeroed > 0) {
+      const double share = cycles > 0 ? static_cast<double>(held + zeroed) / static_cast<double>(cycles) : 1.0;
+      found("stale_torque",
+            fmt::format("the plant had no fresh torque on {} periods ({} of {}): held on {}, zeroed on {}",
+                        held + zeroed, percent(share), cycles, held, zeroed),
+            share <= limits_.stale_torque_fraction);
+    }
+  }
+
+  void saturated() {
+    const double share = number(at(s_, "/torque/saturated_fraction"), 0.0);
+    if (share > 0.0)
+      found("saturated",
+            fmt::format("the torque was at its limit (actuator.saturation) on {} of the ticks", percent(share)),
+            met_);
+  }
+
+  void condition() {
+    const json& gains = at(s_, "/gains");
+    if (at(gains, "/checked") != true || at(gains, "/condition_holds") != false) return;
+    found("condition_violated",
+          fmt::format("{} does not hold (margin {}): the continuous-time guarantee is not given",
+                      text(at(gains, "/condition")), g(number(at(gains, "/margin")))),
+          met_);
+  }
+
+  // The last resort when nothing above explains a miss.
+  void notConverged() {
+    if (met_ || !judged_ || !reasons_.empty()) return;
+    const json& t = at(s_, "/tracking");
+    const json& when = at(t, "/convergence_time");
+    const double deadline = number(at(t, "/convergence_deadline"));
+    if (when.is_number())
+      reasons_.push_back({"late", fmt::format("converged at t = {} s, after the deadline ({} s)",
+                                              g(when.get<double>()), g(deadline))});
+    else
+      reasons_.push_back({"not_converged", fmt::format("||q~|| did not stay below {} rad (final {} rad, the last "
+                                                       "second's RMS {} rad)",
+                                                       g(number(at(t, "/tolerance"))),
+                                                       g(number(at(t, "/final_error"))),
+                                                       g(number(at(t, "/rms_last_second"))))});
+  }
+
+  void otherWarnings() {
+    const json& answers = at(s_, "/answers");
+    if (answers.is_object())
+      for (const auto& [name, a] : answers.items()) {
+        const long long slow = a.is_object() ? count(at(a, "/slow")) : 0;
+        if (slow > 0)
+          warnings_.push_back(
+              {"slow_answers", fmt::format("the {} ({}) answered {} ticks slower than supervision.slow_answer "
+                                           "(the worst {} s, at tick {})",
+                                           name, text(at(a, "/program")), slow, g(number(at(a, "/worst"))),
+                                           count(at(a, "/worst_tick")))});
+      }
+    const json& missing = at(s_, "/log/missing_ticks");
+    if (missing.is_object())
+      for (const auto& [channel, n] : missing.items())
+        if (count(n) > 0)
+          warnings_.push_back({"missing_ticks", fmt::format("the log has no {} for {} ticks: the figures are "
+                                                            "of the ticks it holds",
+                                                            channel, count(n))});
+    const json& crossed = at(s_, "/limits/velocity");
+    if (crossed.is_array() && !crossed.empty())
+      warnings_.push_back({"velocity_limit", fmt::format("{} joint(s) went past the URDF's velocity limit "
+                                                         "(limits.velocity): a real drive would fault or clip",
+                                                         crossed.size())});
+  }
+};
+
+}  // namespace
+
+nlohmann::json runVerdict(const nlohmann::json& summary, const VerdictThresholds& limits) {
+  return Verdict(summary, limits).decide();
+}
+
+}  // namespace lagrange::logger
