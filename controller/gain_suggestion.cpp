@@ -2,15 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "controller/paper_section.hpp"
+#include "controller/sampled_data.hpp"
 #include "model/bounds.hpp"
 #include "model/chain_conditions.hpp"
 #include "model/proposition1.hpp"
+#include "model/reference.hpp"
 
 namespace lagrange::controller {
 
@@ -88,6 +91,191 @@ config::Scenario suggestGains(const config::Scenario& in) {
           " for this rule, or gains checked against Theorem 3 directly");
   }
   return s;
+}
+
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+// The search's linearisation of a candidate. The map is the nominal lossless
+// model's (controller/sampled_data.hpp) and judges nothing on a plant with
+// damping, friction, stops, a payload or model error; the search then
+// linearises the nominal plant -- the gains' effect on sampling is the same
+// -- and the simulated check judges the real one.
+SampledDataCheck linearise(config::Scenario candidate) {
+  config::PlantConfig& p = candidate.plant;
+  p.joint_damping.reset();
+  p.joint_friction.reset();
+  p.rotor_damping.reset();
+  p.rotor_friction.reset();
+  p.urdf_dynamics = false;
+  p.joint_limits = false;
+  p.payload.reset();
+  p.model_error.reset();
+  return checkSampledData(candidate);
+}
+
+// Whether the reference alone needs more torque than actuator.saturation
+// allows somewhere in the run: D(q_d) q_d'' + C(q_d, q_d') q_d' + g(q_d), the
+// torque at zero error, against each joint's limit. Then no gains track it.
+std::optional<std::string> torqueLimitBinding(const config::Scenario& s, const model::RobotModel& arm,
+                                              const model::Reference& reference) {
+  if (!s.actuator.saturation || s.flexible) return std::nullopt;
+  const Eigen::VectorXd& limit = *s.actuator.saturation;
+  constexpr int kSamples = 1000;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double t = s.duration * k / kSamples;
+    const model::ReferenceSample d = reference.evaluate(t, 2);
+    const Eigen::VectorXd tau = arm.inverseDynamics(d.q(), d.qd(), d.qdd());
+    for (int j = 0; j < s.dof(); ++j)
+      if (std::abs(tau(j)) > limit(j))
+        return "the torque limits: the reference alone needs " + number(std::abs(tau(j))) + " N m on joint " +
+               std::to_string(j + 1) + " at t = " + number(t) +
+               " s (D(q_d) q_d'' + C q_d' + g(q_d)), above its " + "limit " + number(limit(j)) +
+               " N m (actuator.saturation); no gains track it -- raise the limit " + "or slow the reference";
+  }
+  return std::nullopt;
+}
+
+std::string describeGains(const Theorem1Gains& g) {
+  return "kd_min " + number(g.kd.minCoeff()) + ", a_max " + number(g.a.maxCoeff()) + ", b_min " +
+         number(g.b.minCoeff()) + ", kp_max " + number(g.kp.maxCoeff());
+}
+
+// Theorem 1's search (gain_suggestion.hpp).
+GainSearch searchTheorem1(const config::Scenario& in) {
+  GainSearch out;
+  const model::RobotModelPtr arm = in.controlModel();
+  const model::Reference reference(in.reference);
+  const std::optional<double> proven_kc = model::coriolisBound(*arm);
+  const double kc = proven_kc ? *proven_kc : model::coriolisLargestFound(*arm);
+  out.kdelta = model::referenceBound(reference);
+  const double rate = in.plant.publish_rate;
+  if (auto torque = torqueLimitBinding(in, *arm, reference)) {
+    out.binding = *torque;
+    return out;
+  }
+  const Theorem1Gains base = paperSettings(in).gains;
+  // eq. (11) with 10 % margin; the filter's scaling leaves b_min / a_max as it is.
+  const double kd_need = 1.1 * 2.0 * kc * out.kdelta * base.a.maxCoeff() / base.b.minCoeff();
+  auto candidate = [&](double filter, double kp_factor, double kd_floor) {
+    config::Scenario c = in;
+    Theorem1Gains& g = paperSettings(c).gains;
+    g.a = filter * base.a;
+    g.b = filter * base.b;
+    g.kd = base.kd.cwiseMax(Eigen::VectorXd::Constant(in.dof(), kd_floor));
+    g.kp = kp_factor * base.kp;
+    return c;
+  };
+  // Closest to the configured gains first: the filter as it is, then slower
+  // (what a light joint at a low rate needs), then faster.
+  const std::vector<double> filters = {1.0,      0.5,       0.25,      0.125, 1.0 / 16, 1.0 / 32,
+                                       1.0 / 64, 1.0 / 128, 1.0 / 256, 2.0,   4.0,      8.0};
+  std::optional<config::Scenario> slow;
+  SampledDataCheck slow_check;
+  std::optional<double> best_rate;
+  std::string best_rate_gains;
+  for (const double kp_factor : {1.0, 0.5, 0.25}) {
+    for (const double filter : filters) {
+      const config::Scenario c = candidate(filter, kp_factor, kd_need);
+      const SampledDataCheck check = linearise(c);
+      const Theorem1Gains& g = paperSettings(c).gains;
+      out.tried.push_back(describeGains(g) + ": " + check.verdict);
+      out.linearised = check;
+      if (check.adequate()) {
+        out.suggested = c;
+        return out;
+      }
+      if (check.verdict == "slow" && !slow) {
+        slow = c;
+        slow_check = check;
+      }
+      if (check.sufficient_rate && (!best_rate || *check.sufficient_rate < *best_rate)) {
+        best_rate = check.sufficient_rate;
+        best_rate_gains = describeGains(g);
+      }
+    }
+    if (slow) {  // not as fast as the continuous loop, but stable at the rate: better than lower kp
+      out.suggested = slow;
+      out.linearised = slow_check;
+      return out;
+    }
+  }
+  if (out.linearised.verdict == "not assessed") {
+    out.binding = "the linearised check cannot judge these candidates (" + out.linearised.why + ")";
+    return out;
+  }
+
+  // None keeps eq. (11) and is stable at the rate. What eq. (11) would allow
+  // with gains the rate does: kd (eq. (11)'s, or the configured where higher)
+  // lowered by halves on every joint, with each filter tried above, until
+  // the linearised loop is adequate or slow; the largest k_delta such gains
+  // meet eq. (11) for.
+  for (const double filter : filters) {
+    for (int k = 1; k <= 12; ++k) {
+      config::Scenario c = candidate(filter, 1.0, kd_need);
+      Theorem1Gains& g = paperSettings(c).gains;
+      g.kd *= std::pow(0.5, k);
+      const std::string verdict = linearise(c).verdict;
+      if (verdict != "adequate" && verdict != "slow") continue;
+      const double allowed = g.kd.minCoeff() * g.b.minCoeff() / (2.0 * g.a.maxCoeff() * kc);
+      if (!out.kdelta_allowed || allowed > *out.kdelta_allowed) out.kdelta_allowed = allowed;
+      break;
+    }
+  }
+  out.sufficient_rate = best_rate;
+  std::string binding =
+      "eq. (11) against the rate: eq. (11) asks kd_min b_min / a_max > 2 k_c k_delta = " +
+      number(2.0 * kc * out.kdelta) + " (k_c " + number(kc) + ", k_delta " + number(out.kdelta) +
+      "), and every candidate that keeps it (kd_min raised to " + number(kd_need) +
+      ", the filter a, b scaled by 1/256 to 8, kp by 1 to 1/4) is unstable in the linearised " + "check at " +
+      number(rate) + " Hz. ";
+  binding += best_rate ? "The rate binds: " + number(*best_rate) +
+                             " Hz would suffice (plant.publish_rate) for " + best_rate_gains + ". "
+                       : "No rate up to 1024 x this one makes such a candidate adequate. ";
+  binding += out.kdelta_allowed
+                 ? "The reference's size binds through k_delta: gains stable at " + number(rate) +
+                       " Hz meet eq. (11) only for k_delta < " + number(*out.kdelta_allowed) +
+                       ", and this reference's is " + number(out.kdelta) +
+                       " (a smaller or slower reference: reference.offset, amplitude, frequency)"
+                 : "No gains tried are stable at " + number(rate) + " Hz even without eq. (11)";
+  out.binding = binding;
+  return out;
+}
+
+}  // namespace
+
+GainSearch searchGains(const config::Scenario& s) {
+  const PaperSettings& paper = paperSettings(s);
+  if (s.controller.type == "theorem1") return searchTheorem1(s);
+  GainSearch out;
+  out.kdelta = model::referenceBound(model::Reference(s.reference));
+  if (s.controller.type != "cascaded" || paper.stages.empty()) {
+    out.binding =
+        "--suggest searches the gains of controller.type theorem1 and cascaded; this is " + s.controller.type;
+    return out;
+  }
+  // The chains: Proposition 1's constructive rules, then the rate.
+  const config::Scenario c = suggestGains(s);
+  out.linearised = checkSampledData(c);
+  out.tried.push_back("Proposition 1's constructive gains: " + out.linearised.verdict);
+  if (out.linearised.verdict == "adequate" || out.linearised.verdict == "slow") {
+    out.suggested = c;
+    return out;
+  }
+  out.sufficient_rate = out.linearised.sufficient_rate;
+  out.binding = "the rate: the constructive gains of Proposition 1 (stage gains up to " +
+                number(paperSettings(c).stages.back().kp.maxCoeff()) + ") are " + out.linearised.verdict +
+                " in the linearised check at " + number(s.plant.publish_rate) + " Hz" +
+                (out.linearised.sufficient_rate ? "; " + number(*out.linearised.sufficient_rate) +
+                                                      " Hz would suffice (plant.publish_rate)"
+                 : out.linearised.verdict == "not assessed" ? " (" + out.linearised.why + ")"
+                                                            : "; no rate up to 1024 x this one suffices");
+  return out;
 }
 
 std::string controllerYaml(const config::Scenario& s) {

@@ -17,9 +17,12 @@
 /// the proposition is rather than gains to run.
 /// The suggestion is then checked with the same conditions a run reports.
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "config/scenario.hpp"
+#include "controller/sampled_data.hpp"
 
 namespace lagrange::controller {
 
@@ -27,6 +30,43 @@ namespace lagrange::controller {
 /// @throws std::range_error when the constructive gains overflow double (m = 4
 /// typically does: stage 4's kp would be ~1e370).
 config::Scenario suggestGains(const config::Scenario& scenario);
+
+/// What `check-gains --suggest` found at the configured rate
+/// (plant.publish_rate): gains its cheap checks pass, or none and why.
+///
+/// Theorem 1 (controller.type theorem1): eq. (11) asks kd_min b_min / a_max
+/// > 2 k_c k_delta. Only the products kd_i b_i, the filter poles a_i and kp
+/// shape the loop, so the candidates keep eq. (11) with 10 % margin -- kd
+/// raised to kd_need = 1.1 * 2 k_c k_delta a_max / b_min where below it --
+/// and scale the filter (a and b together by 1, 1/2, ..., 1/256, then 2, 4,
+/// 8: a slower filter lowers the loop's high-frequency gain kd b / D(q), which
+/// is what the rate cannot follow on a light joint), then kp by 1, 1/2, 1/4.
+/// Each is linearised at the configured rate (controller::checkSampledData,
+/// the cheap check); the first ADEQUATE one closest to the configured gains
+/// is suggested, else the first SLOW one. Before all that the reference's own
+/// torque (the inverse dynamics along q_d) is held against
+/// actuator.saturation: no gains track a reference the limits cannot drive.
+/// When none passes, `binding` says which condition binds: the torque limits,
+/// or eq. (11) against the rate -- then what rate would let an eq. (11)
+/// candidate be adequate, and up to which k_delta eq. (11) holds with gains
+/// the rate allows (kd lowered from kd_need by halves until the loop is not
+/// unstable). The cascaded controller keeps the constructive rules below,
+/// linearised the same way; other controllers get no suggestion. The
+/// simulated check (wiring/sampled_simulation.hpp) is the caller's, once, on
+/// the suggestion (check-gains does it).
+struct GainSearch {
+  std::optional<config::Scenario> suggested;  ///< none: no candidate passed
+  SampledDataCheck linearised;                ///< the suggestion's linearised check (or the last candidate's)
+  std::vector<std::string> tried;             ///< one line per candidate linearised: gains and verdict
+  std::string binding;                        ///< when none: which condition binds, with the numbers
+  std::optional<double>
+      sufficient_rate;  ///< when none: a rate at which an eq. (11) candidate is adequate [Hz]
+  std::optional<double> kdelta_allowed;  ///< when none: k_delta below which eq. (11) holds with stable gains
+  double kdelta = 0.0;                   ///< the reference's k_delta
+};
+
+/// The search above. @throws std::range_error as suggestGains does (chains).
+GainSearch searchGains(const config::Scenario& scenario);
 
 /// The controller section of a scenario as YAML, to paste into a config.
 std::string controllerYaml(const config::Scenario& scenario);

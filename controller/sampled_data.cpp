@@ -470,10 +470,10 @@ std::string describe(const SampledSimulation& c) {
   std::string verdict = c.verdict;
   std::transform(verdict.begin(), verdict.end(), verdict.begin(), ::toupper);
   char head[160];
-  // "DOES NOT CONVERGE at any rate tried: ..." reads as one sentence.
+  // "UNSTABLE about the reference: ..." reads as one sentence (its why begins "from").
   std::snprintf(head, sizeof head, "sampled-data check at %g Hz%s: %s%s", c.rate,
                 c.one_period_delay ? " with the realtime wiring's one-period delay" : "", verdict.c_str(),
-                c.verdict == "does not converge" ? " " : ": ");
+                c.verdict == "unstable" && c.why.rfind("about the reference", 0) == 0 ? " " : ": ");
   std::string out = head + c.why;
   for (const SampledSimulation::Start& s : c.starts) {
     char line[320];

@@ -88,9 +88,13 @@ std::string describe(const SampledDataCheck& check);
 /// them, not a proof for all.
 struct SampledSimulation {
   /// ADEQUATE when the sampled loop converges within this factor of the fine
-  /// loop's time (or, where neither reaches the tolerance, its steady-state
-  /// error is within this factor of the fine loop's).
+  /// loop's time (and two periods); OFFSET, where neither reaches the
+  /// tolerance, when its steady-state error is within this factor of the fine
+  /// loop's (and a quarter of the tolerance).
   static constexpr double kSlack = 1.25;
+  /// Every word `verdict` takes, best first (the worst start's decides).
+  static constexpr const char* kVerdicts[] = {"adequate", "offset",   "not assessed",
+                                              "slow",     "unstable", "diverges"};
 
   /// One start: where from, and what each loop did.
   struct Start {
@@ -116,17 +120,32 @@ struct SampledSimulation {
   /// joint-angle sensor delay (the same lag, the reference a period apart).
   bool one_period_delay = false;
   std::vector<Start> starts;
-  /// "adequate", "inadequate", "does not converge" (neither the sampled nor
-  /// the fine-rate loop reaches the tolerance: said before what sampling
-  /// changes), "diverges" or "not assessed"
+  /// The first word of the verdict, the worst start's (kVerdicts, best first):
+  ///  - "adequate": the sampled loop converged within kSlack of the fine loop's
+  ///    time and two periods (where the fine loop keeps an offset: it converged);
+  ///  - "offset": neither loop reaches the tolerance and the sampled one ends
+  ///    within kSlack of the fine one's error: a steady offset sampling does
+  ///    not cause; `why` names the likely cause (what the plant has that the
+  ///    controller does not model: damping, friction, a payload, ...);
+  ///  - "not assessed": the fine loop itself was stopped, no fine rate was
+  ///    confirmed (for adequate and offset), or the loop is not in process;
+  ///  - "slow": the sampled loop converges later than the fine one, or ends
+  ///    farther off, while a start near the reference converges (stable about it);
+  ///  - "unstable": the same, but the sampled loop started near the reference
+  ///    (torque limits lifted) grows: unstable about the reference; `why` adds
+  ///    "held off only by saturation" when the limits are what keeps the
+  ///    configured loop bounded;
+  ///  - "diverges": the sampled simulation was stopped, or the loop ended
+  ///    farther from the reference than it started.
   std::string verdict;
   std::string why;         ///< one sentence behind the verdict
   double wall_time = 0.0;  ///< what the simulations took [s]
 
   bool adequate() const { return verdict == "adequate"; }
-  /// A failed check (check-gains exits 1, run --strict refuses): the loop
-  /// diverges, or reaches the tolerance at no rate tried.
-  bool fails() const { return verdict == "diverges" || verdict == "does not converge"; }
+  /// A failed check (check-gains exits 1, run --strict refuses): the sampled
+  /// loop is unstable about the reference, or diverges. "slow" and "offset"
+  /// warn only ("offset" is not sampling's doing).
+  bool fails() const { return verdict == "unstable" || verdict == "diverges"; }
 };
 
 /// What a person reads: the verdict, the times, and what it rests on.

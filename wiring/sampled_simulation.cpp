@@ -122,7 +122,40 @@ std::string seconds(double t) {
   return buf;
 }
 
-// One start's verdict and its reason.
+// "12 %" for a fraction 0.12.
+std::string percent(double fraction) {
+  return std::to_string(static_cast<int>(std::lround(fraction * 100))) + " %";
+}
+
+// What the plant has that the paper's controller does not model, by which a
+// loop keeps a steady offset at every rate: the likely cause named in an
+// "offset" verdict.
+std::string unmodelledEffects(const config::Scenario& s) {
+  const plant::JointPhysics physics = plant::jointPhysicsFor(s);
+  std::vector<std::string> causes;
+  if (physics.damping.size() > 0 && physics.damping.cwiseAbs().maxCoeff() > 0.0)
+    causes.push_back("joint damping");
+  if (physics.friction.size() > 0 && physics.friction.cwiseAbs().maxCoeff() > 0.0)
+    causes.push_back("joint friction");
+  if ((physics.rotor_damping.size() > 0 && physics.rotor_damping.cwiseAbs().maxCoeff() > 0.0) ||
+      (physics.rotor_friction.size() > 0 && physics.rotor_friction.cwiseAbs().maxCoeff() > 0.0))
+    causes.push_back("rotor damping or friction");
+  if (s.plant.payload) causes.push_back("a payload");
+  if (s.plant.model_error) causes.push_back("model error");
+  if (physics.lower.size() > 0) causes.push_back("the joints' stops");
+  if (s.actuator.saturation) causes.push_back("torque limits below what the motion needs");
+  if (causes.empty())
+    return "the law's own steady-state error on this reference (the plant has nothing it does not model)";
+  std::string out;
+  for (size_t i = 0; i < causes.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == causes.size() ? " or " : ", ") + causes[i];
+  return out + " in the plant, which the controller does not model";
+}
+
+// One start's verdict and its reason, before the probe about the reference:
+// "suspect" is a start where sampling costs something (the sampled loop
+// slower, or farther off, than the fine-rate one) -- "slow" or "unstable",
+// which the probe (probeReference) decides.
 std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, double tolerance,
                                           double period) {
   if (st.fine_status != "completed")
@@ -144,33 +177,70 @@ std::pair<std::string, std::string> judge(const SampledSimulation::Start& st, do
   const double slack = SampledSimulation::kSlack;
   if (st.fine_time) {
     if (st.sampled_time && *st.sampled_time <= slack * *st.fine_time + 2.0 * period) return {"adequate", ""};
-    return {"inadequate", "from " + st.what + " the sampled loop " +
-                              (st.sampled_time ? "converged at " + seconds(*st.sampled_time)
-                                               : std::string("did not converge within the run")) +
-                              ", the fine-rate loop at " + seconds(*st.fine_time) + " (ADEQUATE: within " +
-                              std::to_string(static_cast<int>(std::lround((slack - 1) * 100))) + " %)"};
+    std::string why = "from " + st.what + " the sampled loop ";
+    if (st.sampled_time) {
+      why += "converged at " + seconds(*st.sampled_time) + ", the fine-rate loop at " +
+             seconds(*st.fine_time) + ": " + percent(*st.sampled_time / *st.fine_time - 1.0) +
+             " later (the check allows " + percent(slack - 1.0) + " and two periods)";
+    } else {
+      char tail[160];
+      std::snprintf(tail, sizeof tail, " (%.3g rad RMS over its last second)", st.sampled_error);
+      why += "did not converge within the run" + std::string(tail) + ", the fine-rate loop converged at " +
+             seconds(*st.fine_time);
+    }
+    return {"suspect", why};
   }
   const bool as_fine = st.sampled_error <= slack * st.fine_error + 0.25 * tolerance;
-  if (!st.sampled_time) {
-    // Neither loop reaches the tolerance: that comes first, whatever
-    // sampling does (a payload a PD-type law leaves an error on, a torque
-    // limit below what the motion needs); then what sampling changes.
-    char why[320];
-    std::snprintf(why, sizeof why,
-                  "what sampling changes: the sampled loop's steady-state error, %.3g rad RMS over the last "
-                  "second, is %s the fine-rate loop's %.3g rad",
-                  st.sampled_error, as_fine ? "as small as (within 25 % of)" : "more than 25 % above",
-                  st.fine_error);
-    return {"does not converge", why};
+  if (as_fine) {
+    if (st.sampled_time) return {"adequate", ""};
+    // Neither loop reaches the tolerance, and the sampled one ends where the
+    // fine one does: an offset sampling does not cause.
+    char why[256];
+    std::snprintf(
+        why, sizeof why,
+        "from %s neither the sampled loop (%.3g rad RMS over the last second) nor the fine-rate loop "
+        "(%.3g rad) reached the tolerance",
+        st.what.c_str(), st.sampled_error, st.fine_error);
+    return {"offset", why};
   }
-  if (as_fine) return {"adequate", ""};
-  char why[256];
+  char why[320];
   std::snprintf(
       why, sizeof why,
-      "from %s the fine-rate loop did not reach the tolerance, and the sampled loop's steady-state error "
-      "(%.3g rad RMS over the last second) is more than %.0f %% above the fine-rate loop's (%.3g rad)",
-      st.what.c_str(), st.sampled_error, (slack - 1) * 100, st.fine_error);
-  return {"inadequate", why};
+      "from %s the sampled loop ended %.3g rad off (RMS over the last second), more than %s above the "
+      "fine-rate loop's %.3g rad",
+      st.what.c_str(), st.sampled_error, percent(slack - 1.0).c_str(), st.fine_error);
+  return {"suspect", why};
+}
+
+// The probe that tells "unstable about the reference" from "slow": the
+// sampled loop as configured but without torque limits, started close to
+// the reference (kProbeTolerances x the tolerance, or the starts' error if
+// smaller, in a seeded direction, at the reference's rate). A loop stable
+// about the reference ends near it; an unstable one grows (the limits lifted
+// so that nothing but the loop itself bounds it).
+constexpr double kProbeTolerances = 10.0;
+
+config::Scenario probeScenario(const config::Scenario& s, double offset) {
+  const model::Reference reference(s.reference);
+  const model::ReferenceSample d = reference.evaluate(0.0, 1);
+  util::SplitMix64Stream draws(2);
+  Eigen::VectorXd direction(s.dof());
+  for (int i = 0; i < s.dof(); ++i) direction(i) = draws.gaussian();
+  config::InitialState start = s.initial_state;
+  start.q = d.q() + offset * direction.normalized();
+  start.qdot = d.qd();
+  if (start.motor_q.size() == s.dof()) start.motor_q += start.q - s.initial_state.q;
+  if (start.motor_qdot.size() == s.dof()) start.motor_qdot = start.qdot;
+  config::Scenario out = sampledScenario(s, start);
+  out.actuator.saturation.reset();
+  return out;
+}
+
+// Whether the probe grew: stopped, or ended farther off than it started and
+// well above where the fine-rate loop ends.
+bool probeGrew(const Loop& probe, double offset, double fine_error, double tolerance) {
+  return probe.status != "completed" ||
+         (probe.error > 2.0 * offset && probe.error > 10.0 * std::max(fine_error, tolerance));
 }
 
 // Runs each scenario's loop in a child process of its own, up to `processes`
@@ -335,50 +405,104 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
   std::vector<Loop> fine_loops = {fine_initial};
   fine_loops.insert(fine_loops.end(), loops.begin() + static_cast<long>(simulated_sampled), loops.end());
 
-  const std::vector<std::string> order = {"adequate", "not assessed", "inadequate", "does not converge",
-                                          "diverges"};
-  auto rank = [&](const std::string& v) { return std::find(order.begin(), order.end(), v) - order.begin(); };
-  out.verdict = "adequate";
+  const double period = 1.0 / out.rate;
+  std::vector<std::string> whys;
   for (size_t i = 0; i < starts.size(); ++i) {
     SampledSimulation::Start st{
         starts[i].what,     sampled_loops[i].status, fine_loops[i].status, sampled_loops[i].time,
         fine_loops[i].time, sampled_loops[i].error,  fine_loops[i].error,  "",
         starts[i].error};
-    const auto [verdict, why] = judge(st, s.metrics.tolerance, 1.0 / out.rate);
+    const auto [verdict, why] = judge(st, s.metrics.tolerance, period);
     st.verdict = verdict;
-    if (rank(verdict) > rank(out.verdict)) {
-      out.verdict = verdict;
-      out.why = why;
-    }
+    whys.push_back(why);
     out.starts.push_back(st);
   }
-  if (out.verdict == "adequate")
-    out.why =
-        std::string(starts.size() > 1 ? "from every start the sampled loop" : "the sampled loop") +
-        " converged within " +
-        std::to_string(static_cast<int>(std::lround((SampledSimulation::kSlack - 1) * 100))) +
-        " % of the fine-rate loop's time (or, where the fine-rate loop did not reach the tolerance, its "
-        "steady-state error was within as much)";
-  if (out.verdict == "does not converge") {
-    const auto stuck =
-        std::count_if(out.starts.begin(), out.starts.end(),
-                      [](const SampledSimulation::Start& st) { return st.verdict == "does not converge"; });
+
+  // Where sampling costs something, is the sampled loop unstable about the
+  // reference, or only slower? One more simulation decides, for every start.
+  const bool suspect =
+      std::any_of(out.starts.begin(), out.starts.end(),
+                  [](const SampledSimulation::Start& st) { return st.verdict == "suspect"; });
+  std::string probe_why;
+  std::optional<Loop> probe;
+  if (suspect) {
+    const double offset = starts[0].error > 0.0 ? std::min(kProbeTolerances * out.tolerance, starts[0].error)
+                                                : kProbeTolerances * out.tolerance;
+    probe = simulateAll({probeScenario(s, offset)}, processes, stop_requested).front();
+    const bool grew = probeGrew(*probe, offset, fine_initial.error, out.tolerance);
+    char buf[512];
+    char ended[96];
+    if (probe->status != "completed")
+      std::snprintf(ended, sizeof ended, "was stopped (it diverged)");
+    else
+      std::snprintf(ended, sizeof ended, "ended %.3g rad off (RMS over the last second)", probe->error);
+    std::snprintf(buf, sizeof buf, "from %.3g rad off the reference the sampled loop%s %s%s", offset,
+                  s.actuator.saturation ? " without its torque limits" : "", ended,
+                  grew ? "" : ": stable about the reference");
+    probe_why = buf;
+    for (SampledSimulation::Start& st : out.starts)
+      if (st.verdict == "suspect") st.verdict = grew ? "unstable" : "slow";
+  }
+
+  // The worst start decides.
+  const std::vector<std::string> order = {"adequate", "offset",   "not assessed",
+                                          "slow",     "unstable", "diverges"};
+  auto rank = [&](const std::string& v) { return std::find(order.begin(), order.end(), v) - order.begin(); };
+  out.verdict = "adequate";
+  size_t worst = 0;
+  for (size_t i = 0; i < out.starts.size(); ++i)
+    if (rank(out.starts[i].verdict) > rank(out.verdict)) {
+      out.verdict = out.starts[i].verdict;
+      worst = i;
+    }
+  out.why = whys[worst];
+  const auto count = [&](const std::string& verdict) {
+    const auto n = std::count_if(out.starts.begin(), out.starts.end(),
+                                 [&](const SampledSimulation::Start& st) { return st.verdict == verdict; });
+    return n == static_cast<long>(out.starts.size())
+               ? std::string(n > 1 ? "every start" : "its start")
+               : std::to_string(n) + " of " + std::to_string(out.starts.size()) + " starts";
+  };
+  if (out.verdict == "adequate") {
+    out.why = std::string(starts.size() > 1 ? "from every start the sampled loop" : "the sampled loop") +
+              " converged within " + percent(SampledSimulation::kSlack - 1.0) +
+              " of the fine-rate loop's time and two periods (or, where the fine-rate loop did not reach the "
+              "tolerance, ended within as much of its error)";
+  } else if (out.verdict == "offset") {
     char head[320];
     std::snprintf(
         head, sizeof head,
-        "at any rate tried: from %s neither the sampled loop at %g Hz nor the fine-rate loop at %g Hz "
-        "reached the tolerance (%g rad) within the run; ",
-        stuck == static_cast<long>(out.starts.size())
-            ? (out.starts.size() > 1 ? "every start" : "its start")
-            : (std::to_string(stuck) + " of " + std::to_string(out.starts.size()) + " starts").c_str(),
-        out.rate, fine, out.tolerance);
-    out.why = head + out.why;
+        "a steady offset the fine-rate loop at %g Hz shares, not sampling's doing: from %s neither "
+        "loop reached the tolerance (%g rad), and the sampled loop ended within %s of the fine-rate "
+        "loop's error; ",
+        fine, count("offset").c_str(), out.tolerance, percent(SampledSimulation::kSlack - 1.0).c_str());
+    out.why = head + out.why + "; likely cause: " + unmodelledEffects(s);
+  } else if (out.verdict == "slow") {
+    out.why = "slower than the fine-rate loop at " + std::to_string(static_cast<long long>(fine)) +
+              " Hz: " + out.why + "; " + probe_why;
+  } else if (out.verdict == "unstable") {
+    const SampledSimulation::Start& w = out.starts[worst];
+    char fine_end[96];
+    std::snprintf(fine_end, sizeof fine_end,
+                  ", where the fine-rate loop from the initial state ended %.3g rad off", fine_initial.error);
+    std::string head = "about the reference: " + probe_why + fine_end;
+    // Only saturation holds it off when, without the limits, the loop runs
+    // away (stopped, or ten times farther off than the limited loop ends):
+    // a loop that a nonlinearity of its own bounds without them is not.
+    if (s.actuator.saturation && w.sampled_status == "completed" &&
+        (probe->status != "completed" || probe->error > 10.0 * w.sampled_error)) {
+      char held[256];
+      std::snprintf(held, sizeof held,
+                    "; held off only by saturation: with the torque limits (actuator.saturation) the loop "
+                    "stays bounded, %.3g rad off from %s",
+                    w.sampled_error, w.what.c_str());
+      head += held;
+    }
+    out.why = head + "; " + out.why;
   }
-  if (!out.confirmed_at && out.verdict == "does not converge") {
-    out.why += "; no fine rate up to " + std::to_string(max_refinement) +
-               " x the configured one agreed with the next finer";
-  } else if (!out.confirmed_at) {
-    if (out.verdict == "adequate") out.verdict = "not assessed";
+  if (!out.confirmed_at) {
+    // adequate and offset compare with the fine-rate loop, which then stands for nothing.
+    if (out.verdict == "adequate" || out.verdict == "offset") out.verdict = "not assessed";
     out.why = "no fine rate up to " + std::to_string(max_refinement) +
               " x the configured one agreed with the next finer, so no loop stands for continuous time; " +
               out.why;

@@ -21,14 +21,20 @@
 /// within 5 % and two periods, or, where neither converges, steady-state
 /// errors within 5 %); else F doubles, up to 64 x.
 ///
-/// A start is ADEQUATE when the sampled loop converges by kSlack x the fine
-/// loop's time plus two periods; where the fine loop does not reach the
-/// tolerance (a payload, model error, friction), when the sampled loop's
-/// steady-state error (RMS over the last second) is within kSlack x the fine
-/// one's plus a quarter of the tolerance. It DIVERGES when the sampled
-/// simulation is stopped (a failing simulation, plant.max_rate); otherwise
-/// it is INADEQUATE. The overall verdict is the worst start's. A controller
-/// that does not run in process (external) is "not assessed".
+/// Each start's word (controller::SampledSimulation::verdict lists them):
+/// ADEQUATE when the sampled loop converges by kSlack x the fine loop's time
+/// plus two periods; OFFSET when neither loop reaches the tolerance and the
+/// sampled loop's steady-state error (RMS over the last second) is within
+/// kSlack x the fine one's plus a quarter of the tolerance (not sampling's
+/// doing; the likely cause named from the plant's keys); DIVERGES when the
+/// sampled simulation is stopped or ends farther off than it started. Where
+/// sampling costs something (slower, or a larger error, than the fine loop),
+/// one more simulation decides between SLOW and UNSTABLE: the sampled loop
+/// without torque limits from 10 x the tolerance off the reference. If it
+/// grows, the loop is unstable about the reference (and, with
+/// actuator.saturation and the configured loop bounded, held off only by
+/// saturation); else it is slow. The overall verdict is the worst start's. A
+/// controller that does not run in process (external) is "not assessed".
 
 #include <optional>
 #include <string>

@@ -27,15 +27,22 @@ Subcommand addCheckGainsCommand(CLI::App& app) {
       "eta and eq. 632 for m = 1; Theorem 3 and Proposition 1 "
       "for m >= 2) and whether the sampled implementation at the configured rate is adequate "
       "(the loop simulated in process from the initial state and seeded states against the same loop "
-      "at a fine rate, and linearised near the reference); exit 1 if a condition is violated, the "
-      "sampled loop diverges in simulation or converges at no rate tried, or is unstable near the "
-      "reference",
+      "at a fine rate, and linearised near the reference). The simulated verdict's first word: ADEQUATE, "
+      "OFFSET (a steady offset the fine-rate loop shares: not sampling's doing), SLOW, UNSTABLE about the "
+      "reference (maybe held off only by saturation), DIVERGES, NOT ASSESSED; the linearised one: ADEQUATE, "
+      "SLOW, UNSTABLE, NOT ASSESSED (docs/sampled_data.md). Exit codes: 0 the conditions hold and neither "
+      "check says UNSTABLE or DIVERGES (with --suggest: gains were found that pass all of them at the "
+      "configured rate, printed as YAML); 1 a condition is violated, the sampled loop is UNSTABLE or "
+      "DIVERGES "
+      "(with --suggest: no gains found that pass, and the binding condition named -- the torque limits, the "
+      "rate, or the reference's size through k_delta); 2 a bad scenario or option",
       {"lagrange check-gains configs/rigid_2dof.yaml"});
   cmd->add_option("config", o->config_path, "Scenario YAML file")->required();
   cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
   cmd->add_flag("--suggest", o->suggest,
-                "Also propose gains that satisfy the conditions (eq. 11; lego/632a, 794, 795 for chains) "
-                "and check them; exit 0 if the suggestion passes");
+                "Propose gains that pass every check at the configured rate: eq. 11 (lego/632a, 794, 795 for "
+                "chains), the linearised check, the torque limits and the simulated check; or say that none "
+                "was found and which condition binds (exit 1). Simulates the suggestion only");
   cmd->add_flag("--no-simulation", o->no_simulation,
                 "Skip the sampled loop's simulation (seconds; tens for a flexible URDF arm): the theory's "
                 "conditions and the linearised check only");
