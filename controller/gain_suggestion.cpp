@@ -231,9 +231,10 @@ GainSearch searchTheorem1(const config::Scenario& in) {
   std::string binding =
       "eq. (11) against the rate: eq. (11) asks kd_min b_min / a_max > 2 k_c k_delta = " +
       number(2.0 * kc * out.kdelta) + " (k_c " + number(kc) + ", k_delta " + number(out.kdelta) +
-      "), and every candidate that keeps it (kd_min raised to " + number(kd_need) +
-      ", the filter a, b scaled by 1/256 to 8, kp by 1 to 1/4) is unstable in the linearised " + "check at " +
-      number(rate) + " Hz. ";
+      "), and no candidate that keeps it (kd at least " + number(kd_need) +
+      " on every joint, the filter a, b scaled by 1/256 to 8, kp by 1 to 1/4; " +
+      std::to_string(out.tried.size()) + " tried) is adequate or slow in the linearised check at " +
+      number(rate) + " Hz: each is unstable, or too slow for the check to assess. ";
   binding += best_rate ? "The rate binds: " + number(*best_rate) +
                              " Hz would suffice (plant.publish_rate) for " + best_rate_gains + ". "
                        : "No rate up to 1024 x this one makes such a candidate adequate. ";
