@@ -258,15 +258,16 @@ bool takeResume() {
 void warn(const std::string& line) { std::cerr << "plant: " << line << std::endl; }
 
 /// Percentiles of non-negative durations in fixed memory (1 % buckets), as the Python module's.
+/// NaN while empty: loop_stats_t says "not measured" so, never 0 s.
 class Lateness {
  public:
   void add(double s) {
     ++counts_[static_cast<int>(std::log1p(std::max(0.0, s) * 1e7) / kStep)];
     ++n_;
-    max_ = std::max(max_, s);
+    max_ = n_ == 1 ? s : std::max(max_, s);
   }
   double percentile(double p) const {
-    if (n_ == 0) return 0.0;
+    if (n_ == 0) return std::numeric_limits<double>::quiet_NaN();
     const double want = p * static_cast<double>(n_);
     int64_t seen = 0;
     for (const auto& [bucket, count] : counts_) {
@@ -276,13 +277,23 @@ class Lateness {
     return max_;
   }
   double max() const { return max_; }
+  int64_t count() const { return n_; }
 
  private:
   static constexpr double kStep = 0.009950330853168083;  // log(1.01)
   std::map<int, int64_t> counts_;
   int64_t n_ = 0;
-  double max_ = 0.0;
+  double max_ = std::numeric_limits<double>::quiet_NaN();
 };
+
+// A realtime period's reading of what arrived: kDrainLate datagrams even when
+// the loop is behind schedule (one ACTUATOR_STATE a period and a few STATUS
+// fit many times over), up to kDrainMax while the period lasts. The Python
+// module's DRAIN_LATE and DRAIN_MAX.
+constexpr int kDrainLate = 64;
+constexpr int kDrainMax = 1000;
+// Publication times of the recent positions, for the latency (a ring, as the built-in plant's).
+constexpr int64_t kLatencyRing = 4096;
 
 // "fifo:50 cpus 1,3" or "other": what the loop ran under, as loop_stats_t says it.
 std::string schedulerNow() {
@@ -407,17 +418,29 @@ class Plant {
       ++rejected_["non-finite torque (NaN or Inf) from " + a.header.publisher];
       return;
     }
+    const bool newest = !answers_.newestTick() || a.header.tick > *answers_.newestTick();
     answers_.take(a.header.tick, tau, a.header.publish_utime);
+    // Realtime's end-to-end latency, as the built-in plant measures it: from
+    // publishing a position to receiving the actuator state of its tick
+    // (LCM's receive time, wall clock, against the run's clock).
+    if (newest && a.header.tick >= 0) {
+      const auto& [tick, utime] = published_[static_cast<size_t>(a.header.tick % kLatencyRing)];
+      if (tick == a.header.tick)
+        latencies_.add(static_cast<double>(std::max<int64_t>(0, rbuf->recv_utime - utime)) * 1e-6);
+    }
   }
 
   void handle(int timeout_ms) { bus_.handle(timeout_ms); }
 
-  // What has arrived, at most 1000 datagrams and never past `until_ns`
-  // (CLOCK_MONOTONIC): a flood of forged ones, each refused by its MAC, must
-  // not hold the loop (the built-in node's bound, transport/lcm_node.hpp).
+  // What has arrived, without waiting: kDrainLate datagrams whatever the
+  // time -- a loop behind schedule must still read the actuator's newest
+  // torque, or the torque goes stale while it sits on the socket --, then more
+  // while before `until_ns` (CLOCK_MONOTONIC), at most kDrainMax: a flood of
+  // forged ones, each refused by its MAC, must not hold the loop (the built-in
+  // node's bound, transport/lcm_node.hpp).
   void drain(int64_t until_ns) {
-    for (int i = 0; i < 1000; ++i)
-      if (monotonicNs() >= until_ns || bus_.handle(0) <= 0) return;
+    for (int handled = 0; handled < kDrainMax; ++handled)
+      if ((handled >= kDrainLate && monotonicNs() >= until_ns) || bus_.handle(0) <= 0) return;
   }
 
   // -- the arm ---------------------------------------------------------
@@ -434,7 +457,10 @@ class Plant {
     auto [u, clipped] = options_.limits ? options_.limits->clip(tau) : std::make_pair(tau, false);
     if (clipped) ++clipped_;
     const std::string what = format("step() at t = %.6g s", t);
-    take(callUser([&] { return step_(t, u, period_); }, what), what);
+    const int64_t began = monotonicNs();
+    PlantState state = callUser([&] { return step_(t, u, period_); }, what);
+    step_ns_ = monotonicNs() - began;  // the arm's share of the period, apart from ours
+    take(state, what);
     return u;
   }
 
@@ -472,6 +498,9 @@ class Plant {
 
   void send(Sample& s, bool truth = true) {
     bus_.publish("PLANT_POSITION", s.position, s.k, s.t);
+    auto& sent = published_[static_cast<size_t>(s.k % kLatencyRing)];
+    if (sent.first != s.k)
+      sent = {s.k, s.position.header.publish_utime};  // the first copy: what was answered
     if (truth) bus_.publish("PLANT_TRUTH", s.truth, s.k, s.t);
   }
 
@@ -551,22 +580,11 @@ class Plant {
     return true;
   }
 
-  // The arm's time does not wait: a bridge brakes (docs/hardware.md).
-  void lockstepWatchdog(int64_t k, double waited) {
-    warn(format("watchdog: no answer to tick %lld for %d periods (%.3f s)%s", static_cast<long long>(k),
-                *options_.watchdog_periods, waited, options_.brake ? "; braking" : ""));
-    watchdogBrake();
-  }
-
   // Until the actuator answers tick k, its position re-sent every
   // retransmit_timeout; false: stopped.
   bool awaitAnswer(int64_t k, Sample& s, double published) {
     double deadline = published + (k == 0 ? startup_ : scenario_.stall_timeout);
     double resend = published + scenario_.retransmit_timeout;
-    const std::optional<double> watchdog = options_.watchdog_periods
-                                               ? std::optional<double>(*options_.watchdog_periods * period_)
-                                               : std::nullopt;
-    bool braked = false;
     while (!answers_.answered()) {
       if (stopRequested()) return false;
       const double now = seconds();
@@ -574,10 +592,6 @@ class Plant {
       if (now > deadline)
         throw stalled(format("no ACTUATOR_STATE of tick %lld", static_cast<long long>(k)), k,
                       now - published);
-      if (watchdog && !braked && k > 0 && now - published > *watchdog) {
-        braked = true;
-        lockstepWatchdog(k, now - published);
-      }
       handle(5);
       if (!answers_.answered() && seconds() >= resend) {
         send(s, false);
@@ -604,6 +618,14 @@ class Plant {
 
   int serveLockstep() {
     status("ready", -1);
+    // Waiting is lockstep's protocol: an answer late by scheduling is no
+    // silence of the controller's, and a brake there would be one the summary
+    // never counts. lockstep.stall_timeout ends a run that stalls.
+    if (options_.watchdog_periods)
+      warn(
+          format("watchdog_periods=%d applies in realtime only; in lockstep the plant waits for each answer "
+                 "(lockstep.stall_timeout %g s ends a stalled run)",
+                 *options_.watchdog_periods, scenario_.stall_timeout));
     std::vector<double> tau(static_cast<size_t>(joints_), 0.0);
     TorqueSource source = TorqueSource::kZero;
     int64_t input_tick = -1;
@@ -696,6 +718,9 @@ class Plant {
     st.torque_held = choice_.held();
     st.torque_zeroed = choice_.zeroed();
     st.stale_inputs = choice_.held() + choice_.zeroed();
+    st.latency_p50 = latencies_.percentile(0.5);
+    st.latency_p99 = latencies_.percentile(0.99);
+    st.latency_max = latencies_.max();
     return st;
   }
 
@@ -739,6 +764,17 @@ class Plant {
     c.ages.add(static_cast<double>(std::max<int64_t>(0, bus_.utime() - answers_.newestUtime())) * 1e-6);
   }
 
+  // plant.log's line on what a period cost: whether a rate can be held is
+  // step()'s time plus the helper's (bench/python_helper_cost.sh reads it).
+  void sayCost() const {
+    if (own_cost_.count() == 0) return;
+    warn(
+        format("per period: this helper %.3f ms (median; 99 %%: %.3f ms), step() %.3f ms (median; 99 %%: "
+               "%.3f ms); the period %.3f ms",
+               own_cost_.percentile(0.5) * 1e3, own_cost_.percentile(0.99) * 1e3,
+               step_cost_.percentile(0.5) * 1e3, step_cost_.percentile(0.99) * 1e3, period_ * 1e3));
+  }
+
   int serveRealtime() {
     status("ready", -1);
     if (!awaitPeers()) {
@@ -755,6 +791,7 @@ class Plant {
     for (int64_t k = 0; k <= last_tick_; ++k) {
       if (stopRequested()) break;
       waitForTick(clock, k);
+      const int64_t woke = monotonicNs();
       Sample s = sample(k, tau, source, input_tick);
       send(s);
       ++clock.sent;
@@ -772,8 +809,11 @@ class Plant {
         status("running", k, "", loopStats(clock));
         next_status += 500000000LL;
       }
+      step_cost_.add(static_cast<double>(step_ns_) * 1e-9);
+      own_cost_.add(static_cast<double>(monotonicNs() - woke - step_ns_) * 1e-9);
     }
     const lagrange::loop_stats_t loop = loopStats(clock);
+    sayCost();
     if (stopRequested()) {
       status("interrupted", clock.used_tick, "", loop);  // as the built-in plant: the torque's tick
       return 0;
@@ -808,7 +848,13 @@ class Plant {
   std::map<std::string, int64_t> rejected_;  // why -> datagrams dropped
   std::map<int64_t, Sample> unconfirmed_;    // lockstep: until the logger confirms them
   int64_t retransmits_ = 0, log_resends_ = 0, clipped_ = 0;
-  bool finished_ = false;  // STATUS "finished" sent: the one end without brake()
+  // (tick, publish_utime) of each tick's first position; tick -1: none yet.
+  std::vector<std::pair<int64_t, int64_t>> published_ =
+      std::vector<std::pair<int64_t, int64_t>>(kLatencyRing, {-1, 0});
+  Lateness latencies_;             // realtime: position published -> its actuator state received [s]
+  int64_t step_ns_ = 0;            // how long the last step() took
+  Lateness own_cost_, step_cost_;  // realtime: a period's time besides step(), and step()'s [s]
+  bool finished_ = false;          // STATUS "finished" sent: the one end without brake()
 };
 
 }  // namespace

@@ -159,12 +159,13 @@ using PlantStep = std::function<PlantState(double t, const std::vector<double>& 
 
 struct PlantOptions {
   std::optional<PlantLimits> limits;
-  /// Lockstep: no answer for this many periods warns (and brakes); realtime:
-  /// an answer older than this is replaced by zero torque (and brakes).
-  /// Whole periods >= 1; none: off.
+  /// Realtime: an answer older than this many periods is replaced by zero
+  /// torque (and brakes, once per silence). Off in lockstep, where waiting for
+  /// each answer is the protocol (lockstep.stall_timeout ends a stalled run);
+  /// said once in plant.log. Whole periods >= 1; none: off.
   std::optional<int> watchdog_periods;
   /// The bridge's own way to make the arm safe (zero torque, the brakes):
-  /// called when the watchdog trips, and once on every end but "finished" --
+  /// called when the realtime watchdog trips, and once on every end but "finished" --
   /// a crossed limit, a stall, an error of step() or initial(), a stop by
   /// SIGTERM or SIGINT --, "plant: calling brake()" on stderr first.
   std::function<void()> brake;
