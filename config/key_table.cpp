@@ -452,13 +452,16 @@ std::vector<KeyInfo> judgementKeys() {
           {0.0, 1000.0, false, "", ""}),
       row("supervision.slow_answer", "number > 0", "`1`",
           "wall time [s] past which an answer is slow: the controller's CONTROL_COMMAND to the plant's "
-          "PLANT_POSITION of the same tick, the actuator's ACTUATOR_STATE to that command, timed by the "
+          "PLANT_POSITION of the same tick, the actuator's ACTUATOR_STATE to that command, and in lockstep "
+          "the plant's (built-in or from outside) next PLANT_POSITION to that state, timed by the "
           "logger as it hears them (LCM modes; a program from outside reports nothing itself). A wait "
           "past it is said on the terminal while it lasts (until the plant's last tick), e.g. `lagrange run: "
           "the controller (python3 "
           "my_controller.py) has not answered tick 510 for 1.0 s (supervision.slow_answer = 1 s)`, "
           "then at most every 10 s; `summary.json` `answers` has each one's median and worst answer "
-          "and how many were slow. Only said: `lockstep.stall_timeout` is what stops a run.",
+          "and how many were slow, and the run's verdict warns of them. Only said: "
+          "`lockstep.stall_timeout` is what stops a run (and a plant not heard for 4 x "
+          "`lockstep.stall_timeout` is named by the logger, which then stops it).",
           {0.001, 86400.0, false, "s",
            "below a millisecond every answer would be slow; a day is past any run's pause"}),
   };

@@ -292,8 +292,9 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
       };
       stale[name] = {{"missing_inputs", l.missing_inputs}, {"stale_inputs", l.stale_inputs}};
       if (name == "plant") {
-        j["timing"]["latency"] = {
-            {"p50", measured(l.latency_p50)}, {"p99", measured(l.latency_p99)}, {"max", measured(l.latency_max)}};
+        j["timing"]["latency"] = {{"p50", measured(l.latency_p50)},
+                                  {"p99", measured(l.latency_p99)},
+                                  {"max", measured(l.latency_max)}};
         stale[name]["torque_held"] = l.torque_held;
         stale[name]["torque_zeroed"] = l.torque_zeroed;
       }

@@ -31,8 +31,8 @@ struct VelocityCrossing {
 
 struct TrackingSummary {
   double tolerance = 0.0;
-  double final_error = 0.0;  ///< ||q~(T)|| [rad]
-  double max_error = 0.0;    ///< max_t ||q~(t)|| [rad]
+  double final_error = 0.0;     ///< ||q~(T)|| [rad]
+  double max_error = 0.0;       ///< max_t ||q~(t)|| [rad]
   double max_error_time = 0.0;  ///< the first sample time at which max_error was reached [s]
   double initial_error = 0.0;   ///< ||q~|| of the first sample [rad]
   double first_time = 0.0;      ///< time of the first sample [s]

@@ -1,10 +1,10 @@
 #include "logger/verdict.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 namespace lagrange::logger {
 
@@ -142,12 +142,13 @@ class Verdict {
         enough.is_number() ? fmt::format("; {} Hz would suffice: plant.publish_rate", g(enough.get<double>()))
                            : std::string();
     if (word == "unstable")
-      found("unstable_at_rate", fmt::format("the sampled loop at {} Hz is unstable (linearised check{})",
-                                            g(rate), suffice));
+      found("unstable_at_rate",
+            fmt::format("the sampled loop at {} Hz is unstable (linearised check{})", g(rate), suffice));
     else if (word == "slow")
-      found("slow_at_rate", fmt::format("the sampled loop at {} Hz converges slower than the continuous one "
-                                        "(linearised check{})",
-                                        g(rate), suffice),
+      found("slow_at_rate",
+            fmt::format("the sampled loop at {} Hz converges slower than the continuous one "
+                        "(linearised check{})",
+                        g(rate), suffice),
             true);
     const json& sim = at(s_, "/gains/sampled_simulation");
     const std::string simulated = text(at(sim, "/verdict"));
@@ -166,15 +167,17 @@ class Verdict {
         const bool fault = on_time < limits_.on_time_fraction || run >= limits_.longest_miss_run;
         if (fault || misses > 0)
           found("timing",
-                fmt::format("the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods)",
-                            name, percent(on_time), misses, run),
+                fmt::format(
+                    "the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods)",
+                    name, percent(on_time), misses, run),
                 !fault);
       }
     const json& stale = at(s_, "/messages/stale/plant");
     const long long held = count(at(stale, "/torque_held")), zeroed = count(at(stale, "/torque_zeroed"));
     const long long cycles = count(at(s_, "/timing/loops/plant/cycles"));
     if (held + zeroed > 0) {
-      const double share = cycles > 0 ? static_cast<double>(held + zeroed) / static_cast<double>(cycles) : 1.0;
+      const double share =
+          cycles > 0 ? static_cast<double>(held + zeroed) / static_cast<double>(cycles) : 1.0;
       found("stale_torque",
             fmt::format("the plant had no fresh torque on {} periods ({} of {}): held on {}, zeroed on {}",
                         held + zeroed, percent(share), cycles, held, zeroed),
@@ -185,9 +188,10 @@ class Verdict {
   void saturated() {
     const double share = number(at(s_, "/torque/saturated_fraction"), 0.0);
     if (share > 0.0)
-      found("saturated",
-            fmt::format("the torque was at its limit (actuator.saturation) on {} of the ticks", percent(share)),
-            met_);
+      found(
+          "saturated",
+          fmt::format("the torque was at its limit (actuator.saturation) on {} of the ticks", percent(share)),
+          met_);
   }
 
   void condition() {
@@ -209,11 +213,11 @@ class Verdict {
       reasons_.push_back({"late", fmt::format("converged at t = {} s, after the deadline ({} s)",
                                               g(when.get<double>()), g(deadline))});
     else
-      reasons_.push_back({"not_converged", fmt::format("||q~|| did not stay below {} rad (final {} rad, the last "
-                                                       "second's RMS {} rad)",
-                                                       g(number(at(t, "/tolerance"))),
-                                                       g(number(at(t, "/final_error"))),
-                                                       g(number(at(t, "/rms_last_second"))))});
+      reasons_.push_back(
+          {"not_converged", fmt::format("||q~|| did not stay below {} rad (final {} rad, the last "
+                                        "second's RMS {} rad)",
+                                        g(number(at(t, "/tolerance"))), g(number(at(t, "/final_error"))),
+                                        g(number(at(t, "/rms_last_second"))))});
   }
 
   void otherWarnings() {
@@ -223,10 +227,11 @@ class Verdict {
         const long long slow = a.is_object() ? count(at(a, "/slow")) : 0;
         if (slow > 0)
           warnings_.push_back(
-              {"slow_answers", fmt::format("the {} ({}) answered {} ticks slower than supervision.slow_answer "
-                                           "(the worst {} s, at tick {})",
-                                           name, text(at(a, "/program")), slow, g(number(at(a, "/worst"))),
-                                           count(at(a, "/worst_tick")))});
+              {"slow_answers",
+               fmt::format("the {} ({}) answered {} tick(s) slower than supervision.slow_answer "
+                           "(the worst {} s, at tick {})",
+                           name, text(at(a, "/program")), slow, g(number(at(a, "/worst"))),
+                           count(at(a, "/worst_tick")))});
       }
     const json& missing = at(s_, "/log/missing_ticks");
     if (missing.is_object())
@@ -237,9 +242,10 @@ class Verdict {
                                                             channel, count(n))});
     const json& crossed = at(s_, "/limits/velocity");
     if (crossed.is_array() && !crossed.empty())
-      warnings_.push_back({"velocity_limit", fmt::format("{} joint(s) went past the URDF's velocity limit "
-                                                         "(limits.velocity): a real drive would fault or clip",
-                                                         crossed.size())});
+      warnings_.push_back(
+          {"velocity_limit", fmt::format("{} joint(s) went past the URDF's velocity limit "
+                                         "(limits.velocity): a real drive would fault or clip",
+                                         crossed.size())});
   }
 };
 

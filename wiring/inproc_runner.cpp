@@ -51,7 +51,7 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
   actuator::IntegratorChain act(s.dof(), s.actuator.order, s.actuator.saturation, s.actuator.initial_state);
   logger::TrackingMetrics metrics(model::Reference(s.reference), s.metrics.tolerance, s.metrics.xi_tolerance,
                                   s.tickPeriod());
-  logger::watchVelocityLimits(metrics, s);
+  logger::watchLimits(metrics, s);
 
   // The lockstep order, tick by tick: plant sample -> controller -> actuator
   // -> physics. Every value passes through the same message structs as over

@@ -54,7 +54,8 @@ TEST(RunVerdict, ADivergingChainEndsSayingNotMetTheDivergenceAndTheRate) {
   const std::string first = r.output.substr(at, r.output.find('\n', at) - at);
   EXPECT_NE(first.find("tracking NOT met: "), std::string::npos) << first;
   EXPECT_NE(first.find("diverged"), std::string::npos) << first;
-  EXPECT_NE(first.find("the sampled loop at 200 Hz is unstable (linearised check;"), std::string::npos) << first;
+  EXPECT_NE(first.find("the sampled loop at 200 Hz is unstable (linearised check;"), std::string::npos)
+      << first;
   EXPECT_NE(first.find("would suffice: plant.publish_rate"), std::string::npos) << first;
   EXPECT_NE(r.output.find("(continuous time; margin"), std::string::npos) << r.output;
   // --check met fails it, naming the reasons.
@@ -78,12 +79,12 @@ TEST(RunVerdict, APlantSlowerThanSlowAnswerIsNamedWhileItLastsAndCounted) {
   const std::string out = freshDir("verdict-slow-plant-run");
   const RunResult r = runScenario(config, out, "--set duration=0.2 --set metrics.convergence_deadline=0.2");
   EXPECT_NE(r.output.find("the plant (python3 -S "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("has not answered tick 38"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("has not answered tick 39"), std::string::npos) << r.output;
   const nlohmann::json s = readSummary(out);
   const nlohmann::json& plant = s["answers"]["plant"];
   EXPECT_EQ(plant["slow"], 1) << s["answers"].dump(2);
   EXPECT_GE(plant["worst"].get<double>(), 1.5);
-  EXPECT_EQ(plant["worst_tick"], 38);
+  EXPECT_EQ(plant["worst_tick"], 39);
   bool warned = false;
   for (const auto& w : s["verdict"]["warnings"]) warned = warned || w["kind"] == "slow_answers";
   EXPECT_TRUE(warned) << s["verdict"].dump(2);

@@ -32,11 +32,12 @@ nlohmann::json summaryOf(bool met, nlohmann::json convergence_time) {
 
 TEST(RunLogic, TheResultBlockSaysWhatTheSummarySays) {
   const std::string met = resultText(summaryOf(true, 0.25));
-  EXPECT_NE(met.find("scenario rigid_2dof: completed\n"), std::string::npos) << met;
+  EXPECT_NE(met.find("scenario rigid_2dof: completed -- tracking met\n"), std::string::npos) << met;
   EXPECT_NE(met.find("final tracking error  1.250e-05 rad (tolerance 1.0e-03)"), std::string::npos) << met;
   EXPECT_NE(met.find("convergence time      0.250 s (deadline 0.500 s: met)"), std::string::npos) << met;
   EXPECT_NE(met.find("max |torque|          61.500 N m"), std::string::npos) << met;
-  EXPECT_NE(met.find("gain condition        holds (margin 0.0421)"), std::string::npos) << met;
+  EXPECT_NE(met.find("gain condition        holds (continuous time; margin 0.0421)"), std::string::npos)
+      << met;
   EXPECT_NE(met.find("sim 3.00 s in 1.50 s wall (2.0x real time)"), std::string::npos) << met;
 
   EXPECT_NE(resultText(summaryOf(false, 0.75)).find("(deadline 0.500 s: MISSED)"), std::string::npos);
@@ -65,13 +66,16 @@ TEST(RunLogic, CheckNamesEveryMissedMetricWithItsValue) {
       {{"stage", 2}, {"tolerance", 0.01}, {"convergence_time", 0.9}, {"final_error", 2e-3}},
       {{"stage", 3}, {"tolerance", 0.01}, {"convergence_time", nullptr}, {"final_error", 5.0}}};
   const auto missed = missedMetrics(chain);
-  ASSERT_EQ(missed.size(), 3u) << "the tracking error and stages 2 and 3 (stage 1 converged in time)";
+  ASSERT_EQ(missed.size(), 4u)
+      << "the tracking error and stages 2 and 3 (stage 1 converged in time), then why";
   EXPECT_EQ(missed[0].rfind("metric MISSED: ||q~|| below 0.001 rad by t = 0.5 s", 0), 0u) << missed[0];
   EXPECT_NE(missed[0].find("converged never, final error 1.25e-05 rad"), std::string::npos) << missed[0];
   EXPECT_NE(missed[1].find("||xit_2|| below 0.01 by t = 0.5 s: converged 0.900000 s"), std::string::npos)
       << missed[1];
   EXPECT_NE(missed[2].find("||xit_3||"), std::string::npos);
   EXPECT_NE(missed[2].find("converged never, final error 5"), std::string::npos) << missed[2];
+  EXPECT_EQ(missed[3].rfind("why: ||q~|| did not stay below", 0), 0u)
+      << "the verdict's reason: " << missed[3];
 }
 
 TEST(RunLogic, APartialLaunchNeedsTheNetworkTheUrlAndTheKey) {

@@ -39,7 +39,8 @@ json completedRun() {
             {"condition_holds", true},
             {"margin", 9.457},
             {"sampled_data", {{"rate", 1000.0}, {"verdict", "adequate"}, {"sufficient_rate", nullptr}}}}},
-          {"timing", {{"sim_time", 10.0}, {"wall_time", 5.0}, {"realtime_factor", 2.0}, {"publish_rate", 1000.0}}},
+          {"timing",
+           {{"sim_time", 10.0}, {"wall_time", 5.0}, {"realtime_factor", 2.0}, {"publish_rate", 1000.0}}},
           {"log", {{"missing_ticks", {{"PLANT_TRUTH", 0}}}}}};
 }
 
@@ -81,7 +82,8 @@ TEST(Verdict, ADivergingChainNamesTheDivergenceThenTheRateThatWouldSuffice) {
   EXPECT_EQ(v["reasons"][0]["kind"], "diverged");
   EXPECT_EQ(v["reasons"][1]["kind"], "unstable_at_rate");
   const std::string headline = v["headline"];
-  EXPECT_NE(headline.find("tracking NOT met: diverged (|q~| reached 29.7 rad at t = 0.41 s"), std::string::npos)
+  EXPECT_NE(headline.find("tracking NOT met: diverged (|q~| reached 29.7 rad at t = 0.41 s"),
+            std::string::npos)
       << headline;
   EXPECT_NE(headline.find("the sampled loop at 200 Hz is unstable (linearised check; 3200 Hz would suffice: "
                           "plant.publish_rate)"),
@@ -107,13 +109,19 @@ TEST(Verdict, ThePlantThatCouldNotHoldItsRateIsTheTimingReasonWithItsTorque) {
   j["tracking"]["max_error"] = 20.5;
   j["tracking"]["final_error"] = 20.5;
   j["timing"]["loops"] = {
-      {"plant", {{"cycles", 3000}, {"deadline_misses", 2999}, {"on_time_fraction", 0.0003}, {"longest_miss_run", 2999}}},
-      {"controller", {{"cycles", 3000}, {"deadline_misses", 0}, {"on_time_fraction", 1.0}, {"longest_miss_run", 0}}}};
+      {"plant",
+       {{"cycles", 3000},
+        {"deadline_misses", 2999},
+        {"on_time_fraction", 0.0003},
+        {"longest_miss_run", 2999}}},
+      {"controller",
+       {{"cycles", 3000}, {"deadline_misses", 0}, {"on_time_fraction", 1.0}, {"longest_miss_run", 0}}}};
   j["messages"]["stale"] = {{"plant", {{"torque_held", 10}, {"torque_zeroed", 2900}}}};
   const json v = runVerdict(j);
   EXPECT_EQ(v["tracking"], "NOT met");
   EXPECT_EQ(kinds(v["reasons"]), "diverged timing stale_torque ") << v.dump(2);
-  EXPECT_NE(v["reasons"][1]["text"].get<std::string>().find("the plant's loop was on time on 0.03 % of its periods"),
+  EXPECT_NE(v["reasons"][1]["text"].get<std::string>().find(
+                "the plant's loop was on time on 0.03 % of its periods"),
             std::string::npos)
       << v.dump(2);
   EXPECT_NE(v["reasons"][2]["text"].get<std::string>().find("zeroed on 2900"), std::string::npos);
@@ -127,11 +135,13 @@ TEST(Verdict, ADeadlineMissedThroughTimingSaysTimingNotTheController) {
   j["tracking"]["max_error"] = 2.5;
   j["tracking"]["initial_error"] = 2.5;
   j["timing"]["loops"] = {
-      {"plant", {{"cycles", 10000}, {"deadline_misses", 110}, {"on_time_fraction", 0.989}, {"longest_miss_run", 28}}}};
+      {"plant",
+       {{"cycles", 10000}, {"deadline_misses", 110}, {"on_time_fraction", 0.989}, {"longest_miss_run", 28}}}};
   const json v = runVerdict(j);
   EXPECT_EQ(kinds(v["reasons"]), "timing ") << v.dump(2);
-  EXPECT_NE(v["headline"].get<std::string>().find("the plant's loop was on time on 98.9 % of its periods (110 misses, "
-                                                  "the longest run 28 periods)"),
+  EXPECT_NE(v["headline"].get<std::string>().find(
+                "the plant's loop was on time on 98.9 % of its periods (110 misses, "
+                "the longest run 28 periods)"),
             std::string::npos)
       << v["headline"];
 }
@@ -140,16 +150,19 @@ TEST(Verdict, AMetRunStillWarnsOfWhatMatters) {
   json j = completedRun();
   j["messages"]["stale"] = {{"plant", {{"torque_held", 1}, {"torque_zeroed", 0}}}};
   j["timing"]["loops"] = {
-      {"plant", {{"cycles", 10000}, {"deadline_misses", 1}, {"on_time_fraction", 0.9999}, {"longest_miss_run", 1}}}};
-  j["answers"] = {{"threshold", 1.0},
-                  {"plant", {{"program", "python3 arm.py"}, {"slow", 3}, {"worst", 15.0}, {"worst_tick", 40}}},
-                  {"controller", {{"program", "lagrange-controller"}, {"slow", 0}}}};
+      {"plant",
+       {{"cycles", 10000}, {"deadline_misses", 1}, {"on_time_fraction", 0.9999}, {"longest_miss_run", 1}}}};
+  j["answers"] = {
+      {"threshold", 1.0},
+      {"plant", {{"program", "python3 arm.py"}, {"slow", 3}, {"worst", 15.0}, {"worst_tick", 40}}},
+      {"controller", {{"program", "lagrange-controller"}, {"slow", 0}}}};
   j["log"]["missing_ticks"] = {{"PLANT_TRUTH", 2}};
   const json v = runVerdict(j);
   EXPECT_EQ(v["tracking"], "met");
   EXPECT_TRUE(v["reasons"].empty());
   EXPECT_EQ(kinds(v["warnings"]), "timing stale_torque slow_answers missing_ticks ") << v.dump(2);
-  EXPECT_NE(v["warnings"][2]["text"].get<std::string>().find("the plant (python3 arm.py) answered 3 ticks slower"),
+  EXPECT_NE(v["warnings"][2]["text"].get<std::string>().find(
+                "the plant (python3 arm.py) answered 3 tick(s) slower"),
             std::string::npos);
   const std::string block = tools::resultText(j);
   EXPECT_NE(block.find("warnings:\n    - the plant's loop"), std::string::npos) << block;
@@ -166,9 +179,15 @@ TEST(Verdict, AMetRunStillWarnsOfWhatMatters) {
 TEST(Verdict, ARunThatFailedAtTheStartSaysWhoFailedAndMeasuresNothing) {
   json j = completedRun();
   j["status"] = "failed";
-  j["tracking"] = {{"tolerance", 1e-3},         {"final_error", nullptr}, {"max_error", nullptr},
-                   {"max_error_time", nullptr}, {"initial_error", nullptr}, {"convergence_time", nullptr},
-                   {"convergence_deadline", 5.0}, {"met", false},          {"samples", 0},
+  j["tracking"] = {{"tolerance", 1e-3},
+                   {"final_error", nullptr},
+                   {"max_error", nullptr},
+                   {"max_error_time", nullptr},
+                   {"initial_error", nullptr},
+                   {"convergence_time", nullptr},
+                   {"convergence_deadline", 5.0},
+                   {"met", false},
+                   {"samples", 0},
                    {"rms_last_second", nullptr},
                    {"span", {{"from", nullptr}, {"to", nullptr}, {"of", 10.0}, {"whole_run", false}}}};
   j["failure"] = {{"process", "controller"}, {"how", "exited with code 1"}};

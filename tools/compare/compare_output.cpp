@@ -49,7 +49,8 @@ std::string markdownRow(const RunNumbers& n, bool with_value) {
 
 std::string markdownHeader(const std::string& first) {
   return "| controller" + first +
-         " | status | verdict | converged at [s] | final ‖q̃‖ [rad] | RMS ‖q̃‖, last second [rad] | max \\|τ\\| [N m] | "
+         " | status | verdict | converged at [s] | final ‖q̃‖ [rad] | RMS ‖q̃‖, last second [rad] | max "
+         "\\|τ\\| [N m] | "
          "torque total variation [N m] | ∫‖τ‖² dt [N² m² s] |\n"
          "| --- " +
          (first.empty() ? "" : "| --- ") + "| --- | --- | --- | --- | --- | --- | --- | --- |\n";

@@ -27,8 +27,8 @@ struct RunNumbers {
   double max_torque = std::nan("");        ///< torque.max_abs [N m]
   double total_variation = std::nan("");   ///< torque.total_variation [N m]
   double energy = std::nan("");            ///< torque.energy [N^2 m^2 s]
-  std::string verdict;         ///< verdict.tracking: met, NOT met, not judged (empty: none)
-  std::string verdict_reason;  ///< verdict.reasons[0].text: the likeliest reason (empty: none)
+  std::string verdict;                     ///< verdict.tracking: met, NOT met, not judged (empty: none)
+  std::string verdict_reason;              ///< verdict.reasons[0].text: the likeliest reason (empty: none)
 };
 
 struct ComparisonTables {

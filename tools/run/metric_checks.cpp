@@ -97,11 +97,12 @@ MetricCheck parseMetricCheck(const std::string& raw) {
       what +=
           " (it is a file: was the scenario taken for --check's value? write --check=LIST, or --check after "
           "it)";
-    return config::ConfigError("--check '" + raw + "': " + what +
-                               "; expected met, no_warnings, or KEY OP NUMBER with OP one of < <= > >= and KEY a number "
-                               "of summary.json (e.g. tracking.final_error) or one of final_error, "
-                               "max_error, convergence_time, rms_last_second, max_torque: "
-                               "--check 'met,final_error<1e-4,max_torque<=300'");
+    return config::ConfigError(
+        "--check '" + raw + "': " + what +
+        "; expected met, no_warnings, or KEY OP NUMBER with OP one of < <= > >= and KEY a number "
+        "of summary.json (e.g. tracking.final_error) or one of final_error, "
+        "max_error, convergence_time, rms_last_second, max_torque: "
+        "--check 'met,final_error<1e-4,max_torque<=300'");
   };
   if (at == std::string::npos || at == 0) throw grammar(text.empty() ? "empty" : "no comparison");
   c.op = text.substr(at, text.size() > at + 1 && text[at + 1] == '=' ? 2 : 1);

@@ -16,11 +16,11 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "logger/verdict.hpp"
 #include "config/scenario.hpp"
 #include "config/scenario_json.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_report_json.hpp"
+#include "logger/verdict.hpp"
 #include "logs/out_dir_lock.hpp"
 #include "plant/plant_sim.hpp"
 #include "plant/scenario_plant.hpp"
@@ -181,7 +181,7 @@ void addLauncherFacts(const std::string& out_dir, int64_t run_id, const nlohmann
       j["status"] = failure.value("diverged", false) ? "diverged" : "failed";
     j["failure"] = failure;
   }
-  j["verdict"] = logger::runVerdict(j);  // decided again with what only the launcher knew
+  j["verdict"] = logger::runVerdict(j);                    // decided again with what only the launcher knew
   util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
 }
 

@@ -29,7 +29,6 @@ std::string when(const nlohmann::json& convergence_time) {
                                     : std::to_string(convergence_time.get<double>()) + " s";
 }
 
-
 // The verdict summary.json carries (logger/verdict.hpp decides it); a
 // summary written before verdicts existed gets one decided the same way.
 nlohmann::json verdictOf(const nlohmann::json& j) {
@@ -46,11 +45,10 @@ std::string numberOr(const nlohmann::json& v, const char* fmt, const char* other
 std::string gainLine(const nlohmann::json& gains) {
   if (!gains.value("checked", true))
     return format("  gain condition        not checked (%s)\n", gains.value("why", "").c_str());
-  std::string line = format("  gain condition        %s%s (continuous time; margin %.4g)",
-                            gains.contains("condition") ? (gains.at("condition").get<std::string>() + " ").c_str()
-                                                        : "",
-                            gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED",
-                            gains.at("margin").get<double>());
+  std::string line = format(
+      "  gain condition        %s%s (continuous time; margin %.4g)",
+      gains.contains("condition") ? (gains.at("condition").get<std::string>() + " ").c_str() : "",
+      gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED", gains.at("margin").get<double>());
   if (const auto sd = gains.find("sampled_data"); sd != gains.end() && sd->is_object()) {
     std::string word = sd->value("verdict", std::string("not assessed"));
     std::transform(word.begin(), word.end(), word.begin(), ::toupper);
@@ -72,15 +70,16 @@ std::string findings(const char* title, const nlohmann::json& list) {
 std::string resultText(const nlohmann::json& j) {
   const auto& t = j.at("tracking");
   const nlohmann::json verdict = verdictOf(j);
-  std::string out = format("\nscenario %s: %s -- %s\n", j.at("scenario").get<std::string>().c_str(),
-                           j.at("status").get<std::string>().c_str(),
-                           verdict.value("headline", std::string()).c_str());
+  std::string out =
+      format("\nscenario %s: %s -- %s\n", j.at("scenario").get<std::string>().c_str(),
+             j.at("status").get<std::string>().c_str(), verdict.value("headline", std::string()).c_str());
   // A run cut short: its figures cover only what was recorded, and say so.
   const auto span = t.find("span");
   const bool partial = span != t.end() && span->is_object() && !span->value("whole_run", true);
-  const std::string until =
-      partial ? " at t = " + numberOr(span->value("to", nlohmann::json()), "%.3f", "?") + " s, where the record ends"
-              : "";
+  const std::string until = partial
+                                ? " at t = " + numberOr(span->value("to", nlohmann::json()), "%.3f", "?") +
+                                      " s, where the record ends"
+                                : "";
   out += format("  final tracking error  %s rad (tolerance %.1e)%s\n",
                 numberOr(t.at("final_error"), "%.3e", "not measured (no sample)").c_str(),
                 t.at("tolerance").get<double>(), until.c_str());

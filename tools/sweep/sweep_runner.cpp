@@ -194,9 +194,10 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
     verdict = logger::makeSummary(s, o.tracking, gains, facts)["verdict"];
   }
   j["verdict"] = verdict.is_object() ? verdict.value("tracking", nlohmann::json()) : nlohmann::json();
-  const nlohmann::json reasons = verdict.is_object() ? verdict.value("reasons", nlohmann::json()) : nlohmann::json();
-  j["verdict_reason"] = reasons.is_array() && !reasons.empty() ? reasons[0].value("text", nlohmann::json())
-                                                              : nlohmann::json();
+  const nlohmann::json reasons =
+      verdict.is_object() ? verdict.value("reasons", nlohmann::json()) : nlohmann::json();
+  j["verdict_reason"] =
+      reasons.is_array() && !reasons.empty() ? reasons[0].value("text", nlohmann::json()) : nlohmann::json();
   return j;
 }
 

@@ -146,7 +146,8 @@ nlohmann::json runVerdictBeside(const std::string& log_path, std::vector<std::st
   const fs::path summary = log.parent_path() / "summary.json";
   std::error_code ec;
   if (log.filename() != "run.lcm" || !fs::exists(fs::symlink_status(summary, ec))) return nullptr;
-  const config::FileText file = config::readRegularFile(summary.string(), 16u << 20, "the run's summary.json");
+  const config::FileText file =
+      config::readRegularFile(summary.string(), 16u << 20, "the run's summary.json");
   if (!file.error.empty()) {
     notes.push_back(file.error + "; the run's verdict is not shown");
     return nullptr;
