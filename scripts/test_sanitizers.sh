@@ -26,7 +26,19 @@
 #  - the C++ plant helper's run (CppPlant.*), built outside the tree against
 #    the installed package as the C++ controller is; and the front door's
 #    tests (Help.*, Readme.*): every command's examples and the demo's run,
-#    code paths the tests kept run already, at a minute of this pass.
+#    code paths the tests kept run already, at a minute of this pass;
+#  - (2026-12-07: the pass took 32 minutes on a slow day, CI 55 in all) the
+#    integration tests whose point is a computed verdict or an output on
+#    well-formed input -- the gain and sampled-data verdicts, --suggest,
+#    sensors, compare, report, export, the viewer's pages, the URDF arms'
+#    runs, the seam's controllers, --check, the default run: the numerics
+#    they judge run under the sanitizers in process in the unit tests, and
+#    their processes' code in the integration tests kept. What stays is
+#    every unit test and every integration test of hostile, malformed or
+#    faulty input and of ends: forged and cross-run traffic, bad configs and
+#    logs, faults, stalls, restarts and supervision, replay and the golden
+#    logs, the external plant's and sweep's launcher paths, the verdict of
+#    a diverging run.
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
@@ -43,5 +55,6 @@ sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActu
 java='ExternalController\.|CppPlant\.'
 slurm='SlurmSweep\.'
 front='Help\.|Readme\.'
+outputs='integration\.(SampledWords|Suggest|SampledDataCheck|GainVerdicts|SampledVerdict|Sensors|Compare|Report|View|Export|RealArm|PlantLimits|Policies|Engines|ControllerSeam|RunCheck|Flexible|DefaultRun|ChainM1|Registered)\.'
 # In parallel as scripts/test.sh runs them (those labelled `serial` alone).
-exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm|$front" "$@"
+exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm|$front|$outputs" "$@"
