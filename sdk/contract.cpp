@@ -1,7 +1,9 @@
 #include "sdk/contract.hpp"
 
+#include <openssl/core_names.h>
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
+#include <openssl/params.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +11,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <mutex>
 #include <utility>
 
 namespace lagrange::sdk::contract {
@@ -56,6 +59,33 @@ int64_t clockOffsetUs() {
 
 }  // namespace
 
+struct Key::Context {
+  explicit Context(const std::array<unsigned char, 32>& key) {
+    char digest[] = "SHA256";
+    const OSSL_PARAM params[] = {OSSL_PARAM_construct_utf8_string(OSSL_MAC_PARAM_DIGEST, digest, 0),
+                                 OSSL_PARAM_construct_end()};
+    mac = EVP_MAC_fetch(nullptr, "HMAC", nullptr);
+    keyed = mac ? EVP_MAC_CTX_new(mac) : nullptr;
+    if (!keyed || EVP_MAC_init(keyed, key.data(), key.size(), params) != 1) {
+      EVP_MAC_CTX_free(keyed);
+      EVP_MAC_free(mac);
+      throw ContractError(
+          "libcrypto offers no HMAC-SHA256 here (EVP_MAC_fetch or EVP_MAC_init failed); "
+          "expected OpenSSL 3's default provider");
+    }
+  }
+  ~Context() {
+    EVP_MAC_CTX_free(keyed);  // clears the key it holds
+    EVP_MAC_free(mac);
+  }
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  EVP_MAC* mac = nullptr;
+  EVP_MAC_CTX* keyed = nullptr;  ///< keyed once; EVP_MAC_init without a key re-uses it
+  std::mutex lock;
+};
+
 Key::Key(const std::string& path) {
   std::ifstream in(path);
   std::string text;
@@ -68,14 +98,16 @@ Key::Key(const std::string& path) {
     if (*end != '\0') throw ContractError("the run's key file " + path + " does not hold 64 hex digits");
     key_[i] = static_cast<unsigned char>(b);
   }
+  context_ = std::make_shared<Context>(key_);
 }
 
 std::array<unsigned char, kMacBytes> Key::mac(const void* data, size_t size) const {
   std::array<unsigned char, kMacBytes> out{};
   size_t written = 0;
-  if (EVP_Q_mac(nullptr, "HMAC", nullptr, "SHA256", nullptr, key_.data(), key_.size(),
-                static_cast<const unsigned char*>(data), size, out.data(), out.size(), &written) == nullptr ||
-      written != kMacBytes)
+  const std::lock_guard<std::mutex> hold(context_->lock);
+  if (EVP_MAC_init(context_->keyed, nullptr, 0, nullptr) != 1 ||
+      EVP_MAC_update(context_->keyed, static_cast<const unsigned char*>(data), size) != 1 ||
+      EVP_MAC_final(context_->keyed, out.data(), &written, out.size()) != 1 || written != kMacBytes)
     throw ContractError("HMAC-SHA256 failed (libcrypto)");
   return out;
 }

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <lcm/lcm-cpp.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,8 @@ int64_t monotonicUs();
 /// The run's secret key (its key file's 64 hex digits) and HMAC-SHA256 with it.
 class Key {
  public:
-  /// @throws ContractError naming the file when it does not hold 64 hex digits.
+  /// @throws ContractError naming the file when it does not hold 64 hex digits,
+  ///         or when libcrypto offers no HMAC-SHA256.
   explicit Key(const std::string& path);
   /// @throws ContractError when libcrypto fails.
   std::array<unsigned char, kMacBytes> mac(const void* data, size_t size) const;
@@ -46,6 +48,12 @@ class Key {
 
  private:
   std::array<unsigned char, 32> key_{};
+  // One HMAC context keyed once and re-initialised for each message (as
+  // transport/message_auth.cpp): EVP_Q_mac fetched the algorithm and built a
+  // context every call, tens of microseconds a message -- most of a plant's
+  // period in the C++ helper. Shared by copies; the lock keeps mac() const-safe.
+  struct Context;
+  std::shared_ptr<Context> context_;
 };
 
 /// The headers one process stamps: its run, its name, its pid, one sequence
