@@ -145,7 +145,9 @@ std::string unmodelledEffects(const config::Scenario& s) {
   if (physics.lower.size() > 0) causes.push_back("the joints' stops");
   if (s.actuator.saturation) causes.push_back("torque limits below what the motion needs");
   if (causes.empty())
-    return "the law's own steady-state error on this reference (the plant has nothing it does not model)";
+    return "none in the plant that the controller does not model: the loop may still be settling at the end "
+           "of the run "
+           "(a longer duration tells), or the law leaves this error on this reference";
   std::string out;
   for (size_t i = 0; i < causes.size(); ++i)
     out += (i == 0 ? "" : i + 1 == causes.size() ? " or " : ", ") + causes[i];

@@ -75,5 +75,30 @@ TEST(GainSuggestion, SaysWhenTheConstructiveGainsOverflowDouble) {
   }
 }
 
+// The search (#52): at a rate where no gains keeping eq. (11) are stable it
+// suggests nothing and names both binding conditions with their numbers; where
+// some are, it suggests gains that hold eq. (11) and are stable at the rate.
+TEST(GainSearch, SuggestsNothingWhereEq11AndTheRateCannotBothHold) {
+  const config::Scenario s = config::loadScenario(kConfigs + "/rigid_5link.yaml", {"plant.publish_rate=200"});
+  const GainSearch search = searchGains(s);
+  EXPECT_FALSE(search.suggested);
+  EXPECT_NE(search.binding.find("eq. (11) against the rate"), std::string::npos) << search.binding;
+  ASSERT_TRUE(search.sufficient_rate) << search.binding;
+  EXPECT_GT(*search.sufficient_rate, 200.0);
+  ASSERT_TRUE(search.kdelta_allowed) << search.binding;
+  EXPECT_LT(*search.kdelta_allowed, search.kdelta);
+}
+
+TEST(GainSearch, SuggestsGainsThatHoldEq11AndAreStableAtTheRate) {
+  const config::Scenario s =
+      config::loadScenario(kConfigs + "/rigid_5link.yaml", {"controller.kd=[4, 4, 4, 4, 4]"});
+  ASSERT_FALSE(checkGains(s, false).holds());
+  const GainSearch search = searchGains(s);
+  ASSERT_TRUE(search.suggested) << search.binding;
+  const GainReport r = checkGains(*search.suggested);
+  EXPECT_TRUE(r.holds());
+  EXPECT_TRUE(r.sampled.verdict == "adequate" || r.sampled.verdict == "slow") << describe(r.sampled);
+}
+
 }  // namespace
 }  // namespace lagrange::controller
