@@ -9,7 +9,8 @@ behind, its measurements re-sent until the actuator answers, unconfirmed
 ticks re-sent to the logger; realtime: a fixed-rate loop with the scenario's
 stale-torque policy), PLANT_POSITION and PLANT_TRUTH of every tick, and the
 STATUS handshake ("ready", "running", "finished" three times) -- and the
-guards a bridge needs: torque, position and rate limits, and a watchdog.
+guards a bridge needs: torque, position and rate limits, and a watchdog (realtime
+only: in lockstep waiting is the protocol).
 
     import lagrange.external_plant
 
