@@ -30,7 +30,8 @@ nlohmann::json ArrivalTiming::loopJson() const {
   return {{"period", period_},
           {"scheduler", "unknown"},
           {"cycles", arrivals_},
-          {"achieved_rate", last_ > first_ ? static_cast<double>(intervals) / (last_ - first_) : 0.0},
+          {"achieved_rate", last_ > first_ ? nlohmann::json(static_cast<double>(intervals) / (last_ - first_))
+                                           : nlohmann::json()},  // not measured: null, never 0
           {"jitter", {{"p50", j.p50}, {"p99", j.p99}, {"max", j.max}}},
           {"deadline_misses", misses_},
           {"on_time_fraction", static_cast<double>(arrivals_) / static_cast<double>(arrivals_ + misses_)},

@@ -299,7 +299,7 @@ TEST(ExternalController, CompareRunsExternalProgramsAsRows) {
                : r.output.substr(at + name.size() + 3, r.output.find('\n', at) - at - name.size() - 3);
   };
   EXPECT_NE(row("theorem1"), "") << r.output;
-  EXPECT_NE(row("pd_python").find("completed | 1.05 |"), std::string::npos) << r.output;
+  EXPECT_NE(row("pd_python").find("completed | met | 1.05 |"), std::string::npos) << r.output;
   EXPECT_EQ(row("pd_python"), row("pd_java")) << r.output;
   EXPECT_EQ(readSummary(dir + "/out/runs/pd_python")["mode"], "lockstep");
   EXPECT_EQ(readCommands(dir + "/out/runs/pd_python/run.lcm"),
