@@ -74,7 +74,7 @@ Subcommand addRunCommand(CLI::App& app) {
       "--check-sampled", run.check_sampled,
       "Before the run, simulate the sampled loop as configured against the same loop at a fine rate "
       "(as lagrange check-gains; seconds) and print its verdict; with --strict, refuse when it "
-      "DIVERGES or DOES NOT CONVERGE at any rate tried. summary.json gains.sampled_simulation keeps it");
+      "is UNSTABLE about the reference or DIVERGES. summary.json gains.sampled_simulation keeps it");
   cmd->add_flag("-q,--quiet", run.quiet, "Print errors only");
   cmd->add_option("--run-id", run.run_id,
                   "The run's identity stamped on every message (default: random; with --processes, derived "

@@ -120,7 +120,8 @@ bool gainsAllowRun(const config::Scenario& scenario, const controller::GainRepor
   }
   if (opt.strict && gains.simulated && gains.simulated->fails()) {
     std::cerr << "lagrange run: refusing to start (--strict) because the sampled loop "
-              << gains.simulated->verdict << " in simulation: " << gains.simulated->why << "\n";
+              << (gains.simulated->verdict == "unstable" ? "is unstable about the reference" : "diverges")
+              << " in simulation: " << gains.simulated->why << "\n";
     return false;
   }
   return true;
