@@ -94,13 +94,14 @@ Subcommand addRunCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 86400.0));
   CLI::Option* check =
-      cmd->add_option("--check", run.checks,
-                      "Exit 3, naming each one missed with its value, when the run completes but misses a "
-                      "check: alone, the scenario's stated metric (summary.json tracking.met; a miss names the "
-                      "verdict's reasons); or a comma-separated list of met, no_warnings (the verdict warns of "
-                      "nothing) and KEY OP NUMBER (OP one of < <= > >=, KEY a number of "
-                      "summary.json or final_error, max_error, convergence_time, rms_last_second, "
-                      "max_torque), e.g. --check 'met,final_error<1e-4,max_torque<=300'; repeatable")
+      cmd->add_option(
+             "--check", run.checks,
+             "Exit 3, naming each one missed with its value, when the run completes but misses a "
+             "check: alone, the scenario's stated metric (summary.json tracking.met; a miss names the "
+             "verdict's reasons); or a comma-separated list of met, no_warnings (the verdict warns of "
+             "nothing) and KEY OP NUMBER (OP one of < <= > >=, KEY a number of "
+             "summary.json or final_error, max_error, convergence_time, rms_last_second, "
+             "max_torque), e.g. --check 'met,final_error<1e-4,max_torque<=300'; repeatable")
           ->expected(0, 1)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   o->check_option = check;
