@@ -50,7 +50,7 @@ cmake --build build-asan -j2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
-timing='Progress\.|Spy\.|RealtimeUnderAttack|OrdinaryRunSaysItsLogIsComplete|StoppedLoggerIsCounted|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay|AVelocityControllerRunsInRealtime'
+timing='SdkPlantLoad\.APlantTwoPeriodsLate|Progress\.|Spy\.|RealtimeUnderAttack|OrdinaryRunSaysItsLogIsComplete|StoppedLoggerIsCounted|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay|AVelocityControllerRunsInRealtime'
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*(panda|flexible)|FilteredMotorRateConverges'
 java='ExternalController\.|CppPlant\.'
 slurm='SlurmSweep\.'
