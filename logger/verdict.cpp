@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -86,7 +87,12 @@ class Verdict {
   }
 
   std::string headline(const std::string& status) const {
-    if (met_) return "tracking met";
+    // Met, but with what matters said: the first line never hides that the
+    // run was not what it claims to be (a realtime run far off its rate).
+    if (met_)
+      return warnings_.empty() ? "tracking met"
+                               : fmt::format("tracking met; {} warning{}, the first: {}", warnings_.size(),
+                                             warnings_.size() == 1 ? "" : "s", warnings_.front().text);
     if (!judged_) {
       const double t = number(at(s_, "/timing/sim_time"), 0.0);
       return fmt::format("tracking not judged: the run was {} at t = {} s, before its last tick",
@@ -158,20 +164,26 @@ class Verdict {
   }
 
   void timing() {
-    const json& loops = at(s_, "/timing/loops");
-    if (loops.is_object())
-      for (const auto& [name, loop] : loops.items()) {
-        const double on_time = number(at(loop, "/on_time_fraction"), 1.0);
-        const long long run = count(at(loop, "/longest_miss_run"));
-        const long long misses = count(at(loop, "/deadline_misses"));
-        const bool fault = on_time < limits_.on_time_fraction || run >= limits_.longest_miss_run;
-        if (fault || misses > 0)
-          found("timing",
-                fmt::format(
-                    "the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods)",
-                    name, percent(on_time), misses, run),
-                !fault);
-      }
+    // The loop furthest from its rate first.
+    std::vector<std::pair<std::string, const json*>> loops;
+    if (const json& all = at(s_, "/timing/loops"); all.is_object())
+      for (const auto& [name, loop] : all.items()) loops.emplace_back(name, &loop);
+    std::stable_sort(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
+      return number(at(*a.second, "/on_time_fraction"), 1.0) <
+             number(at(*b.second, "/on_time_fraction"), 1.0);
+    });
+    for (const auto& [name, loop] : loops) {
+      const double on_time = number(at(*loop, "/on_time_fraction"), 1.0);
+      const long long run = count(at(*loop, "/longest_miss_run"));
+      const long long misses = count(at(*loop, "/deadline_misses"));
+      const bool fault = on_time < limits_.on_time_fraction || run >= limits_.longest_miss_run;
+      if (fault || misses > 0)
+        found("timing",
+              fmt::format(
+                  "the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods)",
+                  name, percent(on_time), misses, run),
+              !fault);
+    }
     const json& stale = at(s_, "/messages/stale/plant");
     const long long held = count(at(stale, "/torque_held")), zeroed = count(at(stale, "/torque_zeroed"));
     const long long cycles = count(at(s_, "/timing/loops/plant/cycles"));

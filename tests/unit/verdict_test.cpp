@@ -109,6 +109,8 @@ TEST(Verdict, ThePlantThatCouldNotHoldItsRateIsTheTimingReasonWithItsTorque) {
   j["tracking"]["max_error"] = 20.5;
   j["tracking"]["final_error"] = 20.5;
   j["timing"]["loops"] = {
+      {"actuator",
+       {{"cycles", 3000}, {"deadline_misses", 30}, {"on_time_fraction", 0.99}, {"longest_miss_run", 2}}},
       {"plant",
        {{"cycles", 3000},
         {"deadline_misses", 2999},
@@ -120,6 +122,8 @@ TEST(Verdict, ThePlantThatCouldNotHoldItsRateIsTheTimingReasonWithItsTorque) {
   const json v = runVerdict(j);
   EXPECT_EQ(v["tracking"], "NOT met");
   EXPECT_EQ(kinds(v["reasons"]), "diverged timing stale_torque ") << v.dump(2);
+  EXPECT_EQ(kinds(v["warnings"]), "timing ")
+      << "the actuator's few misses: a warning, after the plant's fault";
   EXPECT_NE(v["reasons"][1]["text"].get<std::string>().find(
                 "the plant's loop was on time on 0.03 % of its periods"),
             std::string::npos)
@@ -161,6 +165,10 @@ TEST(Verdict, AMetRunStillWarnsOfWhatMatters) {
   EXPECT_EQ(v["tracking"], "met");
   EXPECT_TRUE(v["reasons"].empty());
   EXPECT_EQ(kinds(v["warnings"]), "timing stale_torque slow_answers missing_ticks ") << v.dump(2);
+  // The first line does not hide them.
+  EXPECT_EQ(
+      v["headline"].get<std::string>().rfind("tracking met; 4 warnings, the first: the plant's loop", 0), 0u)
+      << v["headline"];
   EXPECT_NE(v["warnings"][2]["text"].get<std::string>().find(
                 "the plant (python3 arm.py) answered 3 tick(s) slower"),
             std::string::npos);
