@@ -27,6 +27,8 @@ run = lagrange.run(os.path.join(ROOT, "configs/rigid_2dof.yaml"), out=os.path.jo
 check(run.summary["status"] == "completed", "lagrange.run returns the run's summary")
 check(len(run.channels["PLANT_TRUTH"]["q"]) == 1001, "... and its columns: 1001 samples of a 1 s run at 1 kHz")
 check(run.scenario["duration"] == 1.0 and run.scenario["mode"] == "inproc", "... with the overrides applied")
+check(run.verdict is run.summary["verdict"] and run.verdict["tracking"] == "met" and run.verdict["met"] is True
+      and run.verdict["reasons"] == [], "... and its verdict as summary.json has it: %r" % (run.verdict,))
 
 try:
     lagrange.run(os.path.join(ROOT, "configs/rigid_2dof.yaml"), out=os.path.join(work, "bad"), controller__kp=-1)
@@ -41,6 +43,7 @@ with open(sweep_file, "w") as f:
 rows = lagrange.sweep(sweep_file, out=os.path.join(work, "sweep"), jobs=1)
 check([r["index"] for r in rows] == [0, 1], "lagrange.sweep returns one row per run, in order")
 check(all(r["status"] == "completed" for r in rows), "... each with its status")
+check(all(r["verdict"] in ("met", "NOT met") for r in rows), "... and its run's verdict: %r" % ([r["verdict"] for r in rows],))
 
 os.environ["LAGRANGE_BIN"] = os.path.join(work, "no-such-lagrange")
 try:
