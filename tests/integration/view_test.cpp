@@ -177,6 +177,10 @@ TEST(View, APlanarLogIsDrawnWhereItsAnglesPutTheTip) {
   Browser browser(dir, 1280, 720);
   openViewer(browser, server);
   EXPECT_EQ(browser.run("return window.lagrangeViewer.state().mode;"), "log");
+  // The run's verdict, as its summary.json beside run.lcm has it.
+  EXPECT_EQ(
+      browser.run("const v = document.getElementById('verdict'); return v.hidden ? null : v.textContent;"),
+      readSummary(dir + "/run")["verdict"]["headline"]);
   const double t_start = logged.q.begin()->first, t_later = loggedTimeNear(logged, 0.35);
   const TipCheck start = drawnTip(browser, *s.robotModel(), logged, t_start);
   const TipCheck later = drawnTip(browser, *s.robotModel(), logged, t_later);
