@@ -381,7 +381,9 @@ int main(int argc, char** argv) {
         miss_run[p].push_back(static_cast<double>(l["longest_miss_run"].get<long long>()));
         ceiling_run[p].push_back(static_cast<double>(bare[p]["longest_miss_run"].get<long long>()));
       }
-      latency_p99.push_back(rt["timing"]["latency"]["p99"].get<double>());
+      // null when the plant measured none (summary.json: not measured is null)
+      if (const auto& p99 = rt["timing"]["latency"]["p99"]; p99.is_number())
+        latency_p99.push_back(p99.get<double>());
       last = rt;
     }
     results["realtime"] = {{"loops", last["timing"]["loops"]}, {"latency", last["timing"]["latency"]}};

@@ -105,9 +105,8 @@ TrackingSummary TrackingMetrics::summary() const {
       previous = &last;
     }
   }
-  if (saturation_)
-    s.saturated_fraction =
-        torques_.empty() ? 0.0 : static_cast<double>(saturated) / static_cast<double>(torques_.size());
+  if (saturation_ && !torques_.empty())  // no torque recorded: not measured
+    s.saturated_fraction = static_cast<double>(saturated) / static_cast<double>(torques_.size());
   std::vector<double> times, errors;  // in tick order
   for (const auto& [tick, sample] : samples_) {
     times.push_back(sample.t);

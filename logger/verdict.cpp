@@ -35,8 +35,12 @@ std::string g(double v) {
   return std::abs(v) >= 1000.0 && std::abs(v) < 1e9 ? fmt::format("{:.0f}", v) : fmt::format("{:.3g}", v);
 }
 
-// 4 significant figures: 98.9 % stays below a 99 % threshold in print too.
-std::string percent(double fraction) { return fmt::format("{:.4g} %", 100.0 * fraction); }
+// Truncated, never rounded up: 98.999 % stays below a 99 % threshold in print too.
+std::string percent(double fraction) {
+  const double p = std::floor(100.0 * fraction * 1000.0 + 1e-6) / 1000.0;  // 0.03 % is not 0.029 %
+  if (p == 0.0 && fraction > 0.0) return "< 0.001 %";
+  return fmt::format("{:g} %", p);
+}
 
 struct Finding {
   std::string kind, text;
@@ -128,12 +132,28 @@ class Verdict {
                             (reached.empty() ? "" : "; " + reached));
       return;
     }
+    if (status == "completed" && at(s_, "/failure/diverged") == true) {  // after every tick was recorded
+      found("diverged",
+            "the plant stopped the simulation after the last tick was recorded (" +
+                text(at(s_, "/failure/reason")) + ")",
+            true);
+      return;
+    }
     const double start = number(at(s_, "/tracking/initial_error"));
     const double final_error = number(at(s_, "/tracking/final_error"));
     const double tolerance = number(at(s_, "/tracking/tolerance"), 0.0);
-    if (!std::isfinite(max_error) || !std::isfinite(start) || !std::isfinite(final_error)) return;
+    // Samples whose error is not a number: summary.json writes inf and NaN as null.
+    if (count(at(s_, "/tracking/samples")) > 0 &&
+        (!std::isfinite(max_error) || !std::isfinite(final_error))) {
+      found("diverged", "diverged: the tracking error became infinite or not a number");
+      return;
+    }
+    if (!std::isfinite(max_error) || !std::isfinite(start)) return;
+    // Grew and stayed grown: past `growth` times its start (or the tolerance,
+    // for a run that starts on its reference) at its largest and at the end.
+    // A transient that settles again is no divergence.
     const double bound = limits_.growth * std::max(start, tolerance);
-    if (max_error > bound && final_error > start)
+    if (max_error > bound && final_error > bound)
       found("diverged", fmt::format("diverged ({}, from {} rad at the start)", reached, g(start)));
   }
 
@@ -197,9 +217,11 @@ class Verdict {
     }
   }
 
+  // Neither saturation (which may be by design) nor a violated condition
+  // (which the gain line shows) is a warning of a met run.
   void saturated() {
     const double share = number(at(s_, "/torque/saturated_fraction"), 0.0);
-    if (share > 0.0)
+    if (share > 0.0 && !met_)
       found(
           "saturated",
           fmt::format("the torque was at its limit (actuator.saturation) on {} of the ticks", percent(share)),
@@ -208,7 +230,7 @@ class Verdict {
 
   void condition() {
     const json& gains = at(s_, "/gains");
-    if (at(gains, "/checked") != true || at(gains, "/condition_holds") != false) return;
+    if (met_ || at(gains, "/checked") != true || at(gains, "/condition_holds") != false) return;
     found("condition_violated",
           fmt::format("{} does not hold (margin {}): the continuous-time guarantee is not given",
                       text(at(gains, "/condition")), g(number(at(gains, "/margin")))),
@@ -221,6 +243,25 @@ class Verdict {
     const json& t = at(s_, "/tracking");
     const json& when = at(t, "/convergence_time");
     const double deadline = number(at(t, "/convergence_deadline"));
+    // q~ in time, a chain stage not: the stage is what missed.
+    if (when.is_number() && when.get<double>() <= deadline) {
+      const json& chain = at(t, "/chain");
+      if (chain.is_array())
+        for (const json& c : chain) {
+          const json& stage_time = at(c, "/convergence_time");
+          if (stage_time.is_number() && stage_time.get<double>() <= deadline) continue;
+          reasons_.push_back(
+              {"chain_stage",
+               fmt::format("||xit_{}|| (the chain's stage {}) {} (tolerance {}, final {})",
+                           count(at(c, "/stage")), count(at(c, "/stage")),
+                           stage_time.is_number()
+                               ? fmt::format("converged at t = {} s, after the deadline ({} s)",
+                                             g(stage_time.get<double>()), g(deadline))
+                               : std::string("did not stay below its tolerance"),
+                           g(number(at(c, "/tolerance"))), g(number(at(c, "/final_error"))))});
+          return;
+        }
+    }
     if (when.is_number())
       reasons_.push_back({"late", fmt::format("converged at t = {} s, after the deadline ({} s)",
                                               g(when.get<double>()), g(deadline))});
@@ -252,6 +293,15 @@ class Verdict {
           warnings_.push_back({"missing_ticks", fmt::format("the log has no {} for {} ticks: the figures are "
                                                             "of the ticks it holds",
                                                             channel, count(n))});
+    const json& restarts = at(s_, "/supervision/restarts");
+    if (restarts.is_object())
+      for (const auto& [name, n] : restarts.items())
+        if (count(n) > 0)
+          warnings_.push_back({"restarted", fmt::format("the {} died and was restarted {} time(s) "
+                                                        "(supervision.deaths)",
+                                                        name, count(n))});
+    if (at(s_, "/log/complete") == false)
+      warnings_.push_back({"log_incomplete", text(at(s_, "/log/incomplete_because"))});
     const json& crossed = at(s_, "/limits/velocity");
     if (crossed.is_array() && !crossed.empty())
       warnings_.push_back(

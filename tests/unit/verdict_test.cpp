@@ -248,5 +248,79 @@ TEST(Verdict, TheSummaryOfAnOlderVersionStillGetsAVerdict) {
   EXPECT_EQ(runVerdict(json::object())["tracking"], "not judged");
 }
 
+// What the review of the first version found: each would have put a wrong
+// word on the first line.
+TEST(Verdict, ATransientThatSettlesIsNoDivergenceEvenFromTheReference) {
+  json j = completedRun();
+  j["tracking"]["initial_error"] = 0.0;  // starts on its reference
+  j["tracking"]["max_error"] = 0.02;     // 20 x the tolerance for a moment
+  j["tracking"]["final_error"] = 2e-3;   // still settling at the end: missed, but not diverged
+  j["tracking"]["met"] = false;
+  j["tracking"]["convergence_time"] = nullptr;
+  EXPECT_EQ(kinds(runVerdict(j)["reasons"]), "not_converged ");
+  j["tracking"]["final_error"] = 0.5;  // grown and staying grown
+  EXPECT_EQ(kinds(runVerdict(j)["reasons"]), "diverged ");
+  j["tracking"]["final_error"] = nullptr;  // summary.json writes inf and NaN as null
+  j["tracking"]["max_error"] = nullptr;
+  EXPECT_EQ(runVerdict(j)["reasons"][0]["text"],
+            "diverged: the tracking error became infinite or not a number");
+}
+
+TEST(Verdict, AChainStageThatMissedIsNamedNotTheJointError) {
+  json j = completedRun();
+  j["tracking"]["met"] = false;  // q~ converged at 0.25 s, stage 2 never
+  j["tracking"]["chain"] = {
+      {{"stage", 1}, {"tolerance", 0.01}, {"convergence_time", 0.3}, {"final_error", 1e-4}},
+      {{"stage", 2}, {"tolerance", 0.01}, {"convergence_time", nullptr}, {"final_error", 0.5}}};
+  const json v = runVerdict(j);
+  EXPECT_EQ(kinds(v["reasons"]), "chain_stage ") << v.dump(2);
+  EXPECT_EQ(v["headline"],
+            "tracking NOT met: ||xit_2|| (the chain's stage 2) did not stay below its tolerance (tolerance "
+            "0.01, final 0.5)");
+  j["verdict"] = v;
+  const std::vector<std::string> missed = tools::missedMetrics(j);
+  ASSERT_FALSE(missed.empty());
+  EXPECT_EQ(missed[0].find("||q~||"), std::string::npos) << "q~ met its deadline: " << missed[0];
+}
+
+TEST(Verdict, AMetRunIsNotWarnedOfSaturationOrTheConditionButOfALateDivergenceAndRestarts) {
+  json j = completedRun();
+  j["torque"]["saturated_fraction"] = 0.3;
+  j["gains"]["condition_holds"] = false;
+  EXPECT_EQ(runVerdict(j)["headline"], "tracking met")
+      << "saturation may be by design; the gain line shows eq. (11)";
+  j["failure"] = {{"process", "plant"}, {"diverged", true}, {"reason", "plant stopped: joint 1 ..."}};
+  j["supervision"] = {{"restarts", {{"controller", 2}}}};
+  j["log"]["complete"] = false;
+  j["log"]["incomplete_because"] = "3 messages the run's processes published are not in the log";
+  EXPECT_EQ(kinds(runVerdict(j)["warnings"]), "diverged restarted log_incomplete ") << runVerdict(j).dump(2);
+}
+
+TEST(Verdict, APercentageIsTruncatedSoAFaultNeverPrintsAtItsThreshold) {
+  json j = completedRun();
+  j["timing"]["loops"] = {{"plant",
+                           {{"cycles", 100000},
+                            {"deadline_misses", 1001},
+                            {"on_time_fraction", 0.98999},
+                            {"longest_miss_run", 1}}}};
+  const std::string text = runVerdict(j)["warnings"][0]["text"];
+  EXPECT_NE(text.find("on time on 98.999 % of its periods"), std::string::npos) << text;
+}
+
+TEST(Verdict, TheBlockOfARunCutShortSaysItsConvergenceWasBeforeTheEnd) {
+  json j = completedRun();
+  j["status"] = "interrupted";  // converged at 0.25 s, then stopped: tracking.met is true
+  const std::string block = tools::resultText(j);
+  EXPECT_NE(block.find("(deadline 5.000 s: reached, but the run did not complete)"), std::string::npos)
+      << block;
+  json nothing = completedRun();
+  nothing["status"] = "failed";
+  nothing["tracking"]["samples"] = 0;
+  nothing["tracking"]["final_error"] = nullptr;
+  EXPECT_NE(tools::resultText(nothing).find("final tracking error  not measured (no sample) (tolerance"),
+            std::string::npos);
+  EXPECT_NE(tools::resultText(nothing).find("max |torque|          not measured"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace lagrange::logger

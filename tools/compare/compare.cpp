@@ -163,7 +163,11 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
   if (const auto v = j.find("verdict"); v != j.end() && v->is_object()) {
     n.verdict = v->value("tracking", std::string());
     const nlohmann::json reasons = v->value("reasons", nlohmann::json::array());
-    if (reasons.is_array() && !reasons.empty()) n.verdict_reason = reasons[0].value("text", std::string());
+    const nlohmann::json warnings = v->value("warnings", nlohmann::json::array());
+    if (reasons.is_array() && !reasons.empty())
+      n.verdict_reason = reasons[0].value("text", std::string());
+    else if (warnings.is_array() && !warnings.empty())  // met, with what matters said
+      n.verdict_reason = "warning: " + warnings[0].value("text", std::string());
   }
   // A process that died: the launcher says which in summary.json's
   // `failure`; an older or killed launcher left only its exit code.

@@ -80,8 +80,8 @@ std::string resultText(const nlohmann::json& j) {
                                 ? " at t = " + numberOr(span->value("to", nlohmann::json()), "%.3f", "?") +
                                       " s, where the record ends"
                                 : "";
-  out += format("  final tracking error  %s rad (tolerance %.1e)%s\n",
-                numberOr(t.at("final_error"), "%.3e", "not measured (no sample)").c_str(),
+  out += format("  final tracking error  %s (tolerance %.1e)%s\n",
+                numberOr(t.at("final_error"), "%.3e rad", "not measured (no sample)").c_str(),
                 t.at("tolerance").get<double>(), until.c_str());
   if (t.contains("max_error") && t.at("max_error").is_number())
     out += format("  max tracking error    %.3e rad%s\n", t.at("max_error").get<double>(),
@@ -93,9 +93,13 @@ std::string resultText(const nlohmann::json& j) {
   else
     out += format("  convergence time      %.3f s (deadline %.3f s: %s)\n",
                   t.at("convergence_time").get<double>(), t.at("convergence_deadline").get<double>(),
-                  t.at("met").get<bool>() ? "met" : "MISSED");
+                  !t.at("met").get<bool>()                           ? "MISSED"
+                  : j.at("status").get<std::string>() != "completed" ? "reached, but the run did not complete"
+                                                                     : "met");
   const auto& torque = j.at("torque");
-  out += format("  max |torque|          %.3f N m%s\n", torque.at("max_abs").get<double>(),
+  const bool sampled = t.value("samples", 1LL) > 0;  // a run that failed at the start measured nothing
+  out += format("  max |torque|          %s%s\n",
+                sampled ? numberOr(torque.at("max_abs"), "%.3f N m", "not finite").c_str() : "not measured",
                 torque.contains("saturated_fraction") && torque.at("saturated_fraction").is_number()
                     ? format(" (at the saturation limit on %.1f %% of the ticks)",
                              100.0 * torque.at("saturated_fraction").get<double>())
@@ -116,11 +120,13 @@ std::vector<std::string> missedMetrics(const nlohmann::json& j) {
   if (t.at("met").get<bool>()) return {};
   const double deadline = t.at("convergence_deadline").get<double>();
   std::vector<std::string> missed;
+  const nlohmann::json& own = t.at("convergence_time");
+  const bool own_missed = !own.is_number() || own.get<double>() > deadline;  // else a chain stage missed
   std::ostringstream line;
   line << "metric MISSED: ||q~|| below " << t.at("tolerance").get<double>() << " rad by t = " << deadline
        << " s and staying there: converged " << when(t.at("convergence_time")) << ", final error "
-       << numberOr(t.at("final_error"), "%g", "not measured") << " rad";
-  missed.push_back(line.str());
+       << numberOr(t.at("final_error"), "%g rad", "not measured");
+  if (own_missed) missed.push_back(line.str());
   if (t.contains("chain"))
     for (const auto& c : t.at("chain"))
       if (c.at("convergence_time").is_null() || c.at("convergence_time").get<double>() > deadline) {

@@ -196,8 +196,13 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   j["verdict"] = verdict.is_object() ? verdict.value("tracking", nlohmann::json()) : nlohmann::json();
   const nlohmann::json reasons =
       verdict.is_object() ? verdict.value("reasons", nlohmann::json()) : nlohmann::json();
-  j["verdict_reason"] =
-      reasons.is_array() && !reasons.empty() ? reasons[0].value("text", nlohmann::json()) : nlohmann::json();
+  const nlohmann::json warnings =
+      verdict.is_object() ? verdict.value("warnings", nlohmann::json()) : nlohmann::json();
+  // Why it missed; for a met run, the first thing that matters (a warning).
+  j["verdict_reason"] = reasons.is_array() && !reasons.empty() ? reasons[0].value("text", nlohmann::json())
+                        : warnings.is_array() && !warnings.empty()
+                            ? nlohmann::json("warning: " + warnings[0].value("text", std::string()))
+                            : nlohmann::json();
   return j;
 }
 

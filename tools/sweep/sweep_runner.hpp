@@ -39,9 +39,8 @@ class SweepRunner {
   wiring::InProcessOutcome runExternal(const SweepRow& row, bool (*stop_requested)());
   const SweepPlan& plan_;
   std::string out_dir_, self_exe_;
-  std::map<std::string, controller::GainReport> gains_;
-  nlohmann::json external_verdict_;  // the verdict of the last external row's summary.json  // by the
-                                     // scenario without its initial state
+  std::map<std::string, controller::GainReport> gains_;  // by the scenario without its initial state
+  nlohmann::json external_verdict_;  // the verdict of the last external row's summary.json
 };
 
 }  // namespace lagrange::tools

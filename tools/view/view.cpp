@@ -157,8 +157,10 @@ nlohmann::json runVerdictBeside(const std::string& log_path, std::vector<std::st
     if (j.is_object() && j.contains("verdict") && j["verdict"].is_object() &&
         j["verdict"].value("headline", nlohmann::json()).is_string())
       return {{"headline", j["verdict"]["headline"]}, {"met", j["verdict"].value("met", false)}};
-  } catch (const nlohmann::json::exception&) {
+  } catch (const nlohmann::json::parse_error&) {
     notes.push_back(summary.string() + " is not JSON; the run's verdict is not shown");
+  } catch (const nlohmann::json::exception&) {
+    notes.push_back(summary.string() + " has no verdict of the expected shape; it is not shown");
   }
   return nullptr;
 }
