@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "util/terminal_text.hpp"
+
 namespace lagrange::logger {
 
 namespace {
@@ -27,7 +29,11 @@ double number(const json& v, double otherwise = std::nan("")) {
 
 long long count(const json& v) { return v.is_number() ? v.get<long long>() : 0; }
 
-std::string text(const json& v) { return v.is_string() ? v.get<std::string>() : std::string(); }
+// Strings come from the run's files and programs (a process's last line, an
+// external program's command): printed on terminals, so made safe to print.
+std::string text(const json& v) {
+  return v.is_string() ? util::terminalSafe(v.get<std::string>()) : std::string();
+}
 
 // 3 significant figures, but whole numbers from 1000 on (a rate reads
 // "3200 Hz", not "3.2e+03 Hz").

@@ -10,6 +10,7 @@
 
 #include "tools/run/metric_checks.hpp"
 #include "tools/run/run_outcome.hpp"
+#include "util/terminal_text.hpp"
 
 namespace lagrange::logger {
 namespace {
@@ -305,6 +306,21 @@ TEST(Verdict, APercentageIsTruncatedSoAFaultNeverPrintsAtItsThreshold) {
                             {"longest_miss_run", 1}}}};
   const std::string text = runVerdict(j)["warnings"][0]["text"];
   EXPECT_NE(text.find("on time on 98.999 % of its periods"), std::string::npos) << text;
+}
+
+// A process's last line or a scenario's name may hold terminal escapes:
+// printed as \xNN, never sent to the user's terminal as they are.
+TEST(Verdict, TextFromTheRunsFilesIsSafeToPrint) {
+  json j = completedRun();
+  j["scenario"] = "evil\x1b]0;owned\x07\x1b[2J";
+  j["status"] = "failed";
+  j["failure"] = {{"process", "controller"}, {"how", "exited: \x1b[31mred\xc2\x9b"}};
+  const std::string block = tools::resultText(j);
+  EXPECT_EQ(block.find('\x1b'), std::string::npos) << block;
+  EXPECT_EQ(block.find("\xc2\x9b"), std::string::npos) << "a C1 CSI in UTF-8";
+  EXPECT_NE(block.find("scenario evil\\x1b]0;owned\\x07\\x1b[2J: failed"), std::string::npos) << block;
+  EXPECT_NE(block.find("the controller failed: exited: \\x1b[31mred\\xc2\\x9b"), std::string::npos) << block;
+  EXPECT_EQ(util::terminalSafe("Loría ü"), "Loría ü") << "UTF-8 letters are kept";
 }
 
 TEST(Verdict, TheBlockOfARunCutShortSaysItsConvergenceWasBeforeTheEnd) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "logger/verdict.hpp"
+#include "util/terminal_text.hpp"
 
 namespace lagrange::tools {
 
@@ -61,7 +62,7 @@ std::string gainLine(const nlohmann::json& gains) {
 std::string findings(const char* title, const nlohmann::json& list) {
   if (!list.is_array() || list.empty()) return "";
   std::string out = format("  %s\n", title);
-  for (const auto& f : list) out += "    - " + f.value("text", std::string()) + "\n";
+  for (const auto& f : list) out += "    - " + util::terminalSafe(f.value("text", std::string())) + "\n";
   return out;
 }
 
@@ -71,8 +72,10 @@ std::string resultText(const nlohmann::json& j) {
   const auto& t = j.at("tracking");
   const nlohmann::json verdict = verdictOf(j);
   std::string out =
-      format("\nscenario %s: %s -- %s\n", j.at("scenario").get<std::string>().c_str(),
-             j.at("status").get<std::string>().c_str(), verdict.value("headline", std::string()).c_str());
+      // Names and sentences from files: safe to print (util/terminal_text.hpp).
+      format("\nscenario %s: %s -- %s\n", util::terminalSafe(j.at("scenario").get<std::string>()).c_str(),
+             util::terminalSafe(j.at("status").get<std::string>()).c_str(),
+             util::terminalSafe(verdict.value("headline", std::string())).c_str());
   // A run cut short: its figures cover only what was recorded, and say so.
   const auto span = t.find("span");
   const bool partial = span != t.end() && span->is_object() && !span->value("whole_run", true);
