@@ -249,6 +249,12 @@ class Verdict {
     const json& t = at(s_, "/tracking");
     const json& when = at(t, "/convergence_time");
     const double deadline = number(at(t, "/convergence_deadline"));
+    if (at(t, "/met") == true) {  // converged in time, but the run did not complete
+      reasons_.push_back(
+          {"ended_early", fmt::format("the run {} at t = {} s, before its last tick", text(at(s_, "/status")),
+                                      g(number(at(s_, "/timing/sim_time"), 0.0)))});
+      return;
+    }
     // q~ in time, a chain stage not: the stage is what missed.
     if (when.is_number() && when.get<double>() <= deadline) {
       const json& chain = at(t, "/chain");

@@ -323,6 +323,15 @@ TEST(Verdict, TextFromTheRunsFilesIsSafeToPrint) {
   EXPECT_EQ(util::terminalSafe("Loría ü"), "Loría ü") << "UTF-8 letters are kept";
 }
 
+TEST(Verdict, AFailedRunThatHadConvergedSaysItEndedEarlyNotThatItWasLate) {
+  json j = completedRun();
+  j["status"] = "failed";  // no `failure` (an older launcher): nothing names who
+  j["timing"]["sim_time"] = 2.5;
+  const json v = runVerdict(j);
+  EXPECT_EQ(kinds(v["reasons"]), "ended_early ") << v.dump(2);
+  EXPECT_EQ(v["headline"], "tracking NOT met: the run failed at t = 2.5 s, before its last tick");
+}
+
 TEST(Verdict, TheBlockOfARunCutShortSaysItsConvergenceWasBeforeTheEnd) {
   json j = completedRun();
   j["status"] = "interrupted";  // converged at 0.25 s, then stopped: tracking.met is true
