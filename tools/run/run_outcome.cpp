@@ -47,9 +47,10 @@ std::string gainLine(const nlohmann::json& gains) {
   if (!gains.value("checked", true))
     return format("  gain condition        not checked (%s)\n", gains.value("why", "").c_str());
   std::string line = format(
-      "  gain condition        %s%s (continuous time; margin %.4g)",
+      "  gain condition        %s%s (continuous time; margin %s)",
       gains.contains("condition") ? (gains.at("condition").get<std::string>() + " ").c_str() : "",
-      gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED", gains.at("margin").get<double>());
+      gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED",
+      numberOr(gains.at("margin"), "%.4g", "not finite").c_str());  // an infinite margin is null in JSON
   if (const auto sd = gains.find("sampled_data"); sd != gains.end() && sd->is_object()) {
     std::string word = sd->value("verdict", std::string("not assessed"));
     std::transform(word.begin(), word.end(), word.begin(), ::toupper);
