@@ -93,15 +93,18 @@ TEST_F(CommandLogic, CompareTablesSayWhatEachRunGave) {
   const std::string md = writeComparison(t, dir_);
   EXPECT_EQ(md, text(dir_ + "/comparison.md"));
   EXPECT_NE(md.find("# Comparison: rigid_2dof"), std::string::npos);
-  EXPECT_NE(md.find("| theorem1 | completed | met | 1.25 | 0.125 | 0.0625 | 80 | 120 | 3e+03 |"), std::string::npos)
+  EXPECT_NE(md.find("| theorem1 | completed | met | 1.25 | 0.125 | 0.0625 | 80 | 120 | 3e+03 |"),
+            std::string::npos)
       << md;
   // The verdict's reason in its cell: a '|' would split the table.
-  EXPECT_NE(md.find("| set_point | completed | NOT met: a \"quoted\" \\| piped reason | not within the run |"),
-            std::string::npos)
+  EXPECT_NE(
+      md.find("| set_point | completed | NOT met: a \"quoted\" \\| piped reason | not within the run |"),
+      std::string::npos)
       << md;
   const size_t sweep = md.find("## Sweep of controller.kp");
   ASSERT_NE(sweep, std::string::npos) << md;
-  EXPECT_GT(md.find("| theorem1 | [100, 8] | failed (exit 1) | — | not within the run |  |  |  |  |  |"), sweep)
+  EXPECT_GT(md.find("| theorem1 | [100, 8] | failed (exit 1) | — | not within the run |  |  |  |  |  |"),
+            sweep)
       << md;
 
   const std::string csv = text(dir_ + "/comparison.csv");
@@ -111,7 +114,8 @@ TEST_F(CommandLogic, CompareTablesSayWhatEachRunGave) {
   ASSERT_EQ(lines.size(), 4u) << csv;
   EXPECT_EQ(lines[0].rfind("controller,sweep_key,sweep_value,status,convergence_time,", 0), 0u);
   EXPECT_EQ(lines[1], "theorem1,,\"\",completed,1.25,0.125,0.0625,80,120,3000,met,\"\"") << csv;
-  EXPECT_EQ(lines[2].substr(lines[2].find(",NOT met,")), ",NOT met,\"a \"\"quoted\"\" | piped reason\"") << csv;
+  EXPECT_EQ(lines[2].substr(lines[2].find(",NOT met,")), ",NOT met,\"a \"\"quoted\"\" | piped reason\"")
+      << csv;
   EXPECT_EQ(lines[3], "theorem1,controller.kp,\"[100, 8]\",failed (exit 1),,,,,,,,\"\"") << csv;
 }
 
