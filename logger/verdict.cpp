@@ -329,4 +329,12 @@ nlohmann::json runVerdict(const nlohmann::json& summary, const VerdictThresholds
   return Verdict(summary, limits).decide();
 }
 
+std::string likeliestReason(const nlohmann::json& verdict) {
+  const json& reasons = at(verdict, "/reasons");
+  if (reasons.is_array() && !reasons.empty()) return text(at(reasons[0], "/text"));
+  const json& warnings = at(verdict, "/warnings");
+  if (warnings.is_array() && !warnings.empty()) return "warning: " + text(at(warnings[0], "/text"));
+  return "";
+}
+
 }  // namespace lagrange::logger

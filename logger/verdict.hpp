@@ -12,6 +12,7 @@
 /// decide it again after adding what only it knows (a process's failure).
 
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace lagrange::logger {
 
@@ -36,5 +37,10 @@ struct VerdictThresholds {
 ///    warnings: [{kind, text}]}
 /// Missing fields are read as absent (an older summary still gets a verdict).
 nlohmann::json runVerdict(const nlohmann::json& summary, const VerdictThresholds& limits = {});
+
+/// The one sentence a table row shows of a verdict: its likeliest reason
+/// when missed; for a met run its first warning, as "warning: ..."; empty
+/// when there is neither (or `verdict` is not one).
+std::string likeliestReason(const nlohmann::json& verdict);
 
 }  // namespace lagrange::logger

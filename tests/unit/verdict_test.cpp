@@ -183,6 +183,10 @@ TEST(Verdict, AMetRunStillWarnsOfWhatMatters) {
   EXPECT_TRUE(results[0].passed);
   EXPECT_FALSE(results[1].passed);
   EXPECT_NE(results[1].message.find("4 warning(s)"), std::string::npos) << results[1].message;
+  // What compare's and sweep's rows show of it: the first warning of a met run.
+  EXPECT_EQ(likeliestReason(v).rfind("warning: the plant's loop", 0), 0u) << likeliestReason(v);
+  EXPECT_EQ(likeliestReason(runVerdict(completedRun())), "");
+  EXPECT_EQ(likeliestReason(runVerdict(divergedChain())).rfind("diverged (", 0), 0u);
 }
 
 TEST(Verdict, ARunThatFailedAtTheStartSaysWhoFailedAndMeasuresNothing) {

@@ -21,6 +21,7 @@
 #include "config/controller_params.hpp"
 #include "config/scenario.hpp"
 #include "config/yaml_reader.hpp"
+#include "logger/verdict.hpp"
 #include "logs/log_reader.hpp"
 #include "logs/out_dir_lock.hpp"
 #include "model/reference.hpp"
@@ -162,12 +163,7 @@ RunNumbers numbersOf(const CompareRun& run, int exit_status) {
   // The run's verdict as its summary has it (logger/verdict.hpp), never decided here again.
   if (const auto v = j.find("verdict"); v != j.end() && v->is_object()) {
     n.verdict = v->value("tracking", std::string());
-    const nlohmann::json reasons = v->value("reasons", nlohmann::json::array());
-    const nlohmann::json warnings = v->value("warnings", nlohmann::json::array());
-    if (reasons.is_array() && !reasons.empty())
-      n.verdict_reason = reasons[0].value("text", std::string());
-    else if (warnings.is_array() && !warnings.empty())  // met, with what matters said
-      n.verdict_reason = "warning: " + warnings[0].value("text", std::string());
+    n.verdict_reason = logger::likeliestReason(*v);
   }
   // A process that died: the launcher says which in summary.json's
   // `failure`; an older or killed launcher left only its exit code.

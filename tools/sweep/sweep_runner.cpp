@@ -17,6 +17,7 @@
 
 #include "controller/paper_section.hpp"
 #include "logger/summary.hpp"
+#include "logger/verdict.hpp"
 #include "model/reference.hpp"
 #include "tools/sweep/sweep_files.hpp"
 #include "util/error.hpp"
@@ -194,15 +195,8 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
     verdict = logger::makeSummary(s, o.tracking, gains, facts)["verdict"];
   }
   j["verdict"] = verdict.is_object() ? verdict.value("tracking", nlohmann::json()) : nlohmann::json();
-  const nlohmann::json reasons =
-      verdict.is_object() ? verdict.value("reasons", nlohmann::json()) : nlohmann::json();
-  const nlohmann::json warnings =
-      verdict.is_object() ? verdict.value("warnings", nlohmann::json()) : nlohmann::json();
-  // Why it missed; for a met run, the first thing that matters (a warning).
-  j["verdict_reason"] = reasons.is_array() && !reasons.empty() ? reasons[0].value("text", nlohmann::json())
-                        : warnings.is_array() && !warnings.empty()
-                            ? nlohmann::json("warning: " + warnings[0].value("text", std::string()))
-                            : nlohmann::json();
+  const std::string reason = logger::likeliestReason(verdict);
+  j["verdict_reason"] = reason.empty() ? nlohmann::json() : nlohmann::json(reason);
   return j;
 }
 
