@@ -298,9 +298,19 @@ TEST(ExternalController, CompareRunsExternalProgramsAsRows) {
                ? std::string()
                : r.output.substr(at + name.size() + 3, r.output.find('\n', at) - at - name.size() - 3);
   };
+  // The verdict cell may carry a warning of one program's own (a JVM or a
+  // Python slow to give its first answer on a loaded machine); the numbers
+  // after it are the runs', and must be the same.
+  const auto numbers = [&](const std::string& name) {
+    const std::string cells = row(name);
+    const size_t at = cells.find(" | 1.05 |");
+    return at == std::string::npos ? std::string() : cells.substr(at);
+  };
   EXPECT_NE(row("theorem1"), "") << r.output;
-  EXPECT_NE(row("pd_python").find("completed | met | 1.05 |"), std::string::npos) << r.output;
-  EXPECT_EQ(row("pd_python"), row("pd_java")) << r.output;
+  EXPECT_EQ(row("pd_python").rfind("| completed | met", 0), 0u) << r.output;
+  EXPECT_EQ(row("pd_java").rfind("| completed | met", 0), 0u) << r.output;
+  EXPECT_NE(numbers("pd_python"), "") << r.output;
+  EXPECT_EQ(numbers("pd_python"), numbers("pd_java")) << r.output;
   EXPECT_EQ(readSummary(dir + "/out/runs/pd_python")["mode"], "lockstep");
   EXPECT_EQ(readCommands(dir + "/out/runs/pd_python/run.lcm"),
             readCommands(dir + "/out/runs/pd_java/run.lcm"));
