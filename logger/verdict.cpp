@@ -204,11 +204,13 @@ class Verdict {
       const long long misses = count(at(*loop, "/deadline_misses"));
       const bool fault = on_time < limits_.on_time_fraction || run >= limits_.longest_miss_run;
       if (fault || misses > 0)
-        found("timing",
-              fmt::format(
-                  "the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods)",
-                  name, percent(on_time), misses, run),
-              !fault);
+        found(
+            "timing",
+            fmt::format(
+                "the {}'s loop was on time on {} of its periods ({} misses, the longest run {} periods{}{})",
+                name, percent(on_time), misses, run, slowerThanItsRate(*loop),
+                name == "plant" ? freshTorque() : std::string()),
+            !fault);
     }
     const json& stale = at(s_, "/messages/stale/plant");
     const long long held = count(at(stale, "/torque_held")), zeroed = count(at(stale, "/torque_zeroed"));
@@ -221,6 +223,24 @@ class Verdict {
                         held + zeroed, percent(share), cycles, held, zeroed),
             share <= limits_.stale_torque_fraction);
     }
+  }
+
+  // "; it ran at 366 Hz of 1000": a loop that fell behind stretched the
+  // run's time (a plant behind schedule slows the whole run).
+  static std::string slowerThanItsRate(const json& loop) {
+    const double period = number(at(loop, "/period"), 0.0);
+    const json& achieved = at(loop, "/achieved_rate");
+    if (period <= 0.0 || !achieved.is_number() || achieved.get<double>() >= 0.99 / period) return "";
+    return fmt::format("; it ran at {} Hz of {}", g(achieved.get<double>()), g(1.0 / period));
+  }
+
+  // A late plant's torque: whether what it applied was fresh, so that the
+  // timing reason says it when the stale_torque reason below does not.
+  std::string freshTorque() const {
+    const json& stale = at(s_, "/messages/stale/plant");
+    if (!stale.is_object()) return "";
+    const long long held = count(at(stale, "/torque_held")), zeroed = count(at(stale, "/torque_zeroed"));
+    return held + zeroed == 0 ? "; its torque was fresh on every period" : "";
   }
 
   // Neither saturation (which may be by design) nor a violated condition

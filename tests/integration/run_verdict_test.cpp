@@ -93,5 +93,46 @@ TEST(RunVerdict, APlantSlowerThanSlowAnswerIsNamedWhileItLastsAndCounted) {
   EXPECT_NE(r.output.find("warnings:"), std::string::npos) << r.output;
 }
 
+// Realtime, over LCM: the plant (a program from outside) needs 2 ms of work
+// in every 1 ms period. The block's first line names the plant's timing and
+// what its torque was, not only plant.log.
+TEST(RunVerdict, APlantThatCannotHoldItsRateInRealtimeIsTheFirstLinesReason) {
+  const std::string example = std::string(LAGRANGE_SOURCE_DIR) + "/examples/external_plant";
+  const std::string config = freshDir("verdict-late-plant") + ".yaml";
+  std::ofstream(config) << "extends: " << example
+                        << "/rigid_2dof_external.yaml\n"
+                           "mode: realtime\n"
+                           "plant: {type: external, command: [python3, -S, \""
+                        << LAGRANGE_SOURCE_DIR << "/tests/data/slow_step_plant.py\", \"" << example
+                        << "\", \"1\", \"0.002\", every]}\n";
+  const std::string out = freshDir("verdict-late-plant-run");
+  const RunResult r = runScenario(config, out, "--set duration=0.3 --set metrics.convergence_deadline=0.3");
+  const nlohmann::json s = readSummary(out);
+  // The fault happened: the plant's own loop statistics say it was late.
+  const nlohmann::json& plant = s["timing"]["loops"]["plant"];
+  ASSERT_LT(plant["on_time_fraction"].get<double>(), 0.5) << plant.dump(2);
+  EXPECT_LT(plant["achieved_rate"].get<double>(), 900.0) << plant.dump(2);
+  // The verdict's first reason is the plant's timing, and says its torque.
+  EXPECT_EQ(s["verdict"]["tracking"], "NOT met") << s["verdict"].dump(2);
+  ASSERT_FALSE(s["verdict"]["reasons"].empty()) << s["verdict"].dump(2);
+  const nlohmann::json& first = s["verdict"]["reasons"][0];
+  EXPECT_EQ(first["kind"], "timing") << s["verdict"].dump(2);
+  const std::string why = first["text"];
+  EXPECT_EQ(why.rfind("the plant's loop was on time on ", 0), 0u) << why;
+  EXPECT_NE(why.find("Hz of 1000"), std::string::npos) << why;
+  const nlohmann::json& stale = s["messages"]["stale"]["plant"];
+  if (stale["torque_held"].get<long long>() + stale["torque_zeroed"].get<long long>() == 0) {
+    EXPECT_NE(why.find("torque was fresh on every period"), std::string::npos) << why;
+  } else {
+    bool named = false;
+    for (const auto& reason : s["verdict"]["reasons"]) named = named || reason["kind"] == "stale_torque";
+    for (const auto& warning : s["verdict"]["warnings"]) named = named || warning["kind"] == "stale_torque";
+    EXPECT_TRUE(named) << s["verdict"].dump(2);
+  }
+  // ... and the block's first line is that reason.
+  const std::string line = "scenario rigid_2dof_external: completed -- tracking NOT met: " + why;
+  EXPECT_NE(r.output.find(line), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace lagrange::testing
