@@ -39,14 +39,14 @@ TEST_F(SubcommandLogic, SpyFindsTheRunItsEndpointFileNames) {
   RunEndpoint written;
   written.lcm_url = "udpm://239.255.76.67:7701?ttl=0";
   written.run_id = 12345;
-  written.netns_pid = 4242;
-  written.launcher_pid = 4240;
+  written.netns_pid = 4242;  // the launcher takes the namespace from itself
+  written.launcher_pid = 4242;
   writeEndpoint(dir_, written);
   const RunEndpoint read = readEndpoint(dir_);
   EXPECT_EQ(read.lcm_url, written.lcm_url);
   EXPECT_EQ(read.run_id, 12345);
   EXPECT_EQ(read.netns_pid, 4242);
-  EXPECT_EQ(read.launcher_pid, 4240);
+  EXPECT_EQ(read.launcher_pid, 4242);
 
   // A run on the machine's network, written before launcher_pid existed.
   writeFile("lcm.json", R"({"lcm_url": "udpm://239.255.76.67:7667", "netns_pid": null})");

@@ -28,8 +28,30 @@ struct RunEndpoint {
 
 /// Writes OUT/lcm.json. @throws RuntimeFault if it cannot be written.
 void writeEndpoint(const std::string& out_dir, const RunEndpoint& endpoint);
-/// @throws BadInput naming the file and what is wrong with it.
+
+/// A run folder is data, never instructions: lcm.json is read as what
+/// `lagrange run` writes and nothing else. Only a regular file of at most
+/// 64 KiB, a JSON object of lcm_url, run_id, netns_pid and launcher_pid; the
+/// URL as the launcher writes it (runUrlProblem); pids positive, and
+/// netns_pid (the launcher takes the namespace from itself) null or the
+/// launcher's. Anything else is refused whole: a folder cannot make view or
+/// spy open a URL of its choice (LCM's file provider in write mode would
+/// empty a file) or join another process's namespaces.
+/// @throws BadInput naming the file, the field and what was expected.
 RunEndpoint readEndpoint(const std::string& out_dir);
+
+/// "" when `url` has the one form `lagrange run` writes into lcm.json --
+/// `udpm://A.B.C.D:PORT` with A.B.C.D a multicast IPv4 address
+/// (224.0.0.0-239.255.255.255, decimal, no leading zeros), PORT 1-65535
+/// and at most the query `?ttl=N`, N 0-255 -- else what is wrong with it.
+/// Checked character by character: nothing else (another provider, another
+/// option, a second `?`, a NUL, spaces) passes.
+std::string runUrlProblem(const std::string& url);
+
+/// The run's launcher still runs: the process lives and is a `lagrange`
+/// (its first argument's file name: a pid of a run long finished may have
+/// been given to another program).
+bool launcherAlive(long pid);
 
 /// The java command line of lcm-spy with the LCM jar, jchart2d and this
 /// project's types jar. @throws BadInput naming a missing jar and its Debian package.

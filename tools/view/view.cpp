@@ -50,16 +50,6 @@ struct Source {
   std::string key_file;  ///< live: the run's key, to read only what its processes sent
 };
 
-// The run's launcher still runs: the process lives and is a `lagrange` (a
-// pid of a run long finished may have been given to another program).
-bool launcherAlive(long pid) {
-  if (kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM) return false;
-  std::ifstream in("/proc/" + std::to_string(pid) + "/cmdline");
-  std::string argv0;
-  std::getline(in, argv0, '\0');
-  return fs::path(argv0).filename() == "lagrange";
-}
-
 // A directory with a going run is live; a finished one is its log.
 Source resolveSource(const ViewOptions& opt) {
   Source s;
