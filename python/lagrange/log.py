@@ -23,10 +23,29 @@ re-sent; `run.repeated` counts the others). numpy is used when it is installed, 
 type, or whose checksum does not match (a damaged log, a copy corrupted on
 the way and recorded as it arrived), are counted in `run.undecodable` and
 `run.corrupt`, never returned.
+
+Rows are the run's own: a per-tick row or a STATUS whose header claims a
+tick outside the log's scenario's, 0 to round(duration * publish_rate)
+(`run.bounds.last_tick`; log_bounds.py), is dropped before it is decoded and
+counted in `run.out_of_range` (and said in `run.problems()`); a copy of a
+tick already kept is counted in `run.repeated` and not kept. So what `load`
+holds grows with the scenario, not with the file.
+
+Every file of the run is looked at before a byte is read, as the C++ readers
+do: a FIFO, a device, a directory, a file of /proc or /sys, or a link to one
+is refused, never waited on; summary.json is read whole only up to 16 MiB,
+config.resolved.yaml and config.resolved.json up to the largest scenario a
+log can hold (MAX_RESOLVED_BYTES), and JSON nested deeper than
+MAX_JSON_DEPTH levels is refused before it is parsed. Every refusal is a
+LogError (a ValueError) naming the file, what was wrong and what was
+expected.
 """
 
+import itertools
 import json
+import operator
 import os
+import re
 import struct
 
 from . import contract, log_bounds, logfile
@@ -55,6 +74,21 @@ CHANNEL_TYPES = {
 
 # Channels whose messages are one sample each, read into columns.
 PER_TICK = ("PLANT_POSITION", "PLANT_TRUTH", "PLANT_MOTOR", "PLANT_RATE", "CONTROL_COMMAND", "ACTUATOR_STATE")
+# Channels whose messages start with a header (its tick just after the 8-byte fingerprint).
+WITH_TICK = PER_TICK + ("STATUS",)
+
+LogError = logfile.LogError
+
+# summary.json: a few kB of metrics; 16 MiB is far beyond any run's (as
+# `lagrange export` and `lagrange view` read it: tools/export/export.cpp).
+MAX_SUMMARY_BYTES = 16 << 20
+# config.resolved.yaml (and .json): the largest scenario a log can hold, a
+# scenario file of 1 MiB resolved with its URDF inline (as export reads it).
+MAX_RESOLVED_BYTES = log_bounds.MAX_SCENARIO_EVENT_BYTES
+# JSON nesting, as the C++ reader of a sweep's rows bounds it
+# (tools/sweep/sweep_files.hpp, kMaxSweepJsonDepth); a run's summary.json and
+# config.resolved.json nest 6 levels at most.
+MAX_JSON_DEPTH = 32
 
 
 def decode(channel, data):
@@ -123,6 +157,55 @@ def bounds_of_log(path):
     return log_bounds.bounds_of_scenario(None)
 
 
+# A JSON string, to its closing quote or to the end of the text (so that a
+# string left open never sends the search back over the rest: linear time).
+_JSON_STRING = re.compile(r'"[^"\\]*(?:\\.[^"\\]*)*(?:"|\\?\Z)', re.S)
+# Of a text's UTF-8 bytes, the brackets alone (every other byte deleted),
+# an opening one as 2 and a closing one as 0: the level after the k-th
+# bracket is the sum of the first k, less k.
+_BRACKET_STEPS = bytes.maketrans(b"[{]}", b"\x02\x02\x00\x00")
+_NOT_BRACKETS = bytes(b for b in range(256) if b not in b"[]{}")
+
+
+def _deeper_than(text, limit):
+    """Whether the JSON `text` nests deeper than `limit` levels, found
+    without recursion and in time linear in the text (brackets inside
+    strings do not count)."""
+    if text.count("[") + text.count("{") <= limit:
+        return False
+    steps = _JSON_STRING.sub("", text).encode("utf-8", "surrogatepass").translate(_BRACKET_STEPS, _NOT_BRACKETS)
+    return max(map(operator.sub, itertools.accumulate(steps), itertools.count(1)), default=0) > limit
+
+
+def _text_of(path, max_bytes, expected):
+    data = logfile.read_regular_file(path, max_bytes, expected)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise LogError("'%s' is not UTF-8 text (byte %d is not); expected %s" % (path, e.start, expected)) from None
+
+
+def read_json(path, max_bytes, expected):
+    """The JSON value in the file `path`, read as read_regular_file reads
+    (a regular file of at most max_bytes), nested at most MAX_JSON_DEPTH
+    levels. Raises LogError naming the file, what was wrong and `expected`."""
+    return parse_json(_text_of(path, max_bytes, expected), "'%s'" % path, expected)
+
+
+def parse_json(text, where, expected):
+    """The JSON value `text` holds, nested at most MAX_JSON_DEPTH levels (the
+    depth checked first, without recursion); else LogError saying `where`
+    ("'OUT/summary.json'"), what was wrong and `expected`."""
+    if _deeper_than(text, MAX_JSON_DEPTH):
+        raise LogError("%s nests JSON deeper than %d levels; expected %s" % (where, MAX_JSON_DEPTH, expected))
+    try:
+        return json.loads(text)
+    except RecursionError:  # not reached after the depth check; never let it out raw
+        raise LogError("%s nests JSON too deeply; expected %s" % (where, expected)) from None
+    except ValueError as e:  # JSONDecodeError, a number of more digits than Python converts
+        raise LogError("%s is not JSON (%s); expected %s" % (where, e, expected)) from None
+
+
 class Run:
     """A run's outputs (see the module's text)."""
 
@@ -134,6 +217,10 @@ class Run:
         self.repeated = {}  # channel -> messages of a tick already read (lockstep re-sends), left out
         self.corrupt = {}  # channel -> messages whose checksum does not match (recorded as they arrived), left out
         self.unknown_channels = {}  # channel -> count
+        # channel -> rows (and STATUS) whose tick is not one of the scenario's, 0 to bounds.last_tick: left out
+        self.out_of_range = {}
+        self.first_out_of_range = []  # (channel, byte offset, tick), the first few
+        self.bounds = None  # log_bounds.Bounds: each channel's largest event and the run's ticks
         self.scan = None
         self.summary = None
         # summary.json's `verdict` as the run wrote it (docs/summary.md, "The
@@ -142,6 +229,19 @@ class Run:
         self.verdict = None
         self.scenario_yaml = None  # config.resolved.yaml's text
         self.scenario = None  # config.resolved.json as a dict (the same scenario; None for older runs)
+
+    def problems(self):
+        """Warnings for a person: the log's (scan.problems()) and the rows
+        left out for a tick that is not the run's; empty when all was read."""
+        out = list(self.scan.problems()) if self.scan is not None else []
+        dropped = sum(self.out_of_range.values())
+        if dropped:
+            named = "; ".join("%s at byte %d (tick %d)" % row for row in self.first_out_of_range)
+            more = "; ..." if dropped > len(self.first_out_of_range) else ""
+            out.append("%d %s a tick outside the run's ticks 0 to %d (%s) and %s left out, never decoded (%s%s)"
+                       % (dropped, "message claimed" if dropped == 1 else "messages claimed", self.bounds.last_tick,
+                          self.bounds.ticks_origin, "was" if dropped == 1 else "were", named, more))
+        return out
 
 
 def load(run_dir, numpy=None, verify=True):
@@ -153,20 +253,32 @@ def load(run_dir, numpy=None, verify=True):
     numpy: None (use it when installed), True or False. verify: leave out
     (and count in `run.corrupt`) messages whose checksum does not match, as
     the project's own readers do; False skips the check (it is pure Python,
-    about a second per 30 000 messages)."""
-    if os.path.isfile(str(run_dir)):  # the log itself
-        path = str(run_dir)
-        run = Run(os.path.dirname(os.path.abspath(path)))
-        # A run's folder holds its summary and scenario beside run.lcm; beside
-        # another log (a stock lcm-logger's) they would be some other run's.
-        return _load(run, path, numpy, verify, with_outputs=os.path.basename(path) == "run.lcm")
-    run = Run(run_dir)
-    return _load(run, os.path.join(run.dir, "run.lcm"), numpy, verify)
+    about a second per 30 000 messages). Raises LogError naming the file and
+    what was wrong when a file of the run is not what a run writes (the
+    module's text)."""
+    given = str(run_dir)
+    if os.path.isdir(given):
+        run = Run(given)
+        return _load(run, os.path.join(run.dir, "run.lcm"), numpy, verify)
+    if not os.path.lexists(given):
+        raise LogError("%s does not exist; expected the output directory of a lagrange run (--out) or its run.lcm"
+                       % given)
+    # The log itself (LogReader refuses a FIFO, a device, ... by what it is).
+    run = Run(os.path.dirname(os.path.abspath(given)))
+    # A run's folder holds its summary and scenario beside run.lcm; beside
+    # another log (a stock lcm-logger's) they would be some other run's.
+    return _load(run, given, numpy, verify, with_outputs=os.path.basename(given) == "run.lcm")
+
+
+# Messages of a tick outside the run's named in run.problems(); the rest are counted.
+_OUT_OF_RANGE_NAMED = 3
 
 
 def _load(run, path, numpy, verify, with_outputs=True):
-    if not os.path.exists(path):
-        raise logfile.LogError("%s has no run.lcm; expected the output directory of a lagrange run (--out)" % run.dir)
+    if not os.path.lexists(path):
+        raise LogError("%s has no run.lcm; expected the output directory of a lagrange run (--out)" % run.dir)
+    if with_outputs:  # the small files first: a refusal comes at once, not after the log
+        _load_outputs(run)
     if numpy is None:
         try:
             import numpy as _numpy  # noqa: F401
@@ -174,48 +286,70 @@ def _load(run, path, numpy, verify, with_outputs=True):
             numpy = True
         except ImportError:
             numpy = False
+    run.bounds = bounds = bounds_of_log(path)
+    fingerprints = {channel: kind._get_packed_fingerprint() for channel, kind in CHANNEL_TYPES.items()}
     decoded = {}
-    with logfile.LogReader(path, bounds=bounds_of_log(path)) as reader:
+    kept_ticks = {}  # per-tick channel -> the ticks of its rows
+    previous = {}  # channel without a tick -> (data, message): an identical copy shares the message
+    with logfile.LogReader(path, bounds=bounds) as reader:
         for event in reader:
-            if event.channel not in CHANNEL_TYPES:
-                run.unknown_channels[event.channel] = run.unknown_channels.get(event.channel, 0) + 1
+            channel, data = event.channel, event.data
+            if channel not in CHANNEL_TYPES:
+                run.unknown_channels[channel] = run.unknown_channels.get(channel, 0) + 1
                 continue
-            msg = decode(event.channel, event.data)
+            if channel in WITH_TICK:
+                # The tick its header claims, before anything is decoded: one
+                # that is not the run's is left out, whatever the rest holds.
+                if len(data) >= 16 and data[:8] == fingerprints[channel]:
+                    tick = struct.unpack_from(">q", data, 8)[0]
+                    if not bounds.holds_tick(tick):
+                        run.out_of_range[channel] = run.out_of_range.get(channel, 0) + 1
+                        if len(run.first_out_of_range) < _OUT_OF_RANGE_NAMED:
+                            run.first_out_of_range.append((channel, event.offset, tick))
+                        continue
+            else:
+                same = previous.get(channel)
+                if same is not None and same[0] == data:  # a scenario published again (a stock logger's)
+                    decoded[channel].append(same[1])
+                    continue
+            msg = decode(channel, data)
             if msg is None:
-                run.undecodable[event.channel] = run.undecodable.get(event.channel, 0) + 1
+                run.undecodable[channel] = run.undecodable.get(channel, 0) + 1
                 continue
             header = getattr(msg, "header", None)
             if verify and header is not None and header.checksum != 0 and not contract.intact(msg):
-                run.corrupt[event.channel] = run.corrupt.get(event.channel, 0) + 1
+                run.corrupt[channel] = run.corrupt.get(channel, 0) + 1
                 continue
-            decoded.setdefault(event.channel, []).append(msg)
+            if channel in PER_TICK:
+                # One row per tick: the first copy (lockstep re-sends a tick unanswered in time).
+                ticks = kept_ticks.setdefault(channel, set())
+                if header.tick in ticks:
+                    run.repeated[channel] = run.repeated.get(channel, 0) + 1
+                    continue
+                ticks.add(header.tick)
+            elif channel not in WITH_TICK:
+                previous[channel] = (data, msg)
+            decoded.setdefault(channel, []).append(msg)
         run.scan = reader.scan
     for channel, messages in decoded.items():
         if channel in PER_TICK:
-            seen, once = set(), []
-            for m in messages:  # one row per tick: the first copy (lockstep re-sends a tick unanswered in time)
-                if m.header.tick in seen:
-                    run.repeated[channel] = run.repeated.get(channel, 0) + 1
-                    continue
-                seen.add(m.header.tick)
-                once.append(m)
-            run.channels[channel] = _columns(once, numpy)
+            run.channels[channel] = _columns(messages, numpy)
         else:
             run.messages[channel] = messages
-    if not with_outputs:
-        return run
+    return run
+
+
+def _load_outputs(run):
+    """summary.json, config.resolved.yaml and config.resolved.json beside the
+    log, each when it is there (a link is there, even one to nothing)."""
     summary = os.path.join(run.dir, "summary.json")
-    if os.path.exists(summary):
-        with open(summary, "r", encoding="utf-8") as f:
-            run.summary = json.load(f)
+    if os.path.lexists(summary):
+        run.summary = read_json(summary, MAX_SUMMARY_BYTES, "the run's summary.json")
         if isinstance(run.summary, dict) and isinstance(run.summary.get("verdict"), dict):
             run.verdict = run.summary["verdict"]
     resolved = os.path.join(run.dir, "config.resolved.yaml")
-    if os.path.exists(resolved):
-        with open(resolved, "r", encoding="utf-8") as f:
-            run.scenario_yaml = f.read()
+    if os.path.lexists(resolved):
+        run.scenario_yaml = _text_of(resolved, MAX_RESOLVED_BYTES, "the run's resolved scenario")
     resolved_json = os.path.join(run.dir, "config.resolved.json")
-    if os.path.exists(resolved_json):
-        with open(resolved_json, "r", encoding="utf-8") as f:
-            run.scenario = json.load(f)
-    return run
+    if os.path.lexists(resolved_json):
+        run.scenario = read_json(resolved_json, MAX_RESOLVED_BYTES, "the run's resolved scenario as JSON")

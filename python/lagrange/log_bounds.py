@@ -12,12 +12,23 @@ stages of xi_error any controller reports (4). Without a SCENARIO, or one
 that does not read, the project's limits bound the events: 16 joints, order
 4, 100 000 torque steps a tick.
 
+The SCENARIO also says which ticks the run has: 0 to round(duration *
+plant.publish_rate) (config::Scenario::lastTick). A per-tick row or a STATUS
+whose header claims a tick outside them is none of this run's, and
+lagrange.log.load drops and counts it (`run.out_of_range`), so that what it
+keeps grows with the scenario, not with the file: a 582 MB log of 3 million
+ticks for a 1 001-tick scenario took it to a MemoryError at 3.8 GB. Without a
+SCENARIO that gives them, the ticks are bounded by the project's limit of
+10^8 samples a run (config/work_bounds.hpp, kMaxSamples).
+
 The shape is read from the resolved scenario as lagrange writes it (block
-style: `actuator:` then `  order: 2`, `initial_state:` then `  q: [...]`);
-the standard library has no YAML reader, and these four keys are all the
-bounds need. A scenario written otherwise falls back to the project's limits.
+style: `actuator:` then `  order: 2`, `initial_state:` then `  q: [...]`,
+`duration: 1` at the top); the standard library has no YAML reader, and
+these five keys are all the bounds need. A scenario written otherwise falls
+back to the project's limits.
 """
 
+import math
 import re
 
 MAX_PUBLISHER_BYTES = 64
@@ -26,6 +37,8 @@ MAX_ACTUATOR_ORDER = 4
 # config/work_bounds.hpp: kMaxJoints, kMaxStepsPerSample.
 MAX_JOINTS = 16
 MAX_TORQUE_STEPS = 100000
+# config/work_bounds.hpp, kMaxSamples: samples (ticks) of one run; 1e8 is 28 hours at 1 kHz.
+MAX_SAMPLES = 10 ** 8
 # A scenario file (1 MiB) resolved with its URDF inline (16 MiB, escaped: twice that), and room.
 MAX_SCENARIO_EVENT_BYTES = (1 << 20) + 2 * (16 << 20) + (64 << 10)
 MAX_DESCRIPTION_EVENT_BYTES = 1 << 20
@@ -70,11 +83,14 @@ def encoded_sizes(shape):
 
 class Bounds:
     """Per channel, the most data an event may hold in one log; `origin`
-    says whose shape that is, for warnings."""
+    says whose shape that is, for warnings. The run's ticks are 0 to
+    `last_tick` (default: the project's limit), `ticks_origin` says whose."""
 
-    def __init__(self, shape, origin):
+    def __init__(self, shape, origin, last_tick=None, ticks_origin=None):
         self.shape = shape
         self.origin = origin
+        self.last_tick = MAX_SAMPLES if last_tick is None else last_tick
+        self.ticks_origin = ticks_origin or "the project's limit of %d samples a run" % MAX_SAMPLES
         self.largest = {channel: size + MAC_BYTES for channel, size in encoded_sizes(shape).items()}
         self.largest.update({"STATUS": MAX_STATUS_EVENT_BYTES, "SCENARIO": MAX_SCENARIO_EVENT_BYTES,
                              "ROBOT_DESCRIPTION": MAX_DESCRIPTION_EVENT_BYTES})
@@ -84,9 +100,20 @@ class Bounds:
         (a channel of another program, never decoded)."""
         return self.largest.get(channel)
 
+    def holds_tick(self, tick):
+        """Whether `tick` is one of the run's: 0 to last_tick."""
+        return 0 <= tick <= self.last_tick
+
 
 def project_limits(why="no scenario"):
-    return Bounds(PROJECT_LIMITS, "%s: the project's limits (%s)" % (why, PROJECT_LIMITS.describe()))
+    return Bounds(PROJECT_LIMITS, "%s: the project's limits (%s)" % (why, PROJECT_LIMITS.describe()), None,
+                  "%s: the project's limit of %d samples a run" % (why, MAX_SAMPLES))
+
+
+def _top_value(yaml, key):
+    """`key`'s text at the top level of a block-style YAML map, or None."""
+    value = re.search(r"^%s:[ \t]*(.*?)[ \t]*$" % re.escape(key), yaml, re.M)
+    return value.group(1) if value else None
 
 
 def _section_value(yaml, section, key):
@@ -118,11 +145,42 @@ def shape_of_scenario(yaml):
     return Shape(joints, chain_order, steps)
 
 
+def _llround(x):
+    """C's llround for x >= 0: halves away from zero (x - floor(x) is exact)."""
+    whole = math.floor(x)
+    return int(whole) + (1 if x - whole >= 0.5 else 0)
+
+
+def last_tick_of_scenario(yaml):
+    """The run's last tick, round(duration * plant.publish_rate) as
+    config::Scenario::lastTick computes it, or None when a key is missing,
+    not a number, or the product is not 0 to MAX_SAMPLES."""
+    duration = _top_value(yaml, "duration")
+    publish_rate = _section_value(yaml, "plant", "publish_rate")
+    if duration is None or publish_rate is None:
+        return None
+    try:
+        samples = float(duration) * float(publish_rate)
+    except ValueError:
+        return None
+    if not (math.isfinite(samples) and 0 <= samples <= MAX_SAMPLES):
+        return None
+    return _llround(samples)
+
+
 def bounds_of_scenario(yaml):
     """The bounds of a log whose SCENARIO holds `yaml` (None: no SCENARIO)."""
     if yaml is None:
         return project_limits("no SCENARIO in the log")
+    last_tick = last_tick_of_scenario(yaml)
+    if last_tick is not None:
+        ticks_origin = "the log's scenario: duration %s s at plant.publish_rate %s Hz" % (
+            _top_value(yaml, "duration"), _section_value(yaml, "plant", "publish_rate"))
+    else:
+        ticks_origin = ("the log's SCENARIO gives no duration and plant.publish_rate as lagrange writes them: the "
+                        "project's limit of %d samples a run" % MAX_SAMPLES)
     shape = shape_of_scenario(yaml)
     if shape is None:
-        return project_limits("the log's SCENARIO is not a scenario as lagrange writes it")
-    return Bounds(shape, "the log's scenario (%s)" % shape.describe())
+        bounds = project_limits("the log's SCENARIO is not a scenario as lagrange writes it")
+        return Bounds(bounds.shape, bounds.origin, last_tick, ticks_origin)
+    return Bounds(shape, "the log's scenario (%s)" % shape.describe(), last_tick, ticks_origin)

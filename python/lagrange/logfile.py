@@ -21,7 +21,11 @@ should start:
   named (scan.oversized_events, scan.first_oversized).
 
 The file is opened without blocking and refused unless it is a regular file:
-a FIFO, /dev/zero or a directory is named and refused before a byte is read.
+a FIFO, /dev/zero or a directory is named and refused before a byte is read,
+and so is a file of /proc or /sys (the kernel makes it up as it is read:
+/proc/kcore claims 128 TB). `read_regular_file` reads the other files of a
+run (summary.json, the resolved scenario) the same way, whole but at most a
+given size, as the C++ readers do (config/input_file.hpp, util/input_file.hpp).
 """
 
 import os
@@ -108,6 +112,91 @@ def _kind(mode):
     return "not a regular file"
 
 
+# Where the kernel makes files up as they are read: "regular" files whose
+# size says nothing (0 bytes, or /proc/kcore's 128 TB) and whose reads may wait.
+_PSEUDO_FILESYSTEMS = ("/proc", "/sys")
+
+
+def _pseudo_filesystem(device):
+    for root in _PSEUDO_FILESYSTEMS:
+        try:
+            if os.stat(root).st_dev == device:
+                return root
+        except OSError:
+            pass
+    return None
+
+
+def open_regular(path, expected):
+    """A descriptor of `path`, opened without blocking (a FIFO without a
+    writer does not wait) and looked at through itself (fstat: what is
+    checked is what will be read, a symbolic link followed), and its
+    os.stat_result. Raises LogError naming the file, what it is and
+    `expected` unless it is a regular file outside /proc and /sys. The
+    descriptor stays non-blocking; it is the caller's to close."""
+    path = str(path)
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+    except OSError as e:
+        raise LogError("cannot read '%s' (%s); expected %s" % (path, e.strerror, expected)) from None
+    try:
+        st = os.fstat(fd)
+        if not stat.S_ISREG(st.st_mode):
+            raise LogError("'%s' is %s; expected %s (a regular file)" % (path, _kind(st.st_mode), expected))
+        root = _pseudo_filesystem(st.st_dev)
+        if root is not None:
+            raise LogError("'%s' is a file of %s (made up by the kernel as it is read); expected %s (a regular "
+                           "file)" % (path, root, expected))
+    except BaseException:
+        os.close(fd)
+        raise
+    return fd, st
+
+
+def size_text(size):
+    """"1 MiB", "16 MiB", "2.5 MiB", "800 bytes" (config::sizeText)."""
+    if size < 1024:
+        return "%d bytes" % size
+    if size >= 1 << 20:
+        return "%.3g MiB" % (size / float(1 << 20))
+    return "%.3g KiB" % (size / 1024.0)
+
+
+def read_regular_file(path, max_bytes, expected):
+    """The bytes of `path` when it is a regular file (open_regular) of at
+    most `max_bytes`; read without ever waiting and never more than
+    max_bytes + 1 bytes (a file that grows while it is read is caught, not
+    read whole). Raises LogError naming the file, what was wrong and
+    `expected`."""
+    path = str(path)
+    fd, st = open_regular(path, expected)
+    try:
+        if st.st_size > max_bytes:
+            raise LogError("'%s' is %s; expected %s of at most %s"
+                           % (path, size_text(st.st_size), expected, size_text(max_bytes)))
+        chunks, got = [], 0
+        while got <= max_bytes:
+            try:
+                chunk = os.read(fd, min(1 << 20, max_bytes + 1 - got))
+            except BlockingIOError:
+                raise LogError("'%s' cannot be read without waiting; expected %s (a regular file)"
+                               % (path, expected)) from None
+            except InterruptedError:
+                continue
+            except OSError as e:
+                raise LogError("cannot read '%s' (%s); expected %s" % (path, e.strerror, expected)) from None
+            if not chunk:
+                break
+            chunks.append(chunk)
+            got += len(chunk)
+        if got > max_bytes:
+            raise LogError("'%s' is larger than %s (it grew while it was read); expected %s of at most %s"
+                           % (path, size_text(max_bytes), expected, size_text(max_bytes)))
+        return b"".join(chunks)
+    finally:
+        os.close(fd)
+
+
 class LogReader:
     """Reads a log's events in file order: `for event in LogReader(path)`.
     `scan` holds what was read once the iteration ends. `bounds`
@@ -117,14 +206,8 @@ class LogReader:
 
     def __init__(self, path, bounds=None, only_channel=None):
         self.path = str(path)
-        try:  # without blocking (a FIFO), then looked at through the descriptor that will be read
-            fd = os.open(self.path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
-        except OSError as e:
-            raise LogError("cannot read '%s' (%s); expected an LCM log file" % (self.path, e.strerror)) from None
-        mode = os.fstat(fd).st_mode
-        if not stat.S_ISREG(mode):
-            os.close(fd)
-            raise LogError("'%s' is %s; expected an LCM log file (a regular file)" % (self.path, _kind(mode)))
+        # Without blocking (a FIFO), then looked at through the descriptor that will be read.
+        fd, _ = open_regular(self.path, "an LCM log file")
         os.set_blocking(fd, True)
         self._file = os.fdopen(fd, "rb")
         self._size = os.fstat(self._file.fileno()).st_size

@@ -11,7 +11,10 @@ programs, standard library only.
 A keyword override is a scenario key with "__" for each "." (controller__kp
 is controller.kp); its value goes to --set as JSON (which is YAML); args
 are more options as they are (args=["--no-netns"] where user namespaces are
-refused, ["--report"], ["--check-sampled"]). The program is LAGRANGE_BIN,
+refused, ["--report"], ["--check-sampled"]). A keyword that cannot be a key
+(a part empty or with anything but letters, digits and "_", such as "=" in
+**{"controller__kp=1,x": 3}) is refused with LagrangeError before anything
+runs, as is a value that is not JSON. The program is LAGRANGE_BIN,
 else `lagrange` on PATH, else the build of this checkout (build/bin/lagrange
 beside python/). Interrupted (Ctrl-C, a notebook's stop), the program is
 stopped as Ctrl-C stops it -- its summary and log kept -- and
@@ -20,12 +23,13 @@ KeyboardInterrupt raised again.
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
 import tempfile
 
-from . import log
+from . import log, logfile
 
 __all__ = ["LagrangeError", "program", "run", "sweep"]
 
@@ -65,10 +69,34 @@ def program(environ=None):
                         "to its path" % checkout)
 
 
+# A scenario key's part: letters, digits and "_" (controller, kp, PLANT_POSITION, faults.receivers.logger).
+_KEY_PART = re.compile(r"[A-Za-z0-9_]+\Z")
+
+
+def _key(keyword):
+    """The scenario key a keyword names ("__" for each "."), or LagrangeError
+    when it cannot be one: a part empty or holding anything but letters,
+    digits and "_" ("=", ",", a space would change what --set says)."""
+    key = keyword.replace("__", ".")
+    parts = key.split(".")
+    for part in parts:
+        if not _KEY_PART.match(part):
+            raise LagrangeError("the keyword %r is not a scenario key: %s; expected a key's parts (letters, digits "
+                                "and _) joined by __ for each ., e.g. controller__kp for controller.kp"
+                                % (keyword, "an empty part" if not part else "the part %r" % part))
+    return key
+
+
 def _sets(overrides):
     args = []
-    for key, value in overrides.items():
-        args += ["--set", "%s=%s" % (key.replace("__", "."), json.dumps(value))]
+    for keyword, value in overrides.items():
+        key = _key(keyword)
+        try:
+            text = json.dumps(value, allow_nan=False)
+        except (TypeError, ValueError) as e:
+            raise LagrangeError("the value of %s (keyword %s) is not JSON: %s; expected a number, a string, a list "
+                                "or a dict of them" % (key, keyword, e)) from None
+        args += ["--set", "%s=%s" % (key, text)]
     return args
 
 
@@ -98,17 +126,22 @@ def run(scenario, out=None, mode=None, args=(), **overrides):
     `scenario`). out: the output directory (default: a new temporary one,
     kept); mode: "lockstep", "realtime" or "inproc" (default: the
     scenario's); args: more options as they are (["--no-netns"],
-    ["--report"]); **overrides: --set, with "__" for ".". Raises LagrangeError
-    when the program is missing or the run fails (exit code, last lines,
-    `out`)."""
+    ["--report"]); **overrides: --set, with "__" for "." (a keyword that
+    cannot be a scenario key is refused). Raises LagrangeError when a keyword
+    or its value is refused, the program is missing or the run fails (exit
+    code, last lines, `out`)."""
     if not os.path.isfile(str(scenario)):
         raise LagrangeError("the scenario %s is not a file; expected the path of a scenario YAML file" % scenario)
+    sets = _sets(overrides)  # a keyword that is no key is refused before anything runs
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-run-")
     command = [program(), "run", str(scenario), "--out", str(out), "--quiet"]
     if mode is not None:
         command += ["--mode", mode]
-    _call(command + _sets(overrides) + [str(a) for a in args], out, "lagrange run %s" % scenario)
-    return log.load(out)
+    _call(command + sets + [str(a) for a in args], out, "lagrange run %s" % scenario)
+    try:
+        return log.load(out)
+    except log.LogError as e:  # the run's files are not what it wrote (replaced, or another program's)
+        raise LagrangeError("lagrange run %s: %s" % (scenario, e), out=out) from e
 
 
 def sweep(spec, out=None, jobs=None, args=()):
@@ -121,10 +154,15 @@ def sweep(spec, out=None, jobs=None, args=()):
     those the table holds."""
     if not os.path.isfile(str(spec)):
         raise LagrangeError("the sweep %s is not a file; expected the path of a sweep YAML file" % spec)
+    if jobs is not None:
+        try:
+            jobs = int(jobs)
+        except (TypeError, ValueError):
+            raise LagrangeError("jobs=%r: expected a whole number of runs at a time" % (jobs,)) from None
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-sweep-")
     command = [program(), "sweep", str(spec), "--out", str(out), "--quiet"]
     if jobs is not None:
-        command += ["--jobs", str(int(jobs))]
+        command += ["--jobs", str(jobs)]
     try:
         _call(command + [str(a) for a in args], out, "lagrange sweep %s" % spec)
     except LagrangeError as e:
@@ -134,14 +172,36 @@ def sweep(spec, out=None, jobs=None, args=()):
     return _rows(out)
 
 
+# tools/sweep/sweep_files.hpp: kMaxSweepLineBytes, the longest row the C++ readers take.
+MAX_ROW_BYTES = 64 << 10
+
+
 def _rows(out):
-    """OUT/sweep.jsonl's rows in index order ([] when there is none)."""
+    """OUT/sweep.jsonl's rows in index order ([] when there is none), read as
+    the C++ readers read it: a regular file (never a FIFO), each line at most
+    MAX_ROW_BYTES, JSON nested at most log.MAX_JSON_DEPTH levels."""
+    path = os.path.join(str(out), "sweep.jsonl")
+    if not os.path.lexists(path):
+        return []
+    expected = "the sweep's rows (one JSON object a line, as lagrange sweep writes them)"
     rows = []
     try:
-        with open(os.path.join(str(out), "sweep.jsonl"), encoding="utf-8") as f:
-            for line in f:
-                if line.strip():
-                    rows.append(json.loads(line))
-    except FileNotFoundError:
-        return []
-    return sorted(rows, key=lambda r: r.get("index", 0))
+        fd, _ = logfile.open_regular(path, expected)
+        os.set_blocking(fd, True)
+        with os.fdopen(fd, "rb") as f:
+            for number, line in enumerate(iter(lambda: f.readline(MAX_ROW_BYTES + 1), b""), 1):
+                where = "'%s' line %d" % (path, number)
+                if len(line) > MAX_ROW_BYTES:
+                    raise log.LogError("%s is longer than %d bytes; expected %s" % (where, MAX_ROW_BYTES, expected))
+                try:
+                    text = line.decode("utf-8")
+                except UnicodeDecodeError:
+                    raise log.LogError("%s is not UTF-8 text; expected %s" % (where, expected)) from None
+                if text.strip():
+                    row = log.parse_json(text, where, expected)
+                    if not isinstance(row, dict):
+                        raise log.LogError("%s is not a JSON object; expected %s" % (where, expected))
+                    rows.append(row)
+    except log.LogError as e:
+        raise LagrangeError(str(e), out=out) from e
+    return sorted(rows, key=lambda r: r.get("index", 0) if isinstance(r.get("index", 0), (int, float)) else 0)
