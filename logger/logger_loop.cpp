@@ -40,8 +40,12 @@ Clock::duration asDuration(double s) {
 
 // The validation of the logger's inputs: the run's joints; PLANT_MOTOR with
 // the rate row the scenario promises.
+// Every per-tick message keeps the run's clock: a tick of the scenario's,
+// its sim_time that tick's (transport::validateClock).
 template <class Msg>
 transport::Rejection validateFor(const config::Scenario& s, const Msg& m) {
+  if (std::string why = transport::validateClock(m.header, s.lastTick(), s.tickPeriod()); !why.empty())
+    return why;
   if constexpr (std::is_same_v<Msg, lagrange::plant_motor_t>)
     return transport::validate(m, s.dof(), s.flexible->rate_sensor);
   else
@@ -119,7 +123,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
     return std::chrono::duration<double>(t - wall_start).count();
   };
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
-  RecordFilter record_filter(node.runId());  // only what the run's processes would accept
+  RecordFilter record_filter(node.runId(), s.lastTick());  // only what the run's processes would accept
 
   // Record first, then interpret: the log keeps every message, even ones
   // the validators below reject. Every channel but LCM's own self-test:

@@ -9,8 +9,13 @@
 /// processes refuse for its content (a NaN, a wrong joint count) is still
 /// recorded: it is what the run's processes sent, and the log is their
 /// record. Datagrams on channels the project does not know are recorded as
-/// before (they passed the MAC when the run has a key).
+/// before (they passed the MAC when the run has a key). A per-tick message
+/// for a tick outside the run's [0, last tick] is not recorded (counted as
+/// `outside_run`): no process of the run asks for it, and a log's readers
+/// keep memory in proportion to the scenario, not to what was sent.
 
+#include <cstdint>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -21,7 +26,8 @@ namespace lagrange::logger {
 
 class RecordFilter {
  public:
-  explicit RecordFilter(int64_t run_id) : admission_(run_id) {}
+  explicit RecordFilter(int64_t run_id, int64_t last_tick = std::numeric_limits<int64_t>::max())
+      : admission_(run_id), last_tick_(last_tick) {}
 
   /// True when the datagram is to be recorded; else counted by reason.
   /// `oversized`: larger than any message of the channel in this run can be
@@ -31,6 +37,10 @@ class RecordFilter {
     lagrange::header_t h;
     if (!transport::peekHeader(channel, data, size, h))
       return !transport::carriesHeader(channel) || refuse(channel, transport::RejectReason::kUndecodable);
+    if (perTick(channel) && (h.tick < 0 || h.tick > last_tick_)) {
+      ++not_recorded_[channel]["outside_run"];
+      return false;
+    }
     const auto refused = admission_.admit(channel, h, transport::HeaderAdmission::Order::kAcceptReordered);
     return !refused || refuse(channel, refused->reason);
   }
@@ -39,12 +49,19 @@ class RecordFilter {
   const std::map<std::string, std::map<std::string, long long>>& notRecorded() const { return not_recorded_; }
 
  private:
+  static bool perTick(const std::string& channel) {
+    for (const transport::ChannelInfo& info : transport::kChannelTable)
+      if (channel == info.name) return info.per_tick;
+    return false;
+  }
+
   bool refuse(const std::string& channel, transport::RejectReason why) {
     ++not_recorded_[channel][transport::reasonName(why)];
     return false;
   }
 
   transport::HeaderAdmission admission_;
+  int64_t last_tick_;
   std::map<std::string, std::map<std::string, long long>> not_recorded_;
 };
 

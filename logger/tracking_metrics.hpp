@@ -82,6 +82,8 @@ class TrackingMetrics {
   void addChainErrors(long long tick, double t, const std::vector<std::vector<double>>& xi_error);
 
   TrackingSummary summary() const;
+  /// The run's time of a tick [s]: tick x tick_period, as the plant computes it.
+  double timeOf(long long tick) const { return static_cast<double>(tick) * tick_period_; }
   /// The last tick up to which every sample is recorded (-1: not tick 0 yet).
   long long lastTick() const { return contiguous_tick_; }
   /// The newest tick recorded (-1: none).

@@ -110,6 +110,18 @@ std::string validate(const lagrange::actuator_state_t& m, int joints, int torque
   return why;
 }
 
+std::string validateClock(const lagrange::header_t& h, long long last_tick, double period) {
+  if (h.tick < 0 || h.tick > last_tick)
+    return "tick " + std::to_string(h.tick) + " is outside the run (its ticks are 0 to " +
+           std::to_string(last_tick) + ")";
+  const double t = static_cast<double>(h.tick) * period;
+  if (!(std::abs(h.sim_time - t) <= 1e-6 * period))
+    return "sim_time " + std::to_string(h.sim_time) + " s is not its tick's time (tick " +
+           std::to_string(h.tick) + " x " + std::to_string(period) + " s = " + std::to_string(t) +
+           " s): the run's clock is tick / plant.publish_rate";
+  return "";
+}
+
 std::string validate(const lagrange::status_t& m) {
   if (m.process.empty()) return "empty process name";
   if (!util::enumFrom(kProcessStateNames, m.state))

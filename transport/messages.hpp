@@ -42,4 +42,11 @@ std::string validate(const lagrange::control_command_t& m, int joints);
 std::string validate(const lagrange::actuator_state_t& m, int joints, int torque_steps = 0);
 std::string validate(const lagrange::status_t& m);
 
+/// "" when a per-tick message's header keeps the run's clock, else why not:
+/// its tick within [0, last_tick] (the scenario's ticks), and its sim_time
+/// tick x period to a millionth of a period. The clock is the scenario's,
+/// not a participant's: a plant stamping half the time, or ticks past the
+/// run's end, must not stretch or pad what the logger measures.
+std::string validateClock(const lagrange::header_t& h, long long last_tick, double period);
+
 }  // namespace lagrange::transport

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <vector>
 
 #include "controller/controller_lcm.hpp"
@@ -94,6 +95,29 @@ TEST(InputValidation, ActuatorStatesOfTheWrongOrderSizeOrStepsAreRefusedByTheCas
   EXPECT_NE(node.lastInvalid().find("torque_steps is 2, expected 1"), std::string::npos)
       << node.lastInvalid();
   EXPECT_EQ(invalid(node, kActuatorState), 3);
+}
+
+// The run's clock is the scenario's: a tick of the run, and that tick's time
+// (to a millionth of a period), whatever a participant stamps.
+TEST(ValidateClock, RefusesTicksOutsideTheRunAndATimeThatIsNotTheTicks) {
+  const double period = 1.0 / 1000.0;
+  lagrange::header_t h{};
+  h.tick = 200;
+  h.sim_time = 200 * period;
+  EXPECT_EQ(validateClock(h, 200, period), "");
+  h.sim_time = 0.2;  // 200 / 1000: not bit-equal to 200 x (1 / 1000), within the tolerance
+  EXPECT_EQ(validateClock(h, 200, period), "");
+  h.tick = 201;
+  h.sim_time = 201 * period;
+  EXPECT_EQ(validateClock(h, 200, period), "tick 201 is outside the run (its ticks are 0 to 200)");
+  h.tick = -1;
+  EXPECT_NE(validateClock(h, 200, period).find("outside the run"), std::string::npos);
+  h.tick = 100;
+  h.sim_time = 0.05;  // half its tick's time: a plant making a late run look quick
+  const std::string why = validateClock(h, 200, period);
+  EXPECT_NE(why.find("sim_time 0.050000 s is not its tick's time (tick 100"), std::string::npos) << why;
+  h.sim_time = std::nan("");
+  EXPECT_NE(validateClock(h, 200, period), "");
 }
 
 }  // namespace

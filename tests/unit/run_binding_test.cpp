@@ -270,5 +270,30 @@ TEST(RecordFilter, RecordsEachMessageOfThisRunOnceAndCountsTheRest) {
   EXPECT_EQ(counts.at("undecodable"), 1);
 }
 
+// A tick outside the run's [0, last tick] is no message of the run: not
+// recorded, counted (a plant publishing past the end must not pad the log).
+TEST(RecordFilter, TicksOutsideTheRunAreNotRecordedAndCounted) {
+  logger::RecordFilter filter(42, 200);
+  lagrange::plant_truth_t t{};
+  t.header = header(5, 1, 100);
+  t.header.publisher = "plant";
+  t.header.tick = 200;
+  const auto last = bytesOf(t);
+  EXPECT_TRUE(filter.admit(transport::kPlantTruth, last.data(), last.size()));
+  for (const int64_t tick : {int64_t{201}, int64_t{1000000000000000}, int64_t{-1}}) {
+    t.header.seq++;
+    t.header.tick = tick;
+    const auto outside = bytesOf(t);
+    EXPECT_FALSE(filter.admit(transport::kPlantTruth, outside.data(), outside.size())) << tick;
+  }
+  lagrange::status_t st{};
+  st.header = header(5, 1, 100);  // STATUS is no per-tick message: its tick is a process's last
+  st.header.publisher = "plant";
+  st.header.tick = 5000;
+  const auto status = bytesOf(st);
+  EXPECT_TRUE(filter.admit(transport::kStatus, status.data(), status.size()));
+  EXPECT_EQ(filter.notRecorded().at(transport::kPlantTruth).at("outside_run"), 3);
+}
+
 }  // namespace
 }  // namespace lagrange::testing
