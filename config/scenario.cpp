@@ -14,6 +14,7 @@
 #include "config/yaml_duplicates.hpp"
 #include "config/yaml_reader.hpp"
 #include "model/joint_springs.hpp"
+#include "util/terminal_text.hpp"
 
 namespace lagrange::config {
 
@@ -171,9 +172,53 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& source,
   return readTree(parseScenarioTree(yaml_text, source), source, overrides);
 }
 
+namespace {
+
+// Whether one of the user's --set names the key `key` or a map holding it.
+bool overrideNames(const std::vector<std::string>& overrides, const std::string& key) {
+  for (const std::string& o : overrides) {
+    const std::string set_key = o.substr(0, o.find('='));
+    if (key == set_key || key.compare(0, set_key.size() + 1, set_key + ".") == 0) return true;
+  }
+  return false;
+}
+
+// A recorded scenario's arm is the URDF it carries (robot.urdf.xml): the
+// file it names is the run's host's, and a log of anyone's could name any
+// file (`robot.urdf.file: /etc/shadow`) for its reader to open. Every log
+// of `lagrange run` carries the copy (since URDF arms came); the user's own
+// --set robot.urdf.file=F is read instead of it.
+void useTheRecordedUrdf(ScenarioTree& tree, const std::string& source,
+                        const std::vector<std::string>& overrides) {
+  const YAML::Node& root = tree.root;  // const: looking creates no key
+  const YAML::Node robot = root["robot"];
+  if (!robot.IsDefined() || !robot.IsMap()) return;
+  YAML::Node urdf = static_cast<const YAML::Node&>(robot)["urdf"];
+  if (!urdf.IsDefined() || !urdf.IsMap()) return;
+  if (overrideNames(overrides, "robot.urdf.file") && !overrideNames(overrides, "robot.urdf.xml")) {
+    urdf.remove("xml");  // the user's file, read from the --set that names it
+    return;
+  }
+  const YAML::Node& copy = urdf;
+  if (copy["xml"].IsDefined() || overrideNames(overrides, "robot.urdf.xml")) return;
+  const YAML::Node file = copy["file"];
+  const std::string named =
+      file.IsDefined() && file.IsScalar()
+          ? " names the URDF file '" + util::terminalSafe(file.Scalar().substr(0, 200)) + "' but"
+          : "";
+  throw ConfigError("config: " + source + ": robot.urdf.xml: missing: the recorded scenario" + named +
+                    " carries no copy of its URDF, and a reader of a log opens no file the log names; "
+                    "expected a log of `lagrange run`, whose SCENARIO holds the URDF's text as "
+                    "robot.urdf.xml");
+}
+
+}  // namespace
+
 Scenario parseLoggedScenario(const std::string& yaml_text, const std::string& source,
                              const std::vector<std::string>& overrides) {
-  return readTree(parseScenarioTree(yaml_text, source), source, overrides, false);
+  ScenarioTree tree = parseRecordedScenarioTree(yaml_text, source);
+  useTheRecordedUrdf(tree, source, overrides);
+  return readTree(std::move(tree), source, overrides, false);
 }
 
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {

@@ -290,9 +290,15 @@ struct Scenario {
 Scenario parseScenario(const std::string& yaml_text, const std::string& source,
                        const std::vector<std::string>& overrides = {});
 
-/// parseScenario of a log's SCENARIO: the same checks but that an external
-/// controller's or plant's program and folder exist -- they are the host's
-/// and the time's the run was on, and no reader of a log runs them.
+/// parseScenario of a log's SCENARIO (or a run folder's
+/// config.resolved.yaml): the same checks but that an external controller's
+/// or plant's program and folder exist -- they are the host's and the
+/// time's the run was on, and no reader of a log runs them. A log is data:
+/// no file it names is opened. Its arm's URDF is the copy the run recorded
+/// (robot.urdf.xml, the file's text as the run read it), never
+/// robot.urdf.file; a log whose robot.urdf lacks that copy is refused, as is
+/// an `extends`. Only `overrides` (the user's --set) may name a URDF file:
+/// `robot.urdf.file=F` replaces the recorded copy with F's text.
 Scenario parseLoggedScenario(const std::string& yaml_text, const std::string& source,
                              const std::vector<std::string>& overrides = {});
 

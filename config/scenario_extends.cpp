@@ -155,4 +155,15 @@ ScenarioTree parseScenarioTree(const std::string& yaml_text, const std::string& 
   return tree;
 }
 
+ScenarioTree parseRecordedScenarioTree(const std::string& yaml_text, const std::string& source) {
+  ScenarioTree tree;
+  tree.chain = {source};
+  tree.root = parseRoot(yaml_text, source);
+  if (static_cast<const YAML::Node&>(tree.root)["extends"].IsDefined())
+    throw ConfigError("config: " + source +
+                      ": extends: a recorded scenario is the resolved one a run wrote, which has no "
+                      "extends; a reader of a log opens no file the log names");
+  return tree;
+}
+
 }  // namespace lagrange::config

@@ -36,4 +36,11 @@ ScenarioTree loadScenarioTree(const std::string& path);
 /// folder of `source` when it has one.
 ScenarioTree parseScenarioTree(const std::string& yaml_text, const std::string& source);
 
+/// The tree of a recorded scenario (a log's SCENARIO, a run folder's
+/// config.resolved.yaml): the resolved scenario a run wrote, read as data.
+/// Nothing is looked up on disk and an `extends` is refused -- a resolved
+/// scenario has none, and one in a log would have its reader open a file the
+/// log names. @throws ConfigError naming `source`.
+ScenarioTree parseRecordedScenarioTree(const std::string& yaml_text, const std::string& source);
+
 }  // namespace lagrange::config

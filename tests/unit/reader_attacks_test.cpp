@@ -6,11 +6,19 @@
 // form (LCM's file provider in write mode empties a file), a namespace pid
 // that is not the launcher's, a FIFO: refused by `view` and `spy`, naming
 // the file and the field, before anything is opened.
+//
+// LoggedUrdf: a log's scenario names no file its readers open. Its arm is
+// the URDF copy it carries (robot.urdf.xml); a `robot.urdf.file` naming a
+// file of the test's (watched with inotify: any open of it is seen) is never
+// opened by replay, report, export or view, with or without the copy, nor
+// an `extends`; only the user's --set robot.urdf.file is read.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/inotify.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <chrono>
 #include <filesystem>
@@ -20,9 +28,19 @@
 #include <thread>
 #include <vector>
 
+#include "config/scenario.hpp"
+#include "lagrange/scenario_t.hpp"
+#include "logs/log_reader.hpp"
+#include "support/configs.hpp"
+#include "support/log_events.hpp"
 #include "support/temp_dir.hpp"
+#include "tools/export/export.hpp"
+#include "tools/replay/replay_log.hpp"
+#include "tools/report/report.hpp"
 #include "tools/spy/spy.hpp"
 #include "tools/view/view.hpp"
+#include "tools/view/view_source.hpp"
+#include "transport/channels.hpp"
 #include "util/error.hpp"
 #include "wiring/netns.hpp"
 
@@ -268,6 +286,184 @@ TEST_F(RunFolder, SpyJoinsNoNamespaceButALiveLaunchersOwn) {
   const Outcome s = inChild(dir_, [&] { return tools::runSpy(spy); });
   EXPECT_EQ(s.exit_code, 2) << s.err;
   EXPECT_NE(s.err.find("has ended"), std::string::npos) << s.err;
+}
+
+// Every open of one file, seen through inotify from when the watch is made.
+class OpenWatch {
+ public:
+  explicit OpenWatch(const std::string& path) : fd_(inotify_init1(IN_NONBLOCK | IN_CLOEXEC)) {
+    watch_ = inotify_add_watch(fd_, path.c_str(), IN_OPEN | IN_ACCESS);
+  }
+  ~OpenWatch() { close(fd_); }
+  OpenWatch(const OpenWatch&) = delete;
+  OpenWatch& operator=(const OpenWatch&) = delete;
+  bool watching() const { return fd_ >= 0 && watch_ >= 0; }
+  /// The opens (and reads) seen since the last call.
+  int opens() {
+    int n = 0;
+    alignas(inotify_event) char buf[4096];
+    for (ssize_t got; (got = read(fd_, buf, sizeof buf)) > 0;)
+      for (char* p = buf; p < buf + got;
+           p += sizeof(inotify_event) + reinterpret_cast<inotify_event*>(p)->len)
+        n += (reinterpret_cast<inotify_event*>(p)->mask & IN_OPEN) != 0;
+    return n;
+  }
+
+ private:
+  int fd_;
+  int watch_ = -1;
+};
+
+class LoggedUrdf : public TempDirTest {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    events_ = readEvents(kGoldenDir + "panda_theorem1_lockstep.lcm");
+    for (const LoggedEvent& e : events_)
+      if (e.channel == transport::kScenario) {
+        yaml_ = decodeAs<lagrange::scenario_t>(e).yaml;
+        break;
+      }
+    ASSERT_FALSE(yaml_.empty());
+    embedded_xml_ = YAML::Load(yaml_)["robot"]["urdf"]["xml"].as<std::string>();
+    // The file the crafted logs name: a URDF whose joints are named apart
+    // (marker_joint1, ...), so that an arm built from it would show.
+    marker_ = dir_ + "/shadow.urdf";
+    std::string marked = embedded_xml_;
+    for (std::size_t at; (at = marked.find("panda_joint")) != std::string::npos;)
+      marked.replace(at, 11, "marker_joint");
+    std::ofstream(marker_) << marked;
+  }
+
+  // The golden Panda log with every SCENARIO edited by `edit`, as run.lcm
+  // of a run folder of its own (beside a config.resolved.yaml edited alike,
+  // which export reads first); the folder.
+  template <class Edit>
+  std::string craftedRun(const std::string& name, const Edit& edit) {
+    YAML::Node root = YAML::Load(yaml_);
+    edit(root);
+    YAML::Emitter out;
+    out << root;
+    const std::string folder = dir_ + "/" + name;
+    fs::create_directories(folder);
+    std::vector<LoggedEvent> events = events_;
+    for (LoggedEvent& e : events)
+      if (e.channel == transport::kScenario) {
+        lagrange::scenario_t m = decodeAs<lagrange::scenario_t>(e);
+        m.yaml = out.c_str();
+        e.data.assign(static_cast<std::size_t>(m.getEncodedSize()), '\0');
+        m.encode(e.data.data(), 0, static_cast<int>(e.data.size()));
+      }
+    writeEvents(folder + "/run.lcm", events);
+    std::ofstream(folder + "/config.resolved.yaml") << out.c_str();
+    return folder;
+  }
+
+  // Every reader of a log, in process, on `folder`: what each said.
+  struct Readings {
+    std::string replay;                      ///< openLog's error, "" when it opened
+    std::vector<std::string> replay_joints;  ///< the arm replay would use
+    std::string report, export_warnings;     ///< their warnings, joined
+    std::string view;                        ///< readViewLog's error, "" when it drew
+    bool bounds_read = false;                ///< logs::readLog went through
+  };
+  Readings readersOf(const std::string& folder, const std::vector<std::string>& overrides = {}) {
+    Readings r;
+    const std::string log = folder + "/run.lcm";
+    try {
+      const tools::replay_log::Opened o =
+          tools::replay_log::openLog(log, overrides, transport::kControlCommand);
+      r.replay_joints = o.scenario.robotModel()->jointNames();
+    } catch (const std::exception& e) {
+      r.replay = e.what();
+    }
+    if (!overrides.empty()) return r;  // only replay takes --set
+    fs::create_directories(folder + "/report");
+    for (const std::string& w : tools::writeReport(log, folder + "/report").warnings) r.report += w + "\n";
+    for (const std::string& w : tools::exportHdf5(folder, folder + "/x.h5", true).warnings)
+      r.export_warnings += w + "\n";
+    try {
+      tools::readViewLog(log);
+    } catch (const std::exception& e) {
+      r.view = e.what();
+    }
+    logs::readLog(log, [](const lcm::LogEvent&) {});
+    r.bounds_read = true;
+    return r;
+  }
+
+  std::vector<LoggedEvent> events_;
+  std::string yaml_, embedded_xml_, marker_;
+};
+
+// The attack of issue #53: `robot.urdf.file: /etc/shadow` and no copy of the
+// URDF. Before, replay, export and view opened and parsed the file (as
+// root: any file). Now none opens it: replay refuses naming the missing
+// copy, report and export say why the scenario does not read, view draws
+// from ROBOT_DESCRIPTION.
+TEST_F(LoggedUrdf, AFileTheLogNamesWithoutItsCopyIsNeverOpenedAndTheCopyIsNamedMissing) {
+  const std::string run = craftedRun("no_copy", [&](YAML::Node& root) {
+    root["robot"]["urdf"].remove("xml");
+    root["robot"]["urdf"]["file"] = marker_;
+  });
+  OpenWatch watch(marker_);
+  ASSERT_TRUE(watch.watching());
+  const Readings r = readersOf(run);
+  EXPECT_EQ(watch.opens(), 0) << "a reader opened the file the log names";
+  const std::string missing =
+      "robot.urdf.xml: missing: the recorded scenario names the URDF file '" + marker_ +
+      "' but carries no copy of its URDF, and a reader of a log opens no file the log names";
+  EXPECT_NE(r.replay.find(missing), std::string::npos) << r.replay;
+  EXPECT_NE(r.report.find(missing), std::string::npos) << r.report;
+  EXPECT_NE(r.export_warnings.find(missing), std::string::npos) << r.export_warnings;
+  EXPECT_EQ(r.view, "") << "the arm is drawn from the log's ROBOT_DESCRIPTION";
+  EXPECT_TRUE(r.bounds_read);
+
+  // Replay reads the log's own scenario first (the shape of its messages), which lacks its arm:
+  // refused also when the user names a URDF (every log of `lagrange run` has the copy).
+  EXPECT_NE(readersOf(run, {"robot.urdf.file=" + marker_}).replay.find(missing), std::string::npos);
+}
+
+// A log that names a file and carries its copy: every reader uses the copy,
+// and the file is never opened.
+TEST_F(LoggedUrdf, ReadersUseTheLogsOwnCopyAndNeverOpenTheFileItNames) {
+  const std::string run =
+      craftedRun("with_copy", [&](YAML::Node& root) { root["robot"]["urdf"]["file"] = marker_; });
+  OpenWatch watch(marker_);
+  ASSERT_TRUE(watch.watching());
+  const Readings r = readersOf(run);
+  EXPECT_EQ(watch.opens(), 0) << "a reader opened the file the log names";
+  EXPECT_EQ(r.replay, "");
+  ASSERT_FALSE(r.replay_joints.empty());
+  EXPECT_EQ(r.replay_joints.front(), "panda_joint1") << "the arm is not the log's own copy";
+  EXPECT_EQ(r.report.find("not a valid scenario"), std::string::npos) << r.report;
+  EXPECT_EQ(r.export_warnings.find("joint_names left out"), std::string::npos) << r.export_warnings;
+  EXPECT_EQ(r.view, "");
+
+  // The file the user names replaces the copy.
+  const Readings mine = readersOf(run, {"robot.urdf.file=" + marker_});
+  EXPECT_GT(watch.opens(), 0);
+  ASSERT_FALSE(mine.replay_joints.empty());
+  EXPECT_EQ(mine.replay_joints.front(), "marker_joint1");
+}
+
+// `extends` in a log's scenario would have its readers open (and merge) a
+// file the log names: refused, the file unopened.
+TEST_F(LoggedUrdf, AnExtendsInALogsScenarioIsRefusedUnopened) {
+  const std::string base = dir_ + "/base.yaml";
+  std::ofstream(base) << "description: the base a log names\n";
+  OpenWatch watch(base);
+  ASSERT_TRUE(watch.watching());
+  const std::string run = craftedRun("extends", [&](YAML::Node& root) { root["extends"] = base; });
+  // A file named as the readers name the scenario's source: the folder a relative extends would be read from.
+  std::ofstream(run + "/run.lcm:SCENARIO") << "name: x\n";
+  const Readings r = readersOf(run);
+  EXPECT_EQ(watch.opens(), 0) << "a reader opened the file the log's extends names";
+  EXPECT_NE(
+      r.replay.find("extends: a recorded scenario is the resolved one a run wrote, which has no extends"),
+      std::string::npos)
+      << r.replay;
+  EXPECT_NE(r.report.find("extends: a recorded scenario"), std::string::npos) << r.report;
 }
 
 }  // namespace
