@@ -25,10 +25,10 @@
 #include "tools/sweep/sweep_files.hpp"
 #include "tools/sweep/sweep_maps.hpp"
 #include "tools/sweep/sweep_plan.hpp"
+#include "tools/sweep/sweep_plan_file.hpp"
 #include "tools/sweep/sweep_progress.hpp"
 #include "tools/sweep/sweep_runner.hpp"
 #include "tools/sweep/sweep_store.hpp"
-#include "transport/message_auth.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 #include "wiring/spawn_logged.hpp"
@@ -51,63 +51,60 @@ std::string readFile(const fs::path& p) {
   return s.str();
 }
 
-// OUT/plan.json as it is on disk, read as any file of OUT (sweep_files.hpp):
-// a regular file, not a link, of at most max_bytes. @throws ConfigError.
-std::string readPlanFile(const fs::path& plan_path, long long max_bytes) {
-  std::string error;
-  const std::optional<std::string> text =
-      readSweepFile(plan_path.string(), "the plan.json lagrange sweep wrote", max_bytes, error);
-  if (!text) throw ConfigError(error);
-  return *text;
-}
-
 // OUT/plan.json: written on the first start; on a restart it must be the
-// plan the sweep file makes now, or OUT is another sweep's.
-// Returns the plan's text as it is on disk (what the shards will read).
+// plan the sweep file makes now, or OUT is another sweep's. Compared and
+// written a line at a time, never held whole. Returns the SHA-256 of the
+// plan.json on disk (what the shards will read).
 std::string prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
   util::makeOutputDirectory(out_dir + "/rows");  // never a planted link
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
-  const std::string text = planJson(plan);
   if (fs::exists(fs::symlink_status(plan_path))) {
-    // The same plan written with 17 digits a number (before 2026-11-27) is
-    // longer, never 8 times as long.
-    std::string on_disk = readPlanFile(plan_path, 8 * static_cast<long long>(text.size()) + 65536);
-    if (!samePlanText(on_disk, text))
+    const PlanFile on_disk(plan_path.string());
+    const long rows = static_cast<long>(plan.rows.size());
+    long lines = 0;
+    bool same = true;
+    const long long read = on_disk.forEachLine([&](long number, const std::string& line) {
+      lines = number;
+      same = number <= rows + 1 &&
+             samePlanText(line, number == 1 ? planHeaderJson(plan) : planRowJson(plan.rows[number - 2]));
+      return same;
+    });
+    if (!same || lines != rows + 1 || read != on_disk.size())
       throw ConfigError("--out " + out_dir + " holds another sweep (its plan.json differs from the plan of " +
                         plan.spec.file +
                         " as it is now); expected the same sweep file and scenario to resume it, or a new "
                         "--out directory");
-    return on_disk;
+    return on_disk.sha256();
   }
-  util::writeOutputFile(plan_path.string() + ".tmp", text);
+  const std::string digest = writePlanFile(plan, plan_path.string() + ".tmp");
   fs::rename(plan_path.string() + ".tmp", plan_path);
   util::writeOutputFile((fs::path(out_dir) / "sweep.yaml").string(), readFile(plan.spec.file));
-  return text;
+  return digest;
 }
 
 // What binds a shard to the plan its sweep launched (issue #44): SHA-256 of
 // plan.json's bytes, on the shard's command line -- a plan.json planted in a
 // shared folder afterwards (Slurm's array tasks start later, anywhere) names
 // other scenarios, overrides and external commands, and a shard that ran it
-// would start programs nobody named.
-std::string planDigest(const std::string& plan_text) {
-  const std::array<uint8_t, 32> digest =
-      transport::sha256(reinterpret_cast<const uint8_t*>(plan_text.data()), plan_text.size());
-  return transport::toHex(digest);
-}
+// would start programs nobody named. (sweep_plan_file.hpp: hashed as it is
+// read, and every piece used checked against that reading.)
 
-// OUT/plan.json's text, read once (parsed and hashed from the same bytes).
-std::string loadPlanText(const std::string& out_dir) {
+// OUT/plan.json, opened and hashed (sweep_plan_file.hpp).
+PlanFile openPlan(const std::string& out_dir) {
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
   if (!fs::exists(fs::symlink_status(plan_path)))
     throw ConfigError(out_dir +
                       " is not a sweep's output directory: it has no plan.json; expected the --out "
                       "directory of lagrange sweep");
-  return readPlanFile(plan_path, kMaxPlanBytes);
+  return PlanFile(plan_path.string());
 }
 
+// The plan in OUT/plan.json, every row of it checked, none held.
 SweepPlan loadPlan(const std::string& out_dir) {
-  return planFromJson(loadPlanText(out_dir), (fs::path(out_dir) / "plan.json").string());
+  const PlanFile file = openPlan(out_dir);
+  SweepPlan plan = file.header();
+  file.forEachRow(plan, [](const SweepRow&) { return true; });
+  return plan;
 }
 
 std::string exitText(int wstatus) {
@@ -195,8 +192,8 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
   if (missing > 0) {
     std::string list;
     int shown = 0;
-    for (const SweepRow& r : plan.rows)
-      if (!rows.count(r.index) && shown++ < 10) list += (list.empty() ? "" : ", ") + std::to_string(r.index);
+    for (long i = 0; i < static_cast<long>(plan.rows.size()) && shown < 10; ++i)
+      if (!rows.count(i)) list += (shown++ ? ", " : "") + std::to_string(i);
     std::cerr << who << missing << " runs are not done yet (" << list << (missing > 10 ? ", ..." : "")
               << "); "
               << (collecting
@@ -374,7 +371,7 @@ int runSweep(const SweepOptions& o) {
     // holder's pid, dies with it).
     fs::create_directories(o.out_dir);
     lock.emplace(o.out_dir, "lagrange sweep");
-    plan_digest = planDigest(prepareOutDir(o.out_dir, plan));
+    plan_digest = prepareOutDir(o.out_dir, plan);
   } catch (const std::exception& e) {
     return failWith("lagrange sweep", e);
   }
@@ -383,7 +380,7 @@ int runSweep(const SweepOptions& o) {
   try {
     const long remaining =
         static_cast<long>(plan.rows.size()) -
-        static_cast<long>(readFinishedRows(o.out_dir, static_cast<long>(plan.rows.size())).rows.size());
+        readFinishedRows(o.out_dir, static_cast<long>(plan.rows.size()), /*keep_rows=*/false).count;
     if (!o.quiet)
       std::cout << "lagrange sweep: " << plan.rows.size() << " runs of " << plan.spec.scenario_path << ", "
                 << remaining << " to run" << (o.slurm ? " on Slurm" : "") << "\n"
@@ -418,37 +415,40 @@ int runSweepShard(const std::string& out_dir, int shard, int of, const std::stri
     if (of < 1 || shard < 0 || shard >= of)
       throw ConfigError("--shard " + std::to_string(shard) + " --of " + std::to_string(of) +
                         ": expected 0 <= K < N");
-    const std::string plan_text = loadPlanText(out_dir);
-    if (planDigest(plan_text) != plan_digest)
+    const PlanFile file = openPlan(out_dir);
+    if (file.sha256() != plan_digest)
       throw ConfigError(
-          (fs::path(out_dir) / "plan.json").string() +
-          " is not the plan this shard was started for (its SHA-256 is " + planDigest(plan_text) +
+          file.path() + " is not the plan this shard was started for (its SHA-256 is " + file.sha256() +
           ", expected " + plan_digest +
           " from lagrange sweep): it was replaced after the sweep started; nothing of it is run");
-    const SweepPlan plan = planFromJson(plan_text, (fs::path(out_dir) / "plan.json").string());
+    const SweepPlan plan = file.header();
     if (scenarioDigest(plan.spec.scenario_path) != plan.spec.scenario_digest)
       throw ConfigError(plan.spec.scenario_path +
                         " has changed since the sweep was planned; expected it as it was (its rows would "
                         "mix two scenarios), or a new sweep in a new --out directory");
-    const auto finished = readFinishedRows(out_dir, static_cast<long>(plan.rows.size())).rows;
+    const std::vector<bool> done =
+        readFinishedRows(out_dir, static_cast<long>(plan.rows.size()), /*keep_rows=*/false).done;
     RowWriter writer((fs::path(out_dir) / "rows" /
                       ("shard-" + std::to_string(shard) + "-of-" + std::to_string(of) + ".jsonl"))
                          .string());
     SweepRunner runner(plan, out_dir, self_exe);
     long ran = 0;
-    for (const SweepRow& row : plan.rows) {
-      if (row.index % of != shard || finished.count(row.index)) continue;
-      if (stopRequested()) break;
+    // The rows read from plan.json as they come, every piece of it checked
+    // against the digest above (sweep_plan_file.hpp).
+    file.forEachRow(plan, [&](const SweepRow& row) {
+      if (row.index % of != shard || done[static_cast<size_t>(row.index)]) return true;
+      if (stopRequested()) return false;
       std::optional<nlohmann::ordered_json> result;
       try {
         result = runner.run(row, stopRequested);
       } catch (const std::exception& e) {  // a result too: the row says why, and a restart does not retry it
         result = runner.failedRow(row, e.what());
       }
-      if (!result) break;  // stopped midway: the row is run again on a restart
+      if (!result) return false;  // stopped midway: the row is run again on a restart
       writer.append(*result);
       ++ran;
-    }
+      return true;
+    });
     std::cout << "shard " << shard << " of " << of << ": ran " << ran << " runs"
               << (stopRequested() ? " (stopped by a signal)" : "") << "\n";
     return stopRequested() ? kExitInterrupted : kExitOk;

@@ -24,8 +24,11 @@ inline constexpr std::size_t kMaxSweepLineBytes = 64 << 10;
 /// Nesting of a row or a plan line: objects of lists (an axis value may be a
 /// YAML list or map, a few levels deep).
 inline constexpr int kMaxSweepJsonDepth = 32;
-/// plan.json: 10 million rows (the most a sweep may have) of 100 bytes.
-inline constexpr long long kMaxPlanBytes = 1LL << 30;
+/// plan.json: 10 million rows (the most a sweep may have) of 1.6 KiB (a row
+/// of a 7-joint arm's initial state and filter state with its `set` is about
+/// 400 bytes). It is never held whole (sweep_plan_file.hpp), so the bound is
+/// on the time a shard spends reading it, not on memory.
+inline constexpr long long kMaxPlanBytes = 16LL << 30;
 
 /// `text` parsed as JSON, refusing nesting deeper than kMaxSweepJsonDepth as
 /// soon as the parser meets it. On failure nothing, and `error` says why.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -28,8 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using config::ConfigError;
-
-constexpr long kMaxRows = 10'000'000;
 
 inline constexpr util::EnumName<SweepDesign> kDesignNames[] = {
     {SweepDesign::kGrid, "grid"}, {SweepDesign::kRandom, "random"}, {SweepDesign::kHalton, "halton"}};
@@ -119,25 +118,27 @@ long gridSize(const SweepAxis& a) {
 
 // A row's choice on one axis: a parameter text, or (norm axes) a radius and a direction.
 struct AxisPick {
-  std::string text;  // values, range
+  std::string text;  // values, range (left empty when not asked for)
   double radius = 0;
   long direction = 0;
+  long choice = -1;  // the point of a grid's axis or the value of a list; -1: a draw from a range
 };
 
-AxisPick gridPick(const SweepAxis& a, long i) {
-  if (!a.values.empty()) return {a.values[static_cast<size_t>(i)]};
-  if (a.range) return {util::exactText(gridPoint(*a.range, static_cast<int>(i)))};
-  return {"", gridPoint(*a.norm, static_cast<int>(i / a.directions)), i % a.directions};
+AxisPick gridPick(const SweepAxis& a, long i, bool text) {
+  if (!a.values.empty()) return {text ? a.values[static_cast<size_t>(i)] : "", 0, 0, i};
+  if (a.range) return {text ? util::exactText(gridPoint(*a.range, static_cast<int>(i))) : "", 0, 0, i};
+  return {"", gridPoint(*a.norm, static_cast<int>(i / a.directions)), i % a.directions, i};
 }
 
 // f in [0, 1) -> the axis's draw in a random or Halton design.
-AxisPick drawnPick(const SweepAxis& a, double f, long row) {
+AxisPick drawnPick(const SweepAxis& a, double f, long row, bool text) {
   if (!a.values.empty()) {
     const auto n = a.values.size();
-    return {a.values[std::min(n - 1, static_cast<size_t>(f * static_cast<double>(n)))]};
+    const size_t i = std::min(n - 1, static_cast<size_t>(f * static_cast<double>(n)));
+    return {text ? a.values[i] : "", 0, 0, static_cast<long>(i)};
   }
-  if (a.range) return {util::exactText(at(*a.range, f))};
-  return {"", at(*a.norm, f), row};
+  if (a.range) return {text ? util::exactText(at(*a.range, f)) : "", 0, 0, -1};
+  return {"", at(*a.norm, f), row, -1};
 }
 
 // Centre of a norm axis's vectors: the reference's initial state for the
@@ -213,6 +214,134 @@ SweepSpec readSweepSpec(const std::string& path) {
   return spec;
 }
 
+// A planned sweep's rows, decoded from their index. The overrides of a row
+// are the spec's `set` and its axes' values, except for a norm axis's
+// vectors, centre + r u: the centre comes from the scenario the other axes
+// make (its reference and size), read once per combination of them while
+// planning and kept here as an index into the distinct centres.
+struct SweepRows::Design {
+  struct Centres {
+    int dof = 0;
+    std::vector<Eigen::VectorXd> by_axis;  // a norm axis's centre; empty for the others
+  };
+  SweepSpec spec;
+  long rows = 0;
+  HaltonSequence halton;
+  bool has_norm = false;
+  // The combination of the axes that are not norm axes: each row's own
+  // (`by_row`: a draw from a range, or more combinations than rows), or the
+  // axes' choices in mixed radix, `stride` per axis (0 for a norm axis).
+  bool by_row = false;
+  std::vector<long> stride;
+  long combinations = 0;
+  std::vector<std::int32_t> centre_of;  // with a norm axis: per combination, its index in `centres`
+  std::vector<Centres> centres;
+
+  Design(SweepSpec s, long n)
+      : spec(std::move(s)), rows(n), halton(static_cast<int>(spec.axes.size()), spec.seed) {
+    for (const SweepAxis& a : spec.axes) has_norm = has_norm || a.norm.has_value();
+    const bool grid = spec.design == SweepDesign::kGrid;
+    stride.assign(spec.axes.size(), 0);
+    combinations = 1;
+    for (size_t i = spec.axes.size(); i-- > 0 && !by_row;) {  // the last axis varies fastest
+      const SweepAxis& a = spec.axes[i];
+      if (a.norm) continue;
+      const long points = grid ? gridSize(a) : a.values.empty() ? -1 : static_cast<long>(a.values.size());
+      stride[i] = combinations;
+      by_row = points < 0 || points > rows || (combinations *= points) > rows;
+    }
+    if (by_row) combinations = rows;
+  }
+
+  // Each axis's choice for row `index`; the parameter texts when `text`.
+  std::vector<AxisPick> picks(long index, bool text) const {
+    std::vector<AxisPick> picks(spec.axes.size());
+    long rest = index;
+    for (size_t i = spec.axes.size(); i-- > 0;) {  // grid: the last axis varies fastest
+      const SweepAxis& a = spec.axes[i];
+      if (spec.design == SweepDesign::kGrid) {
+        const long n = gridSize(a);
+        picks[i] = gridPick(a, rest % n, text);
+        rest /= n;
+      } else {
+        const double f = spec.design == SweepDesign::kHalton ? halton.at(index, static_cast<int>(i))
+                                                             : uniform01(spec.seed, kStreamDesign + i, index);
+        picks[i] = drawnPick(a, f, index, text);
+      }
+    }
+    return picks;
+  }
+
+  long combination(long index, const std::vector<AxisPick>& picks) const {
+    if (by_row) return index;
+    long c = 0;
+    for (size_t i = 0; i < picks.size(); ++i) c += stride[i] * (spec.axes[i].norm ? 0 : picks[i].choice);
+    return c;
+  }
+
+  // `set`, then the axes that are not norm axes: what the row's scenario is read with.
+  std::vector<std::string> fixedOverrides(const std::vector<AxisPick>& picks) const {
+    std::vector<std::string> overrides = spec.set;
+    for (size_t i = 0; i < spec.axes.size(); ++i)
+      if (!spec.axes[i].norm) overrides.push_back(spec.axes[i].key + "=" + picks[i].text);
+    return overrides;
+  }
+
+  SweepRow row(long index) const {
+    const std::vector<AxisPick> picks = this->picks(index, true);
+    SweepRow row;
+    row.index = index;
+    row.overrides = fixedOverrides(picks);
+    const Centres* centre = nullptr;
+    if (has_norm) {
+      const std::int32_t id = centre_of.at(static_cast<size_t>(combination(index, picks)));
+      if (id < 0) throw RuntimeFault("sweep: row " + std::to_string(index) + " was not planned");
+      centre = &centres.at(static_cast<size_t>(id));
+    }
+    for (size_t i = 0; i < spec.axes.size(); ++i) {
+      const SweepAxis& a = spec.axes[i];
+      if (!a.norm) {
+        row.params.push_back(picks[i].text);
+        continue;
+      }
+      const Eigen::VectorXd u =
+          unitDirection(spec.seed, kStreamDirection + i, picks[i].direction, centre->dof);
+      row.overrides.push_back(a.key + "=" + vectorText(centre->by_axis[i] + picks[i].radius * u));
+      row.params.push_back(util::exactText(picks[i].radius));
+      row.params.push_back(std::to_string(picks[i].direction));
+    }
+    return row;
+  }
+};
+
+SweepRow SweepRows::operator[](std::size_t i) const {
+  if (i < static_cast<std::size_t>(count_)) {
+    if (!design_)
+      throw RuntimeFault("sweep: the rows of a plan read from plan.json are read from the file, not held");
+    return design_->row(static_cast<long>(i));
+  }
+  return listed_.at(i - static_cast<std::size_t>(count_));
+}
+
+std::size_t SweepRows::heldBytes() const {
+  std::size_t bytes = sizeof *this;
+  for (const SweepRow& r : listed_) {
+    bytes += sizeof r;
+    for (const auto* texts : {&r.params, &r.overrides})
+      for (const std::string& t : *texts) bytes += sizeof t + t.capacity();
+  }
+  if (design_) {
+    bytes += sizeof *design_ + design_->stride.capacity() * sizeof(long) +
+             design_->centre_of.capacity() * sizeof(std::int32_t);
+    for (const Design::Centres& c : design_->centres) {
+      bytes += sizeof c;
+      for (const Eigen::VectorXd& v : c.by_axis)
+        bytes += sizeof v + static_cast<std::size_t>(v.size()) * sizeof(double);
+    }
+  }
+  return bytes;
+}
+
 SweepPlan planSweep(const SweepSpec& spec) {
   SweepPlan plan;
   plan.spec = spec;
@@ -233,83 +362,69 @@ SweepPlan planSweep(const SweepSpec& spec) {
   if (spec.design == SweepDesign::kGrid) {
     for (const SweepAxis& a : spec.axes) {
       rows *= gridSize(a);
-      if (rows > kMaxRows)
-        throw ConfigError("sweep " + spec.file + ": the grid has more than " + std::to_string(kMaxRows) +
+      if (rows > kMaxSweepRows)
+        throw ConfigError("sweep " + spec.file + ": the grid has more than " + std::to_string(kMaxSweepRows) +
                           " runs; expected fewer points per axis, or a random or halton design");
     }
   } else {
     rows = spec.samples;
-    if (rows > kMaxRows)
-      throw ConfigError("sweep " + spec.file + ": samples: more than " + std::to_string(kMaxRows) +
+    if (rows > kMaxSweepRows)
+      throw ConfigError("sweep " + spec.file + ": samples: more than " + std::to_string(kMaxSweepRows) +
                         " runs; expected fewer, or several sweeps");
   }
 
-  // Scenarios read so far, by the overrides that are not norm vectors: the
-  // dimension and the reference of every row with them.
-  std::map<std::vector<std::string>, config::Scenario> scenarios;
-  std::set<std::vector<std::string>> norms_checked;
-  const HaltonSequence halton(static_cast<int>(spec.axes.size()), spec.seed);
+  // Every combination of the axes that are not norm axes is read once, at
+  // its first row: its scenario, and with a norm axis the centres of the
+  // vectors (kept, shared by the combinations with the same ones) and the
+  // row with them.
+  auto design = std::make_shared<SweepRows::Design>(spec, rows);
+  std::vector<bool> seen(static_cast<size_t>(design->has_norm ? 0 : design->combinations), false);
+  if (design->has_norm) design->centre_of.assign(static_cast<size_t>(design->combinations), -1);
+  std::map<std::vector<std::uint64_t>, std::int32_t> centre_ids;  // by dof and the centres' bits
   for (long index = 0; index < rows; ++index) {
-    std::vector<AxisPick> picks;
-    long rest = index;
-    for (size_t i = spec.axes.size(); i-- > 0;) {  // grid: the last axis varies fastest
-      const SweepAxis& a = spec.axes[i];
-      if (spec.design == SweepDesign::kGrid) {
-        const long n = gridSize(a);
-        picks.push_back(gridPick(a, rest % n));
-        rest /= n;
-      } else {
-        const double f = spec.design == SweepDesign::kHalton ? halton.at(index, static_cast<int>(i))
-                                                             : uniform01(spec.seed, kStreamDesign + i, index);
-        picks.push_back(drawnPick(a, f, index));
-      }
+    const auto c = static_cast<size_t>(design->combination(index, design->picks(index, false)));
+    if (design->has_norm ? design->centre_of[c] >= 0 : seen[c]) continue;
+    const std::vector<std::string> overrides = design->fixedOverrides(design->picks(index, true));
+    config::Scenario s;
+    try {
+      s = config::loadScenario(spec.scenario_path, overrides);
+    } catch (const ConfigError& e) {
+      throw ConfigError("sweep " + spec.file + ": run " + std::to_string(index) + " (" + [&] {
+        std::string text;
+        for (size_t i = spec.set.size(); i < overrides.size(); ++i)
+          text += (text.empty() ? "" : ", ") + overrides[i];
+        return text.empty() ? std::string("the base scenario with set") : text;
+      }() + "): " + e.what());
     }
-    std::reverse(picks.begin(), picks.end());
-
-    SweepRow row;
-    row.index = index;
-    row.overrides = spec.set;
-    for (size_t i = 0; i < spec.axes.size(); ++i)
-      if (!spec.axes[i].norm) row.overrides.push_back(spec.axes[i].key + "=" + picks[i].text);
-    auto found = scenarios.find(row.overrides);
-    if (found == scenarios.end()) {
-      try {
-        found =
-            scenarios.emplace(row.overrides, config::loadScenario(spec.scenario_path, row.overrides)).first;
-      } catch (const ConfigError& e) {
-        throw ConfigError("sweep " + spec.file + ": run " + std::to_string(index) + " (" + [&] {
-          std::string s;
-          for (size_t i = spec.set.size(); i < row.overrides.size(); ++i)
-            s += (s.empty() ? "" : ", ") + row.overrides[i];
-          return s.empty() ? std::string("the base scenario with set") : s;
-        }() + "): " + e.what());
-      }
+    if (!design->has_norm) {
+      seen[c] = true;
+      continue;
     }
-    const config::Scenario& s = found->second;
-    bool has_norm = false;
+    SweepRows::Design::Centres centres;
+    centres.dof = s.dof();
+    centres.by_axis.resize(spec.axes.size());
+    std::vector<std::uint64_t> key = {static_cast<std::uint64_t>(centres.dof)};
     for (size_t i = 0; i < spec.axes.size(); ++i) {
-      const SweepAxis& a = spec.axes[i];
-      if (!a.norm) {
-        row.params.push_back(picks[i].text);
-        continue;
+      if (!spec.axes[i].norm) continue;
+      centres.by_axis[i] = centreOf(spec.axes[i].key, s);
+      for (Eigen::Index k = 0; k < centres.by_axis[i].size(); ++k) {
+        std::uint64_t bits = 0;
+        std::memcpy(&bits, &centres.by_axis[i][k], sizeof bits);
+        key.push_back(bits);
       }
-      has_norm = true;
-      const Eigen::VectorXd u = unitDirection(spec.seed, kStreamDirection + i, picks[i].direction, s.dof());
-      row.overrides.push_back(a.key + "=" + vectorText(centreOf(a.key, s) + picks[i].radius * u));
-      row.params.push_back(util::exactText(picks[i].radius));
-      row.params.push_back(std::to_string(picks[i].direction));
     }
+    const auto [found, added] = centre_ids.emplace(key, static_cast<std::int32_t>(design->centres.size()));
+    if (added) design->centres.push_back(std::move(centres));
+    design->centre_of[c] = found->second;
     // The vectors are the scenario's size by construction; the first row of
-    // each scenario checks that its keys take them.
-    if (has_norm && norms_checked.insert(found->first).second) {
-      try {
-        config::loadScenario(spec.scenario_path, row.overrides);
-      } catch (const ConfigError& e) {
-        throw ConfigError("sweep " + spec.file + ": run " + std::to_string(index) + ": " + e.what());
-      }
+    // each combination checks that its keys take them.
+    try {
+      config::loadScenario(spec.scenario_path, design->row(index).overrides);
+    } catch (const ConfigError& e) {
+      throw ConfigError("sweep " + spec.file + ": run " + std::to_string(index) + ": " + e.what());
     }
-    plan.rows.push_back(std::move(row));
   }
+  plan.rows = SweepRows(std::move(design), rows);
   return plan;
 }
 
@@ -351,7 +466,7 @@ bool samePlanText(const std::string& a, const std::string& b) {
   return a == b || shortestNumbers(a) == shortestNumbers(b);
 }
 
-std::string planJson(const SweepPlan& plan) {
+std::string planHeaderJson(const SweepPlan& plan) {
   nlohmann::ordered_json head;
   head["sweep_file"] = plan.spec.file;
   head["scenario"] = plan.spec.scenario_path;
@@ -360,30 +475,46 @@ std::string planJson(const SweepPlan& plan) {
   head["heat_map"] = plan.spec.heat_map;
   if (plan.spec.simulate_sampled_data) head["simulate_sampled_data"] = true;  // absent: the plans of before
   head["rows"] = plan.rows.size();
-  std::string text = head.dump() + "\n";
-  for (const SweepRow& r : plan.rows) {
-    nlohmann::ordered_json j;
-    j["index"] = r.index;
-    j["params"] = r.params;
-    j["overrides"] = r.overrides;
-    text += j.dump() + "\n";
-  }
+  return head.dump();
+}
+
+std::string planRowJson(const SweepRow& row) {
+  nlohmann::ordered_json j;
+  j["index"] = row.index;
+  j["params"] = row.params;
+  j["overrides"] = row.overrides;
+  return j.dump();
+}
+
+void forEachPlanLine(const SweepPlan& plan, const std::function<void(const std::string&)>& on_line) {
+  on_line(planHeaderJson(plan));
+  for (const SweepRow& r : plan.rows) on_line(planRowJson(r));
+}
+
+std::string planJson(const SweepPlan& plan) {
+  std::string text;
+  forEachPlanLine(plan, [&text](const std::string& line) { text += line + "\n"; });
   return text;
 }
 
-SweepPlan planFromJson(const std::string& text, const std::string& source) {
+namespace {
+// A line parsed with its nesting bounded (sweep_files.hpp), or why not.
+nlohmann::ordered_json planLine(const std::string& at, const std::string& text) {
+  std::string why;
+  std::optional<nlohmann::ordered_json> j = parseSweepJson(text, why);
+  if (!j) throw BadInput(at + ": " + why);
+  return std::move(*j);
+}
+
+[[noreturn]] void notAPlan(const std::string& source, const std::exception& e) {
+  throw ConfigError(source + ": not a sweep plan written by lagrange sweep (" + e.what() + ")");
+}
+}  // namespace
+
+SweepPlan planHeaderFromJson(const std::string& line, const std::string& source) {
   SweepPlan plan;
-  // A line parsed with its nesting bounded (sweep_files.hpp), or why not.
-  const auto line = [](const std::string& at, const std::string& line_text) {
-    std::string why;
-    std::optional<nlohmann::ordered_json> j = parseSweepJson(line_text, why);
-    if (!j) throw BadInput(at + ": " + why);
-    return std::move(*j);
-  };
   try {
-    size_t pos = text.find('\n');
-    if (pos == std::string::npos) throw BadInput("no header line");
-    const auto head = line("its header", text.substr(0, pos));
+    const auto head = planLine("its header", line);
     plan.spec.file = head.at("sweep_file").get<std::string>();
     plan.spec.scenario_path = head.at("scenario").get<std::string>();
     plan.spec.scenario_digest = head.at("scenario_digest").get<std::string>();
@@ -392,27 +523,29 @@ SweepPlan planFromJson(const std::string& text, const std::string& source) {
     plan.spec.simulate_sampled_data =
         head.value("simulate_sampled_data", false);  // a plan from before the key: off
     const auto rows = head.at("rows").get<size_t>();
-    if (rows > static_cast<size_t>(kMaxRows))
+    if (rows > static_cast<size_t>(kMaxSweepRows))
       throw BadInput("its header gives " + std::to_string(rows) + " rows; a sweep has at most " +
-                     std::to_string(kMaxRows));
-    while (plan.rows.size() < rows) {
-      const size_t start = pos + 1;
-      pos = text.find('\n', start);
-      if (pos == std::string::npos) throw BadInput("fewer rows than its header says");
-      const std::string at = "row line " + std::to_string(plan.rows.size() + 2);
-      const auto j = line(at, text.substr(start, pos - start));
-      const auto& index = j.at("index");
-      // Row i is the plan's row i: an index is a place in the table, nothing else.
-      if (!index.is_number_integer() || index.get<long long>() != static_cast<long long>(plan.rows.size()))
-        throw BadInput(at + ": index " + index.dump() + "; expected " + std::to_string(plan.rows.size()));
-      plan.rows.push_back({static_cast<long>(plan.rows.size()),
-                           j.at("params").get<std::vector<std::string>>(),
-                           j.at("overrides").get<std::vector<std::string>>()});
-    }
+                     std::to_string(kMaxSweepRows));
+    plan.rows = SweepRows::counted(static_cast<long>(rows));
   } catch (const std::exception& e) {
-    throw ConfigError(source + ": not a sweep plan written by lagrange sweep (" + e.what() + ")");
+    notAPlan(source, e);
   }
   return plan;
+}
+
+SweepRow planRowFromJson(const std::string& line, long index, const std::string& source) {
+  try {
+    const std::string at = "row line " + std::to_string(index + 2);
+    const auto j = planLine(at, line);
+    const auto& i = j.at("index");
+    // Row i is the plan's row i: an index is a place in the table, nothing else.
+    if (!i.is_number_integer() || i.get<long long>() != static_cast<long long>(index))
+      throw BadInput(at + ": index " + i.dump() + "; expected " + std::to_string(index));
+    return {index, j.at("params").get<std::vector<std::string>>(),
+            j.at("overrides").get<std::vector<std::string>>()};
+  } catch (const std::exception& e) {
+    notAPlan(source, e);
+  }
 }
 
 }  // namespace lagrange::tools

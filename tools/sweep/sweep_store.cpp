@@ -95,8 +95,27 @@ void upgradeOldRow(nlohmann::ordered_json& row) {
 
 }  // namespace
 
-FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows) {
+namespace {
+// The line of `file` where row `index` was first taken (as readFinishedRows
+// takes a row: the first line with that index that passes), for a message.
+long firstLineWith(const fs::path& file, long index, long plan_rows, const ShardOfFile& shard,
+                   long long max_file_bytes) {
+  long found = 0;
+  forEachLine(file.string(), "a rows file of lagrange sweep", max_file_bytes, [&](const FileLine& line) {
+    std::string why;
+    const std::optional<nlohmann::ordered_json> j = parseSweepJson(line.text, why);
+    if (!line.too_long && j && rowProblem(*j, plan_rows, shard).empty() &&
+        j->at("index").get<std::int64_t>() == index)
+      found = line.number;
+    return found == 0;
+  });
+  return found;
+}
+}  // namespace
+
+FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool keep_rows) {
   FinishedRows out;
+  out.done.assign(static_cast<size_t>(std::max(0L, plan_rows)), false);
   const auto refuse = [&out](const std::string& why) {
     if (out.refusals.size() < kRefusalsNamed) out.refusals.push_back(why);
     ++out.refused;
@@ -112,11 +131,16 @@ FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows) {
   // a file of another user is not one of them.
   std::optional<uid_t> owner;
   if (struct stat plan{}; lstat((fs::path(out_dir) / "plan.json").c_str(), &plan) == 0) owner = plan.st_uid;
-  std::map<long, std::string> first_seen;  // index -> "FILE line N"
+  // Per row, the file (its place in `files`, from 1) it was first taken from
+  // (made at the first row taken); its line is looked for again only when a
+  // repeat is named.
+  std::vector<std::uint32_t> first_file;
+  std::vector<ShardOfFile> shards(files.size());
   // Every row once, each at most a line's bound, and a partial last line.
   const long long max_file_bytes =
       (static_cast<long long>(plan_rows) + 1) * static_cast<long long>(kMaxSweepLineBytes);
-  for (const fs::path& f : files) {
+  for (size_t file_number = 0; file_number < files.size(); ++file_number) {
+    const fs::path& f = files[file_number];
     const std::string name = f.string();
     const std::optional<ShardOfFile> shard = shardOf(f.filename().string(), plan_rows);
     if (!shard) {
@@ -125,6 +149,7 @@ FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows) {
              "0 <= K < N <= " + std::to_string(plan_rows) + "; its rows were not read");
       continue;
     }
+    shards[file_number] = *shard;
     const std::string error = forEachLine(
         name, "a rows file of lagrange sweep", max_file_bytes,
         [&](const FileLine& line) {
@@ -138,15 +163,24 @@ FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows) {
           std::optional<nlohmann::ordered_json> j = parseSweepJson(line.text, why);
           if (j && (why = rowProblem(*j, plan_rows, *shard)).empty()) {
             const long index = static_cast<long>(j->at("index").get<std::int64_t>());
-            const auto seen = first_seen.find(index);
-            if (seen == first_seen.end()) {
-              first_seen.emplace(index, name + " line " + std::to_string(line.number));
-              upgradeOldRow(*j);
-              out.rows.emplace(index, std::move(*j));
+            const auto i = static_cast<size_t>(index);
+            if (!out.done[i]) {
+              if (first_file.empty()) first_file.assign(out.done.size(), 0);
+              out.done[i] = true;
+              first_file[i] = static_cast<std::uint32_t>(file_number + 1);
+              ++out.count;
+              if (keep_rows) {
+                upgradeOldRow(*j);
+                out.rows.emplace(index, std::move(*j));
+              }
               return true;
             }
-            why = "row " + std::to_string(index) + " again (first in " + seen->second +
-                  "); expected each row once";
+            const size_t first = first_file[i] - 1;
+            why = "row " + std::to_string(index) + " again (first in " + files[first].string();
+            if (out.refusals.size() < kRefusalsNamed)  // named: its first line looked for
+              why += " line " + std::to_string(firstLineWith(files[first], index, plan_rows, shards[first],
+                                                             max_file_bytes));
+            why += "); expected each row once";
           }
           refuse(at + why);
           return true;

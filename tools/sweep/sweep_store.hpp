@@ -19,7 +19,9 @@ namespace lagrange::tools {
 /// What OUT/rows holds for a plan: the rows of the plan, each once, and what
 /// was refused.
 struct FinishedRows {
-  std::map<long, nlohmann::ordered_json> rows;  ///< by index, each in 0 .. plan rows - 1
+  std::map<long, nlohmann::ordered_json> rows;  ///< by index, each in 0 .. plan rows - 1 (when kept)
+  std::vector<bool> done;                       ///< per row of the plan: in OUT/rows
+  long count = 0;                               ///< rows done
   long refused = 0;                             ///< lines and files refused
   /// The first few refusals, each naming the file, the line, the value and
   /// what was expected.
@@ -33,8 +35,10 @@ struct FinishedRows {
 /// nested too deep, not an object, or whose index is not a whole number from
 /// 0 to plan_rows - 1 is refused; a row already read (in this file or an
 /// earlier one, in name order) is refused again. A last line without its
-/// newline (a shard killed mid-write) is dropped, not refused.
-FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows);
+/// newline (a shard killed mid-write) is dropped, not refused. Without
+/// `keep_rows` only `done` and `count` are filled (a shard, a restart):
+/// a bit a row of the plan, and 4 bytes a row while reading.
+FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool keep_rows = true);
 
 /// Appends rows to one shard's file, first cutting a partial last line a
 /// killed writer left.
