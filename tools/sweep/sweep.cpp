@@ -31,6 +31,7 @@
 #include "tools/sweep/sweep_store.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/spawn_logged.hpp"
 
 namespace lagrange::tools {
@@ -129,23 +130,31 @@ struct Finished {
 Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who,
                 bool collecting = false) {
   const FinishedRows finished = readFinishedRows(out_dir, static_cast<long>(plan.rows.size()));
+  std::error_code ec;
   const auto& rows = finished.rows;
   if (finished.refused > 0) {
     std::cerr << who << finished.refused
               << (finished.refused == 1 ? " line or file in " : " lines or files in ")
               << (fs::path(out_dir) / "rows").string() << (finished.refused == 1 ? " was" : " were")
               << " refused, not rows of this sweep's plan, and left out of the table:\n";
-    for (const std::string& why : finished.refusals) std::cerr << who << "  " << why << "\n";
+    for (const std::string& why : finished.refusals)
+      std::cerr << who << "  " << util::terminalSafeLines(why) << "\n";
     if (finished.refused > static_cast<long>(finished.refusals.size()))
       std::cerr << who << "  ... and " << finished.refused - static_cast<long>(finished.refusals.size())
                 << " more\n";
   }
 
-  writeSweepTable(out_dir, plan, rows);
+  // A table is never replaced by what a folder with refused files or lines
+  // gives (issue #53 item 7: a refused rows file made collect rewrite a good
+  // sweep.csv with 0 rows): it and the maps stay as they were, byte for
+  // byte. Without a table yet, the rows that passed make one.
+  const fs::path csv = fs::path(out_dir) / "sweep.csv", jsonl = fs::path(out_dir) / "sweep.jsonl";
+  const bool keep_table = finished.refused > 0 && (fs::exists(fs::symlink_status(csv, ec)) ||
+                                                   fs::exists(fs::symlink_status(jsonl, ec)));
+  if (!keep_table) writeSweepTable(out_dir, plan, rows);
   // OUT/external/ keeps only the external-controller rows that did not
   // complete or were stopped midway (sweep_runner.cpp): gone when none
   // left anything (remove() leaves a directory that is not empty).
-  std::error_code ec;
   fs::remove(fs::path(out_dir) / "external", ec);
   long diverged = 0, converged = 0, failed_rows = 0;
   for (const auto& [i, r] : rows) {
@@ -155,11 +164,17 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
     failed_rows += status != r.end() && status->is_string() && *status == "failed";
   }
   const long missing = static_cast<long>(plan.rows.size()) - static_cast<long>(rows.size());
+  if (keep_table)
+    std::cerr << who << csv.string() << " and sweep.jsonl were left as they were, not rewritten while "
+              << "something in " << (fs::path(out_dir) / "rows").string()
+              << " is refused; remove or fix what is named above, then collect again\n";
   if (!quiet) {
-    std::cout << who << rows.size() << " of " << plan.rows.size() << " runs in "
-              << (fs::path(out_dir) / "sweep.csv").string() << " (and sweep.jsonl): " << converged
-              << " converged, " << diverged << " diverged, " << failed_rows << " failed, "
-              << static_cast<long>(rows.size()) - converged - diverged - failed_rows << " neither"
+    std::cout << who << rows.size() << " of " << plan.rows.size() << " runs "
+              << (keep_table ? "read from " + (fs::path(out_dir) / "rows").string() + " (the table kept)"
+                             : "in " + csv.string() + " (and sweep.jsonl)")
+              << ": " << converged << " converged, " << diverged << " diverged, " << failed_rows
+              << " failed, " << static_cast<long>(rows.size()) - converged - diverged - failed_rows
+              << " neither"
               << (finished.refused > 0 ? "; " + std::to_string(finished.refused) + " refused (above)" : "")
               << "\n";
   }
@@ -171,23 +186,25 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
     if (status == r.end() || !status->is_string() || *status != "failed" || shown_failures++ >= 3) continue;
     const auto reason = r.find("stop_reason");
     std::cerr << who << "row " << i << " failed: "
-              << (reason != r.end() && reason->is_string() ? reason->get<std::string>().substr(0, 400)
-                                                           : std::string("(no reason recorded)"))
+              << (reason != r.end() && reason->is_string()  // a process's last line, among others
+                      ? util::terminalSafeLines(reason->get<std::string>().substr(0, 400))
+                      : std::string("(no reason recorded)"))
               << "\n";
   }
   if (failed_rows > 3)
     std::cerr << who << "... and " << failed_rows - 3
               << " more failed rows (column stop_reason of sweep.csv)\n";
-  try {
-    const SweepMaps maps = drawSweepMaps(out_dir, plan, rows);
+  try {  // the maps go with the table: kept with it
+    const SweepMaps maps = keep_table ? SweepMaps{} : drawSweepMaps(out_dir, plan, rows);
     if (!quiet) {
       for (const std::string& png : maps.plots.written) std::cout << who << "wrote " << png << "\n";
-      for (const std::string& why : maps.not_drawn) std::cout << who << "map not drawn: " << why << "\n";
+      for (const std::string& why : maps.not_drawn)
+        std::cout << who << "map not drawn: " << util::terminalSafeLines(why) << "\n";
     }
     for (const std::string& png : maps.plots.failed)
       std::cerr << who << "gnuplot could not draw " << png << " (see " << maps.plots.log << ")\n";
   } catch (const PlotError& e) {
-    std::cerr << who << "no maps: " << e.what() << "\n";
+    std::cerr << who << "no maps: " << util::terminalSafeLines(e.what()) << "\n";
   }
   if (missing > 0) {
     std::string list;

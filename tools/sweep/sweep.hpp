@@ -37,7 +37,8 @@ int runSweep(const SweepOptions& options);
 /// `lagrange sweep collect OUT`: the table and maps from what the shards
 /// wrote. 0 when every row is there, 1 when some are missing (the table then
 /// has the others), 2 when OUT is not a sweep or something in OUT/rows was
-/// refused (not this plan's rows: named on stderr; the table has the rest).
+/// refused (not this plan's rows: named on stderr; a table already there is
+/// left as it was, byte for byte, with its maps; without one, the table has the rest).
 int collectSweep(const std::string& out_dir, bool quiet);
 
 /// One shard (`lagrange sweep-shard OUT --shard K --of N`, what the local

@@ -37,10 +37,12 @@ std::string csvField(const nlohmann::ordered_json& v) {
   return quoted + "\"";
 }
 
-void writeAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  util::writeOutputFile(tmp.string(), text);  // never through a link planted at tmp
-  fs::rename(tmp, path);
+// Each file written beside its name (never through a link planted there),
+// then all renamed over theirs: none is left half-written, and none is
+// replaced unless every one was written.
+void writeAtomically(const std::vector<std::pair<fs::path, std::string>>& files) {
+  for (const auto& [path, text] : files) util::writeOutputFile(path.string() + ".tmp", text);
+  for (const auto& [path, text] : files) fs::rename(path.string() + ".tmp", path);
 }
 
 }  // namespace
@@ -249,8 +251,8 @@ void writeSweepTable(const std::string& out_dir, const SweepPlan& plan,
     csv << "\n";
     jsonl << row.dump() << "\n";
   }
-  writeAtomically(fs::path(out_dir) / "sweep.csv", csv.str());
-  writeAtomically(fs::path(out_dir) / "sweep.jsonl", jsonl.str());
+  writeAtomically(
+      {{fs::path(out_dir) / "sweep.csv", csv.str()}, {fs::path(out_dir) / "sweep.jsonl", jsonl.str()}});
 }
 
 }  // namespace lagrange::tools

@@ -58,8 +58,8 @@ class RowWriter {
   int fd_ = -1;
 };
 
-/// Writes OUT/sweep.csv and OUT/sweep.jsonl (each to a temporary file, then
-/// renamed) from the rows, in index order.
+/// Writes OUT/sweep.csv and OUT/sweep.jsonl (both to temporary files, then
+/// both renamed) from the rows, in index order.
 void writeSweepTable(const std::string& out_dir, const SweepPlan& plan,
                      const std::map<long, nlohmann::ordered_json>& rows);
 
