@@ -21,6 +21,7 @@
 #include "transport/messages.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/progress.hpp"
 
 namespace lagrange::wiring {
@@ -127,7 +128,8 @@ int runInProcess(const config::Scenario& s, const controller::GainReport& gains,
   const std::string log_path = (fs::path(out_dir) / "run.lcm").string();
   logger::EventLog log(log_path);
   const InProcessOutcome outcome = simulateInProcess(s, &log, &progress, stop_requested);
-  if (!outcome.stop_message.empty()) std::cerr << "lagrange run: " << outcome.stop_message << "\n";
+  if (!outcome.stop_message.empty())
+    std::cerr << "lagrange run: " << util::terminalSafeLines(outcome.stop_message) << "\n";
 
   logger::RunFacts facts;
   facts.status = outcome.status;

@@ -12,6 +12,11 @@
 // file of the test's (watched with inotify: any open of it is seen) is never
 // opened by replay, report, export or view, with or without the copy, nor
 // an `extends`; only the user's --set robot.urdf.file is read.
+//
+// TerminalText: text from a file or a program reaches the terminal with its
+// control characters escaped (util/terminal_text.hpp): an error quoting a
+// file, the run's result block; tests/integration/terminal_text_test.cpp
+// has the commands that print names and programs' lines.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/inotify.h>
@@ -34,14 +39,17 @@
 #include "support/configs.hpp"
 #include "support/log_events.hpp"
 #include "support/temp_dir.hpp"
+#include "tools/command_error.hpp"
 #include "tools/export/export.hpp"
 #include "tools/replay/replay_log.hpp"
 #include "tools/report/report.hpp"
+#include "tools/run/run_outcome.hpp"
 #include "tools/spy/spy.hpp"
 #include "tools/view/view.hpp"
 #include "tools/view/view_source.hpp"
 #include "transport/channels.hpp"
 #include "util/error.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/netns.hpp"
 
 namespace lagrange::testing {
@@ -464,6 +472,60 @@ TEST_F(LoggedUrdf, AnExtendsInALogsScenarioIsRefusedUnopened) {
       std::string::npos)
       << r.replay;
   EXPECT_NE(r.report.find("extends: a recorded scenario"), std::string::npos) << r.report;
+}
+
+// The escapes of issue #53: a title (OSC 0), a clear screen (CSI 2J), a
+// bell, a carriage return that would overwrite the line, and a C1 CSI.
+const std::string kHostile = "\x1b]0;owned\x07\x1b[2J\rfake line\xc2\x9b";
+const std::string kShown = "\\x1b]0;owned\\x07\\x1b[2J\\x0dfake line\\xc2\\x9b";
+
+TEST(TerminalText, LinesAndTabsKeptOnlyWhereAskedEverythingElseEscaped) {
+  EXPECT_EQ(util::terminalSafe(kHostile), kShown);
+  EXPECT_EQ(util::terminalSafeLines(kHostile + "\n\tnext"), kShown + "\n\tnext");
+  EXPECT_EQ(util::terminalSafe("a\nb\tc"), "a\\x0ab\\x09c");
+  EXPECT_EQ(util::terminalSafeLines(util::terminalSafeLines(kHostile)), kShown)
+      << "escaping twice adds nothing";
+  EXPECT_EQ(util::terminalSafeLines("Loría ü ‖q̃‖"), "Loría ü ‖q̃‖");
+}
+
+// Every command ends on an error through failWith: a message quoting a
+// scenario's key, a log's value or a program's words is printed escaped.
+TEST(TerminalText, AnErrorQuotingAFileIsPrintedEscaped) {
+  ::testing::internal::CaptureStderr();
+  const int code =
+      tools::failWith("lagrange check-gains",
+                      BadInput("config: x.yaml: unknown key '" + kHostile + "'\nexpected one of name, ..."));
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(
+      err, "lagrange check-gains: config: x.yaml: unknown key '" + kShown + "'\nexpected one of name, ...\n");
+}
+
+// `lagrange run`'s block: every string of summary.json (the gain check's
+// why, the scenario's name, the verdict's sentences) printed escaped.
+TEST(TerminalText, TheRunsResultBlockEscapesEveryStringOfItsSummary) {
+  const nlohmann::json j = {{"scenario", "name " + kHostile},
+                            {"status", "completed"},
+                            {"tracking",
+                             {{"final_error", 1e-5},
+                              {"tolerance", 1e-3},
+                              {"convergence_time", 0.5},
+                              {"convergence_deadline", 5.0},
+                              {"met", true},
+                              {"samples", 1000}}},
+                            {"torque", {{"max_abs", 1.0}}},
+                            {"gains", {{"checked", false}, {"why", "why " + kHostile}}},
+                            {"timing", {{"sim_time", 1.0}, {"wall_time", 1.0}}},
+                            {"verdict",
+                             {{"headline", "tracking met"},
+                              {"met", true},
+                              {"warnings", {{{"kind", "x"}, {"text", "w " + kHostile}}}}}}};
+  const std::string block = tools::resultText(j);
+  for (const char c : {'\x1b', '\x07', '\r'}) EXPECT_EQ(block.find(c), std::string::npos) << block;
+  EXPECT_EQ(block.find("\xc2\x9b"), std::string::npos) << block;
+  EXPECT_NE(block.find("scenario name " + kShown + ": completed"), std::string::npos) << block;
+  EXPECT_NE(block.find("not checked (why " + kShown + ")"), std::string::npos) << block;
+  EXPECT_NE(block.find("- w " + kShown), std::string::npos) << block;
 }
 
 }  // namespace

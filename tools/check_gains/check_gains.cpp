@@ -11,6 +11,7 @@
 #include "controller/gain_suggestion.hpp"
 #include "tools/command_error.hpp"
 #include "util/error.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/sampled_simulation.hpp"
 
 namespace lagrange::tools {
@@ -32,17 +33,17 @@ int suggest(const config::Scenario& s, bool simulate) {
   try {
     search = controller::searchGains(s);
   } catch (const std::range_error& e) {
-    std::cout << "\nno suggestion: " << e.what() << "\n";
+    std::cout << "\nno suggestion: " << util::terminalSafeLines(e.what()) << "\n";
     return kExitFailed;
   }
   if (!search.tried.empty()) {
     std::cout << "\n--suggest: candidates linearised at " << at << ":";
-    for (const std::string& line : search.tried) std::cout << "\n  " << line;
+    for (const std::string& line : search.tried) std::cout << "\n  " << util::terminalSafe(line);
     std::cout << "\n";
   }
   if (!search.suggested) {
     std::cout << "\nno suggestion: found no gains that pass the checks at " << at
-              << ". What binds: " << search.binding << "\n";
+              << ". What binds: " << util::terminalSafeLines(search.binding) << "\n";
     return kExitFailed;
   }
   controller::GainReport check = controller::checkGains(*search.suggested);
@@ -55,7 +56,7 @@ int suggest(const config::Scenario& s, bool simulate) {
     std::cout
         << "\nno suggestion: the best candidate (the paper's gain conditions and the linearised check at "
         << at << " pass) fails the full check:\n"
-        << controller::describe(check) << "\nWhat binds: "
+        << util::terminalSafeLines(controller::describe(check)) << "\nWhat binds: "
         << (check.simulated && check.simulated->fails()
                 ? std::string("the sampled loop simulated as configured") +
                       (s.actuator.saturation ? ", torque limits (actuator.saturation) included," : "") +
@@ -66,8 +67,8 @@ int suggest(const config::Scenario& s, bool simulate) {
   }
   std::cout << "\nsuggested gains (pass eq. (11) or the chain's conditions, and the sampled-data checks at "
             << at << "; other keys unchanged):\n"
-            << controller::controllerYaml(*search.suggested) << "\nwith them:\n"
-            << controller::describe(check) << "\n";
+            << util::terminalSafeLines(controller::controllerYaml(*search.suggested)) << "\nwith them:\n"
+            << util::terminalSafeLines(controller::describe(check)) << "\n";
   return 0;
 }
 
@@ -81,7 +82,7 @@ int checkGainsCommand(const std::string& config_path, const std::vector<std::str
     // With --suggest the simulation is the suggestion's (seconds each): the
     // configured gains get the conditions and the linearised check.
     if (simulate && !suggest_gains) r.simulated = wiring::simulateSampledData(s);
-    std::cout << controller::describe(r) << "\n";
+    std::cout << util::terminalSafeLines(controller::describe(r)) << "\n";  // joint names from a URDF
     // Exit 1 when the theory's conditions fail, or when the sampled loop at the
     // configured rate is unstable about the reference or diverges in
     // simulation, or is unstable in the linearised check ("slow" and

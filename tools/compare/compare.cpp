@@ -31,6 +31,7 @@
 #include "transport/messages.hpp"
 #include "util/error.hpp"
 #include "util/output_stream.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/spawn_logged.hpp"
 
 namespace lagrange::tools {
@@ -303,7 +304,7 @@ int runComparison(const CompareOptions& o) {
     }
     ComparisonTables tables{plan.base.name, plan.base.dof(), plan.sweep_key, numbers};
     const std::string table = writeComparison(tables, o.out_dir);
-    if (!o.quiet) std::cout << table;
+    if (!o.quiet) std::cout << util::terminalSafeLines(table);  // names and reasons from files
     const Plots plots = drawComparisonPlots(tables, o.out_dir);
     if (!o.quiet)
       for (const std::string& png : plots.written) std::cout << "lagrange compare: wrote " << png << "\n";
@@ -314,8 +315,9 @@ int runComparison(const CompareOptions& o) {
       if (n.status.rfind("failed", 0) != 0) continue;
       failed = true;
       if (!n.failure.empty())
-        std::cerr << "lagrange compare: " << n.type
-                  << (n.value ? " at " + plan.sweep_key + " = " + *n.value : "") << " failed: " << n.failure
+        std::cerr << util::terminalSafeLines("lagrange compare: " + n.type +
+                                             (n.value ? " at " + plan.sweep_key + " = " + *n.value : "") +
+                                             " failed: " + n.failure)
                   << "\n";
     }
     return failed ? kExitFailed : kExitOk;

@@ -6,6 +6,7 @@
 
 #include "tools/export/export.hpp"
 #include "util/error.hpp"
+#include "util/terminal_text.hpp"
 
 namespace lagrange::tools {
 
@@ -20,8 +21,10 @@ struct ExportCommandLine {
 int exportRun(const ExportCommandLine& o) {
   // An error ends in tools::dispatch: "lagrange export: ...", exit by its kind.
   const HdfExport e = exportHdf5(o.target, o.out_file, o.force);
-  for (const std::string& w : e.warnings) std::cerr << "lagrange export: warning: " << w << "\n";
-  for (const std::string& p : e.scan.problems()) std::cerr << "lagrange export: warning: " << p << "\n";
+  for (const std::string& w : e.warnings)
+    std::cerr << "lagrange export: warning: " << util::terminalSafeLines(w) << "\n";
+  for (const std::string& p : e.scan.problems())
+    std::cerr << "lagrange export: warning: " << util::terminalSafeLines(p) << "\n";
   if (!o.quiet) {
     std::cout << "lagrange export: wrote " << e.path << ":";
     for (const auto& [channel, rows] : e.channels) std::cout << " " << channel << " (" << rows << " rows)";

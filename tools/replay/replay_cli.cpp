@@ -12,6 +12,7 @@
 #include "tools/replay/replay_external.hpp"
 #include "tools/replay/shell_words.hpp"
 #include "util/error.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/netns.hpp"
 
 namespace lagrange::tools {
@@ -31,17 +32,19 @@ int replayComponent(const ReplayCommandLine& o, const std::string& component) {
     const ReplayResult r = component == "actuator" ? replayActuator(o.log, o.overrides)
                            : component == "plant"  ? replayPlant(o.log, o.overrides, o.external_command)
                                                    : replayController(o.log, o.overrides, o.external_command);
-    for (const auto& w : r.warnings) std::cerr << "lagrange replay: warning: " << w << "\n";
+    for (const auto& w : r.warnings)
+      std::cerr << "lagrange replay: warning: " << util::terminalSafeLines(w) << "\n";
     if (r.divergence) {
       std::cout << "lagrange replay: " << component << " DIVERGED after " << r.commands << " outputs at "
-                << *r.divergence << "\n";
+                << util::terminalSafeLines(*r.divergence) << "\n";
       return kExitFailed;
     }
     std::cout << "lagrange replay: " << component << " reproduced all " << r.commands
               << " recorded outputs bit for bit (" << r.events << " events read)\n";
     return kExitOk;
   } catch (const ReplayError& e) {  // anything else ends in tools::dispatch, the same way
-    for (const auto& w : e.warnings()) std::cerr << "lagrange replay: warning: " << w << "\n";
+    for (const auto& w : e.warnings())
+      std::cerr << "lagrange replay: warning: " << util::terminalSafeLines(w) << "\n";
     return failWith("lagrange replay", e);
   }
 }

@@ -7,6 +7,7 @@
 #include "config/scenario.hpp"
 #include "tools/report/tracking_table.hpp"
 #include "transport/channels.hpp"
+#include "util/terminal_text.hpp"
 
 namespace lagrange::tools {
 
@@ -110,7 +111,8 @@ void printReport(const Report& report, const std::string& out_dir, const std::st
     std::cout << prefix << report.timing_rows << " rows -> "
               << (fs::path(out_dir) / (std::string(kTimingChannel) + ".csv")).string() << "\n";
   for (const auto& png : report.plots.written) std::cout << prefix << "plot -> " << png << "\n";
-  for (const auto& w : report.warnings) std::cerr << prefix << "warning: " << w << "\n";
+  for (const auto& w : report.warnings)
+    std::cerr << prefix << "warning: " << util::terminalSafeLines(w) << "\n";
 }
 
 }  // namespace lagrange::tools

@@ -42,6 +42,7 @@
 #include "transport/run_clock.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/inproc_runner.hpp"
 #include "wiring/netns.hpp"
 #include "wiring/progress.hpp"
@@ -105,9 +106,10 @@ controller::GainReport checkGainsBeforeRun(const config::Scenario& scenario, con
 bool gainsAllowRun(const config::Scenario& scenario, const controller::GainReport& gains,
                    const RunOptions& opt) {
   if (!opt.quiet && scenario.urdf_model)
-    for (const std::string& note : scenario.urdf_model->notes()) std::cout << "robot.urdf: " << note << "\n";
+    for (const std::string& note : scenario.urdf_model->notes())
+      std::cout << "robot.urdf: " << util::terminalSafe(note) << "\n";  // joint names from a file
   if (!opt.quiet)
-    std::cout << controller::describe(gains) << "\n"
+    std::cout << util::terminalSafeLines(controller::describe(gains)) << "\n"
               << (gains.simulated
                       ? ""
                       : "sampled-data check: not simulated before this run (--check-sampled, or "
@@ -239,7 +241,7 @@ void printResult(const std::string& out_dir) {
   std::string files;
   for (const auto& entry : fs::directory_iterator(out_dir))
     files += (files.empty() ? "" : ", ") + entry.path().filename().string();
-  std::printf("outputs in %s: %s\n", out_dir.c_str(), files.c_str());
+  std::printf("outputs in %s: %s\n", out_dir.c_str(), util::terminalSafe(files).c_str());
 }
 
 // --check: a completed run that missed its stated metric exits kExitMetricMissed,
@@ -271,8 +273,8 @@ int checkMetric(const RunOptions& opt, const std::string& out_dir, int exit_code
   for (const CheckResult& r : results)
     if (!r.passed) {
       ++missed;
-      std::cerr << "lagrange run: --check: " << (r.check.key == "met" ? "" : "metric MISSED: ") << r.message
-                << "\n";
+      std::cerr << "lagrange run: --check: " << (r.check.key == "met" ? "" : "metric MISSED: ")
+                << util::terminalSafeLines(r.message) << "\n";
     }
   return missed > 0 ? kExitMetricMissed : kExitOk;
 }
@@ -286,16 +288,18 @@ void writeRunReport(const RunOptions& opt, const std::string& out_dir) {
     util::makeOutputDirectory(report_dir);  // never into a link planted during the run
     const Report report = writeReport((fs::path(out_dir) / "run.lcm").string(), report_dir);
     if (opt.quiet) {
-      for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
+      for (const auto& w : report.warnings)
+        std::cerr << "lagrange run: report: warning: " << util::terminalSafeLines(w) << "\n";
     } else {
       std::cout << "report: "
                 << report.csv.rows.size() + (report.timing_rows > 0 ? 1 : 0) +
                        (report.tracking_rows > 0 ? 1 : 0)
                 << " CSV files, " << report.plots.written.size() << " plots in " << report_dir << "\n";
-      for (const auto& w : report.warnings) std::cerr << "lagrange run: report: warning: " << w << "\n";
+      for (const auto& w : report.warnings)
+        std::cerr << "lagrange run: report: warning: " << util::terminalSafeLines(w) << "\n";
     }
   } catch (const std::exception& e) {
-    std::cerr << "lagrange run: report: " << e.what() << "\n";
+    std::cerr << "lagrange run: report: " << util::terminalSafeLines(e.what()) << "\n";
   }
 }
 
@@ -401,7 +405,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     if (opt.sign) key.emplace(id->key, out_dir);
     if (!opt.quiet && partialLaunch(opt)) {
       std::cout << "lagrange run: the launchers agreed on this run's key and id (" << run_id << "):";
-      for (const std::string& m : id->members) std::cout << " " << m << ";";
+      for (const std::string& m : id->members) std::cout << " " << util::terminalSafe(m) << ";";
       std::cout << " starting " << joinProcesses(opt.processes) << " here\n";
     }
   } catch (const std::exception& e) {
@@ -524,7 +528,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
         external_scheduler = wiring::schedulerOf(pid);
     for (const std::string& notice : progress_reader.takeNotices()) {
       progress.finish();  // the line under the bar, which is drawn again below it
-      std::cerr << "lagrange run: " << notice << "\n";
+      std::cerr << "lagrange run: " << util::terminalSafeLines(notice) << "\n";
     }
     progress.tick();
     if (launcher_signal != 0) {
@@ -566,8 +570,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       if (e.name == "logger") progress_reader.wait(0);  // its last word, if it said one
       if (e.name == "logger" && !progress_reader.loggerError().empty()) {
         // A write error: the log tail would be on the same full disk.
-        std::cerr << "lagrange run: the logger stopped the run: " << progress_reader.loggerError()
-                  << "; stopping the others\n";
+        std::cerr << "lagrange run: the logger stopped the run: "
+                  << util::terminalSafeLines(progress_reader.loggerError()) << "; stopping the others\n";
         // Its summary, when it could write one (a plant gone silent), says why.
         failure = {{"process", "logger"},
                    {"how", progress_reader.loggerError()},
@@ -578,7 +582,8 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
         std::cerr << "lagrange run: process '" << e.name << "' " << e.describe()
                   << "; stopping the others. Its last lines (" << log << "):\n";
         const std::vector<std::string> tail = logTail(log, 15);
-        for (const std::string& line : tail) std::cerr << "    " << line << "\n";
+        // A program's own lines (an external controller's, a plant's): escaped.
+        for (const std::string& line : tail) std::cerr << "    " << util::terminalSafe(line) << "\n";
         failure = failureRecord(e.name, e.describe(), log, tail);
       }
       for (const wiring::ChildExit& other : supervisor.stopAll(5.0))

@@ -116,7 +116,8 @@ std::string resultText(const nlohmann::json& j) {
                 numberOr(timing.value("realtime_factor", nlohmann::json()), "%.1fx", "?").c_str());
   out += findings("why not met (most likely first):", verdict.value("reasons", nlohmann::json()));
   out += findings("warnings:", verdict.value("warnings", nlohmann::json()));
-  return out;
+  // Every string of summary.json, whatever line it is on (a gain check's why, a verdict word).
+  return util::terminalSafeLines(out);
 }
 
 std::vector<std::string> missedMetrics(const nlohmann::json& j) {

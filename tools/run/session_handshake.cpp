@@ -14,6 +14,7 @@
 #include "transport/messages.hpp"
 #include "transport/safe_decode.hpp"
 #include "util/error.hpp"
+#include "util/terminal_text.hpp"
 
 namespace lagrange::tools {
 
@@ -125,9 +126,9 @@ std::optional<AgreedRun> agreeWithOtherLaunchers(const HandshakeOptions& options
       return AgreedRun{agreement.runValue(), agreement.members(seconds())};
     }
     if (now >= next_note && !options.quiet) {
-      std::cerr << "lagrange run: " << self << ": waiting for " << agreement.waitingFor(now) << " on "
-                << options.lcm_url << " (" << static_cast<int>(now) << " s of " << options.timeout
-                << ", --join-timeout)\n";
+      std::cerr << "lagrange run: " << self << ": waiting for "
+                << util::terminalSafe(agreement.waitingFor(now)) << " on " << options.lcm_url << " ("
+                << static_cast<int>(now) << " s of " << options.timeout << ", --join-timeout)\n";
       next_note = now + 5.0;
     }
     if (now > options.timeout) {

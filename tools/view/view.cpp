@@ -23,6 +23,7 @@
 #include "tools/view/view_server.hpp"
 #include "tools/view/view_source.hpp"
 #include "util/error.hpp"
+#include "util/terminal_text.hpp"
 #include "wiring/netns.hpp"
 
 namespace lagrange::tools {
@@ -290,12 +291,13 @@ int runView(const ViewOptions& opt) {
   if (log) {
     std::vector<std::string> notes;
     const nlohmann::json verdict = runVerdictBeside(source.log_path, notes);
-    for (const std::string& n : notes) std::cerr << "lagrange view: " << n << "\n";
+    for (const std::string& n : notes) std::cerr << "lagrange view: " << util::terminalSafeLines(n) << "\n";
     const std::string body = logJson(*log, verdict);
     server.Get("/api/log", [body](const httplib::Request&, httplib::Response& res) {
       res.set_content(body, "application/json");
     });
-    for (const std::string& w : warnings(*log)) std::cerr << "lagrange view: " << w << "\n";
+    for (const std::string& w : warnings(*log))
+      std::cerr << "lagrange view: " << util::terminalSafeLines(w) << "\n";
   }
   if (feed) serveLive(server, *feed);
 
