@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 
 #include "config/robot_description_lcm.hpp"
 #include "config/scenario_lcm.hpp"
@@ -122,6 +123,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const auto sinceStart = [wall_start](Clock::time_point t) {
     return std::chrono::duration<double>(t - wall_start).count();
   };
+  std::set<std::string> clock_said;  // channels whose sender was said to be off the run's clock
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
   RecordFilter record_filter(node.runId(), s.lastTick());  // only what the run's processes would accept
 
@@ -151,7 +153,23 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
     transport::withChannelMessage(channel, false, [&](auto type) {
       using Msg = decltype(type);
       node.subscribe<Msg>(
-          channel, [&s](const Msg& m) { return validateFor(s, m); },
+          channel,
+          [&, channel](const Msg& m) {
+            std::string why = validateFor(s, m);
+            // A sender off the run's clock is said at once, once a channel:
+            // the plant then waits for a confirmation that cannot come, and
+            // its stall alone would not say why.
+            if (why.find("is not its tick's time") != std::string::npos &&
+                clock_said.insert(channel).second) {
+              const std::string line = fmt::format(
+                  "the logger refuses {} from the {}: {} (each such message is counted as invalid in "
+                  "summary.json messages.{})",
+                  channel, m.header.publisher, why, channel);
+              spdlog::warn(line);
+              sendNoticeLine(options.progress_fd, line);
+            }
+            return why;
+          },
           [&, channel](const Msg& m) {
             if (m.header.publisher == "plant") end.plantHeard(Clock::now());
             answers.arrived(channel, m.header.tick, sinceStart(Clock::now()));
@@ -248,10 +266,16 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
     const bool got = node.raw().handleTimeout(10) > 0;
     if (!got && (!runtime::stopRequested() || end.allEnded())) break;
   }
-  // Completed means every tick was recorded, however the logger was stopped.
-  // (Realtime runs do not re-send: a sample lost on the way is missing
-  // from the log -- log.missing_samples -- but the run still completed.)
-  facts.status = metrics.newestTick() >= s.lastTick() ? "completed" : "interrupted";
+  // Completed means every tick was recorded, however the logger was stopped:
+  // in lockstep every one up to the last (the plant re-sends until the
+  // logger confirms, so a gap is a plant that skipped ticks -- one that
+  // jumps to its last tick and says "finished" has not run the scenario).
+  // Realtime runs do not re-send: a sample lost on the way is missing from
+  // the log (log.missing_ticks; the verdict weighs it) but the run still
+  // completed when its last tick came.
+  const long long recorded_up_to =
+      s.mode == config::Mode::kLockstep ? metrics.lastTick() : metrics.newestTick();
+  facts.status = recorded_up_to >= s.lastTick() ? "completed" : "interrupted";
   if (facts.status == "completed" && !end.allReported(runtime::State::kFinished))
     spdlog::warn(
         fmt::format("not every process reported 'finished' within {} s of the plant", options.finish_grace));

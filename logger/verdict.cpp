@@ -58,10 +58,11 @@ class Verdict {
 
   json decide() {
     const std::string status = text(at(s_, "/status"));
-    const bool met = status == "completed" && at(s_, "/tracking/met") == true;
     judged_ = status == "completed" || status == "failed" || status == "diverged";
+    const bool met = status == "completed" && at(s_, "/tracking/met") == true && !truthMissing();
     met_ = met;
     processFailed();
+    missingTruth();
     diverged();
     samplingRate();
     timing();
@@ -121,6 +122,26 @@ class Verdict {
     found("process_failed",
           fmt::format("the {} failed{}{}", process.empty() ? "run" : process, how.empty() ? "" : ": ", how),
           text(at(s_, "/status")) == "completed");
+  }
+
+  // The plant's samples the log lacks: the metric is of the ticks it holds,
+  // so past the threshold it is no metric of the run (a plant that skipped
+  // ticks, or a run whose samples were lost on the way).
+  long long truthMissingCount() const { return count(at(s_, "/log/missing_ticks/PLANT_TRUTH")); }
+  double truthMissingShare() const {
+    const long long missing = truthMissingCount(), held = count(at(s_, "/tracking/samples"));
+    return missing + held > 0 ? static_cast<double>(missing) / static_cast<double>(missing + held) : 0.0;
+  }
+  bool truthMissing() const {
+    if (truthMissingCount() == 0) return false;
+    return text(at(s_, "/mode")) == "lockstep" || truthMissingShare() > limits_.missing_truth_fraction;
+  }
+  void missingTruth() {
+    if (!truthMissing()) return;
+    found("missing_ticks",
+          fmt::format("the log has no plant sample (PLANT_TRUTH) for {} of the run's ticks ({}): the figures "
+                      "are of the ticks it holds, not of the run",
+                      truthMissingCount(), percent(truthMissingShare())));
   }
 
   void diverged() {
@@ -321,7 +342,7 @@ class Verdict {
     const json& missing = at(s_, "/log/missing_ticks");
     if (missing.is_object())
       for (const auto& [channel, n] : missing.items())
-        if (count(n) > 0)
+        if (count(n) > 0 && !(channel == "PLANT_TRUTH" && truthMissing()))  // a reason above
           warnings_.push_back({"missing_ticks", fmt::format("the log has no {} for {} ticks: the figures are "
                                                             "of the ticks it holds",
                                                             channel, count(n))});

@@ -28,6 +28,11 @@ struct VerdictThresholds {
   /// The error grew when its largest exceeds this many times the larger of
   /// its start and the tolerance, and the run ended farther than it began.
   double growth = 5.0;
+  /// The plant's samples (PLANT_TRUTH) missing from the log on more than
+  /// this share of the run's ticks leave the figures without the run: in
+  /// realtime (a datagram lost on the way is no fault of the controller);
+  /// in lockstep, where the plant re-sends until the logger has each, any.
+  double missing_truth_fraction = 0.01;
 };
 
 /// summary.json's `verdict` from the rest of the summary (docs/summary.md):

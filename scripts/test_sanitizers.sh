@@ -50,7 +50,11 @@
 #    recorded-log replays (the golden logs' replay is kept), the two-host,
 #    stock-logger, CPU-pinning and lockstep-logger runs (process code the
 #    kept runs execute), and the shell and Python checks (layers, errors,
-#    python.*: nothing of them is instrumented).
+#    python.*: nothing of them is instrumented);
+#  - the hostile external plant's runs (HostilePlant.*, 30 s of Python
+#    plants in lockstep): the logger's clock rule and the launcher's rule
+#    for a plant that ends early are unit-tested in this pass
+#    (ValidateClock, RecordFilter, Verdict, RunLogic).
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
@@ -68,7 +72,7 @@ java='ExternalController\.|CppPlant\.'
 slurm='SlurmSweep\.'
 front='Help\.|Readme\.'
 outputs='integration\.(SampledWords|Suggest|SampledDataCheck|GainVerdicts|SampledVerdict|Sensors|Compare|Report|View|Export|RealArm|PlantLimits|Policies|Engines|ControllerSeam|RunCheck|Flexible|DefaultRun|ChainM1|Registered)[./]'
-wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger)\.|^layers\.|^errors\.|^python\.'
+wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger|HostilePlant)\.|^layers\.|^errors\.|^python\.'
 numerics='GainSearch\.SuggestsNothing|FrontEnd\.ARealCommand|ContinuousLoop|FollowsContinuousPdPlus'
 # In parallel as scripts/test.sh runs them (those labelled `serial` alone).
 exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm|$front|$outputs|$numerics|$wiring" "$@"

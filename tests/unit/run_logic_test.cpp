@@ -127,6 +127,26 @@ TEST(RunLogic, ADeadProcessIsRestartedWhileItHasRestartsLeft) {
   EXPECT_EQ(supervision["restart"], nlohmann::json::array({"controller"}));
 }
 
+// A plant that exited 0 before the run was recorded whole ended it short:
+// how, from the logger's summary (the plant's last word, the ticks missing).
+TEST(RunLogic, APlantThatEndedTheRunShortIsToldHow) {
+  nlohmann::json s = {{"status", "interrupted"},
+                      {"processes", {{"plant", {{"state", "finished"}, {"last_tick", 50}}}}},
+                      {"log", {{"missing_ticks", {{"PLANT_TRUTH", 0}}}}}};
+  EXPECT_EQ(plantEndedEarly(s, 200),
+            "said \"finished\" at tick 50, before the run's last tick 200, and exited with code 0");
+  s["processes"]["plant"]["last_tick"] = 200;
+  s["log"]["missing_ticks"]["PLANT_TRUTH"] = 149;
+  EXPECT_EQ(plantEndedEarly(s, 200),
+            "said \"finished\" at the run's last tick but skipped 149 of its ticks (the log has no "
+            "PLANT_TRUTH for them), and exited with code 0");
+  s["processes"]["plant"]["state"] = "running";
+  EXPECT_EQ(plantEndedEarly(s, 200).rfind("exited with code 0 before the run's last tick", 0), 0u);
+  s["status"] = "completed";
+  EXPECT_EQ(plantEndedEarly(s, 200), "");
+  EXPECT_NE(plantEndedEarly(nullptr, 200), "");  // no summary of this run: still the plant's early exit
+}
+
 TEST(RunLogic, TheProgressPipeGivesTheNewestLineAndTheLoggersLastWord) {
   int fds[2];
   ASSERT_EQ(pipe(fds), 0);

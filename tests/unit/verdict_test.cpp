@@ -351,5 +351,31 @@ TEST(Verdict, TheBlockOfARunCutShortSaysItsConvergenceWasBeforeTheEnd) {
   EXPECT_NE(tools::resultText(nothing).find("max |torque|          not measured"), std::string::npos);
 }
 
+// A plant that served ticks 0-50, then jumped to the last and said
+// "finished": whatever its figures, the log holds a quarter of the run, and
+// the run's verdict is not met (issue "Trust, third round", item 2). In
+// realtime a lost sample or two is only a warning.
+TEST(Verdict, APlantsSamplesMissingFromTheLogAreAReasonNotAWarning) {
+  json lockstep = completedRun();
+  lockstep["mode"] = "lockstep";
+  lockstep["tracking"]["samples"] = 52;
+  lockstep["log"]["missing_ticks"]["PLANT_TRUTH"] = 149;
+  const json v = runVerdict(lockstep);
+  EXPECT_EQ(v["tracking"], "NOT met") << v.dump(2);
+  ASSERT_FALSE(v["reasons"].empty());
+  EXPECT_EQ(v["reasons"][0]["kind"], "missing_ticks") << v.dump(2);
+  EXPECT_NE(v["reasons"][0]["text"].get<std::string>().find("no plant sample (PLANT_TRUTH) for 149 of"),
+            std::string::npos)
+      << v.dump(2);
+  json realtime = completedRun();
+  realtime["mode"] = "realtime";
+  realtime["log"]["missing_ticks"]["PLANT_TRUTH"] = 2;  // of 2003: 0.1 %
+  const json lost = runVerdict(realtime);
+  EXPECT_EQ(lost["tracking"], "met") << lost.dump(2);
+  EXPECT_EQ(lost["warnings"][0]["kind"], "missing_ticks") << lost.dump(2);
+  realtime["log"]["missing_ticks"]["PLANT_TRUTH"] = 500;  // a fifth of the run
+  EXPECT_EQ(runVerdict(realtime)["tracking"], "NOT met");
+}
+
 }  // namespace
 }  // namespace lagrange::logger

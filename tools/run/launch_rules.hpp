@@ -29,6 +29,14 @@ std::string checkProcesses(const RunOptions& opt);
 /// hosts of different versions of this project still agree.)
 int64_t sharedRunId(const std::string& lcm_url, const std::string& resolved_text);
 
+/// How a plant that exited with code 0 ended the run short, from the
+/// logger's summary.json (its `status`, the plant's last STATUS in
+/// `processes.plant`, `log.missing_ticks`): "" when the run completed. A
+/// plant that says "finished" early, or skips ticks and says "finished" at
+/// the last, fails the run named as the plant -- not the logger, which only
+/// waited, and not silently "interrupted".
+std::string plantEndedEarly(const nlohmann::json& summary, long long last_tick);
+
 /// summary.json's `supervision` before anything died: the policy
 /// ("restart"), no "restarts", no "deaths".
 nlohmann::json supervisionRecord(const config::SupervisionConfig& policy);

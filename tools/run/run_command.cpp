@@ -188,14 +188,20 @@ void addLauncherFacts(const std::string& out_dir, int64_t run_id, const nlohmann
   util::writeOutputFile(path.string(), j.dump(2) + "\n");  // throws naming the file and the error
 }
 
-// Whether this run's summary.json (its run_id) says every tick was recorded.
-bool runCompleted(const std::string& out_dir, int64_t run_id) {
+// This run's summary.json (its run_id), or null: none, unreadable, another run's.
+nlohmann::json thisRunsSummary(const std::string& out_dir, int64_t run_id) {
   try {
-    const nlohmann::json j = nlohmann::json::parse(std::ifstream(fs::path(out_dir) / "summary.json"));
-    return j.is_object() && j.value("run_id", int64_t{0}) == run_id && j.value("status", "") == "completed";
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(fs::path(out_dir) / "summary.json"));
+    if (j.is_object() && j.value("run_id", int64_t{0}) == run_id) return j;
   } catch (const std::exception&) {
-    return false;
   }
+  return nullptr;
+}
+
+// Whether this run's summary.json says every tick was recorded.
+bool runCompleted(const std::string& out_dir, int64_t run_id) {
+  const nlohmann::json j = thisRunsSummary(out_dir, run_id);
+  return j.is_object() && j.value("status", "") == "completed";
 }
 
 // The last `lines` lines of a process's log.
@@ -513,7 +519,6 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // STATUS can never hang a run.
   constexpr double kFollowSeconds = 10.0;
   std::optional<std::chrono::steady_clock::time_point> plant_done;
-  bool followers_stopped = false;  // the others did not end on the plant's "finished"
   // How the external controller was scheduled (summary.json
   // timing.loops.controller.scheduler): looked at once it has answered, long
   // after its exec.
@@ -543,7 +548,6 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       progress.finish();
       std::cerr << "lagrange run: warning: processes still running " << kFollowSeconds
                 << " s after the plant exited (code 0); stopping them\n";
-      followers_stopped = true;
       for (const wiring::ChildExit& e : supervisor.stopAll(5.0)) {
         addCpu(cpu, e);
         if (e.failed() && e.signal != SIGTERM) exit_code = kExitFailed;
@@ -568,7 +572,21 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
       }
       progress.finish();
       if (e.name == "logger") progress_reader.wait(0);  // its last word, if it said one
-      if (e.name == "logger" && !progress_reader.loggerError().empty()) {
+      // The plant exited 0 before the run's end, and the logger, which heard
+      // it no more, stopped the run: the plant's doing, not the logger's.
+      const std::string plant_short =
+          e.name == "logger" && plant_done
+              ? plantEndedEarly(thisRunsSummary(out_dir, run_id), scenario.lastTick())
+              : std::string();
+      if (!plant_short.empty()) {
+        const std::string log = (fs::path(out_dir) / "plant.log").string();
+        const std::string how =
+            plant_short + (progress_reader.loggerError().empty()
+                               ? std::string()
+                               : "; the logger then stopped the run: " + progress_reader.loggerError());
+        std::cerr << "lagrange run: the plant " << how << "; stopping the others\n";
+        failure = failureRecord("plant", how, log, logTail(log, 15));
+      } else if (e.name == "logger" && !progress_reader.loggerError().empty()) {
         // A write error: the log tail would be on the same full disk.
         std::cerr << "lagrange run: the logger stopped the run: "
                   << util::terminalSafeLines(progress_reader.loggerError()) << "; stopping the others\n";
@@ -594,14 +612,13 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
     }
   }
   key.reset();  // every process has ended: the run's secret goes with it
-  // A plant that exited 0 before its last tick (a program from outside can):
-  // the others waited for a "finished" that never came. Not a success.
-  if (exit_code == 0 && followers_stopped && scenario.plant.external() && runsHere(opt, "logger") &&
-      !runCompleted(out_dir, run_id)) {
+  // A plant that exited 0 before the run's every tick was recorded (a
+  // program from outside can: "finished" early, ticks skipped, or no word):
+  // not a success, and the plant's doing.
+  if (exit_code == 0 && plant_done && runsHere(opt, "logger") && !runCompleted(out_dir, run_id)) {
     const std::string log = (fs::path(out_dir) / "plant.log").string();
-    const std::string how =
-        "exited with code 0 before the run's last tick (the others waited for its "
-        "\"finished\" STATUS)";
+    std::string how = plantEndedEarly(thisRunsSummary(out_dir, run_id), scenario.lastTick());
+    if (how.empty()) how = "exited with code 0 before the run's last tick";
     std::cerr << "lagrange run: the plant " << how << "\n";
     failure = failureRecord("plant", how, log, logTail(log, 15));
     exit_code = kExitFailed;
