@@ -31,6 +31,18 @@ counted in `run.out_of_range` (and said in `run.problems()`); a copy of a
 tick already kept is counted in `run.repeated` and not kept. So what `load`
 holds grows with the scenario, not with the file.
 
+The true tracking error is `run.tracking` (see Run.tracking): per tick the
+plant's true angles PLANT_TRUTH.q less the reference the controller tracked,
+CONTROL_COMMAND.q_desired, joined by header.tick, with t = tick /
+plant.publish_rate of the run's scenario:
+
+    tr = run.tracking
+    tr["t"], tr["q_error"], tr["error_norm"]    # [s], rows of q - q_d [rad], ||q - q_d|| [rad]
+    tr.unjoined                                 # ticks found in one of the two channels only
+
+numpy=True without numpy installed raises ModuleNotFoundError naming the
+package to install (on Debian 12: python3-numpy).
+
 Every file of the run is looked at before a byte is read, as the C++ readers
 do: a FIFO, a device, a directory, a file of /proc or /sys, or a link to one
 is refused, never waited on; summary.json is read whole only up to 16 MiB,
@@ -43,6 +55,7 @@ expected.
 
 import itertools
 import json
+import math
 import operator
 import os
 import re
@@ -229,6 +242,43 @@ class Run:
         self.verdict = None
         self.scenario_yaml = None  # config.resolved.yaml's text
         self.scenario = None  # config.resolved.json as a dict (the same scenario; None for older runs)
+        self.numpy = False  # whether the columns are numpy arrays (load's `numpy`)
+        self._tracking = None
+
+    @property
+    def tracking(self):
+        """The true tracking error, one row per tick (a Tracking: a dict of
+        columns, made on first use and kept):
+
+            "tick"        header.tick of the row, ascending
+            "t"           tick / plant.publish_rate of the run's scenario [s]
+                          (the log's SCENARIO, else config.resolved.json or
+                          .yaml beside it; never a sender's sim_time); None
+                          when none of them gives the rate
+            "q_error"     q - q_d per joint [rad]: PLANT_TRUTH.q (the plant's
+                          true angles, not the sensor's reading) less
+                          CONTROL_COMMAND.q_desired of the same tick (the
+                          reference the controller tracked; a controller that
+                          reports none sends zeros, and q_error is then q)
+            "error_norm"  the Euclidean norm of q_error [rad]
+
+        Columns are lists (1-D numpy arrays, and a 2-D one for q_error, when
+        the run was loaded with numpy), as the channels' columns are. A tick
+        with a row in only one of the two channels is not joined: counted
+        per channel in `tracking.unjoined` ({"PLANT_TRUTH": n,
+        "CONTROL_COMMAND": m}; a realtime controller skips a sample without
+        fresh input, and a message left out as corrupt leaves its tick
+        alone); one whose two rows hold different numbers of joints is
+        counted in `tracking.mismatched`. `tracking.publish_rate` is the
+        rate t is computed with (None when unknown).
+
+        `lagrange report` writes TRACKING.csv against the scenario's
+        reference evaluated at each sample (as summary.json judges); on a
+        built-in controller's run the two agree (both are q_d at the tick's
+        time)."""
+        if self._tracking is None:
+            self._tracking = _tracking_of(self)
+        return self._tracking
 
     def problems(self):
         """Warnings for a person: the log's (scan.problems()) and the rows
@@ -286,6 +336,9 @@ def _load(run, path, numpy, verify, with_outputs=True):
             numpy = True
         except ImportError:
             numpy = False
+    elif numpy:
+        _require_numpy("lagrange.log.load(numpy=True)")
+    run.numpy = bool(numpy)
     run.bounds = bounds = bounds_of_log(path)
     fingerprints = {channel: kind._get_packed_fingerprint() for channel, kind in CHANNEL_TYPES.items()}
     decoded = {}
@@ -353,3 +406,87 @@ def _load_outputs(run):
     resolved_json = os.path.join(run.dir, "config.resolved.json")
     if os.path.lexists(resolved_json):
         run.scenario = read_json(resolved_json, MAX_RESOLVED_BYTES, "the run's resolved scenario as JSON")
+
+
+def _require_numpy(what):
+    """numpy, or ModuleNotFoundError saying which package installs it."""
+    try:
+        import numpy
+    except ImportError:
+        raise ModuleNotFoundError("%s: numpy is not installed; on Debian 12: sudo apt-get install python3-numpy "
+                                  "(or pip install numpy); without numpy=True, load uses numpy only when it is "
+                                  "there and returns lists otherwise" % what, name="numpy") from None
+    return numpy
+
+
+class Tracking(dict):
+    """Run.tracking: the columns "tick", "t", "q_error", "error_norm", with
+    `unjoined` (per channel, ticks found in that channel only), `mismatched`
+    (ticks whose two rows hold different numbers of joints) and
+    `publish_rate` (what t is computed with, or None)."""
+
+    def __init__(self, columns, unjoined, mismatched, publish_rate):
+        super().__init__(columns)
+        self.unjoined = unjoined
+        self.mismatched = mismatched
+        self.publish_rate = publish_rate
+
+
+def _positive_rate(text):
+    """A publish rate given as a number or its text, if finite and > 0."""
+    try:
+        rate = float(text)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return rate if math.isfinite(rate) and rate > 0 else None
+
+
+def _publish_rate_of(run):
+    """plant.publish_rate of the run's scenario: the log's SCENARIO (the one
+    its ticks are bounded by), else config.resolved.json, else .yaml."""
+    for message in run.messages.get("SCENARIO", ())[:1]:
+        rate = _positive_rate(log_bounds._section_value(message.yaml, "plant", "publish_rate"))
+        if rate is not None:
+            return rate
+    plant = run.scenario.get("plant") if isinstance(run.scenario, dict) else None
+    if isinstance(plant, dict) and not isinstance(plant.get("publish_rate"), bool):
+        rate = _positive_rate(plant.get("publish_rate"))
+        if rate is not None:
+            return rate
+    if run.scenario_yaml is not None:
+        return _positive_rate(log_bounds._section_value(run.scenario_yaml, "plant", "publish_rate"))
+    return None
+
+
+def _tracking_of(run):
+    truth = run.channels.get("PLANT_TRUTH") or {}
+    command = run.channels.get("CONTROL_COMMAND") or {}
+    truth_row = {int(tick): k for k, tick in enumerate(truth.get("header.tick", ()))}
+    command_row = {int(tick): k for k, tick in enumerate(command.get("header.tick", ()))}
+    both = sorted(truth_row.keys() & command_row.keys())
+    unjoined = {"PLANT_TRUTH": len(truth_row) - len(both), "CONTROL_COMMAND": len(command_row) - len(both)}
+    q, q_desired = truth.get("q", ()), command.get("q_desired", ())
+    ticks, errors, norms = [], [], []
+    mismatched = 0
+    for tick in both:
+        actual, desired = q[truth_row[tick]], q_desired[command_row[tick]]
+        if len(actual) != len(desired):
+            mismatched += 1
+            continue
+        error = [float(a) - float(d) for a, d in zip(actual, desired)]
+        ticks.append(tick)
+        errors.append(error)
+        norms.append(math.sqrt(math.fsum(e * e for e in error)))
+    rate = _publish_rate_of(run)
+    columns = {"tick": ticks, "t": None if rate is None else [tick / rate for tick in ticks], "q_error": errors,
+               "error_norm": norms}
+    if run.numpy:
+        numpy = _require_numpy("Run.tracking")
+        columns["tick"] = numpy.asarray(ticks, dtype=numpy.int64)
+        columns["error_norm"] = numpy.asarray(norms, dtype=float)
+        if rate is not None:
+            columns["t"] = numpy.asarray(columns["t"], dtype=float)
+        joints = {len(row) for row in errors}
+        if len(joints) <= 1:  # one row per tick, one column per joint (rows of mixed lengths stay lists)
+            columns["q_error"] = numpy.asarray(errors, dtype=float).reshape(len(errors), max(joints, default=0))
+    return Tracking(columns, unjoined, mismatched, rate)
