@@ -91,7 +91,9 @@ YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& f
     throw ConfigError("config: " + source + ": extends: '" + extends.Scalar() +
                       "' cannot be resolved here (a scenario that is not read from a file); expected a "
                       "scenario without extends");
-  const fs::path base_path = (folder / extends.Scalar()).lexically_normal();
+  // Absolute: a base named from the working directory ("b.yaml") has a
+  // folder of its own (not the empty one), for its own extends and paths.
+  const fs::path base_path = fs::absolute(folder / extends.Scalar()).lexically_normal();
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(base_path, ec);
   const std::string key = ec ? base_path.string() : canonical.string();

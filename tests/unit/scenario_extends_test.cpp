@@ -73,6 +73,36 @@ TEST_F(Extends, ACycleIsRefusedNamingTheChain) {
   EXPECT_NE(errorLoading((dir_ / "self.yaml").string()).find("a cycle"), std::string::npos);
 }
 
+// Named from the working directory ("lagrange run a.yaml"): a base's folder
+// is still known -- a cycle is named a cycle, and a base's external plant
+// starts in the base's folder (it was "cannot be resolved here" and
+// "cannot make absolute path" before).
+TEST_F(Extends, ScenariosNamedFromTheWorkingDirectoryResolveAsAnyOther) {
+  write("a.yaml", "extends: b.yaml\nname: a\n");
+  write("b.yaml", "extends: a.yaml\nname: b\n");
+  write("external.yaml", "extends: " + kConfigs +
+                             "/rigid_2dof.yaml\nplant: {type: external, command: [./my_plant, --fast], "
+                             "publish_rate: 1000}\nactuator: {order: 0}\n");
+  write("mine.yaml", "extends: external.yaml\nname: mine\n");
+  write("my_plant", "#!/bin/sh\n");
+  fs::permissions(dir_ / "my_plant", fs::perms::owner_all);
+  const fs::path was = fs::current_path();
+  fs::current_path(dir_);
+  const std::string cycle = errorLoading("a.yaml");
+  std::string external_error;
+  Scenario mine;
+  try {
+    mine = loadScenario("mine.yaml");
+  } catch (const std::exception& e) {
+    external_error = e.what();
+  }
+  fs::current_path(was);
+  EXPECT_NE(cycle.find("extends: a cycle: "), std::string::npos) << cycle;
+  EXPECT_EQ(external_error, "");
+  EXPECT_EQ(mine.plant.command.at(0), (dir_ / "my_plant").string());
+  EXPECT_EQ(fs::path(mine.plant.working_directory), dir_);
+}
+
 TEST_F(Extends, AMissingOrBadBaseIsNamed) {
   const std::string missing = write("m.yaml", "extends: nowhere.yaml\nname: m\n");
   EXPECT_NE(errorLoading(missing).find("extends: "), std::string::npos) << errorLoading(missing);
