@@ -1,6 +1,7 @@
 #include "tools/sweep/sweep_maps.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -24,13 +25,18 @@ std::optional<double> numberOf(const Row& row, const std::string& column) {
   return std::nullopt;
 }
 
+std::string textOf(const Row& row, const std::string& column) {
+  const auto v = row.find(column);
+  return v != row.end() && v->is_string() ? v->get<std::string>() : "";
+}
+
 std::string num(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", x);
   return buf;
 }
 
-// A parameter's value in a legend: 20, not 20.0.
+// A parameter's value in a legend or on an axis: 20, not 20.0.
 std::string label(const Row& v) {
   if (!v.is_number()) return v.is_string() ? v.get<std::string>() : v.dump();
   char buf[32];
@@ -63,94 +69,213 @@ std::string axisTitle(const std::string& column) {
   return column;
 }
 
-std::optional<Picture> convergenceMap(const fs::path& dir, const std::string& title,
-                                      const std::map<long, Row>& rows, const std::string& xcol,
-                                      const std::string& group) {
-  // Against the swept axis `xcol`, one set of points per value of `group`
-  // (another axis, when it has few values), by the group's value in numeric order.
-  std::map<std::pair<double, std::string>, std::vector<std::pair<double, double>>> converged;
-  std::vector<std::pair<double, std::string>> others;
+// How each class is marked: a gnuplot point type and size, and its colour
+// when the points are not coloured by another axis.
+struct Mark {
+  int type;
+  double size;
+  const char* colour;
+};
+Mark markOf(const std::string& key) {
+  if (key == "met") return {7, 0.7, "#2166ac"};
+  if (key == "not_met_diverged") return {2, 1.0, "#b2182b"};
+  if (key == "not_met_unstable_at_rate") return {3, 1.0, "#d6604d"};
+  if (key == "not_met_timing" || key == "not_met_stale_torque") return {8, 1.0, "#8c510a"};
+  if (key == "not_met_saturated") return {5, 0.8, "#e08214"};
+  if (key == "not_met_late") return {4, 0.9, "#7b3294"};
+  if (key == "not_met_not_converged") return {6, 0.9, "#c51b7d"};
+  if (key == "not_met_condition_violated") return {12, 1.0, "#4d9221"};
+  if (key.rfind("not_met", 0) == 0) return {10, 1.0, "#b35806"};
+  if (key == "not_judged") return {1, 1.0, "#777777"};
+  return {11, 1.0, "#000000"};  // failed, no verdict
+}
+
+// The drawing (and legend) order of the classes: met, NOT met by reason, then the rest.
+int classRank(const std::string& key) {
+  if (key == "met") return 0;
+  if (key.rfind("not_met", 0) == 0) return 1;
+  if (key == "not_judged") return 2;
+  return 3;
+}
+
+// An axis's values over the rows: numbers, or texts drawn in order of appearance.
+struct AxisValues {
+  bool numeric = true;
+  std::set<double> numbers;
+  std::vector<std::string> texts;  // distinct, in the order of the rows
+  size_t distinct() const { return numeric ? numbers.size() : texts.size(); }
+};
+AxisValues valuesOf(const std::map<long, Row>& rows, const std::string& column) {
+  AxisValues a;
+  std::set<std::string> seen;
+  for (const auto& [i, r] : rows) {
+    const auto v = r.find(column);
+    if (v == r.end() || v->is_null()) continue;
+    if (v->is_number())
+      a.numbers.insert(v->get<double>());
+    else
+      a.numeric = false;
+    if (const std::string t = label(*v); seen.insert(t).second) a.texts.push_back(t);
+  }
+  return a;
+}
+
+struct ConvergenceMap {
+  Picture picture;
+  std::vector<std::string> classes;
+};
+
+std::optional<ConvergenceMap> convergenceMap(const fs::path& dir, const std::string& title,
+                                             const std::map<long, Row>& rows, const std::string& xcol,
+                                             const AxisValues& xvalues, const std::string& group, bool line) {
+  // A point per row: x on the swept axis (a number, or the place of its
+  // value), y its convergence time or none, its group and its class.
+  struct Point {
+    double x;
+    std::optional<double> t;
+    int group;
+  };
+  std::map<std::pair<int, std::string>, std::pair<VerdictClass, std::vector<Point>>> by_class;
+  std::vector<std::string> groups;  // a group's values, in numeric order when numbers
+  if (!group.empty()) {
+    const AxisValues g = valuesOf(rows, group);
+    if (g.numeric)
+      for (double v : g.numbers) groups.push_back(label(Row(v)));
+    else
+      groups = g.texts;
+  }
   std::vector<double> xs, times;
   for (const auto& [i, r] : rows) {
-    const auto x = numberOf(r, xcol);
-    const auto t = numberOf(r, "convergence_time");
-    if (!x) continue;
-    xs.push_back(*x);
-    const bool grouped = !group.empty() && r.contains(group);
-    const std::pair<double, std::string> g = {grouped ? numberOf(r, group).value_or(0.0) : 0.0,
-                                              grouped ? label(r.at(group)) : ""};
-    if (t) {  // 0 too: a run that started within the tolerance converged at once
-      converged[g].push_back({*x, *t});
-      times.push_back(*t);
+    const auto v = r.find(xcol);
+    if (v == r.end() || v->is_null()) continue;
+    double x = 0;
+    if (xvalues.numeric) {
+      if (!v->is_number()) continue;
+      x = v->get<double>();
     } else {
-      others.push_back({*x, r.value("diverged", false) ? "diverged" : "not converged"});
+      x = static_cast<double>(std::find(xvalues.texts.begin(), xvalues.texts.end(), label(*v)) -
+                              xvalues.texts.begin());
     }
+    int g = 0;
+    if (!groups.empty() && r.contains(group))
+      g = static_cast<int>(std::find(groups.begin(), groups.end(), label(r.at(group))) - groups.begin());
+    const VerdictClass c = verdictClass(r);
+    auto& entry = by_class[{classRank(c.key), c.key}];
+    entry.first = c;
+    const auto t = numberOf(r, "convergence_time");  // 0 too: a run that started within the tolerance
+    entry.second.push_back({x, t, g});
+    xs.push_back(x);
+    if (t) times.push_back(*t);
   }
-  if (converged.empty() && others.empty()) return std::nullopt;
-  // Times on a log axis when they span a decade; those that did not converge above them.
+  if (by_class.empty()) return std::nullopt;
+  // Times on a log axis when they span a decade; runs without one above them.
   const bool log_y = wantsLog(times);
   const double longest = times.empty() ? 0.0 : *std::max_element(times.begin(), times.end());
-  const double top = longest > 0 ? longest * (log_y ? 3.0 : 1.25) : 10.0;
-  std::string plot = "plot ";
-  int k = 0;
-  for (const auto& [g, points] : converged) {
-    const std::string file = "convergence_" + std::to_string(k) + ".csv";
+  const double top = longest > 0 ? longest * (log_y ? 3.0 : 1.25) : 1.0;
+  bool above = false;
+  ConvergenceMap map;
+  std::string plot;
+  const auto add = [&plot](const std::string& item) {
+    plot += (plot.empty() ? "plot " : ", \\\n     ") + item;
+  };
+  for (const auto& [rank_key, entry] : by_class) {
+    const auto& [c, points] = entry;
+    const std::string file = "convergence_" + c.key + ".csv";
     util::OutputStream out(dir / file);
-    out << "x,convergence_time\n";
-    for (const auto& [x, t] : points) out << num(x) << "," << num(t) << "\n";
-    plot += std::string(k ? ", \\\n     " : "") + "'" + file +
-            "' skip 1 using 1:2 with points pt 7 ps 0.6 title " +
-            gnuplotString(g.second.empty() ? "converged" : group + " = " + g.second) + " noenhanced";
-    ++k;
+    out << "x,y,group\n";
+    for (const Point& p : points) {
+      above = above || !p.t;
+      out << num(p.x) << "," << num(p.t ? *p.t : top) << "," << p.group + 1 << "\n";
+    }
+    const Mark m = markOf(c.key);
+    const std::string style = "with points pt " + std::to_string(m.type) + " ps " + num(m.size);
+    if (groups.empty()) {
+      add("'" + file + "' skip 1 using 1:2 " + style + " lc rgb '" + m.colour + "' title " +
+          gnuplotString(c.label) + " noenhanced");
+    } else {  // colours say the group; the class is the mark, shown in black in the key
+      add("'" + file + "' skip 1 using 1:2:3 " + style + " lc variable notitle");
+      add("NaN " + style + " lc rgb 'black' title " + gnuplotString(c.label) + " noenhanced");
+    }
+    map.classes.push_back(c.label);
   }
-  for (const std::string kind : {"not converged", "diverged"}) {
-    std::vector<double> at;
-    for (const auto& [x, what] : others)
-      if (what == kind) at.push_back(x);
-    if (at.empty()) continue;
-    const std::string file = kind == "diverged" ? "diverged.csv" : "not_converged.csv";
-    util::OutputStream out(dir / file);
-    out << "x,y\n";
-    const double y = kind == "diverged" ? (log_y ? top * 1.5 : top * 1.1) : top;
-    for (double x : at) out << num(x) << "," << num(y) << "\n";
-    plot += std::string(k++ ? ", \\\n     " : "") + "'" + file + "' skip 1 using 1:2 with points pt " +
-            (kind == "diverged" ? "2" : "6") + " ps 0.8 title '" + kind + " (drawn above)'";
+  for (size_t g = 0; g < groups.size(); ++g)
+    add("NaN with points pt 7 ps 1 lc " + std::to_string(g + 1) + " title " +
+        gnuplotString(group + " = " + groups[g]) + " noenhanced");
+  if (line && !times.empty()) {  // one axis: the median time at each of its values, joined
+    std::map<double, std::vector<double>> at;
+    for (const auto& [rank_key, entry] : by_class)
+      for (const Point& p : entry.second)
+        if (p.t) at[p.x].push_back(*p.t);
+    util::OutputStream out(dir / "convergence_median.csv");
+    out << "x,median_convergence_time\n";
+    for (auto& [x, ts] : at) {
+      std::sort(ts.begin(), ts.end());
+      const size_t n = ts.size();
+      out << num(x) << "," << num(n % 2 ? ts[n / 2] : (ts[n / 2 - 1] + ts[n / 2]) / 2) << "\n";
+    }
+    plot =
+        "plot 'convergence_median.csv' skip 1 using 1:2 with lines lw 1.5 lc rgb '#555555' title "
+        "'median convergence time at each value', \\\n     " +
+        plot.substr(5);
   }
-  const bool log_x = wantsLog(xs);
-  return Picture{"convergence_time.png",
-                 header("convergence_time.png", title + ": convergence time against " + xcol) +
-                     (log_x ? "set logscale x\nset format x '10^{%L}'\n" : "") +
-                     (log_y ? "set logscale y\nset format y '10^{%L}'\n" : "set yrange [0:*]\n") +
-                     "set offsets graph 0.03, graph 0.03, 0, 0\n"
-                     "set xlabel " +
-                     gnuplotString(axisTitle(xcol)) +
-                     " noenhanced\n"
-                     "set ylabel 'convergence time [s]'\nset key outside right\n" +
-                     plot + "\n"};
+  std::string script =
+      header("convergence_time.png", title + ": convergence time, each run marked by its verdict");
+  if (xvalues.numeric) {
+    if (wantsLog(xs)) script += "set logscale x\nset format x '10^{%L}'\n";
+    script += "set offsets graph 0.03, graph 0.03, 0, 0\n";
+  } else {  // the values in order, each named
+    std::string tics;
+    for (size_t k = 0; k < xvalues.texts.size(); ++k)
+      tics += (k ? ", " : "") + gnuplotString(xvalues.texts[k].substr(0, 24)) + " " + std::to_string(k);
+    script += "set xrange [-0.5:" + num(static_cast<double>(xvalues.texts.size()) - 0.5) + "]\nset xtics (" +
+              tics + ") noenhanced" + (xvalues.texts.size() > 6 ? " rotate by -30" : "") + "\n";
+  }
+  if (log_y)
+    script += "set logscale y\nset format y '10^{%L}'\n";
+  else
+    script += "set yrange [0:*]\n";
+  if (above && !times.empty()) {  // the band of runs without a convergence time
+    const double line_at = log_y ? std::sqrt(longest * top) : (longest + top) / 2;
+    script += "set arrow from graph 0, first " + num(line_at) + " to graph 1, first " + num(line_at) +
+              " nohead dt 3 lc rgb '#999999'\n";
+  }
+  script +=
+      "set xlabel " + gnuplotString(axisTitle(xcol)) + " noenhanced\nset ylabel " +
+      gnuplotString(above ? "convergence time [s] (at the top: runs without one)" : "convergence time [s]") +
+      "\nset key outside right\n" + plot + "\n";
+  map.picture = {"convergence_time.png", script};
+  return map;
 }
 
 std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, const std::map<long, Row>& rows,
                                const std::string& xcol, const std::string& ycol) {
-  std::map<std::pair<double, double>, std::pair<int, int>> cells;  // converged, runs
+  struct Cell {
+    int met = 0, not_met = 0, not_judged = 0, runs = 0;
+  };
+  std::map<std::pair<double, double>, Cell> cells;
   std::vector<double> xs, ys;
   for (const auto& [i, r] : rows) {
     const auto x = numberOf(r, xcol), y = numberOf(r, ycol);
     if (!x || !y) continue;
-    auto& c = cells[{*x, *y}];
-    c.first += r.value("converged", false);
-    ++c.second;
+    Cell& c = cells[{*x, *y}];
+    const VerdictClass v = verdictClass(r);
+    c.met += v.met;
+    c.not_met += v.key.rfind("not_met", 0) == 0;
+    c.not_judged += v.key == "not_judged";
+    ++c.runs;
     xs.push_back(*x);
     ys.push_back(*y);
   }
   if (cells.empty()) return std::nullopt;
   util::OutputStream out(dir / "heat_map.csv");
-  out << xcol << "," << ycol << ",converged_fraction,runs\n";
+  out << xcol << "," << ycol << ",met_fraction,runs,met,not_met,not_judged\n";
   for (const auto& [xy, c] : cells)
-    out << num(xy.first) << "," << num(xy.second) << "," << num(double(c.first) / c.second) << "," << c.second
-        << "\n";
-  std::string script = header("heat_map.png", title + ": fraction of runs that converged") + "set xlabel " +
-                       gnuplotString(xcol) + " noenhanced\nset ylabel " + gnuplotString(ycol) +
-                       " noenhanced\nset cbrange [0:1]\nset cblabel 'converged fraction'\n"
+    out << num(xy.first) << "," << num(xy.second) << "," << num(double(c.met) / c.runs) << "," << c.runs
+        << "," << c.met << "," << c.not_met << "," << c.not_judged << "\n";
+  std::string script = header("heat_map.png", title + ": fraction of runs whose verdict is met") +
+                       "set xlabel " + gnuplotString(xcol) + " noenhanced\nset ylabel " +
+                       gnuplotString(ycol) +
+                       " noenhanced\nset cbrange [0:1]\nset cblabel 'fraction met (verdict)'\n"
                        "set palette defined (0 '#b2182b', 0.5 '#fdae61', 1 '#2166ac')\nset key off\n";
   if (wantsLog(xs)) script += "set logscale x\n";
   if (wantsLog(ys)) script += "set logscale y\n";
@@ -162,43 +287,43 @@ std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, co
 
 std::optional<Picture> marginMap(const fs::path& dir, const std::string& title,
                                  const std::map<long, Row>& rows) {
-  std::map<double, std::pair<int, int>> by_margin;
+  std::map<double, std::pair<int, int>> by_margin;  // met, runs
   for (const auto& [i, r] : rows)
     if (const auto m = numberOf(r, "gain_margin")) {
       auto& c = by_margin[*m];
-      c.first += r.value("converged", false);
+      c.first += verdictClass(r).met;
       ++c.second;
     }
   if (by_margin.empty()) return std::nullopt;
   util::OutputStream out(dir / "margin.csv");
-  out << "gain_margin,converged_fraction,runs\n";
+  out << "gain_margin,met_fraction,runs\n";
   for (const auto& [m, c] : by_margin)
     out << num(m) << "," << num(double(c.first) / c.second) << "," << c.second << "\n";
   return Picture{
       "margin.png",
       header("margin.png", title + ": the continuous-time condition against what was observed") +
           "set xlabel 'smallest margin of the evaluated continuous-time conditions (> 0: all hold)'\n"
-          "set ylabel 'fraction of runs that converged'\nset yrange [-0.05:1.05]\n"
+          "set ylabel 'fraction of runs whose verdict is met'\nset yrange [-0.05:1.05]\n"
           "set arrow from 0, graph 0 to 0, graph 1 nohead dt 2\nset key off\n"
           "plot 'margin.csv' skip 1 using 1:2 with points pt 7 ps 1.2\n"};
 }
 
 // Per rate, over `size` (the swept initial-state norm, or ||x(0)||): the
-// largest below which every run converged, and the largest that converged.
+// largest below which every run met the metric, and the largest that met it.
 std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
                                  const std::map<long, Row>& rows, const std::string& size) {
   const std::string rate = "plant.publish_rate";
   std::map<double, std::vector<std::pair<double, bool>>> by_rate;
   for (const auto& [i, r] : rows) {
     const auto f = numberOf(r, rate), x = numberOf(r, size);
-    if (f && x) by_rate[*f].push_back({*x, r.value("converged", false)});
+    if (f && x) by_rate[*f].push_back({*x, verdictClass(r).met});
   }
   if (by_rate.size() < 2) return std::nullopt;
   util::OutputStream out(dir / "region_vs_rate.csv");
-  out << "rate,all_converged_below,largest_converged,runs\n";
-  // A rate where no run converged has no region: drawn as a cross below the
-  // smallest initial state swept, so that it is not silently missing; one
-  // where some run of the smallest size failed has no "every run below":
+  out << "rate,all_met_below,largest_met,runs\n";
+  // A rate where no run met the metric has no region: drawn as a cross below
+  // the smallest initial state swept, so that it is not silently missing; one
+  // where some run of the smallest size missed it has no "every run below":
   // drawn as a triangle there.
   double smallest = 0;
   for (const auto& [f, runs] : by_rate)
@@ -229,59 +354,91 @@ std::optional<Picture> regionMap(const fs::path& dir, const std::string& title,
         << "\n";
   }
   std::string crosses = any_none ? ", \\\n     'region_none.csv' skip 1 using 1:2 with points pt 2 ps "
-                                   "2 lw 2 title 'no run converged'"
+                                   "2 lw 2 title 'no run met the metric'"
                                  : "";
   if (any_partial)
     crosses +=
         ", \\\n     'region_smallest_failed.csv' skip 1 using 1:2 with points pt 11 ps 2 lw 2 title "
-        "'a run of the smallest size did not converge'";
+        "'a run of the smallest size did not meet it'";
   return Picture{
       "region_vs_rate.png",
-      header("region_vs_rate.png", title + ": region of convergence against the controller rate") +
+      header("region_vs_rate.png", title + ": where runs met the metric, against the controller rate") +
           "set logscale xy\nset xlabel 'controller rate, plant.publish_rate [Hz]' noenhanced\n"
           "set ylabel " +
           gnuplotString(axisTitle(size)) +
           " noenhanced\nset key top left box opaque\n"
           "plot 'region_vs_rate.csv' skip 1 using 1:2 with linespoints lw 2 pt 7 title "
-          "'every run from below converged', \\\n"
-          "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that converged'" +
+          "'every run from below met the metric (verdict)', \\\n"
+          "     '' skip 1 using 1:3 with linespoints lw 2 pt 6 dt 2 title 'largest that met it'" +
           crosses + "\n"};
 }
 
 }  // namespace
 
-SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const std::map<long, Row>& rows) {
+VerdictClass verdictClass(const Row& row) {
+  const std::string verdict = textOf(row, "verdict");
+  if (verdict == "met") return {"met", "met", true};
+  if (verdict == "NOT met") {
+    const std::string kind = textOf(row, "verdict_kind").substr(0, 40);
+    if (kind.empty()) return {"not_met", "NOT met", false};
+    std::string key = "not_met_", words;
+    for (const char c : kind) {
+      const bool plain =
+          std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c));
+      key += plain ? c : '_';
+      words += c == '_' ? ' ' : c;
+    }
+    return {key, "NOT met: " + words, false};
+  }
+  if (verdict == "not judged") return {"not_judged", "not judged", false};
+  if (textOf(row, "status") == "failed")
+    return {"failed", "failed: no verdict (the run could not be made)", false};
+  return {"no_verdict", "no verdict (a row from before verdicts)", false};
+}
+
+SweepMapFiles writeSweepMapFiles(const std::string& out_dir, const SweepPlan& plan,
+                                 const std::map<long, Row>& rows) {
   const fs::path dir = fs::path(out_dir) / "maps";
   util::makeOutputDirectories(dir.string());
+  // A class's file of an earlier drawing, not drawn now, is not left beside the new ones.
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if ((name.rfind("convergence_", 0) == 0 && e.path().extension() == ".csv") || name == "diverged.csv" ||
+        name == "not_converged.csv")
+      fs::remove(e.path(), ec);
+  }
   const std::string title = fs::path(plan.spec.file).stem().string();
-  SweepMaps maps;
+  SweepMapFiles maps;
+  std::vector<Picture> pictures;
   // Parameter columns a map can use: not a norm axis's direction index.
   std::vector<std::string> axes;
   for (const std::string& c : plan.param_columns)
     if (c.size() < 10 || c.compare(c.size() - 10, 10, ".direction") != 0) axes.push_back(c);
-  std::map<std::string, size_t> distinct;  // numeric values per axis
-  for (const std::string& a : axes) {
-    std::set<double> values;
-    for (const auto& [i, r] : rows)
-      if (const auto v = numberOf(r, a)) values.insert(*v);
-    distinct[a] = values.size();
-  }
+  std::map<std::string, AxisValues> values;
+  for (const std::string& a : axes) values[a] = valuesOf(rows, a);
   // The convergence map's x: the axis swept over the most values (the first
-  // of equals); its points grouped by the first other axis of 2 to 8 values.
-  // A sweep of no numeric axis falls back on ||x(0)||.
-  std::string xcol = "x0_norm", group;
+  // of equals), numbers or not; its points coloured by the first other axis
+  // of 2 to 8 values. One axis: a line through the median times too.
+  std::string xcol, group;
   for (const std::string& a : axes)
-    if (distinct[a] > 1 && (xcol == "x0_norm" || distinct[a] > distinct[xcol])) xcol = a;
+    if (xcol.empty() || values[a].distinct() > values[xcol].distinct()) xcol = a;
   for (const std::string& a : axes)
-    if (a != xcol && distinct[a] >= 2 && distinct[a] <= 8) {
+    if (a != xcol && values[a].distinct() >= 2 && values[a].distinct() <= 8) {
       group = a;
       break;
     }
-  std::vector<Picture> pictures;
-  if (auto p = convergenceMap(dir, title, rows, xcol, group))
-    pictures.push_back(*p);
-  else
-    maps.not_drawn.push_back("convergence_time.png: no finished run has a value of " + xcol);
+  std::optional<ConvergenceMap> convergence;
+  if (!xcol.empty())
+    convergence = convergenceMap(dir, title, rows, xcol, values[xcol], group, axes.size() == 1);
+  if (convergence) {
+    pictures.push_back(convergence->picture);
+    maps.convergence_axis = xcol;
+    maps.convergence_classes = convergence->classes;
+  } else {
+    maps.not_drawn.push_back("convergence_time.png: no finished run has a value of " +
+                             (xcol.empty() ? std::string("an axis") : xcol));
+  }
   const std::vector<std::string> heat = plan.spec.heat_map.size() == 2 ? plan.spec.heat_map : axes;
   if (heat.size() < 2)
     maps.not_drawn.push_back("heat_map.png: the sweep has " + std::to_string(axes.size()) +
@@ -307,7 +464,7 @@ SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const
   // axis and direction), else ||x(0)||.
   std::string size = "x0_norm";
   for (const std::string& a : axes)
-    if (a.size() > 5 && a.compare(a.size() - 5, 5, ".norm") == 0 && distinct[a] > 1) {
+    if (a.size() > 5 && a.compare(a.size() - 5, 5, ".norm") == 0 && values[a].distinct() > 1) {
       size = a;
       break;
     }
@@ -315,16 +472,23 @@ SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const
     pictures.push_back(*p);
   else
     maps.not_drawn.push_back("region_vs_rate.png: plant.publish_rate is not swept over two values or more");
-  std::vector<std::string> pngs, sections;
-  std::string all;
-  for (const std::string& why : maps.not_drawn) all += "# not drawn: " + why + "\n";
   for (const Picture& p : pictures) {
-    pngs.push_back(p.png);
-    sections.push_back(p.script);
-    all += p.script + "\n";
+    maps.pngs.push_back(p.png);
+    maps.scripts.push_back(p.script);
   }
+  return maps;
+}
+
+SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const std::map<long, Row>& rows) {
+  const SweepMapFiles files = writeSweepMapFiles(out_dir, plan, rows);
+  const fs::path dir = fs::path(out_dir) / "maps";
+  std::string all;
+  for (const std::string& why : files.not_drawn) all += "# not drawn: " + why + "\n";
+  for (const std::string& script : files.scripts) all += script + "\n";
   util::writeOutputFile((dir / "maps.gp").string(), all);
-  maps.plots = drawPictures(dir.string(), pngs, sections);
+  SweepMaps maps;
+  maps.not_drawn = files.not_drawn;
+  maps.plots = drawPictures(dir.string(), files.pngs, files.scripts);
   return maps;
 }
 

@@ -57,6 +57,21 @@ double initialStateNorm(const config::Scenario& s, const model::ReferenceSample&
   return std::sqrt(sq);
 }
 
+// The kind (logger/verdict.hpp) of the finding verdict_reason quotes
+// (logger::likeliestReason): the first reason's, or a met run's first
+// warning's; null when there is neither. The maps draw a row by it.
+nlohmann::json likeliestKind(const nlohmann::json& verdict) {
+  if (!verdict.is_object()) return nullptr;
+  for (const char* list : {"reasons", "warnings"}) {
+    const auto found = verdict.find(list);
+    if (found == verdict.end() || !found->is_array() || found->empty()) continue;
+    const nlohmann::json& first = found->front();
+    if (first.is_object() && first.contains("kind") && first.at("kind").is_string()) return first.at("kind");
+    return nullptr;
+  }
+  return nullptr;
+}
+
 // A parameter in the JSON row: a number when its text is one, else the YAML text.
 nlohmann::json paramValue(const std::string& text) {
   char* end = nullptr;
@@ -88,7 +103,8 @@ const std::vector<std::string>& resultColumns() {
                                                    "wall_time",
                                                    "stop_reason",
                                                    "verdict",
-                                                   "verdict_reason"};
+                                                   "verdict_reason",
+                                                   "verdict_kind"};
   return columns;
 }
 
@@ -197,6 +213,7 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   j["verdict"] = verdict.is_object() ? verdict.value("tracking", nlohmann::json()) : nlohmann::json();
   const std::string reason = logger::likeliestReason(verdict);
   j["verdict_reason"] = reason.empty() ? nlohmann::json() : nlohmann::json(reason);
+  j["verdict_kind"] = likeliestKind(verdict);
   return j;
 }
 
