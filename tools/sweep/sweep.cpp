@@ -87,10 +87,9 @@ std::string prepareOutDir(const std::string& out_dir, const SweepPlan& plan) {
 // plan.json's bytes, on the shard's command line -- a plan.json planted in a
 // shared folder afterwards (Slurm's array tasks start later, anywhere) names
 // other scenarios, overrides and external commands, and a shard that ran it
-// would start programs nobody named. (sweep_plan_file.hpp: hashed as it is
-// read, and every piece used checked against that reading.)
-
-// OUT/plan.json, opened and hashed (sweep_plan_file.hpp).
+// would start programs nobody named. OUT/plan.json is opened and hashed
+// here, and every piece of it a shard uses is checked against that hashing
+// (sweep_plan_file.hpp).
 PlanFile openPlan(const std::string& out_dir) {
   const fs::path plan_path = fs::path(out_dir) / "plan.json";
   if (!fs::exists(fs::symlink_status(plan_path)))
