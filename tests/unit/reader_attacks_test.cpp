@@ -17,6 +17,11 @@
 // control characters escaped (util/terminal_text.hpp): an error quoting a
 // file, the run's result block; tests/integration/terminal_text_test.cpp
 // has the commands that print names and programs' lines.
+//
+// ViewHost: the viewer answers a request with exactly one Host header of
+// printable ASCII naming it; two (the allowed one first or last) or one
+// holding a NUL (`localhost\0.evil.example`, which a reader of the first
+// header cut at the NUL took for `localhost`) are refused.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/inotify.h>
@@ -46,6 +51,7 @@
 #include "tools/run/run_outcome.hpp"
 #include "tools/spy/spy.hpp"
 #include "tools/view/view.hpp"
+#include "tools/view/view_host_check.hpp"
 #include "tools/view/view_source.hpp"
 #include "transport/channels.hpp"
 #include "util/error.hpp"
@@ -526,6 +532,28 @@ TEST(TerminalText, TheRunsResultBlockEscapesEveryStringOfItsSummary) {
   EXPECT_NE(block.find("scenario name " + kShown + ": completed"), std::string::npos) << block;
   EXPECT_NE(block.find("not checked (why " + kShown + ")"), std::string::npos) << block;
   EXPECT_NE(block.find("- w " + kShown), std::string::npos) << block;
+}
+
+TEST(ViewHost, ExactlyOnePrintableHostHeaderNamingTheViewerIsAnswered) {
+  const tools::HostPolicy policy = tools::hostPolicy("127.0.0.1", false);
+  using Hosts = std::vector<std::string>;
+  for (const Hosts& ok :
+       {Hosts{"localhost"}, Hosts{"127.0.0.1:8642"}, Hosts{"[::1]:9000"}, Hosts{"LocalHost"}})
+    EXPECT_EQ(tools::hostRefusal(ok, policy), "") << ok.front();
+  EXPECT_NE(tools::hostRefusal({}, policy).find("no Host header"), std::string::npos);
+  for (const Hosts& two : {Hosts{"localhost", "evil.example"}, Hosts{"evil.example", "localhost"},
+                           Hosts{"localhost", "localhost"}})
+    EXPECT_NE(tools::hostRefusal(two, policy).find("the request has 2 Host headers; exactly one is answered"),
+              std::string::npos)
+        << two.front() << ", " << two.back();
+  const std::string nul("localhost\0.evil.example", 23);
+  EXPECT_NE(tools::hostRefusal({nul}, policy).find("holds the byte 0x00 at 9, which is not printable ASCII"),
+            std::string::npos);
+  for (const std::string bad : {"local host", "localhost\t", "localhost\x7f", "localhost\r",
+                                "l\xc3\xb6"
+                                "calhost",
+                                "localhost\x1b[2J"})
+    EXPECT_NE(tools::hostRefusal({bad}, policy).find("not printable ASCII"), std::string::npos) << bad;
 }
 
 }  // namespace

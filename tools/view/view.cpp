@@ -272,7 +272,11 @@ int runView(const ViewOptions& opt) {
   // address, would otherwise read the run through the visitor's browser.
   server.set_pre_routing_handler(
       [policy = hostPolicy(opt.host, opt.allow_remote)](const httplib::Request& req, httplib::Response& res) {
-        const std::string why = hostRefusal(req.get_header_value("Host"), policy);
+        // Every Host header, each value whole (get_header_value gives the
+        // first, cut at a NUL): view_host_check.hpp.
+        std::vector<std::string> hosts;
+        for (auto [at, end] = req.headers.equal_range("Host"); at != end; ++at) hosts.push_back(at->second);
+        const std::string why = hostRefusal(hosts, policy);
         if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
         res.status = 421;  // Misdirected Request: not a name this server answers to
         res.set_content("lagrange view: " + why + "\n", "text/plain");

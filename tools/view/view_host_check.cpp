@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 
 namespace lagrange::tools {
 
@@ -58,11 +59,25 @@ HostPolicy hostPolicy(const std::string& bound_host, bool allow_remote) {
   return p;
 }
 
-std::string hostRefusal(const std::string& host_header, const HostPolicy& policy) {
+std::string hostRefusal(const std::vector<std::string>& host_headers, const HostPolicy& policy) {
   std::string expected;
   for (const std::string& name : policy.accepted) expected += (expected.empty() ? "" : ", ") + name;
   expected = "expected one of " + expected + " (with or without a port)";
-  if (host_header.empty()) return "the request has no Host header; " + expected;
+  if (host_headers.empty()) return "the request has no Host header; " + expected;
+  if (host_headers.size() > 1)
+    return "the request has " + std::to_string(host_headers.size()) +
+           " Host headers; exactly one is answered, " + expected;
+  const std::string& host_header = host_headers.front();
+  for (std::size_t i = 0; i < host_header.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(host_header[i]);
+    if (byte <= 0x20 || byte >= 0x7f) {
+      char shown[8];
+      std::snprintf(shown, sizeof shown, "0x%02x", byte);
+      return "the Host header holds the byte " + std::string(shown) + " at " + std::to_string(i) +
+             ", which is not printable ASCII; " + expected;
+    }
+  }
+  if (host_header.empty()) return "the request has an empty Host header; " + expected;
   // The name: up to the port's colon, which for an IPv6 address follows its bracket.
   const std::size_t close_bracket = host_header.front() == '[' ? host_header.find(']') : std::string::npos;
   const std::size_t colon = host_header.find(':', close_bracket == std::string::npos ? 0 : close_bracket);

@@ -8,6 +8,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 namespace lagrange::tools {
 
@@ -22,9 +23,17 @@ struct HostPolicy {
 /// host name (gethostname) and the addresses of its network interfaces.
 HostPolicy hostPolicy(const std::string& bound_host, bool allow_remote);
 
-/// Empty if a request with this Host header value (with or without a port:
-/// a tunnel such as ssh -L may change the port) is to be answered; else why
-/// not, with what was expected, for the 421 response.
-std::string hostRefusal(const std::string& host_header, const HostPolicy& policy);
+/// Empty if a request whose Host headers are `host_headers` is to be
+/// answered; else why not, with what was expected, for the 421 response.
+/// `host_headers`: every Host header of the request, each value whole as
+/// the server parsed it (a NUL kept: cpp-httplib's get_header_value would
+/// cut the value at one, and percent-decodes values, so `localhost%00.evil`
+/// arrives as `localhost`, NUL, `.evil`). Answered only when there is
+/// exactly one (a second one, first or last, is refused: proxies and
+/// browsers may read another than we do), made of printable ASCII alone
+/// (no space, no control character, nothing past 0x7e), naming one of the
+/// policy's names with or without a port (a tunnel such as ssh -L may
+/// change the port).
+std::string hostRefusal(const std::vector<std::string>& host_headers, const HostPolicy& policy);
 
 }  // namespace lagrange::tools
