@@ -123,7 +123,7 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
   const auto sinceStart = [wall_start](Clock::time_point t) {
     return std::chrono::duration<double>(t - wall_start).count();
   };
-  std::set<std::string> clock_said;  // channels whose sender was said to be off the run's clock
+  std::set<std::string> refusal_said;  // channels whose refused sender was said on the terminal
   RecordGaps gaps;  // what the log lacks of the run's messages (summary.json log.missing_records)
   RecordFilter record_filter(node.runId(), s.lastTick());  // only what the run's processes would accept
 
@@ -156,11 +156,10 @@ int runLogger(const config::Scenario& s, transport::LcmNode& node, const LoggerO
           channel,
           [&, channel](const Msg& m) {
             std::string why = validateFor(s, m);
-            // A sender off the run's clock is said at once, once a channel:
+            // A refused sender is said at once, once a channel: in lockstep
             // the plant then waits for a confirmation that cannot come, and
-            // its stall alone would not say why.
-            if (why.find("is not its tick's time") != std::string::npos &&
-                clock_said.insert(channel).second) {
+            // its stall alone would not say whose value it was.
+            if (!why.empty() && refusal_said.insert(channel).second) {
               const std::string line = fmt::format(
                   "the logger refuses {} from the {}: {} (each such message is counted as invalid in "
                   "summary.json messages.{})",

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 
 #include "transport/process_state.hpp"
@@ -47,21 +48,40 @@ std::string checkArrays(int32_t num_joints, int joints,
   }
   return "";
 }
+
+// A plant's state past any arm's range: finite, yet no joint turns 1e9 rad
+// (1.6e8 turns) or slides 1e9 m in a run, and the controllers' arithmetic
+// would overflow on it -- so a plant's 1e308 is refused as the plant's, not
+// taken for a controller's infinite command one step later.
+std::string checkPlausible(std::initializer_list<const std::vector<double>*> arrays) {
+  for (const auto* a : arrays)
+    for (size_t j = 0; j < a->size(); ++j)
+      if (std::abs((*a)[j]) > kPlausibleState) {
+        char value[32];
+        std::snprintf(value, sizeof value, "%.6g", (*a)[j]);
+        return std::string("value ") + value + " of joint " + std::to_string(j + 1) +
+               " is past any arm's range (|q|, |q'| at most 1e9)";
+      }
+  return "";
+}
 }  // namespace
 
 std::string validate(const lagrange::plant_position_t& m, int joints) {
   std::string why = checkHeader(m.header);
-  return why.empty() ? checkArrays(m.num_joints, joints, {&m.q}) : why;
+  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.q});
+  return why.empty() ? checkPlausible({&m.q}) : why;
 }
 
 std::string validate(const lagrange::plant_rate_t& m, int joints) {
   std::string why = checkHeader(m.header);
-  return why.empty() ? checkArrays(m.num_joints, joints, {&m.qdot}) : why;
+  if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.qdot});
+  return why.empty() ? checkPlausible({&m.qdot}) : why;
 }
 
 std::string validate(const lagrange::plant_truth_t& m, int joints) {
   std::string why = checkHeader(m.header);
   if (why.empty()) why = checkArrays(m.num_joints, joints, {&m.q, &m.qdot, &m.tau_applied});
+  if (why.empty()) why = checkPlausible({&m.q, &m.qdot});
   // NaN: not known (an external plant that does not compute the arm's
   // energy; docs/external_programs.md); an infinite energy is refused.
   if (why.empty() && std::isinf(m.total_energy)) why = "infinite energy";

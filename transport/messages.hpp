@@ -29,9 +29,14 @@ Eigen::VectorXd toEigen(const std::vector<double>& v);
 Eigen::MatrixXd toEigen(const std::vector<std::vector<double>>& rows);
 std::vector<double> toStd(const Eigen::VectorXd& v);
 
+/// A plant's angle or rate past this (rad, m, rad/s, m/s) is refused: no arm
+/// reaches it in a run, and the controllers' arithmetic would overflow.
+inline constexpr double kPlausibleState = 1e9;
+
 /// Each returns "" if the message is usable by a process that expects
 /// `joints` joints, else the reason: joint count, array sizes, non-finite
-/// numbers, negative tick.
+/// numbers, negative tick; a plant's position, rate or truth also a state
+/// past kPlausibleState.
 std::string validate(const lagrange::plant_position_t& m, int joints);
 std::string validate(const lagrange::plant_truth_t& m, int joints);
 std::string validate(const lagrange::plant_rate_t& m, int joints);

@@ -14,6 +14,8 @@ LIE:
   jump N         serves ticks 0..N, then sends the run's last tick and
                  says "finished" (lockstep): the run's length without its ticks
   vanish N       serves ticks 0..N and exits 0 without a word (lockstep)
+  huge N         from tick N on says q = 1e308 (finite, past any arm's range)
+  nan_truth N    from tick N on says NaN in PLANT_TRUTH's qdot only
 """
 
 import os
@@ -52,12 +54,28 @@ def jumping_finish(self, message, loop=None):
     return honest_finish(self, message, loop)
 
 
+def lying_sample(self, k, tau, source, input_tick):
+    sample = honest_sample(self, k, tau, source, input_tick)
+    if k >= n:
+        _, _, p, tr = sample
+        if lie == "huge":
+            p.q = [1e308] * len(p.q)
+            tr.q = [1e308] * len(tr.q)
+        else:
+            tr.qdot = [float("nan")] * len(tr.qdot)
+    return sample
+
+
+honest_sample = Plant._sample
+
+
 def silent_finish(self, message, loop=None):
     return 0  # no "finished": the program just ends
 
 
-if lie not in ("half_time", "past_end", "finish_early", "jump", "vanish"):
-    sys.exit("hostile_plant.py: unknown lie %r; expected half_time, past_end, finish_early, jump or vanish" % lie)
+LIES = ("half_time", "past_end", "finish_early", "jump", "vanish", "huge", "nan_truth")
+if lie not in LIES:
+    sys.exit("hostile_plant.py: unknown lie %r; expected one of %s" % (lie, ", ".join(LIES)))
 Plant.__init__ = lying_init
 if lie == "half_time":
     Plant._publish = half_time_publish
@@ -65,6 +83,8 @@ if lie == "jump":
     Plant._finish = jumping_finish
 if lie == "vanish":
     Plant._finish = silent_finish
+if lie in ("huge", "nan_truth"):
+    Plant._sample = lying_sample
 
 import two_link_plant  # noqa: E402
 

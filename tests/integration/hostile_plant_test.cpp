@@ -111,5 +111,24 @@ TEST(HostilePlant, APlantThatVanishesWithExitZeroIsNamedNotTheLogger) {
   EXPECT_LT(s["tracking"]["samples"].get<long long>(), 201);  // it did end early
 }
 
+// A plant's own bad number is blamed on the plant: a finite q of 1e308 (the
+// controller would turn it into an infinite torque, and be named), and a
+// NaN in PLANT_TRUTH only (which only the logger reads).
+TEST(HostilePlant, APlantsBadNumbersAreRefusedAndSaidAsThePlants) {
+  for (const std::string lie : {"huge", "nan_truth"}) {
+    const std::string out = freshDir("hostile-" + lie + "-run");
+    const RunResult r = runScenario(lyingPlant("hostile-" + lie, lie + ", \"50\""), out, "");
+    const std::string said = lie == "huge" ? "the logger refuses PLANT_TRUTH from the plant: value 1e+308"
+                                           : "the logger refuses PLANT_TRUTH from the plant: non-finite";
+    EXPECT_NE(r.output.find(said), std::string::npos) << r.output;
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    const nlohmann::json s = readSummary(out);
+    EXPECT_GT(s["messages"]["PLANT_TRUTH"]["rejected_by_reason"]["invalid"].get<long long>(), 0) << lie;
+    EXPECT_EQ(s["failure"]["process"], "plant") << lie;
+    // The controller was never handed the plant's number to answer with an infinite command.
+    EXPECT_EQ(s["messages"]["CONTROL_COMMAND"]["rejected_by_reason"]["invalid"], 0) << lie;
+  }
+}
+
 }  // namespace
 }  // namespace lagrange::testing

@@ -70,11 +70,18 @@ TEST(InputValidation, PositionsOfTheWrongSizeOrWithNanAreRefusedAsInvalidWithThe
   sendAs(node, kPlantPosition, nan, "plant", 2);
   EXPECT_NE(node.lastInvalid().find("non-finite"), std::string::npos) << node.lastInvalid();
   EXPECT_NE(node.lastInvalid().find("(from 'plant', tick 5)"), std::string::npos) << node.lastInvalid();
-  EXPECT_EQ(invalid(node, kPlantPosition), 2);
+  // Finite, but past any arm's range: the plant's number, refused as the
+  // plant's, before a controller turns it into an infinite torque.
+  lagrange::plant_position_t huge = nan;
+  huge.q = {0.0, 1e308};
+  sendAs(node, kPlantPosition, huge, "plant", 3);
+  EXPECT_NE(node.lastInvalid().find("value 1e+308 of joint 2 is past any arm's range"), std::string::npos)
+      << node.lastInvalid();
+  EXPECT_EQ(invalid(node, kPlantPosition), 3);
   EXPECT_EQ(handled, 0);
   lagrange::plant_position_t good = nan;
-  good.q = {0.1, 0.2};
-  sendAs(node, kPlantPosition, good, "plant", 3);
+  good.q = {0.1, -1e9};  // at the bound: still an arm's
+  sendAs(node, kPlantPosition, good, "plant", 4);
   EXPECT_EQ(handled, 1);
 }
 
