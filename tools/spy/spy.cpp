@@ -153,7 +153,7 @@ RunEndpoint readEndpoint(const std::string& out_dir) {
     throw BadInput(file + ": lcm_url '" + util::terminalSafe(e.lcm_url.substr(0, 200)) +
                    (e.lcm_url.size() > 200 ? "...'" : "'") + " is refused: " + why +
                    ". A run folder is read as data, never followed; to watch that URL anyway, give it "
-                   "yourself with --lcm-url");
+                   "yourself: --lcm-url URL, without the folder");
   if (j.contains("run_id")) {
     if (!j["run_id"].is_number_integer())
       throw BadInput(file + ": run_id is not an integer; expected the run id `lagrange run` writes");
