@@ -24,8 +24,8 @@ long long maxScenarioEventBytes() {
   return static_cast<long long>(config::kMaxScenarioBytes + 2 * config::kMaxUrdfBytes) + (64 << 10);
 }
 
-EventBounds::EventBounds(const MessageShape& shape, std::string origin)
-    : shape_(shape), origin_(std::move(origin)) {
+EventBounds::EventBounds(const MessageShape& shape, std::string origin, long long last_tick)
+    : shape_(shape), origin_(std::move(origin)), last_tick_(last_tick) {
   // A stock lcm-logger records the datagrams with their MAC trailer.
   for (const transport::ChannelInfo& info : transport::kChannelTable)
     if (info.per_tick)

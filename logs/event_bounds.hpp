@@ -53,7 +53,12 @@ class EventBounds {
  public:
   /// The log's own scenario made `shape`; `origin` says so in warnings
   /// ("the log's scenario").
-  EventBounds(const MessageShape& shape, std::string origin);
+  /// `last_tick`: the scenario's last tick; a per-tick event for a tick
+  /// outside [0, last_tick] is no message of the run (LogEventReader drops it).
+  EventBounds(const MessageShape& shape, std::string origin, long long last_tick = kMostTicks);
+  /// The most ticks any scenario may have (config/work_bounds.hpp kMaxSamples):
+  /// the tick bound of a log without a usable scenario.
+  static constexpr long long kMostTicks = 100000000;
   /// A log without a usable scenario: the project's limits.
   static EventBounds projectLimits(const std::string& why = "no scenario");
 
@@ -64,10 +69,12 @@ class EventBounds {
   /// joints, actuator order 0, 1 torque step a tick)".
   const std::string& origin() const { return origin_; }
   const MessageShape& shape() const { return shape_; }
+  long long lastTick() const { return last_tick_; }
 
  private:
   MessageShape shape_;
   std::string origin_;
+  long long last_tick_;
   std::map<std::string, long long, std::less<>> largest_;
 };
 

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "transport/channels.hpp"
+#include "transport/header_admission.hpp"
 #include "util/input_file.hpp"
 
 namespace lagrange::logs {
@@ -27,6 +28,9 @@ constexpr const char* kSyncWordText = "0xEDA1DA01";
 
 // Oversized events named in the warning; the rest are counted.
 constexpr std::size_t kOversizedNamed = 3;
+// Events for a tick outside the run kept for a reader to name (replay: a
+// damaged tick field may be what a gap lacks); the rest are counted.
+constexpr std::size_t kOutsideKept = 16;
 
 bool isPerTick(const std::string& channel) {
   for (const transport::ChannelInfo& info : transport::kChannelTable)
@@ -59,6 +63,12 @@ std::vector<std::string> LogScan::problems() const {
                   (oversized_events > static_cast<long long>(first_oversized.size()) ? "; ..." : "") +
                   "); the bound is the message with the counts of " + bounds_origin);
   }
+  if (outside_run > 0)
+    out.push_back(std::to_string(outside_run) + (outside_run == 1 ? " event" : " events") +
+                  " for a tick outside the run were dropped (the first at byte " +
+                  std::to_string(first_outside.front().offset) + ", tick " +
+                  std::to_string(first_outside.front().tick) + "); the run's ticks are those of " +
+                  bounds_origin);
   return out;
 }
 
@@ -228,6 +238,18 @@ const lcm::LogEvent* LogEventReader::next() {
                 static_cast<std::size_t>(header.data_bytes)))
       throw LogError("cannot read " + name_ + " at byte " + std::to_string(event_start) + ": " +
                      std::strerror(errno));
+    // A tick the run never had: no message of the run, and never kept.
+    if (lagrange::header_t h;
+        isPerTick(event_.channel) &&
+        transport::peekHeader(event_.channel, data_.data(), static_cast<std::size_t>(header.data_bytes), h) &&
+        (h.tick < 0 || h.tick > bounds_.lastTick())) {
+      ++scan_.outside_run;
+      scan_.outside_run_bytes += kHeaderBytes + header.channel_bytes + header.data_bytes;
+      if (scan_.first_outside.size() < kOutsideKept)
+        scan_.first_outside.push_back(
+            {event_.channel, event_start, header.data_bytes, bounds_.lastTick(), h.tick});
+      continue;
+    }
     event_.datalen = header.data_bytes;
     event_.data = data_.data();
     ++scan_.events;

@@ -25,7 +25,11 @@
 ///   rest is counted (LogScan::unreadable_tail_bytes);
 /// - a whole event larger than its channel's messages can be in this log
 ///   (logs/event_bounds.hpp): skipped without reading its data, and named
-///   (LogScan::oversized), so that nothing ever decodes it.
+///   (LogScan::oversized), so that nothing ever decodes it;
+/// - a per-tick event for a tick outside the log's scenario's [0, last tick]
+///   (a tick of 10^15 in a 1 s log; three million ticks for a thousand):
+///   dropped and counted (LogScan::outside_run), so that what a reader keeps
+///   is bounded by the scenario, not by the file.
 ///
 /// The file is opened without blocking and refused unless it is a regular
 /// file (util/input_file.hpp): a FIFO, /dev/zero or a directory is named and
@@ -80,6 +84,10 @@ struct LogScan {
   long long oversized_bytes = 0;                ///< their bytes, headers and channels included
   std::vector<OversizedEvent> first_oversized;  ///< the first few of them, for the warning
   std::string bounds_origin;                    ///< whose shape bounded the events (EventBounds::origin)
+  long long outside_run = 0;                    ///< per-tick events for a tick outside the run, dropped
+  long long outside_run_bytes = 0;              ///< their bytes, headers and channels included
+  std::vector<OversizedEvent>
+      first_outside;  ///< the first few of them (bytes: their data; bound: the last tick)
 
   /// Warnings for a person, empty when the log was read whole.
   std::vector<std::string> problems() const;

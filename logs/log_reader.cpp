@@ -32,7 +32,10 @@ EventBounds boundsOfLog(const std::string& path) {
     try {
       const config::Scenario s = config::parseLoggedScenario(*yaml, path + ":SCENARIO");
       const MessageShape shape = shapeOf(s.dof(), s.actuator.order, s.torqueStepsPerTick());
-      return EventBounds(shape, "the log's scenario (" + shape.describe() + ")");
+      return EventBounds(
+          shape,
+          "the log's scenario (" + shape.describe() + ", ticks 0 to " + std::to_string(s.lastTick()) + ")",
+          s.lastTick());
     } catch (const std::exception&) {
       return EventBounds::projectLimits("the log's SCENARIO is not a valid scenario");
     }

@@ -22,6 +22,7 @@
 #include "logs/event_bounds.hpp"
 #include "logs/log_reader.hpp"
 #include "support/configs.hpp"
+#include "transport/header_admission.hpp"
 #include "transport/message_size.hpp"
 
 namespace lagrange::logs {
@@ -168,7 +169,33 @@ TEST_F(LogBoundsTest, AnEventLargerThanItsScenarioAllowsIsSkippedUnreadAndNamed)
                           " bytes, at most " + std::to_string(bound) + " expected)"),
             std::string::npos)
       << warnings;
-  EXPECT_NE(warnings.find("the log's scenario (2 joints, actuator order 0, 1 torque step a tick)"),
+  EXPECT_NE(
+      warnings.find("the log's scenario (2 joints, actuator order 0, 1 torque step a tick, ticks 0 to "),
+      std::string::npos)
+      << warnings;
+}
+
+// A tick the log's scenario never had (10^15 in a short log; a flood of
+// ticks past its end) is dropped and counted: no reader keeps it.
+TEST_F(LogBoundsTest, AnEventForATickOutsideTheScenarioIsDroppedAndCounted) {
+  const std::string head = scenarioEvent() + actuatorStateEvent(1, 0, 2, 1);
+  const std::string far = actuatorStateEvent(2, 1000000000000000LL, 2, 1);
+  std::string past;
+  for (int k = 0; k < 50; ++k) past += actuatorStateEvent(3 + k, 10001 + k, 2, 1);
+  const std::string path = write(head + far + past + actuatorStateEvent(60, 10000, 2, 1));
+  std::vector<long long> ticks;
+  const LogScan scan = readLog(path, [&](const lcm::LogEvent& ev) {
+    lagrange::header_t h;
+    if (ev.channel == "ACTUATOR_STATE" && transport::peekHeader(ev.channel, ev.data, ev.datalen, h))
+      ticks.push_back(h.tick);
+  });
+  EXPECT_EQ(ticks, (std::vector<long long>{0, 10000}));  // the scenario's last tick is 10000
+  EXPECT_EQ(scan.outside_run, 51);
+  ASSERT_FALSE(scan.first_outside.empty());
+  EXPECT_EQ(scan.first_outside.front().tick, 1000000000000000LL);
+  const std::string warnings = joined(scan.problems());
+  EXPECT_NE(warnings.find("51 events for a tick outside the run were dropped (the first at byte " +
+                          std::to_string(head.size()) + ", tick 1000000000000000)"),
             std::string::npos)
       << warnings;
 }

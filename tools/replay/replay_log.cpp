@@ -137,8 +137,8 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
     long long whole_events_bytes = 0;  // of the events before this one: with the bytes skipped, its offset
     long long skipped = 0;
     while (const lcm::LogEvent* ev = reader.next()) {
-      const long long offset =
-          whole_events_bytes + reader.scan().skipped_bytes + reader.scan().oversized_bytes;
+      const long long offset = whole_events_bytes + reader.scan().skipped_bytes +
+                               reader.scan().oversized_bytes + reader.scan().outside_run_bytes;
       if (reader.scan().skipped_bytes > skipped) {  // a stretch ending where this event starts
         const long long bytes = reader.scan().skipped_bytes - skipped;
         rec.damage.skipped.push_back({offset - bytes, bytes});
@@ -154,6 +154,10 @@ Opened openLog(const std::string& log_path, const std::vector<std::string>& over
           {big.channel, big.offset, big.tick >= 0 ? std::optional<int64_t>(big.tick) : std::nullopt,
            "is " + std::to_string(big.bytes) + " bytes, more than any of its messages can be in this log (" +
                std::to_string(big.bound) + "): skipped unread"});
+    for (const logs::OversizedEvent& stray : rec.scan.first_outside)
+      rec.damage.events.push_back({stray.channel, stray.offset, stray.tick,
+                                   "names tick " + std::to_string(stray.tick) + ", outside the run's 0 to " +
+                                       std::to_string(stray.bound) + " (a damaged tick field?): dropped"});
   } catch (const logs::LogError& e) {
     throw ReplayError(e.what());
   }

@@ -38,9 +38,16 @@ TrackingTable exportTracking(const config::Scenario& s, const std::string& out_d
   Eigen::VectorXd position(n), rate(n);
   try {
     while (truth.next(row)) {
-      const double t = row[time];
-      // A row a damaged log left without a tick or time is not a sample.
-      if (!std::isfinite(t) || !std::isfinite(row[tick]) || row[tick] < 0 || row[tick] > 9e15) {
+      // A row a damaged log left without a tick or time is not a sample, nor
+      // one off the run's clock: the time is the tick's (tick / publish_rate),
+      // never a sender's stamp, and the ticks are the scenario's.
+      if (!std::isfinite(row[time]) || !std::isfinite(row[tick]) || row[tick] < 0 ||
+          row[tick] > static_cast<double>(s.lastTick())) {
+        ++table.skipped;
+        continue;
+      }
+      const double t = row[tick] * s.tickPeriod();
+      if (!(std::abs(row[time] - t) <= 1e-6 * s.tickPeriod())) {
         ++table.skipped;
         continue;
       }
