@@ -2,6 +2,7 @@
 // planted link, a full disk named, and a log that says what it lacks.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -317,6 +318,30 @@ TEST(Trust, StoppedLoggerIsCountedAsMissingRecords) {
   EXPECT_GT(j["log"]["missing_records"]["PLANT_TRUTH"].get<long long>(), 0) << j["log"].dump();
   EXPECT_GT(j["log"]["missing_records"]["PLANT_POSITION"].get<long long>(), 0) << j["log"].dump();
   expectMissingMatchesTheLog(dir);
+}
+
+// A run's folder is its user's: created 0700, every file in it 0600 --
+// another local user reads no log, key or summary of it -- unless --share
+// keeps the user's umask (docs/reliability.md).
+TEST(Trust, ARunsFolderAndFilesAreTheUsersAloneUnlessShared) {
+  namespace fs = std::filesystem;
+  const mode_t was = ::umask(022);  // the usual umask, under which files were world-readable
+  const std::string dir = freshDir("trust-private-folder");
+  const RunResult r = runScenario(kRigid, dir, "--set duration=0.05 --set mode=lockstep -q");
+  const std::string shared = freshDir("trust-shared-folder");
+  const RunResult s = runScenario(kRigid, shared, "--set duration=0.05 --set mode=lockstep -q --share");
+  ::umask(was);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_EQ(s.exit_code, 0) << s.output;
+  const auto others = fs::perms::group_all | fs::perms::others_all;
+  EXPECT_EQ(fs::status(dir).permissions() & others, fs::perms::none);
+  int files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    ++files;
+    EXPECT_EQ(entry.status().permissions() & others, fs::perms::none) << entry.path();
+  }
+  EXPECT_GE(files, 5);  // run.lcm, summary.json, the processes' logs...
+  EXPECT_NE(fs::status(shared + "/summary.json").permissions() & fs::perms::others_read, fs::perms::none);
 }
 
 }  // namespace

@@ -109,6 +109,9 @@ Subcommand addRunCommand(CLI::App& app) {
       "--junit", run.junit_path,
       "Write the checks' results (--check's, or the stated metric's) as JUnit XML to FILE, for CI "
       "systems");
+  cmd->add_flag("--share", run.share,
+                "Create the run's folder and files as your umask allows (default: the folder 0700 and its "
+                "files 0600: a run's log, key and summary are yours alone)");
   cmd->add_flag("--report", run.report,
                 "At the end of the run, write CSV files and PNG plots to OUT/report (as lagrange report)");
   return {cmd, [o](const Invocation& inv) {

@@ -1,6 +1,7 @@
 #include "tools/run/run_command.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -747,11 +748,18 @@ int runScenarioLocked(const RunOptions& opt) {
 // input (exit 2); a file that cannot be written (full disk, I/O error) a
 // runtime fault (exit 1). Both name the file.
 int runScenario(const RunOptions& opt) {
+  // A run's folder is its user's: another local user reads no log, key or
+  // summary of it (docs/reliability.md), unless the user asks to --share.
+  // The umask reaches every process the run starts, and every file they write.
+  const mode_t user_umask = opt.share ? 0 : ::umask(077);
+  int code = 0;
   try {
-    return runScenarioLocked(opt);
+    code = runScenarioLocked(opt);
   } catch (const std::exception& e) {
-    return failWith("lagrange run", e);
+    code = failWith("lagrange run", e);
   }
+  if (!opt.share) ::umask(user_umask);
+  return code;
 }
 
 }  // namespace lagrange::tools

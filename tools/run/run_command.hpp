@@ -25,6 +25,7 @@ struct RunOptions {
   bool check_sampled = false;
   bool quiet = false;
   bool report = false;  ///< write OUT/report (CSV + plots) when the run ends with a log
+  bool share = false;   ///< keep the user's umask (else the run's folder 0700, its files 0600)
   /// Exit 3 when the run completed but missed a check (tools/run/metric_checks.hpp):
   /// --check alone is {"met"}, the scenario's stated metric.
   bool check = false;
