@@ -171,8 +171,9 @@ TEST(SweepMemory, APlanFileIsWrittenAndReadALineAtATime) {
             << " bytes: peak memory grew " << m.peak_growth << " kB\n";
   EXPECT_EQ(m.rows, 100'000);
   EXPECT_GT(m.held_bytes, 10'000'000) << "bytes of plan.json";
-  // Two pieces of 1 MiB and a line; before, the text and every row parsed (some 40 MB).
-  EXPECT_LT(m.peak_growth * 1024, m.held_bytes / 3) << "kB of peak growth: the plan's text was held";
+  // Two pieces of 1 MiB, a line and the allocator's own (about 4 MB in all, measured 4.0-4.2 MB);
+  // before, the text (12.7 MB) and every row parsed (some 40 MB).
+  EXPECT_LT(m.peak_growth * 1024, m.held_bytes / 2) << "kB of peak growth: the plan's text was held";
   EXPECT_EQ(m.last_row.rfind("99999 1000 99 initial_state.q=[", 0), 0u) << m.last_row;
 }
 
