@@ -375,6 +375,14 @@ TEST(Verdict, APlantsSamplesMissingFromTheLogAreAReasonNotAWarning) {
   EXPECT_EQ(lost["warnings"][0]["kind"], "missing_ticks") << lost.dump(2);
   realtime["log"]["missing_ticks"]["PLANT_TRUTH"] = 500;  // a fifth of the run
   EXPECT_EQ(runVerdict(realtime)["tracking"], "NOT met");
+  // --check met follows the verdict: the metric on the ticks held is not the run's.
+  realtime["verdict"] = runVerdict(realtime);
+  const auto checked = tools::evaluateChecks({tools::parseMetricCheck("met")}, realtime);
+  ASSERT_EQ(checked.size(), 1u);
+  EXPECT_FALSE(checked[0].passed);
+  EXPECT_NE(checked[0].message.find("why: the log has no plant sample (PLANT_TRUTH) for 500"),
+            std::string::npos)
+      << checked[0].message;
 }
 
 }  // namespace
