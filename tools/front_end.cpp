@@ -18,6 +18,8 @@ void describeCommand(CLI::App& cmd, const std::string& details, const std::vecto
 int dispatch(int argc, char** argv, const std::vector<AddSubcommand>& commands, const FrontEnd& front_end) {
   CLI::App app{front_end.description, front_end.name};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(front_end.name) + " " + LAGRANGE_VERSION,
+                       "Print the program's name and version, then exit");
   app.footer("\n" + util::wrapped("'" + std::string(front_end.name) +
                                       " COMMAND --help' shows a command's options and examples; "
                                       "docs/README.md maps the documentation.",

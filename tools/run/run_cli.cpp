@@ -54,7 +54,10 @@ Subcommand addRunCommand(CLI::App& app) {
        "lagrange run configs/rigid_2dof.yaml --out runs/fast --mode inproc --set 'controller.kp=[200,12]'"});
   // Not ->required(): `--check SCENARIO.yaml` hands the path to --check,
   // whose value is optional; the callback takes it back (scenarioFromCheck).
-  cmd->add_option("config", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml (required)");
+  // Required, though optional to the parser: a `--check` that swallowed the
+  // scenario hands it back (scenarioFromCheck), and its absence is named then.
+  cmd->add_option("SCENARIO", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml (required)")
+      ->type_name("");
   cmd->add_option("-o,--out", run.out_dir, "Output directory (created if missing)")->required();
   cmd->add_option(
       "--set", run.overrides,
@@ -90,9 +93,10 @@ Subcommand addRunCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--join-timeout", run.join_timeout,
                   "With --processes: seconds this host's launcher waits for the other hosts' launchers to "
-                  "agree on the run before it gives up (exit 1)")
+                  "agree on the run before it gives up (exit 1); 1 to 86400")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 86400.0));
+      ->type_name("SECONDS")
+      ->check(CLI::Range(1.0, 86400.0).description(""));
   CLI::Option* check =
       cmd->add_option(
              "--check", run.checks,
