@@ -112,7 +112,11 @@ YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& f
   if (!file.error.empty()) throw ConfigError("config: " + source + ": extends: " + file.error);
   YAML::Node base =
       resolve(parseRoot(file.text, base_path.string()), base_path.string(), base_path.parent_path(), chain);
-  if (base_path.parent_path() != folder) anchorPaths(base, base_path.parent_path());
+  // Only a base in another folder has paths to anchor (the resolved text of
+  // a same-folder chain stays as it was, whether named relatively or not:
+  // hosts of one run compare it, config.resolved.yaml shows it).
+  if (base_path.parent_path() != (fs::absolute(folder) / "f").lexically_normal().parent_path())
+    anchorPaths(base, base_path.parent_path());
   // A plant section without a type is the simulated plant's: one that says
   // `type: external` replaces it whole, as a controller of another type does.
   if (YAML::Node plant = base["plant"]; plant.IsDefined() && plant.IsMap() && !plant["type"].IsDefined())

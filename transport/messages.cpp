@@ -97,7 +97,7 @@ std::string validate(const lagrange::plant_motor_t& m, int joints, bool with_rat
           (with_rates ? " (robot.flexible.rate_sensor is true)" : " (no motor rate sensor)");
   for (double x : m.qdot)
     if (why.empty() && !std::isfinite(x)) why = "non-finite value (NaN or Inf)";
-  return why;
+  return why.empty() ? checkPlausible({&m.q, &m.qdot}) : why;
 }
 
 std::string validate(const lagrange::control_command_t& m, int joints) {

@@ -478,7 +478,7 @@ def _tracking_of(run):
         errors.append(error)
         norms.append(math.sqrt(math.fsum(e * e for e in error)))
     rate = _publish_rate_of(run)
-    columns = {"tick": ticks, "t": None if rate is None else [tick / rate for tick in ticks], "q_error": errors,
+    columns = {"tick": ticks, "t": None if rate is None else [tick * (1.0 / rate) for tick in ticks], "q_error": errors,
                "error_norm": norms}
     if run.numpy:
         numpy = _require_numpy("Run.tracking")

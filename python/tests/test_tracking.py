@@ -163,7 +163,7 @@ class Tracking(unittest.TestCase):
         self.assertEqual(tr.unjoined, {"PLANT_TRUTH": 0, "CONTROL_COMMAND": 0})
         self.assertEqual(tr["tick"], sorted(cmd["header.tick"]))
         self.assertEqual(tr["q_error"], [list(row) for row in cmd["q_error"]])
-        self.assertEqual(tr["t"], [tick / 1000.0 for tick in tr["tick"]])
+        self.assertEqual(tr["t"], [tick * (1.0 / 1000.0) for tick in tr["tick"]])
         self.assertLess(tr["error_norm"][-1], 1e-3)
 
     @unittest.skipIf(numpy is None, "numpy is not installed (python3 -S does not see Debian's python3-numpy)")

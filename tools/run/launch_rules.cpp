@@ -55,23 +55,29 @@ bool mayRestart(const config::SupervisionConfig& policy, nlohmann::json& supervi
 }
 
 std::string plantEndedEarly(const nlohmann::json& summary, long long last_tick) {
-  if (!summary.is_object())
-    return "exited with code 0 before the run's last tick (the others waited for its \"finished\" STATUS)";
-  if (summary.value("status", "") == "completed") return "";
+  if (!summary.is_object() || summary.value("status", "") == "completed") return "";
   const nlohmann::json plant =
       summary.value("processes", nlohmann::json::object()).value("plant", nlohmann::json());
   const bool finished = plant.is_object() && plant.value("state", "") == "finished";
   const long long said = plant.is_object() ? plant.value("last_tick", -1LL) : -1;
-  long long skipped = 0;
+  long long missing = 0;
   if (const auto log = summary.find("log"); log != summary.end() && log->is_object())
-    if (const auto missing = log->find("missing_ticks"); missing != log->end() && missing->is_object())
-      skipped = missing->value("PLANT_TRUTH", 0LL);
+    if (const auto gaps = log->find("missing_ticks"); gaps != log->end() && gaps->is_object())
+      missing = gaps->value("PLANT_TRUTH", 0LL);
   if (finished && said < last_tick)
     return "said \"finished\" at tick " + std::to_string(said) + ", before the run's last tick " +
            std::to_string(last_tick) + ", and exited with code 0";
-  if (finished && skipped > 0)
-    return "said \"finished\" at the run's last tick but skipped " + std::to_string(skipped) +
-           " of its ticks (the log has no PLANT_TRUTH for them), and exited with code 0";
+  if (finished) {
+    // At the last tick: in lockstep every sample reaches the logger (the
+    // plant re-sends until it confirms), so a gap is the plant's; in
+    // realtime a last sample lost on the way is no plant's fault (the
+    // verdict weighs what the log lacks).
+    if (summary.value("mode", "") == "lockstep" && missing > 0)
+      return "said \"finished\" at the run's last tick, but the log lacks PLANT_TRUTH for " +
+             std::to_string(missing) +
+             " of the run's ticks (skipped, or never confirmed by the logger), and exited with code 0";
+    return "";
+  }
   return "exited with code 0 before the run's last tick (the others waited for its \"finished\" STATUS)";
 }
 

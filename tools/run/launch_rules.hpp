@@ -30,11 +30,13 @@ std::string checkProcesses(const RunOptions& opt);
 int64_t sharedRunId(const std::string& lcm_url, const std::string& resolved_text);
 
 /// How a plant that exited with code 0 ended the run short, from the
-/// logger's summary.json (its `status`, the plant's last STATUS in
-/// `processes.plant`, `log.missing_ticks`): "" when the run completed. A
-/// plant that says "finished" early, or skips ticks and says "finished" at
-/// the last, fails the run named as the plant -- not the logger, which only
-/// waited, and not silently "interrupted".
+/// logger's summary.json of this run (its `status`, `mode`, the plant's
+/// last STATUS in `processes.plant`, `log.missing_ticks`): "" when the run
+/// completed, when there is no summary, or when the plant said "finished"
+/// at the last tick of a realtime run (a last sample lost on the way is no
+/// plant's fault). A plant that says "finished" early, leaves a lockstep
+/// log with gaps, or exits without a word fails the run named as the plant --
+/// not the logger, which only waited, and not silently "interrupted".
 std::string plantEndedEarly(const nlohmann::json& summary, long long last_tick);
 
 /// summary.json's `supervision` before anything died: the policy

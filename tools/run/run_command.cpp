@@ -585,7 +585,7 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
             plant_short + (progress_reader.loggerError().empty()
                                ? std::string()
                                : "; the logger then stopped the run: " + progress_reader.loggerError());
-        std::cerr << "lagrange run: the plant " << how << "; stopping the others\n";
+        std::cerr << "lagrange run: the plant " << util::terminalSafeLines(how) << "; stopping the others\n";
         failure = failureRecord("plant", how, log, logTail(log, 15));
       } else if (e.name == "logger" && !progress_reader.loggerError().empty()) {
         // A write error: the log tail would be on the same full disk.
@@ -617,12 +617,16 @@ int superviseProcesses(const config::Scenario& scenario, const RunOptions& opt, 
   // program from outside can: "finished" early, ticks skipped, or no word):
   // not a success, and the plant's doing.
   if (exit_code == 0 && plant_done && runsHere(opt, "logger") && !runCompleted(out_dir, run_id)) {
-    const std::string log = (fs::path(out_dir) / "plant.log").string();
-    std::string how = plantEndedEarly(thisRunsSummary(out_dir, run_id), scenario.lastTick());
-    if (how.empty()) how = "exited with code 0 before the run's last tick";
-    std::cerr << "lagrange run: the plant " << how << "\n";
-    failure = failureRecord("plant", how, log, logTail(log, 15));
-    exit_code = kExitFailed;
+    const nlohmann::json summary = thisRunsSummary(out_dir, run_id);
+    const std::string how = summary.is_object() ? plantEndedEarly(summary, scenario.lastTick())
+                                                : "exited with code 0 before the run's last tick (no "
+                                                  "summary.json of this run says it completed)";
+    if (!how.empty()) {
+      const std::string log = (fs::path(out_dir) / "plant.log").string();
+      std::cerr << "lagrange run: the plant " << how << "\n";
+      failure = failureRecord("plant", how, log, logTail(log, 15));
+      exit_code = kExitFailed;
+    }
   }
   // The logger's last line (the final sample) may have come after the loop's last read.
   if (const auto latest = progress_reader.wait(0)) progress.update(latest->first, latest->second);
