@@ -54,7 +54,13 @@
 #  - the hostile external plant's runs (HostilePlant.*, 30 s of Python
 #    plants in lockstep): the logger's clock rule and the launcher's rule
 #    for a plant that ends early are unit-tested in this pass
-#    (ValidateClock, RecordFilter, Verdict, RunLogic).
+#    (ValidateClock, RecordFilter, Verdict, RunLogic);
+#  - (the normal phase grew 4 minutes on 2026-12-07 with #53's tests) the
+#    runs of Python plants (ExternalPlant.*), the verdict's runs
+#    (RunVerdict.*: the verdict is unit-tested here), the escaped terminal
+#    output's runs (TerminalOutput.*: TerminalText.* here), and the
+#    recorded runs re-sent into another (CrossRun.*: HeaderAdmission and
+#    RecordFilter are unit-tested here).
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
@@ -72,7 +78,7 @@ java='ExternalController\.|CppPlant\.'
 slurm='SlurmSweep\.'
 front='Help\.|Readme\.'
 outputs='integration\.(SampledWords|Suggest|SampledDataCheck|GainVerdicts|SampledVerdict|Sensors|Compare|Report|View|Export|RealArm|PlantLimits|Policies|Engines|ControllerSeam|RunCheck|Flexible|DefaultRun|ChainM1|Registered)[./]'
-wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger|HostilePlant)\.|^layers\.|^errors\.|^python\.'
+wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger|HostilePlant|ExternalPlant|RunVerdict|TerminalOutput|CrossRun)\.|^layers\.|^errors\.|^python\.'
 numerics='GainSearch\.SuggestsNothing|FrontEnd\.ARealCommand|ContinuousLoop|FollowsContinuousPdPlus'
 # In parallel as scripts/test.sh runs them (those labelled `serial` alone).
 exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm|$front|$outputs|$numerics|$wiring" "$@"
