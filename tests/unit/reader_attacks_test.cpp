@@ -196,6 +196,12 @@ TEST_F(RunFolder, AFileUrlInLcmJsonIsRefusedByViewAndSpyAndTheVictimKeepsItsByte
                     std::to_string(launcher.pid()) + "}");
   spy.lcm_url.clear();
   const Outcome ok = inChild(dir_, [&] { return tools::runSpy(spy); });
+  if (ok.err.find("lagrange_lcmtypes.jar not found") != std::string::npos) {
+    // A build without Java (the sanitizer pass): the folder passed; what is
+    // missing is lcm-spy's jar of the project's types, not the folder's say.
+    EXPECT_EQ(ok.err.find("lcm.json"), std::string::npos) << ok.err;
+    return;
+  }
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find(" --lcm-url=udpm://239.255.76.67:7667?ttl=0\n"), std::string::npos) << ok.out;
 }
