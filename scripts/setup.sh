@@ -19,6 +19,7 @@ run_packages=(
   libmujoco-dev libqhull-dev libgl-dev libopengl-dev libglx-dev
   libode-dev libeigen3-dev libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libcpp-httplib-dev libjs-three  # lagrange view: its HTTP server, three.js for its page
+  libnlopt-cxx-dev  # lagrange tune: derivative-free bounded search (NLopt's C++ API)
   iproute2 util-linux  # each run's private network namespace
 )
 # Everything else: the Java message classes (lcm-spy), the test suite, the
@@ -28,6 +29,8 @@ more_packages=(
   # python/lagrange, its tests (standard library only) and `pip install ./python`
   python3 python3-venv python3-pip python3-setuptools python3-wheel
   python3-h5py  # lagrange export's test reads the file back as a user would
+  # examples/notebooks/first_figure.ipynb, executed by its test as a student would
+  python3-numpy python3-matplotlib jupyter-nbconvert python3-ipykernel
   libgtest-dev libbenchmark-dev
   # lagrange spy (lcm-spy's window) and its test: a virtual display, a
   # screenshot, OCR of it
