@@ -10,10 +10,13 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 #include "config/input_file.hpp"
 #include "config/scenario.hpp"
 #include "logs/event_bounds.hpp"
+#include "tools/export/hdf5_write.hpp"
+#include "tools/export/tracking_export.hpp"
 #include "transport/channels.hpp"
 #include "transport/message_fields.hpp"
 #include "util/error.hpp"
@@ -109,43 +112,10 @@ bool withMessage(const lcm::LogEvent& ev, F&& f) {
   });
 }
 
-H5::StrType textType() { return H5::StrType(H5::PredType::C_S1, H5T_VARIABLE); }
-
-void textAttribute(H5::H5Object& at, const std::string& name, const std::string& value) {
-  const H5::StrType type = textType();
-  H5::Attribute a = at.createAttribute(name, type, H5::DataSpace(H5S_SCALAR));
-  a.write(type, value);
-}
-
-void textListAttribute(H5::H5Object& at, const std::string& name, const std::vector<std::string>& values) {
-  const H5::StrType type = textType();
-  const hsize_t n = values.size();
-  H5::Attribute a = at.createAttribute(name, type, H5::DataSpace(1, &n));
-  std::vector<const char*> pointers;
-  for (const std::string& v : values) pointers.push_back(v.c_str());
-  a.write(type, pointers.data());
-}
-
-H5::DataSet dataset(H5::Group& g, const std::string& name, const H5::PredType& type,
-                    std::vector<hsize_t> dims, const std::string& unit, const std::string& description) {
-  H5::DataSet d = g.createDataSet(name, type, H5::DataSpace(static_cast<int>(dims.size()), dims.data()));
-  if (!unit.empty()) textAttribute(d, "units", unit);
-  if (!description.empty()) textAttribute(d, "description", description);
-  return d;
-}
-
-// Writes rows [first, first + count) of a dataset of `row_elements` values a row.
-void writeRows(H5::DataSet& d, const H5::PredType& type, const void* data, size_t first, size_t count) {
-  H5::DataSpace file_space = d.getSpace();
-  const int rank = file_space.getSimpleExtentNdims();
-  std::vector<hsize_t> dims(static_cast<size_t>(rank)), start(static_cast<size_t>(rank), 0);
-  file_space.getSimpleExtentDims(dims.data());
-  start[0] = first;
-  dims[0] = count;
-  file_space.selectHyperslab(H5S_SELECT_SET, dims.data(), start.data());
-  const H5::DataSpace memory(rank, dims.data());
-  d.write(data, type, memory, file_space);
-}
+using hdf5::dataset;
+using hdf5::textAttribute;
+using hdf5::textListAttribute;
+using hdf5::writeRows;
 
 // Writes the held rows of a table, each contiguous run in one write per dataset.
 void flush(ChannelTable& c) {
@@ -197,7 +167,13 @@ std::optional<std::string> runFileText(const fs::path& p, std::uintmax_t max_byt
 
 }  // namespace
 
-HdfExport exportHdf5(const std::string& target, const std::string& out_file, bool force) {
+std::string defaultExportPath(const std::string& target) {
+  std::error_code ec;
+  const fs::path log = fs::is_directory(target, ec) ? fs::path(target) / "run.lcm" : fs::path(target);
+  return fs::path(log).replace_extension(".h5").string();
+}
+
+HdfExport exportHdf5(const std::string& target, const std::string& out_path, bool force) {
   std::error_code ec;
   const fs::path log = fs::is_directory(target, ec) ? fs::path(target) / "run.lcm" : fs::path(target);
   if (const util::InputFile file =
@@ -205,6 +181,8 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
       !file.ok())
     throw BadInput(file.error());
   const fs::path dir = log.parent_path();
+  // Beside the log unless asked otherwise: RUN/run.h5 for a run folder.
+  const std::string out_file = out_path.empty() ? defaultExportPath(target) : out_path;
   if (fs::exists(fs::symlink_status(out_file)) && !force)
     throw BadInput(out_file + " exists; expected a new file name (or --force to replace it)");
   util::checkOutputPath(out_file);  // never through a link planted there
@@ -213,6 +191,7 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
   result.path = out_file;
   // Pass 1: each channel's ticks and its fields' shapes; the run's identity.
   std::map<std::string, ChannelTable> tables;
+  TrackingExport tracking;
   std::optional<std::string> logged_scenario;
   int64_t run_id = 0;
   result.scan = logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
@@ -226,6 +205,11 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
         run_id = m.header.run_id;
       }
       c.ticks.push_back(m.header.tick);
+      using Message = std::decay_t<decltype(m)>;
+      if constexpr (std::is_same_v<Message, lagrange::plant_truth_t>)
+        tracking.seeTruth(m.header.tick, m.q.size());
+      if constexpr (std::is_same_v<Message, lagrange::control_command_t>)
+        tracking.seeCommand(m.header.tick, m.q_desired.size());
     });
   });
   for (auto& [channel, c] : tables) {
@@ -241,14 +225,31 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
   const std::optional<std::string> summary =
       runFileText(dir / "summary.json", kMaxSummaryBytes, "the run's summary.json", result.warnings);
   std::vector<std::string> joint_names;
+  std::optional<double> tick_period;  // /tracking's t: the log's own scenario's, as Run.tracking's
   if (scenario_text) {
     try {
-      joint_names =
-          config::parseLoggedScenario(*scenario_text, "the run's scenario").robotModel()->jointNames();
+      const config::Scenario s = config::parseLoggedScenario(*scenario_text, "the run's scenario");
+      joint_names = s.robotModel()->jointNames();
+      tick_period = s.tickPeriod();
     } catch (const std::exception& e) {
       result.warnings.push_back(std::string("joint_names left out: the run's scenario does not read (") +
                                 e.what() + ")");
     }
+  }
+  if (logged_scenario && logged_scenario != scenario_text) {
+    try {
+      tick_period = config::parseLoggedScenario(*logged_scenario, "the log's scenario").tickPeriod();
+    } catch (const std::exception&) {
+      // The resolved scenario's period, if it read; else /tracking has no t (said below).
+    }
+  }
+  {
+    const auto truth = tables.find(transport::kPlantTruth);
+    size_t joints = 0;
+    if (truth != tables.end())
+      for (const FieldShape& f : truth->second.fields)
+        if (f.name == "q") joints = f.size();
+    tracking.plan(joints, tick_period);
   }
 
   const std::string partial = out_file + ".partial-" + std::to_string(getpid());
@@ -278,6 +279,7 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
                                    : H5::DataSet());
         }
       }
+      if (tracking.wanted()) tracking.create(file);
       // Pass 2: the first intact copy of each tick, into its row.
       size_t held_values = 0;
       logs::readLog(log.string(), [&](const lcm::LogEvent& ev) {
@@ -288,6 +290,10 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
           // A later copy of a tick; or a tick the first pass did not see (the log grew between them).
           if (row >= c.ticks.size() || c.ticks[row] != m.header.tick || c.written[row]) return;
           c.written[row] = true;
+          using Message = std::decay_t<decltype(m)>;
+          if constexpr (std::is_same_v<Message, lagrange::plant_truth_t>) tracking.truth(m.header.tick, m.q);
+          if constexpr (std::is_same_v<Message, lagrange::control_command_t>)
+            tracking.command(m.header.tick, m.q_desired);
           FlatVisitor flat{c.fields, {}, 0, false};
           transport::fields(flat, m);
           if (flat.misshapen) ++c.misshapen;
@@ -309,6 +315,11 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_file, boo
               " messages had a field of another size than the first message's; their values "
               "there are NaN");
       }
+      if (tracking.wanted()) {
+        tracking.flush();
+        result.channels.push_back({"tracking", static_cast<long long>(tracking.rows())});
+      }
+      for (const std::string& w : tracking.warnings()) result.warnings.push_back(w);
       file.close();
     }
     fs::rename(partial, out_file);

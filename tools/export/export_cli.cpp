@@ -40,13 +40,15 @@ Subcommand addExportCommand(CLI::App& app) {
   describeCommand(
       *cmd,
       "Write a run's log as one HDF5 file (one group per channel, one dataset per field, one row per tick; "
-      "units and joint names as attributes, the resolved scenario and summary.json as root attributes), "
+      "units and joint names as attributes, the resolved scenario and summary.json as root attributes, the "
+      "tracking error per tick in /tracking), into the run's folder unless -o names another file, "
       "for h5py, MATLAB and Julia (docs/export.md)",
-      {"lagrange export runs/rigid_2dof -o runs/rigid_2dof.h5"});
-  cmd->add_option("target", o->target, "A run directory (its run.lcm) or an LCM log file")
-      ->required()
-      ->check(CLI::ExistingPath);
-  cmd->add_option("-o,--out", o->out_file, "The HDF5 file to write, e.g. run.h5")->required();
+      {"lagrange export runs/rigid_2dof", "lagrange export runs/rigid_2dof -o rigid_2dof.h5"});
+  // Named RUN, and its absence said by exportHdf5 (what was expected), not
+  // CLI11's "target: Path does not exist".
+  cmd->add_option("RUN", o->target, "A run directory (its run.lcm) or an LCM log file")->required();
+  cmd->add_option("-o,--out", o->out_file,
+                  "The HDF5 file to write (default: beside the log, RUN/run.h5 for a run folder)");
   cmd->add_flag("--force", o->force, "Replace the file if it exists");
   cmd->add_flag("-q,--quiet", o->quiet, "Print warnings and errors only");
   return {cmd, [o](const Invocation&) { return exportRun(*o); }};
