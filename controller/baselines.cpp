@@ -72,13 +72,24 @@ std::function<GainReport(const config::Scenario&, bool)> claimOnly(std::string c
   };
 }
 
+// The ranges `lagrange tune` searches (docs/tuning.md), per joint, on a log
+// scale; the search box is narrowed about the scenario's own gains.
+const TunableGain kKp{"kp", true, 1e-2, 1e5, 100.0};
+const TunableGain kKd{"kd", true, 1e-3, 1e4, 10.0};
+const TunableGain kFilterA{"a", true, 1.0, 1e5, 50.0};
+const TunableGain kFilterB{"b", true, 1.0, 1e5, 50.0};
+const TunableGain kLambda{"lambda", true, 1e-2, 1e4, 10.0};
+const TunableGain kObserverLp{"lp", true, 1.0, 1e8, 1e4};
+const TunableGain kObserverLd{"ld", true, 1.0, 1e5, 200.0};
+
 // PD+ and Slotine-Li need no condition beyond positive gains (with the
 // velocity measured and the model exact); the report states the claim.
 ControllerKind velocityKind(std::string type, std::vector<config::ControllerParam> keys,
                             std::function<std::unique_ptr<Controller>(const config::Scenario&)> make,
-                            std::string claim) {
+                            std::string claim, std::vector<TunableGain> tunable) {
   ControllerKind kind{std::move(type), std::move(keys), std::move(make), claimOnly(std::move(claim))};
   kind.measures_velocity = true;
+  kind.tunable = std::move(tunable);
   return kind;
 }
 
@@ -91,7 +102,8 @@ const bool kPdPlusRegistered = registerControllerKind(velocityKind(
     },
     "pd_plus: Paden and Panja (Int. J. Control 1988) prove global (asymptotic) tracking for every positive "
     "Kp, Kd, with the velocity measured and the model exact, so there is no further condition to check; the "
-    "sensors and the sampled implementation are not assessed"));
+    "sensors and the sampled implementation are not assessed",
+    {kKp, kKd}));
 
 const bool kSlotineLiRegistered = registerControllerKind(velocityKind(
     "slotine_li",
@@ -103,44 +115,47 @@ const bool kSlotineLiRegistered = registerControllerKind(velocityKind(
     },
     "slotine_li: Slotine and Li (Int. J. Robotics Research 1987) prove global (asymptotic) tracking for "
     "every positive Lambda, KD, with the velocity measured and the model exact, so there is no further "
-    "condition to check; the sensors and the sampled implementation are not assessed"));
+    "condition to check; the sensors and the sampled implementation are not assessed",
+    {kLambda, kKd}));
 
 // PD+ with a differenced velocity claims nothing (docs/baselines.md): no gain
 // condition, and the report says its gains are not checked.
-const bool kPdPlusDifferencedRegistered =
-    registerControllerKind({"pd_plus_differenced",
-                            {{"kp", true, "stiffness Kp [N m / rad]"},
-                             {"kd", true, "damping Kd on the differenced velocity [N m s / rad]"}},
-                            [](const config::Scenario& s) {
-                              return std::make_unique<PositionOnly<PdPlusDifferenced>>(
-                                  s, s.controller.params.at("kp"), s.controller.params.at("kd"));
-                            },
-                            {}});
+const bool kPdPlusDifferencedRegistered = registerControllerKind(
+    withTunable({"pd_plus_differenced",
+                 {{"kp", true, "stiffness Kp [N m / rad]"},
+                  {"kd", true, "damping Kd on the differenced velocity [N m s / rad]"}},
+                 [](const config::Scenario& s) {
+                   return std::make_unique<PositionOnly<PdPlusDifferenced>>(s, s.controller.params.at("kp"),
+                                                                            s.controller.params.at("kd"));
+                 },
+                 {}},
+                {kKp, kKd}));
 
 // Kelly (1993) states no condition beyond positive gains: the report says so
 // instead of inventing one. The sampled-data check covers the paper's
 // controllers only.
-const bool kSetPointRegistered =
-    registerControllerKind({"set_point",
-                            {{"kp", true, "stiffness Kp [N m / rad]"},
-                             {"kd", true, "damping Kd on the filtered rate theta [N m s / rad when b = a]"},
-                             {"a", true, "filter pole a [1/s]"},
-                             {"b", true, "filter gain b [1/s]"}},
-                            [](const config::Scenario& s) {
-                              const auto& p = s.controller.params;
-                              return std::make_unique<PositionOnly<SetPoint>>(
-                                  s, Theorem1Gains{p.at("kp"), p.at("kd"), p.at("a"), p.at("b")});
-                            },
-                            claimOnly("set_point: Kelly (IFAC 1993) proves global asymptotic regulation to a "
-                                      "constant q_d for every positive kp, kd, a, b with exact gravity "
-                                      "compensation, so there is no further condition to check; the sampled "
-                                      "implementation is not assessed"),
-                            /*set_point=*/true});
+const bool kSetPointRegistered = registerControllerKind(
+    withTunable({"set_point",
+                 {{"kp", true, "stiffness Kp [N m / rad]"},
+                  {"kd", true, "damping Kd on the filtered rate theta [N m s / rad when b = a]"},
+                  {"a", true, "filter pole a [1/s]"},
+                  {"b", true, "filter gain b [1/s]"}},
+                 [](const config::Scenario& s) {
+                   const auto& p = s.controller.params;
+                   return std::make_unique<PositionOnly<SetPoint>>(
+                       s, Theorem1Gains{p.at("kp"), p.at("kd"), p.at("a"), p.at("b")});
+                 },
+                 claimOnly("set_point: Kelly (IFAC 1993) proves global asymptotic regulation to a "
+                           "constant q_d for every positive kp, kd, a, b with exact gravity "
+                           "compensation, so there is no further condition to check; the sampled "
+                           "implementation is not assessed"),
+                 /*set_point=*/true},
+                {kKp, kKd, kFilterA, kFilterB}));
 
 // Nicosia and Tomei's conditions bound the gains by the model's and the
 // reference's constants and hold in a region around the reference: not
 // evaluated here, and the report says so.
-const bool kNicosiaTomeiRegistered = registerControllerKind(
+const bool kNicosiaTomeiRegistered = registerControllerKind(withTunable(
     {"nicosia_tomei",
      {{"kp", true, "stiffness Kp [N m / rad]"},
       {"kd", true, "damping Kd on the estimated velocity [N m s / rad]"},
@@ -154,9 +169,10 @@ const bool kNicosiaTomeiRegistered = registerControllerKind(
      claimOnly(
          "nicosia_tomei: Nicosia and Tomei (IEEE TAC 1990) prove local tracking, for gains large enough in "
          "terms of the model's and the reference's bounds; those conditions are not evaluated here, and the "
-         "sampled implementation is not assessed")});
+         "sampled implementation is not assessed")},
+    {kKp, kKd, kObserverLp, kObserverLd}));
 
-const bool kBerghuisNijmeijerRegistered = registerControllerKind(
+const bool kBerghuisNijmeijerRegistered = registerControllerKind(withTunable(
     {"berghuis_nijmeijer",
      {{"kp", true, "stiffness Kp [N m / rad]"},
       {"kd", true, "damping Kd on q0' - qr' [N m s / rad]"},
@@ -171,7 +187,8 @@ const bool kBerghuisNijmeijerRegistered = registerControllerKind(
      claimOnly(
          "berghuis_nijmeijer: Berghuis and Nijmeijer (IEEE TRA 1993) prove semiglobal exponential tracking, "
          "the region of attraction growing with the gains; their conditions are not evaluated here, and the "
-         "sampled implementation is not assessed")});
+         "sampled implementation is not assessed")},
+    {kKp, kKd, kLambda, kObserverLp, kObserverLd}));
 
 // The baselines' gains that are no paper controller's (kp, kd, a, b are, and
 // their rows hold them): their ranges and the hint an unknown-key message gives.

@@ -2,6 +2,8 @@
 
 #include <map>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace lagrange::controller {
 
@@ -44,9 +46,26 @@ const ControllerKind& kindOf(const std::string& type) {
 }
 }  // namespace
 
+ControllerKind withTunable(ControllerKind kind, std::vector<TunableGain> tunable) {
+  kind.tunable = std::move(tunable);
+  return kind;
+}
+
 bool registerControllerKind(ControllerKind kind) {
   if (kinds().count(kind.type) != 0)
     throw std::logic_error("controller type '" + kind.type + "' is registered twice");
+  // lagrange tune searches every registered controller's gains: a kind
+  // without a range to search would fail there, far from its registration.
+  if (kind.tunable.empty())
+    throw std::logic_error("controller type '" + kind.type +
+                           "' declares no tunable gain; expected at least one (ControllerKind::tunable)");
+  for (const TunableGain& g : kind.tunable)
+    if (g.name.empty() || !(g.lower > 0.0) || !(g.upper > g.lower) || !(g.fallback >= g.lower) ||
+        !(g.fallback <= g.upper))
+      throw std::logic_error("controller type '" + kind.type + "': tunable gain '" + g.name +
+                             "' has range [" + std::to_string(g.lower) + ", " + std::to_string(g.upper) +
+                             "] and fallback " + std::to_string(g.fallback) +
+                             "; expected a name, 0 < lower < upper and lower <= fallback <= upper");
   config::registerControllerSection({kind.type,
                                      kind.keys,
                                      {kind.set_point, kind.measures_velocity, kind.elastic_joints_title},
@@ -69,6 +88,8 @@ GainReport checkGains(const config::Scenario& s, bool sampled_data) {
                 "': its gains are not checked";
   return r;
 }
+
+const std::vector<TunableGain>& tunableGains(const std::string& type) { return kindOf(type).tunable; }
 
 InputAssembly makeInputAssembly(const config::Scenario& s, const Needs& needs) {
   const bool rates = s.flexible && s.flexible->rate_sensor;

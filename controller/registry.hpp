@@ -28,6 +28,19 @@
 
 namespace lagrange::controller {
 
+/// A gain `lagrange tune` may search (tools/tune/, docs/tuning.md): a key of
+/// controller.* holding positive numbers, searched on a log scale between
+/// `lower` and `upper`.
+struct TunableGain {
+  std::string name;       ///< its key in controller.* (for the paper's: stage 0's kp, kd, a, b)
+  bool per_joint = true;  ///< one value per joint; false: one value for every joint
+  double lower = 0.0;     ///< the range searched: 0 < lower < upper
+  double upper = 0.0;
+  /// Where the search starts when the scenario's value lies outside the
+  /// range (within it: the scenario's value).
+  double fallback = 1.0;
+};
+
 struct ControllerKind {
   std::string type;                           ///< controller.type
   std::vector<config::ControllerParam> keys;  ///< its keys in controller.*
@@ -46,11 +59,24 @@ struct ControllerKind {
   config::ControllerSectionCodec section = {};
   std::string elastic_joints_title = {};
   int listing = 100;  ///< where messages and docs list it: lower first, then by name
+  /// The gains `lagrange tune` searches; every registered controller
+  /// declares at least one (registerControllerKind refuses none).
+  std::vector<TunableGain> tunable = {};
 };
 
+/// `kind` with `tunable` as its tunable gains (for a kind built in one
+/// brace-initialiser).
+ControllerKind withTunable(ControllerKind kind, std::vector<TunableGain> tunable);
+
 /// Registers a controller. Returns true, so that a file can register from
-/// a namespace-scope initialiser. @throws std::logic_error if the type is taken.
+/// a namespace-scope initialiser. @throws std::logic_error if the type is
+/// taken, or its tunable gains are none or one has no valid range
+/// (0 < lower < upper, lower <= fallback <= upper).
 bool registerControllerKind(ControllerKind kind);
+
+/// The tunable gains of a registered controller.type (none for external).
+/// @throws std::logic_error for a type nobody registered.
+const std::vector<TunableGain>& tunableGains(const std::string& type);
 
 /// The controller the scenario names. @throws std::logic_error for a type
 /// nobody registered (the config reader rejects those first).

@@ -206,6 +206,7 @@ nlohmann::json makeSummary(const config::Scenario& s, const TrackingSummary& t,
                  {"saturated_fraction", t.saturated_fraction ? json(*t.saturated_fraction) : json(nullptr)}};
   j["gains"] = gainsJson(g);
   j["run_id"] = f.run_id;
+  j["lagrange_version"] = LAGRANGE_VERSION;  // the programs' version (CMakeLists.txt's project VERSION)
   j["timing"] = {
       {"sim_time", t.sim_time},
       {"wall_time", f.wall_time},

@@ -9,6 +9,7 @@
 ///   export        a run as one HDF5 file
 ///   compare       run a scenario for several controllers and tabulate them
 ///   sweep         many in-process runs over axes of scenario keys (locally or on Slurm)
+///   tune          search a scenario's controller gains for the fastest that pass the checks
 ///   keygen        write a secret key for a run spread over hosts
 ///   keys          every key a scenario file may hold
 ///   spy, view     watch a run: lcm-spy, or the arm in a web browser
@@ -24,6 +25,7 @@
 #include "tools/run/run_command.hpp"
 #include "tools/spy/spy.hpp"
 #include "tools/sweep/sweep.hpp"
+#include "tools/tune/tune.hpp"
 #include "tools/view/view.hpp"
 
 int main(int argc, char** argv) {
@@ -35,7 +37,7 @@ int main(int argc, char** argv) {
   // Every subcommand, in the order --help lists them: a new one is one line here.
   return dispatch(argc, argv,
                   {addRunCommand, addCheckGainsCommand, addReplayCommand, addReportCommand, addExportCommand,
-                   addCompareCommand, addSweepCommand, addSweepShardCommand, addKeygenCommand, addKeysCommand,
-                   addSpyCommand, addViewCommand},
+                   addCompareCommand, addSweepCommand, addSweepShardCommand, addTuneCommand, addKeygenCommand,
+                   addKeysCommand, addSpyCommand, addViewCommand},
                   front_end);
 }

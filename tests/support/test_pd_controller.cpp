@@ -50,11 +50,14 @@ class TestPd final : public controller::Controller {
   double previous_t_ = 0.0;
 };
 
-const bool registered = controller::registerControllerKind(
+// Its tunable gains: kp per joint, kd one value for every joint (the seam's
+// scalar case, which lagrange tune writes as one number).
+const bool registered = controller::registerControllerKind(controller::withTunable(
     {"test_pd",
      {{"kp", true, "stiffness [N m/rad]"}, {"kd", true, "damping on the differenced rate [N m s/rad]"}},
      [](const config::Scenario& s) { return std::make_unique<TestPd>(s); },
-     {}});
+     {}},
+    {{"kp", true, 1e-2, 1e5, 100.0}, {"kd", false, 1e-3, 1e4, 10.0}}));
 
 }  // namespace
 }  // namespace lagrange::testing

@@ -1,0 +1,109 @@
+// `lagrange tune` end to end on the 2-joint arm with a budget of seconds
+// (docs/tuning.md): a tuned scenario that runs and passes check-gains, a
+// resume that reads instead of recomputing, the refusal when the rate cannot
+// be met, and one seed's determinism. The runs are in process: no LCM.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "support/launch.hpp"
+#include "support/temp_dir.hpp"
+
+namespace lagrange::testing {
+namespace {
+
+const std::string kScenario = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml";
+// Short runs: 2 s at a coarser physics step, the metric by 1.5 s (the
+// shipped gains converge at about 0.9 s).
+const std::string kShort =
+    "--set duration=2 --set plant.physics_step=1e-4 --set metrics.convergence_deadline=1.5 -j 2 ";
+
+RunResult tune(const std::string& out, const std::string& extra) {
+  return lagrange("tune " + quote(kScenario) + " --out " + quote(out) + " " + kShort + extra);
+}
+
+std::vector<nlohmann::json> lines(const std::string& dir) {
+  std::vector<nlohmann::json> out;
+  std::ifstream in(dir + "/tune.jsonl");
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) out.push_back(nlohmann::json::parse(line));
+  return out;
+}
+
+nlohmann::json result(const std::string& dir) {
+  return nlohmann::json::parse(std::ifstream(dir + "/tune.json")).at("result");
+}
+
+class Tune : public TempDirTest {};
+
+TEST_F(Tune, TheTunedScenarioRunsAsItIsAndCheckGainsPassesIt) {
+  const std::string out = dir_ + "/tuned";
+  const RunResult r = tune(out, "--evaluations 12 --global 6");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("convergence time"), std::string::npos) << r.output;
+  const nlohmann::json best = result(out).at("best");
+  EXPECT_EQ(best.at("feasible"), true);
+  EXPECT_EQ(best.at("sampled_verdict"), "adequate");
+  // No slower than the input's gains, which are where the search starts.
+  EXPECT_LE(best.at("convergence_time").get<double>(),
+            result(out).at("input").at("convergence_time").get<double>());
+  EXPECT_TRUE(std::filesystem::exists(out + "/front.png"));
+
+  const RunResult run =
+      lagrange("run " + quote(out + "/tuned.yaml") + " --mode inproc -q --out " + quote(dir_ + "/run"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(dir_ + "/run/summary.json"));
+  EXPECT_DOUBLE_EQ(summary.at("tracking").at("convergence_time").get<double>(),
+                   best.at("convergence_time").get<double>());
+  const RunResult check = lagrange("check-gains " + quote(out + "/tuned.yaml"));
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  for (const char* word : {"UNSTABLE", "INADEQUATE", "DIVERGES"})
+    EXPECT_EQ(check.output.find(word), std::string::npos) << word << "\n" << check.output;
+}
+
+TEST_F(Tune, ARerunWithALargerBudgetReadsTheEvaluationsMadeAndComputesOnlyTheRest) {
+  const std::string out = dir_ + "/resumed";
+  ASSERT_EQ(tune(out, "--evaluations 10 --global 30").exit_code, 0);
+  const std::vector<nlohmann::json> first = lines(out);
+  ASSERT_FALSE(first.empty());
+  const RunResult again = tune(out, "--evaluations 20 --global 30");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const nlohmann::json r = result(out);
+  EXPECT_EQ(r.at("evaluations"), 20);
+  EXPECT_EQ(r.at("read").get<size_t>(), first.size());  // every line of the first run, none recomputed
+  const std::vector<nlohmann::json> after = lines(out);
+  EXPECT_EQ(after.size(), first.size() + r.at("computed").get<size_t>());
+  for (size_t i = 0; i < first.size(); ++i) EXPECT_EQ(after[i], first[i]) << i;
+  // Other arguments in the same folder: refused, naming the one that differs.
+  const RunResult other = tune(out, "--evaluations 20 --global 30 --seed 9");
+  EXPECT_EQ(other.exit_code, 2) << other.output;
+  EXPECT_NE(other.output.find("seed"), std::string::npos) << other.output;
+}
+
+TEST_F(Tune, ARateNoGainsCanMeetIsRefusedNamingTheRate) {
+  const RunResult r = tune(dir_ + "/slow", "--set plant.publish_rate=20 --evaluations 8 --global 6");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("no gains passed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("20 Hz"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("would suffice"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/slow/tuned.yaml"));
+}
+
+TEST_F(Tune, OneSeedGivesTheSameEvaluations) {
+  ASSERT_EQ(tune(dir_ + "/a", "--evaluations 8 --global 6 --seed 5").exit_code, 0);
+  ASSERT_EQ(tune(dir_ + "/b", "--evaluations 8 --global 6 --seed 5").exit_code, 0);
+  const std::vector<nlohmann::json> a = lines(dir_ + "/a"), b = lines(dir_ + "/b");
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 3u);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].at("gains"), b[i].at("gains")) << i;
+    EXPECT_EQ(a[i].at("value"), b[i].at("value")) << i;
+  }
+}
+
+}  // namespace
+}  // namespace lagrange::testing

@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// `lagrange tune SCENARIO --out DIR`: searches the scenario's controller
+/// gains for the earliest convergence time that passes the checks
+/// (docs/tuning.md): the metric from the initial state and the sampled-data
+/// check's seeded states, the simulated sampled-data check ADEQUATE at the
+/// scenario's rate, |torque| within the saturation (or the input gains'
+/// peak); eq. (12)'s margin reported, and required with --require-condition.
+
+#include <string>
+#include <vector>
+
+#include "tools/subcommand.hpp"
+
+namespace lagrange::tools {
+
+struct TuneOptions {
+  std::string scenario;
+  std::vector<std::string> overrides;  ///< --set KEY=VALUE
+  std::string out_dir;
+  int evaluations = 0;   ///< the budget in evaluations; 0: kDefaultEvaluations unless minutes is set
+  double minutes = 0.0;  ///< the budget in wall time; 0: none
+  int jobs = 0;          ///< the sampled-data check's processes; 0: one per core
+  unsigned seed = 1;
+  double span = 2.0;  ///< decades either side of the input's gains
+  int global = 0;     ///< the global phase's evaluations; 0: 10 (n + 1)
+  bool require_condition = false;
+  bool quiet = false;
+};
+
+inline constexpr int kDefaultEvaluations = 200;
+
+/// Runs the tune. Exit 0 when gains that pass every check were found, 1
+/// when none was (what binds is named), 2 for bad input, 130 interrupted.
+int runTune(const TuneOptions& options);
+
+/// Declares `tune` on the front end.
+Subcommand addTuneCommand(CLI::App& app);
+
+}  // namespace lagrange::tools

@@ -1,0 +1,236 @@
+#include "tools/tune/tune_evaluate.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "controller/gain_report.hpp"
+#include "controller/paper_section.hpp"
+#include "controller/sampled_data.hpp"
+#include "model/gain_conditions.hpp"
+#include "util/error.hpp"
+#include "wiring/inproc_runner.hpp"
+#include "wiring/sampled_simulation.hpp"
+
+namespace lagrange::tools {
+
+namespace {
+
+// A gain's values as the resolved scenario holds them (config.resolved.yaml's
+// text): the one place that knows every controller's section, so that tune
+// reads the paper's section and a baseline's keys alike.
+std::vector<double> scenarioGain(const config::Scenario& s, const std::string& name) {
+  const YAML::Node node = YAML::Load(config::toYaml(s))["controller"][name];
+  std::vector<double> out;
+  if (node.IsSequence())
+    for (const YAML::Node& v : node) out.push_back(v.as<double>());
+  else if (node.IsScalar())
+    out.assign(static_cast<size_t>(s.dof()), node.as<double>());
+  return out;
+}
+
+std::string exactNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+// x / (1 + x) for x >= 0: a miss squeezed into [0, 1), so that a band's
+// penalties stay inside it whatever the miss.
+double squeezed(double miss) {
+  if (!(miss >= 0.0)) return std::isnan(miss) ? 0.999999 : 0.0;
+  if (std::isinf(miss)) return 0.999999;
+  return miss / (1.0 + miss);
+}
+
+}  // namespace
+
+TuneProblem makeTuneProblem(const std::string& scenario_path, const std::vector<std::string>& overrides,
+                            double span_decades) {
+  TuneProblem p;
+  p.scenario_path = scenario_path;
+  p.overrides = overrides;
+  p.input = config::loadScenario(scenario_path, overrides);
+  if (p.input.controller.type == "external")
+    throw BadInput(
+        "an external controller (controller.type external) is a program lagrange does not know the "
+        "gains of; expected a registered controller type: " +
+        config::controllerTypeList());
+  if (p.input.plant.external())
+    throw BadInput(
+        "an external plant runs as its own program, and tune simulates in process; expected a "
+        "scenario whose plant lagrange simulates");
+  p.tunable = controller::tunableGains(p.input.controller.type);
+  const double span = std::pow(10.0, span_decades);
+  for (const controller::TunableGain& g : p.tunable) {
+    std::vector<double> values = scenarioGain(p.input, g.name);
+    if (values.empty()) values.assign(static_cast<size_t>(p.input.dof()), g.fallback);
+    if (!g.per_joint) values = {*std::max_element(values.begin(), values.end())};
+    for (size_t i = 0; i < values.size(); ++i) {
+      const double v = values[i] >= g.lower && values[i] <= g.upper ? values[i] : g.fallback;
+      values[i] = v;
+      const std::string label = g.per_joint ? g.name + "[" + std::to_string(i) + "]" : g.name;
+      p.variables.push_back({label, std::max(g.lower, v / span), std::min(g.upper, v * span), v});
+    }
+    p.input_gains.emplace_back(g.name, values);
+  }
+  const controller::GainReport report = controller::checkGains(p.input, /*sampled_data=*/false);
+  if (controller::isPaperType(p.input.controller.type) && !report.unchecked) {
+    p.kc = report.kc;
+    p.kdelta = report.kdelta;
+  }
+  if (p.input.actuator.saturation && p.input.actuator.saturation->size() > 0) {
+    p.torque_limit = p.input.actuator.saturation->maxCoeff();
+    p.torque_from_saturation = true;
+  }
+  return p;
+}
+
+TuneGains gainsOf(const TuneProblem& p, const std::vector<double>& point) {
+  TuneGains out;
+  size_t k = 0;
+  for (const controller::TunableGain& g : p.tunable) {
+    const size_t n = g.per_joint ? static_cast<size_t>(p.input.dof()) : 1;
+    out.emplace_back(g.name, std::vector<double>(point.begin() + static_cast<long>(k),
+                                                 point.begin() + static_cast<long>(k + n)));
+    k += n;
+  }
+  return out;
+}
+
+std::vector<std::string> gainOverrides(const TuneGains& gains) {
+  std::vector<std::string> out;
+  for (const auto& [name, values] : gains) {
+    std::string text = "controller." + name + "=";
+    if (values.size() == 1) {
+      text += exactNumber(values.front());  // one number for every joint
+    } else {
+      text += "[";
+      for (size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + exactNumber(values[i]);
+      text += "]";
+    }
+    out.push_back(text);
+  }
+  return out;
+}
+
+double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torque_limit) {
+  if (e.failed.empty()) return e.convergence_time.value_or(0.0);
+  const double tolerance = s.metrics.tolerance, deadline = s.metrics.convergence_deadline;
+  if (e.failed.rfind("scenario", 0) == 0) return 5e6;
+  if (e.failed.rfind("condition", 0) == 0)
+    return 4e6 + 1e6 * squeezed(e.margin ? -*e.margin / std::max(1e-12, *e.condition_lhs - *e.margin) : 1.0);
+  if (e.failed.rfind("diverged", 0) == 0) return 3e6 + 1e6 * squeezed(e.final_error / tolerance);
+  if (e.failed.rfind("metric", 0) == 0) {
+    // Late: by how much; never below the tolerance: by how far above it it ends.
+    const double miss = e.convergence_time ? (*e.convergence_time - deadline) / deadline
+                                           : 1.0 + std::log10(std::max(1.0, e.final_error / tolerance));
+    return 2e6 + 1e6 * squeezed(miss);
+  }
+  if (e.failed.rfind("torque", 0) == 0) return 1e6 + 1e6 * squeezed(e.peak_torque / torque_limit - 1.0);
+  // The sampled-data check: by how bad its word, then by how many starts missed the metric.
+  const auto& words = controller::SampledSimulation::kVerdicts;
+  const auto word =
+      std::find_if(std::begin(words), std::end(words), [&](const char* w) { return e.sampled_verdict == w; });
+  const long missed = std::count_if(e.start_times.begin(), e.start_times.end(),
+                                    [&](const std::optional<double>& t) { return !t || *t > deadline; });
+  return 1e5 +
+         1e5 * squeezed(static_cast<double>(word - std::begin(words)) + 0.1 * static_cast<double>(missed));
+}
+
+TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
+                             bool (*stop_requested)()) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  TuneEvaluation e;
+  e.gains = gains;
+  const auto finish = [&](const config::Scenario& s) {
+    e.value = tuneValue(e, s, p.torque_limit);
+    e.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    return e;
+  };
+  std::vector<std::string> overrides = p.overrides;
+  for (const std::string& o : gainOverrides(gains)) overrides.push_back(o);
+  config::Scenario s;
+  try {
+    s = config::loadScenario(p.scenario_path, overrides);
+  } catch (const std::exception& error) {
+    e.feasible = false;
+    e.failed = std::string("scenario refused: ") + error.what();
+    return finish(p.input);
+  }
+
+  // eq. (11) (printed (12)) with k_c and k_delta of the problem: cheap, so first.
+  if (p.kc && p.kdelta) {
+    const controller::Theorem1Gains& g0 = controller::paperSettings(s).gains;
+    const model::ConditionReport c = model::theorem1Condition(g0.kd, g0.a, g0.b, *p.kc, *p.kdelta);
+    e.margin = c.margin();
+    e.condition_lhs = c.lhs;
+    if (p.require_condition && !c.holds) {
+      e.feasible = false;
+      e.failed = "condition eq. (12) violated (--require-condition)";
+      return finish(s);
+    }
+  }
+
+  // The run in process; the sampled-data check below examines the
+  // scenario's own wiring (a realtime scenario with its period of delay).
+  config::Scenario in_process = s;
+  in_process.mode = config::Mode::kInproc;
+  const wiring::InProcessOutcome run =
+      wiring::simulateInProcess(in_process, nullptr, nullptr, stop_requested);
+  if (run.status == "interrupted") throw TuneInterrupted();
+  e.status = run.status;
+  e.convergence_time = run.tracking.convergence_time;
+  e.final_error = run.tracking.final_error;
+  e.peak_torque = run.tracking.max_abs_torque;
+  if (run.status != "completed") {
+    e.feasible = false;
+    e.failed = "diverged from the initial state" + (run.stop_message.empty() ? "" : ": " + run.stop_message);
+    return finish(s);
+  }
+  if (!e.convergence_time || *e.convergence_time > s.metrics.convergence_deadline) {
+    e.feasible = false;
+    e.failed = "metric not met from the initial state";
+    return finish(s);
+  }
+  if (p.torque_limit > 0.0 && e.peak_torque > p.torque_limit * (1.0 + 1e-9)) {
+    e.feasible = false;
+    e.failed = "torque over the limit";
+    return finish(s);
+  }
+  // The costly check only for a candidate that would be the new best.
+  if (best_time && *e.convergence_time >= *best_time) return finish(s);
+
+  const controller::SampledSimulation check = wiring::simulateSampledData(s, p.jobs);
+  if (stop_requested && stop_requested()) throw TuneInterrupted();
+  e.sampled_verdict = check.verdict;
+  e.sampled_why = check.why;
+  for (const controller::SampledSimulation::Start& st : check.starts)
+    e.start_times.push_back(st.sampled_time);
+  const controller::SampledDataCheck linearised = controller::checkSampledData(s);
+  e.linearised_verdict = linearised.verdict;
+  e.sufficient_rate = linearised.sufficient_rate;
+  const bool starts_met = std::all_of(e.start_times.begin(), e.start_times.end(), [&](const auto& t) {
+    return t && *t <= s.metrics.convergence_deadline;
+  });
+  if (!check.adequate() || !starts_met) {
+    e.feasible = false;
+    e.failed = !check.adequate() ? "sampled-data check " + check.verdict
+                                 : "sampled-data check: a seeded start missed the metric";
+    return finish(s);
+  }
+  e.feasible = true;
+  return finish(s);
+}
+
+controller::SampledDataCheck linearisedCheckOf(const TuneProblem& p, const TuneGains& gains) {
+  std::vector<std::string> overrides = p.overrides;
+  for (const std::string& o : gainOverrides(gains)) overrides.push_back(o);
+  return controller::checkSampledData(config::loadScenario(p.scenario_path, overrides));
+}
+
+}  // namespace lagrange::tools

@@ -1,0 +1,105 @@
+#pragma once
+/// @file
+/// `lagrange tune`, one candidate: the scenario with the candidate's gains,
+/// judged against the documented objective (docs/tuning.md), and the value
+/// the search minimises. Runs simulations in process without a log; writes
+/// nothing.
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "config/scenario.hpp"
+#include "controller/registry.hpp"
+#include "tools/tune/tune_search.hpp"
+#include "util/error.hpp"
+
+namespace lagrange::tools {
+
+/// Thrown when a stop was requested midway through a candidate (nothing of it is kept).
+struct TuneInterrupted : RuntimeFault {
+  TuneInterrupted() : RuntimeFault("lagrange tune was interrupted") {}
+};
+
+/// The gains a candidate sets: each tunable gain's values, in the
+/// declaration's order (one value for a gain that is not per joint).
+using TuneGains = std::vector<std::pair<std::string, std::vector<double>>>;
+
+/// What tune knows before the first candidate: the scenario as given, its
+/// tunable gains, the search's variables, and what does not depend on the gains.
+struct TuneProblem {
+  std::string scenario_path;
+  std::vector<std::string> overrides;  ///< the user's --set
+  config::Scenario input;              ///< the scenario as given
+  std::vector<controller::TunableGain> tunable;
+  std::vector<SearchVariable> variables;  ///< one per joint of a per-joint gain, else one
+  TuneGains input_gains;
+  /// eq. (11)'s k_c and k_delta (printed (12); the paper's controllers only):
+  /// of the robot and the reference, not the gains, so computed once.
+  std::optional<double> kc, kdelta;
+  double torque_limit = 0.0;  ///< [N m]: the largest saturation, else the input gains' peak (set later)
+  bool torque_from_saturation = false;
+  bool require_condition = false;
+  int jobs = 0;  ///< the sampled-data check's processes (0: one per core)
+};
+
+/// The problem for a scenario. `span_decades`: each variable's range is the
+/// declared one narrowed to span_decades decades either side of the input's
+/// value. @throws config::ConfigError for a bad scenario; lagrange::BadInput
+/// for a controller tune cannot search (external).
+TuneProblem makeTuneProblem(const std::string& scenario_path, const std::vector<std::string>& overrides,
+                            double span_decades);
+
+/// A point of the search as gains.
+TuneGains gainsOf(const TuneProblem& p, const std::vector<double>& point);
+/// The --set strings that put `gains` into the scenario (controller.NAME=[...]).
+std::vector<std::string> gainOverrides(const TuneGains& gains);
+
+/// One candidate's findings (a line of tune.jsonl, docs/tuning.md).
+struct TuneEvaluation {
+  TuneGains gains;
+  double value = 0.0;  ///< what the search minimises (tuneValue)
+  /// true: every check passed; false: one failed (`failed` says which);
+  /// none: not checked to the end, its run no faster than the best so far.
+  std::optional<bool> feasible;
+  std::string failed;  ///< the first check that failed, in words
+  std::string status;  ///< the initial state's run: completed, diverged, failed (no run: "")
+  std::optional<double> convergence_time;  ///< from the initial state [s]
+  double final_error = 0.0;                ///< [rad]
+  double peak_torque = 0.0;                ///< max |tau_i| applied, from the initial state [N m]
+  std::optional<double> margin;            ///< eq. (11)'s lhs - rhs (printed (12))
+  std::optional<double> condition_lhs;     ///< (kd_min / 2)(b_min / a_max)
+  std::string sampled_verdict;             ///< the simulated check's word; "": not run
+  std::string sampled_why;
+  std::vector<std::optional<double>> start_times;  ///< each start's sampled-loop convergence time [s]
+  std::string linearised_verdict;                  ///< "": not run
+  std::optional<double> sufficient_rate;           ///< the linearised check's, when not adequate [Hz]
+  double wall_time = 0.0;                          ///< [s]
+};
+
+/// The value of the findings (pure; docs/tuning.md, "The objective"):
+/// a feasible candidate's (or one not checked to the end) is its
+/// convergence time [s]; an infeasible one's a penalty above every
+/// feasible value, by band, worst first -- the scenario refused 5e6, eq.
+/// (11) violated with --require-condition [4e6, 5e6), the run diverged
+/// [3e6, 4e6), the metric not met from the initial state [2e6, 3e6), the
+/// torque over the limit [1e6, 2e6), the sampled-data check not ADEQUATE
+/// or a start missing the metric [1e5, 2e5) -- ordered within a band by
+/// how far it misses.
+double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torque_limit);
+
+/// Evaluates `gains`. `best_time`: the best feasible convergence time so
+/// far: a candidate whose run from the initial state is no faster is not
+/// given the sampled-data check (its value is its time; feasible unset).
+/// The torque limit is p.torque_limit (0: none, for the input's own
+/// evaluation when the limit is its peak). `stop_requested` is asked during
+/// the run and after the check. @throws TuneInterrupted when it says stop.
+TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
+                             bool (*stop_requested)());
+
+/// The linearised check (and its sufficient rate) of `gains`, for a message.
+controller::SampledDataCheck linearisedCheckOf(const TuneProblem& p, const TuneGains& gains);
+
+}  // namespace lagrange::tools

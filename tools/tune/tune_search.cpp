@@ -1,0 +1,145 @@
+#include "tools/tune/tune_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <nlopt.hpp>
+#include <stdexcept>
+
+namespace lagrange::tools {
+
+const char* toString(SearchPhase phase) {
+  switch (phase) {
+    case SearchPhase::kStart:
+      return "start";
+    case SearchPhase::kGlobal:
+      return "global";
+    case SearchPhase::kLocal:
+      return "local";
+  }
+  return "?";
+}
+
+namespace {
+
+// What the NLopt callback needs: the objective, the phase, the budget left,
+// the best so far, and an exception of the objective's, kept to rethrow
+// (NLopt's C++ wrapper turns any exception into a bare failure).
+struct Run {
+  const SearchObjective* objective = nullptr;
+  SearchPhase phase = SearchPhase::kStart;
+  int left = 0;
+  SearchOutcome* outcome = nullptr;
+  std::exception_ptr error;
+  nlopt::opt* opt = nullptr;
+  // The start in both scales: where NLopt hands back log(start), the
+  // objective gets the start itself, not exp(log(start)) a rounding off
+  // (the input's gains are then the same point, and read from a cache).
+  std::vector<double> log_start, start;
+};
+
+double call(Run& run, const std::vector<double>& log_point) {
+  // Stopped: NLopt may call again before it looks (CRS2 draws its whole
+  // population first); the objective is not asked again.
+  if (run.error) return std::numeric_limits<double>::infinity();
+  std::vector<double> point(log_point.size());
+  for (size_t i = 0; i < point.size(); ++i)
+    point[i] = log_point[i] == run.log_start[i] ? run.start[i] : std::exp(log_point[i]);
+  double value = std::numeric_limits<double>::infinity();
+  try {
+    value = (*run.objective)(point, run.phase);
+  } catch (...) {
+    run.error = std::current_exception();
+    if (run.opt) run.opt->force_stop();
+    return value;
+  }
+  --run.left;
+  ++run.outcome->evaluations;
+  if (run.outcome->best.empty() || value < run.outcome->best_value) {
+    run.outcome->best = point;
+    run.outcome->best_value = value;
+  }
+  return value;
+}
+
+double callback(unsigned n, const double* x, double* /*grad: derivative-free*/, void* data) {
+  Run& run = *static_cast<Run*>(data);
+  return call(run, std::vector<double>(x, x + n));
+}
+
+// One phase of at most run.left calls (nothing when none is left).
+void phase(Run& run, nlopt::algorithm algorithm, SearchPhase which, int most,
+           const std::vector<double>& lower, const std::vector<double>& upper, std::vector<double> start) {
+  const int calls = std::min(most, run.left);
+  if (calls <= 0 || run.error) return;
+  nlopt::opt opt(algorithm, static_cast<unsigned>(lower.size()));
+  opt.set_lower_bounds(lower);
+  opt.set_upper_bounds(upper);
+  opt.set_min_objective(callback, &run);
+  opt.set_maxeval(calls);
+  if (which == SearchPhase::kLocal) opt.set_xtol_rel(1e-4);
+  // CRS2's population (NLopt's default, 10 (n + 1), would spend the whole
+  // default global phase drawing it): half the phase, at least n + 1.
+  if (which == SearchPhase::kGlobal)
+    opt.set_population(
+        static_cast<unsigned>(std::max<size_t>(lower.size() + 1, static_cast<size_t>(most / 2))));
+  run.phase = which;
+  run.opt = &opt;
+  double value = 0.0;
+  try {
+    opt.optimize(start, value);
+  } catch (const nlopt::forced_stop&) {
+  } catch (const nlopt::roundoff_limited&) {  // converged as far as doubles tell: a normal end
+  } catch (const std::runtime_error&) {
+    if (!run.error) throw;  // NLopt's own failure
+  }
+  run.opt = nullptr;
+  if (run.error) std::rethrow_exception(run.error);
+}
+
+}  // namespace
+
+SearchOutcome search(const std::vector<SearchVariable>& variables, const SearchSettings& settings,
+                     const SearchObjective& objective) {
+  if (variables.empty()) throw std::invalid_argument("nothing to search: no variables");
+  const size_t n = variables.size();
+  std::vector<double> lower(n), upper(n), start(n), real_start(n);
+  for (size_t i = 0; i < n; ++i) {
+    const SearchVariable& v = variables[i];
+    if (!(v.lower > 0.0) || !(v.upper > v.lower))
+      throw std::invalid_argument("the search variable " + v.label +
+                                  " has no valid range; expected 0 < lower < upper");
+    lower[i] = std::log(v.lower);
+    upper[i] = std::log(v.upper);
+    real_start[i] = std::clamp(v.start > 0.0 ? v.start : std::sqrt(v.lower * v.upper), v.lower, v.upper);
+    start[i] = std::log(real_start[i]);
+  }
+  SearchOutcome outcome;
+  Run run;
+  run.objective = &objective;
+  run.left = settings.max_evaluations;
+  run.outcome = &outcome;
+  run.log_start = start;
+  run.start = real_start;
+  if (run.left <= 0) return outcome;
+
+  // The start first: the input's gains are what every candidate is compared with.
+  run.phase = SearchPhase::kStart;
+  call(run, start);
+  if (run.error) std::rethrow_exception(run.error);
+
+  const int global =
+      settings.global_evaluations > 0 ? settings.global_evaluations : 10 * static_cast<int>(n + 1);
+  nlopt::srand(settings.seed);  // CRS2's draws: the same points for the same seed
+  phase(run, nlopt::GN_CRS2_LM, SearchPhase::kGlobal, global, lower, upper, start);
+
+  std::vector<double> best_log(n);
+  std::transform(outcome.best.begin(), outcome.best.end(), best_log.begin(),
+                 [](double x) { return std::log(x); });
+  for (size_t i = 0; i < n; ++i) best_log[i] = std::clamp(best_log[i], lower[i], upper[i]);
+  phase(run, nlopt::LN_SBPLX, SearchPhase::kLocal, run.left, lower, upper, best_log);
+  return outcome;
+}
+
+}  // namespace lagrange::tools
