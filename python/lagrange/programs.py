@@ -147,7 +147,11 @@ def run(scenario, out=None, mode=None, args=(), **overrides):
 def sweep(spec, out=None, jobs=None, args=()):
     """Runs `lagrange sweep SPEC` (a sweep file's path: it names its scenario
     and axes, docs/sweeps.md) and returns its rows (OUT/sweep.jsonl, one dict
-    per run, in index order). out: the output directory (default: a new
+    per run, in index order). Each axis value is typed as the scenario reads
+    it: a number a float, a vector gain a list of floats (row["controller.kd"]
+    == [5.0, 0.4]), true/false a bool, other text a str (docs/sweeps.md, "Axis
+    values"); a norm axis is two keys, KEY.norm and KEY.direction.
+    out: the output directory (default: a new
     temporary one; one that holds this sweep is resumed); jobs: runs at a
     time (default: one per core); args: more options as they are. Raises
     LagrangeError as run() does; when rows failed (exit 1), its `rows` are

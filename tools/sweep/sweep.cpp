@@ -128,7 +128,8 @@ struct Finished {
 // Table and maps from what is in OUT/rows.
 Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, const std::string& who,
                 bool collecting = false) {
-  const FinishedRows finished = readFinishedRows(out_dir, static_cast<long>(plan.rows.size()));
+  const FinishedRows finished =
+      readFinishedRows(out_dir, static_cast<long>(plan.rows.size()), /*keep_rows=*/true, plan.param_columns);
   std::error_code ec;
   const auto& rows = finished.rows;
   if (finished.refused > 0) {

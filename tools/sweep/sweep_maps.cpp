@@ -36,8 +36,14 @@ std::string num(double x) {
   return buf;
 }
 
-// A parameter's value in a legend or on an axis: 20, not 20.0.
+// A parameter's value in a legend or on an axis: 20, not 20.0; a vector
+// gain [20, 30], as its YAML was written, not [20.0,30.0].
 std::string label(const Row& v) {
+  if (v.is_array()) {
+    std::string text = "[";
+    for (size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + label(v[i]);
+    return text + "]";
+  }
   if (!v.is_number()) return v.is_string() ? v.get<std::string>() : v.dump();
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v.get<double>());

@@ -20,6 +20,7 @@
 #include "logger/verdict.hpp"
 #include "model/reference.hpp"
 #include "tools/sweep/sweep_files.hpp"
+#include "tools/sweep/sweep_values.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 #include "wiring/inproc_runner.hpp"
@@ -72,14 +73,6 @@ nlohmann::json likeliestKind(const nlohmann::json& verdict) {
   return nullptr;
 }
 
-// A parameter in the JSON row: a number when its text is one, else the YAML text.
-nlohmann::json paramValue(const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (!text.empty() && end && *end == '\0' && std::isfinite(v)) return v;
-  return text;
-}
-
 }  // namespace
 
 const std::vector<std::string>& resultColumns() {
@@ -130,7 +123,7 @@ nlohmann::ordered_json SweepRunner::failedRow(const SweepRow& row, const std::st
   nlohmann::ordered_json j;
   j["index"] = row.index;
   for (size_t i = 0; i < plan_.param_columns.size(); ++i)
-    j[plan_.param_columns[i]] = paramValue(row.params.at(i));
+    j[plan_.param_columns[i]] = typedParam(row.params.at(i));  // sweep_values.hpp
   for (const std::string& c : resultColumns()) j[c] = nullptr;
   j["status"] = "failed";
   j["diverged"] = false;
@@ -158,7 +151,7 @@ std::optional<nlohmann::ordered_json> SweepRunner::run(const SweepRow& row, bool
   nlohmann::ordered_json j;
   j["index"] = row.index;
   for (size_t i = 0; i < plan_.param_columns.size(); ++i)
-    j[plan_.param_columns[i]] = paramValue(row.params.at(i));
+    j[plan_.param_columns[i]] = typedParam(row.params.at(i));  // sweep_values.hpp
   const auto finiteOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   j["status"] = o.status;
   j["diverged"] = o.status == "diverged";

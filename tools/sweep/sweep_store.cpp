@@ -14,9 +14,9 @@
 
 #include "tools/sweep/sweep_files.hpp"
 #include "tools/sweep/sweep_runner.hpp"
+#include "tools/sweep/sweep_values.hpp"
 #include "util/error.hpp"
 #include "util/input_file.hpp"
-#include "util/number_text.hpp"
 #include "util/output_file.hpp"
 
 namespace lagrange::tools {
@@ -24,18 +24,6 @@ namespace lagrange::tools {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string csvField(const nlohmann::ordered_json& v) {
-  std::string text;
-  if (v.is_null()) return "";
-  if (v.is_boolean()) return v.get<bool>() ? "1" : "0";
-  if (v.is_number_float()) return util::exactText(v.get<double>());
-  text = v.is_string() ? v.get<std::string>() : v.dump();
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
-  return quoted + "\"";
-}
 
 // Each file written beside its name (never through a link planted there),
 // then all renamed over theirs: none is left half-written, and none is
@@ -115,7 +103,8 @@ long firstLineWith(const fs::path& file, long index, long plan_rows, const Shard
 }
 }  // namespace
 
-FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool keep_rows) {
+FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool keep_rows,
+                              const std::vector<std::string>& param_columns) {
   FinishedRows out;
   out.done.assign(static_cast<size_t>(std::max(0L, plan_rows)), false);
   const auto refuse = [&out](const std::string& why) {
@@ -173,6 +162,7 @@ FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool k
               ++out.count;
               if (keep_rows) {
                 upgradeOldRow(*j);
+                typeOldParams(*j, param_columns);
                 out.rows.emplace(index, std::move(*j));
               }
               return true;
@@ -232,22 +222,25 @@ void RowWriter::append(const nlohmann::ordered_json& row) {
     throw RuntimeFault("cannot append to " + path_ + ": " + (n < 0 ? std::strerror(errno) : "short write"));
 }
 
-std::vector<std::string> tableColumns(const SweepPlan& plan) {
-  std::vector<std::string> columns = {"index"};
-  columns.insert(columns.end(), plan.param_columns.begin(), plan.param_columns.end());
-  for (const std::string& c : resultColumns()) columns.push_back(c);
-  return columns;
-}
-
 void writeSweepTable(const std::string& out_dir, const SweepPlan& plan,
                      const std::map<long, nlohmann::ordered_json>& rows) {
-  const std::vector<std::string> columns = tableColumns(plan);
+  // A vector axis is a column per element in the CSV (sweep_values.hpp).
+  std::vector<CsvParamColumn> columns = {{"index", "index", -1}};
+  for (CsvParamColumn& c : csvParamColumns(plan.param_columns, rows)) columns.push_back(std::move(c));
+  for (const std::string& c : resultColumns()) columns.push_back({c, c, -1});
   std::ostringstream csv, jsonl;
-  for (size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i];
+  for (size_t i = 0; i < columns.size(); ++i) csv << (i ? "," : "") << columns[i].name;
   csv << "\n";
   for (const auto& [index, row] : rows) {
-    for (size_t i = 0; i < columns.size(); ++i)
-      csv << (i ? "," : "") << (row.contains(columns[i]) ? csvField(row.at(columns[i])) : "");
+    for (size_t i = 0; i < columns.size(); ++i) {
+      const auto v = row.find(columns[i].column);
+      csv << (i ? "," : "");
+      if (v == row.end()) continue;
+      if (columns[i].element < 0)
+        csv << csvField(*v);
+      else if (v->is_array())  // a row without a value (null) has none of its elements either
+        csv << csvField(v->at(static_cast<size_t>(columns[i].element)));
+    }
     csv << "\n";
     jsonl << row.dump() << "\n";
   }

@@ -37,8 +37,11 @@ struct FinishedRows {
 /// earlier one, in name order) is refused again. A last line without its
 /// newline (a shard killed mid-write) is dropped, not refused. Without
 /// `keep_rows` only `done` and `count` are filled (a shard, a restart):
-/// a bit a row of the plan, and 4 bytes a row while reading.
-FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool keep_rows = true);
+/// a bit a row of the plan, and 4 bytes a row while reading. A kept row
+/// written before its axis values were typed has them typed
+/// (`param_columns`, the plan's: sweep_values.hpp typeOldParams).
+FinishedRows readFinishedRows(const std::string& out_dir, long plan_rows, bool keep_rows = true,
+                              const std::vector<std::string>& param_columns = {});
 
 /// Appends rows to one shard's file, first cutting a partial last line a
 /// killed writer left.
@@ -59,11 +62,10 @@ class RowWriter {
 };
 
 /// Writes OUT/sweep.csv and OUT/sweep.jsonl (both to temporary files, then
-/// both renamed) from the rows, in index order.
+/// both renamed) from the rows, in index order. The CSV's columns: index,
+/// the parameter columns (an axis of lists of n numbers as n columns
+/// KEY[0] .. KEY[n-1]: sweep_values.hpp csvParamColumns), the result columns.
 void writeSweepTable(const std::string& out_dir, const SweepPlan& plan,
                      const std::map<long, nlohmann::ordered_json>& rows);
-
-/// The table's CSV header: index, the parameter columns, the result columns.
-std::vector<std::string> tableColumns(const SweepPlan& plan);
 
 }  // namespace lagrange::tools
