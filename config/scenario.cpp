@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "config/input_file.hpp"
@@ -55,7 +56,13 @@ const Fields<Scenario>& headerFields() {
 namespace {
 
 // --set a.b.c=value: value is YAML ("[1, 2]", "0.5", "smooth_sine").
-void applyOverride(YAML::Node& root, const std::string& assignment) {
+struct Assignment {
+  std::string text;                // as the user gave it, "controller.kp=[1, 2]"
+  std::vector<std::string> parts;  // the dotted key's parts
+  YAML::Node value;
+};
+
+Assignment parseOverride(const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw ConfigError("config: --set '" + assignment + "': expected key=value, e.g. controller.kp=50");
@@ -64,28 +71,76 @@ void applyOverride(YAML::Node& root, const std::string& assignment) {
     throw ConfigError(
         "config: --set extends: a scenario's base is read before --set applies; expected extends "
         "in the scenario file itself");
-  YAML::Node value;
+  Assignment a{assignment, {}, {}};
   try {
-    value = YAML::Load(assignment.substr(eq + 1));
+    a.value = YAML::Load(assignment.substr(eq + 1));
   } catch (const YAML::Exception& e) {
     throw ConfigError("config: --set " + key + ": the value is not valid YAML: " + e.msg);
   }
-  std::vector<std::string> parts;
   std::stringstream ss(key);
-  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
-  // Rebuild the path node by node; yaml-cpp nodes are references, so
-  // assigning to the last one edits the tree in place.
+  for (std::string part; std::getline(ss, part, '.');) a.parts.push_back(part);
+  return a;
+}
+
+std::string keyOf(const Assignment& a) { return a.text.substr(0, a.text.find('=')); }
+
+// The map holding the key `a` names, created where absent. yaml-cpp nodes
+// are references: assigning to a key of it edits the tree in place.
+YAML::Node parentOf(YAML::Node& root, const Assignment& a) {
   std::vector<YAML::Node> chain{root};
-  for (size_t i = 0; i + 1 < parts.size(); ++i) {
-    YAML::Node next = chain.back()[parts[i]];
+  for (size_t i = 0; i + 1 < a.parts.size(); ++i) {
+    YAML::Node next = chain.back()[a.parts[i]];
     if (!next.IsDefined() || next.IsNull()) {
-      chain.back()[parts[i]] = YAML::Node(YAML::NodeType::Map);
-      next = chain.back()[parts[i]];
+      chain.back()[a.parts[i]] = YAML::Node(YAML::NodeType::Map);
+      next = chain.back()[a.parts[i]];
     }
-    if (!next.IsMap()) throw ConfigError("config: --set " + key + ": '" + parts[i] + "' is not a map");
+    if (!next.IsMap()) throw ConfigError("config: --set " + keyOf(a) + ": '" + a.parts[i] + "' is not a map");
     chain.push_back(next);
   }
-  chain.back()[parts.back()] = value;
+  return chain.back();
+}
+
+// A --set that gives a section its type: SECTION.type=T, or SECTION={type: T, ...}.
+bool givesType(const Assignment& a) {
+  return (a.parts.size() >= 2 && a.parts.back() == "type" && a.value.IsScalar()) ||
+         (a.value.IsMap() && a.value["type"].IsDefined());
+}
+
+// A section's type as the readers take it: its `type`, the simulated plant's
+// when a plant section has none, "" for a section with no type.
+std::string typeOf(const YAML::Node& section, const std::string& path) {
+  const YAML::Node type = section["type"];
+  if (type.IsDefined() && type.IsScalar()) return type.Scalar();
+  return path == "plant" && !type.IsDefined() ? "simulated" : "";
+}
+
+// Applies the overrides to the scenario's tree: first those that give a
+// section its type -- a type other than the section's replaces the section
+// whole, as `extends` does (no key of the old type stays, the new type's
+// defaults apply) -- then the others, in order, over the result; so the
+// order of the options does not matter. Returns, for each section a type
+// change replaced, the --set that replaced it ("controller" ->
+// "controller.type=pd_plus_differenced").
+std::map<std::string, std::string> applyOverrides(YAML::Node& root,
+                                                  const std::vector<std::string>& overrides) {
+  std::vector<Assignment> all;
+  for (const std::string& o : overrides) all.push_back(parseOverride(o));
+  std::map<std::string, std::string> replaced;
+  for (const bool types : {true, false})
+    for (const Assignment& a : all) {
+      if (givesType(a) != types) continue;
+      YAML::Node parent = parentOf(root, a);
+      if (a.value.IsScalar() && a.parts.back() == "type" && a.parts.size() >= 2) {
+        const std::string section = keyOf(a).substr(0, keyOf(a).size() - std::string(".type").size());
+        const std::string old = typeOf(parent, section);
+        if (!old.empty() && old != a.value.Scalar()) {
+          for (const std::string& k : MapReader(parent, section).keys()) parent.remove(k);
+          replaced[section] = a.text;
+        }
+      }
+      parent[a.parts.back()] = a.value;
+    }
+  return replaced;
 }
 
 Scenario readScenario(MapReader root, const std::string& source, bool check_programs) {
@@ -151,15 +206,36 @@ std::string namingTheChain(std::string what, const std::vector<std::string>& cha
   return what.replace(line, close + 1 - line, where);
 }
 
+// An error about a key of a section a --set's type replaced ("controller.kd:
+// missing") says so: the file's keys of that section are gone.
+std::string namingTheReplacement(std::string what, const std::map<std::string, std::string>& replaced) {
+  const std::string key = keyOfError(what);
+  for (const auto& [section, option] : replaced) {
+    if (key.compare(0, section.size() + 1, section + ".") != 0) continue;
+    const std::string note = " (--set " + option + " replaced the section " + section +
+                             " whole, as a change of type does: the file's keys of it are dropped; expected "
+                             "the new type's keys from --set too)";
+    // The line is the file's section's, whose keys are gone: the note says where instead.
+    const size_t line = what.find(" (line ");
+    const size_t close = line == std::string::npos ? line : what.find(')', line);
+    if (close == std::string::npos) return what + note;
+    return what.replace(line, close + 1 - line, note);
+  }
+  return what;
+}
+
 Scenario readTree(ScenarioTree tree, const std::string& source, const std::vector<std::string>& overrides,
                   bool check_programs = true) {
   YAML::Node& root = tree.root;
-  for (const auto& o : overrides) applyOverride(root, o);
+  const std::map<std::string, std::string> replaced = applyOverrides(root, overrides);
   try {
     return readScenario(MapReader(root, ""), source, check_programs);
   } catch (const ConfigError& e) {
     std::string what = namingTheOption(e.what(), overrides);
-    if (what.find("(from --set ") == std::string::npos) what = namingTheChain(what, tree.chain);
+    if (what.find("(from --set ") == std::string::npos) what = namingTheReplacement(what, replaced);
+    if (what.find("(from --set ") == std::string::npos &&
+        what.find("replaced the section") == std::string::npos)
+      what = namingTheChain(what, tree.chain);
     // Prefix the source so the user knows which file (or --set) was wrong.
     throw ConfigError("config: " + source + ": " + what.substr(std::string("config: ").size()));
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "config/key_hints.hpp"
 #include "config/key_ranges.hpp"
 #include "config/key_table.hpp"
 #include "config/scenario.hpp"
@@ -58,15 +59,53 @@ std::string MapReader::keyPath(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }
 
+namespace {
+// The line of a map's entry: its key's, or, for a key --set made (which has
+// none), its value's "(line 1)", which the --set's error replaces with the
+// option (config/scenario.cpp) right after the key it names.
+std::string lineOfKey(const std::pair<YAML::Node, YAML::Node>& entry) {
+  const std::string key = lineOf(entry.first);
+  return key.empty() ? lineOf(entry.second) : key;
+}
+
+// A key of `node` that is a near miss of the absent `key` (config/key_hints.hpp)
+// and no key the table or this section's reader knows: "Kd" when kd is
+// missing. Its error says more than kd's ("missing"), which it causes.
+YAML::Node nearMissOf(const YAML::Node& node, const std::string& key, const std::string& path,
+                      const std::set<std::string>& asked) {
+  for (const auto& entry : node) {
+    if (!entry.first.IsScalar()) continue;
+    const std::string written = entry.first.Scalar();
+    if (asked.count(written) != 0 || nearMisses(written, {key}).empty()) continue;
+    if (isTableKey(rangeKey(path.empty() ? written : path + "." + written))) continue;
+    return entry.first;
+  }
+  return YAML::Node();
+}
+}  // namespace
+
 void MapReader::fail(const std::string& key, const std::string& what) const {
+  if (!has(key)) {
+    const YAML::Node written = nearMissOf(node_, key, path_, asked_);
+    if (written.IsScalar())
+      throw ConfigError("config: " + keyPath(written.Scalar()) + ": unknown key" +
+                        lineOfKey({written, node_[written.Scalar()]}) + "; did you mean " + key + "? " +
+                        keyPath(key) + " is missing");
+  }
   const YAML::Node value = has(key) ? node_[key] : YAML::Node();
   const std::string where = has(key) ? lineOf(value) : lineOf(node_);
   throw ConfigError("config: " + keyPath(key) + ": " + what + where);
 }
 
-bool MapReader::has(const std::string& key) const { return node_[key].IsDefined() && !node_[key].IsNull(); }
+bool MapReader::has(const std::string& key) const {
+  asked_.insert(key);
+  return node_[key].IsDefined() && !node_[key].IsNull();
+}
 
-YAML::Node MapReader::child(const std::string& key) { return node_[key]; }
+YAML::Node MapReader::child(const std::string& key) {
+  asked_.insert(key);
+  return node_[key];
+}
 
 double MapReader::finiteNumber(const std::string& key) {
   if (!has(key)) fail(key, "missing; expected a number");
@@ -181,6 +220,16 @@ std::string variantHint(const std::string& key, const std::string& key_path) {
 }
 }  // namespace
 
+// " (the keys of controller type pd_plus_differenced)" for a section that
+// has a type, whose keys depend on it: a key of another type is refused
+// naming the type it is not a key of.
+std::string MapReader::ofType(const std::set<std::string>& known) const {
+  if (path_.empty() || known.count("type") == 0) return "";
+  const YAML::Node type = node_["type"];
+  if (!type.IsDefined() || !type.IsScalar()) return "";
+  return " (the keys of " + path_ + " type " + type.Scalar() + ")";
+}
+
 void MapReader::finish(const std::set<std::string>& known) const {
   if (!out_of_range_.empty()) fail(out_of_range_.front().first, out_of_range_.front().second);
   for (const auto& entry : node_) {
@@ -188,8 +237,10 @@ void MapReader::finish(const std::set<std::string>& known) const {
     if (known.count(key) == 0) {
       std::string list;
       for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw ConfigError("config: " + keyPath(key) + ": unknown key" + lineOf(entry.first) +
-                        "; expected one of: " + list + variantHint(key, keyPath(key)));
+      const std::string hint = unknownKeyHint(key, rangeKey(keyPath(key)), known);
+      throw ConfigError("config: " + keyPath(key) + ": unknown key" + lineOfKey(entry) + hint +
+                        (hint.empty() || hint.back() != '?' ? "; " : " ") + "expected one of: " + list +
+                        ofType(known) + variantHint(key, keyPath(key)));
     }
   }
 }

@@ -59,7 +59,9 @@ class MapReader {
   MapReader map(const std::string& key);  ///< required sub-map
 
   /// @throws ConfigError naming the first number read out of its key's range,
-  /// else the first unknown key and the known ones.
+  /// else the first unknown key, what it most likely meant (a near miss,
+  /// config/key_hints.hpp: "did you mean kd?") and the known ones -- those of
+  /// the section's type when it has one.
   void finish(const std::set<std::string>& known) const;
 
   /// The keys of the map, in file order (for maps keyed by name).
@@ -67,6 +69,9 @@ class MapReader {
 
   std::string keyPath(const std::string& key) const;
 
+  /// @throws ConfigError "KEY: WHAT (line N)"; for an absent key of which the
+  /// map holds an unknown near miss ("Kd" for kd), that key named instead:
+  /// "Kd: unknown key (line N); did you mean kd? kd is missing".
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
 
  private:
@@ -77,10 +82,14 @@ class MapReader {
   /// 0 for the normal scheduler") and come first. `entry` prefixes the
   /// message ("entry 2: ") for a list.
   void checkRange(const std::string& key, double v, const std::string& entry = "");
+  std::string ofType(const std::set<std::string>& known) const;
 
   YAML::Node node_;
   std::vector<std::pair<std::string, std::string>> out_of_range_;  ///< key, message
   std::string path_;
+  /// The keys this section's reader asked about: none of them is a near miss
+  /// of another key it finds missing (config/key_hints.hpp), whatever the table holds.
+  mutable std::set<std::string> asked_;
 };
 
 /// " (line N)" for a node with a position, "" otherwise.

@@ -9,7 +9,11 @@ programs, standard library only.
     [(r["index"], r["status"], r["convergence_time"]) for r in rows]
 
 A keyword override is a scenario key with "__" for each "." (controller__kp
-is controller.kp); its value goes to --set as JSON (which is YAML); args
+is controller.kp); its value goes to --set as JSON (which is YAML), so the
+program reads it as --set: a keyword giving a section another type
+(controller__type="pd_plus_differenced") replaces the section whole, whatever
+the keywords' order, and an unknown key is refused naming a near miss
+(controller__Kd: "did you mean kd?"; docs/configuration.md); args
 are more options as they are (args=["--no-netns"] where user namespaces are
 refused, ["--report"], ["--check-sampled"]). A keyword that cannot be a key
 (a part empty or with anything but letters, digits and "_", such as "=" in
