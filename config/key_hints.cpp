@@ -109,6 +109,10 @@ std::vector<std::string> nearMisses(const std::string& unknown, const std::set<s
   for (const std::string& k : known) {
     if (k == unknown) continue;
     const std::string f = folded(k);
+    // Lengths further apart than the edits allowed: no near miss, and no
+    // table to fill (a hostile map of many keys costs a comparison each).
+    const size_t apart = u.size() > f.size() ? u.size() - f.size() : f.size() - u.size();
+    if (apart > editsAllowed(f.size())) continue;
     const size_t d = editDistance(u, f);
     if (d > editsAllowed(f.size()) || d > best) continue;
     if (d < best) out.clear();
