@@ -119,14 +119,16 @@ std::vector<std::string> whatBinds(const TuneProblem& p, const std::vector<TuneE
     if (closest) {
       text += "; the closest (" + gainsText(closest->gains) + ") ended " + shortNumber(closest->final_error) +
               " rad off";
-      try {
-        const controller::SampledDataCheck lin = linearisedCheckOf(p, closest->gains);
-        text += "; at its gains the linearised check says " + lin.verdict + " at the rate, " +
-                shortNumber(rate) + " Hz";
-        if (lin.sufficient_rate)
-          text += ", and that " + shortNumber(*lin.sufficient_rate) + " Hz would suffice";
-      } catch (const std::exception&) {
-      }
+    }
+    // The rate, as the linearised check sees it at the input's gains (the
+    // search's start: the gains the user chose).
+    try {
+      const controller::SampledDataCheck lin = linearisedCheckOf(p, all.front().gains);
+      text += "; at the input gains the linearised check says " + lin.verdict + " at the rate, " +
+              shortNumber(rate) + " Hz";
+      if (lin.sufficient_rate)
+        text += ", and that " + shortNumber(*lin.sufficient_rate) + " Hz would suffice";
+    } catch (const std::exception&) {
     }
     out.push_back(text);
   }

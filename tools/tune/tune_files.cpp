@@ -71,15 +71,15 @@ nlohmann::ordered_json evaluationJson(int index, SearchPhase phase, const TuneEv
   return j;
 }
 
-TuneEvaluation evaluationFromJson(const nlohmann::json& j) {
+TuneEvaluation evaluationFromJson(const nlohmann::ordered_json& j) {
   try {
     TuneEvaluation e;
     for (const auto& [name, values] : j.at("gains").items())
       e.gains.emplace_back(name, values.get<std::vector<double>>());
     e.value = j.at("value").get<double>();
     if (j.at("feasible").is_boolean()) e.feasible = j.at("feasible").get<bool>();
-    e.failed = j.value("failed", nlohmann::json()).is_string() ? j.at("failed").get<std::string>() : "";
-    e.status = j.value("status", nlohmann::json()).is_string() ? j.at("status").get<std::string>() : "";
+    e.failed = j.at("failed").is_string() ? j.at("failed").get<std::string>() : "";
+    e.status = j.at("status").is_string() ? j.at("status").get<std::string>() : "";
     e.convergence_time = numberOf(j.at("convergence_time"));
     e.final_error = numberOf(j.at("final_error")).value_or(NAN);
     e.peak_torque = numberOf(j.at("peak_torque")).value_or(NAN);
@@ -100,14 +100,16 @@ TuneEvaluation evaluationFromJson(const nlohmann::json& j) {
   }
 }
 
-std::vector<nlohmann::json> readEvaluationLines(const std::string& dir) {
-  std::vector<nlohmann::json> out;
+std::vector<nlohmann::ordered_json> readEvaluationLines(const std::string& dir) {
+  // In the file's order: a line's gains in the declaration's order, as the
+  // search's points are.
+  std::vector<nlohmann::ordered_json> out;
   std::ifstream in(fs::path(dir) / "tune.jsonl");
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     try {
-      out.push_back(nlohmann::json::parse(line));
+      out.push_back(nlohmann::ordered_json::parse(line));
     } catch (const nlohmann::json::exception&) {
       if (in.peek() == EOF) break;  // torn by an interrupt while it was written: made again
       throw BadInput(fs::path(dir).append("tune.jsonl").string() + " holds a line that is not JSON (line " +
@@ -119,7 +121,7 @@ std::vector<nlohmann::json> readEvaluationLines(const std::string& dir) {
 
 std::map<std::vector<double>, TuneEvaluation> readEvaluations(const std::string& dir) {
   std::map<std::vector<double>, TuneEvaluation> out;
-  for (const nlohmann::json& line : readEvaluationLines(dir)) {
+  for (const nlohmann::ordered_json& line : readEvaluationLines(dir)) {
     TuneEvaluation e = evaluationFromJson(line);
     out.emplace(flattened(e.gains), std::move(e));
   }
@@ -218,18 +220,18 @@ void writeTunedYaml(const std::string& dir, const TuneProblem& p, const TuneGain
                             (fs::path(dir) / "tuned.yaml").string() + "\n" + out.c_str() + "\n");
 }
 
-std::string drawFront(const std::string& dir, const std::vector<nlohmann::json>& lines) {
+std::string drawFront(const std::string& dir, const std::vector<nlohmann::ordered_json>& lines) {
   std::string csv = "convergence_time,peak_torque,margin,input,feasible\n";
   int points = 0;
   bool margins = false;
   double limit = 0.0;  // the torque limit the candidates were held to, drawn as a line
-  for (const nlohmann::json& l : lines) {
-    if (l.value("torque_limit", nlohmann::json()).is_number()) limit = l["torque_limit"].get<double>();
-    if (!l.value("convergence_time", nlohmann::json()).is_number() ||
-        !l.value("peak_torque", nlohmann::json()).is_number())
+  for (const nlohmann::ordered_json& l : lines) {
+    if (l.contains("torque_limit") && l["torque_limit"].is_number()) limit = l["torque_limit"].get<double>();
+    if (!l.contains("convergence_time") || !l["convergence_time"].is_number() || !l.contains("peak_torque") ||
+        !l["peak_torque"].is_number())
       continue;
     const std::string failed =
-        l.value("failed", nlohmann::json()).is_string() ? l["failed"].get<std::string>() : "";
+        l.contains("failed") && l["failed"].is_string() ? l["failed"].get<std::string>() : "";
     if (failed.rfind("metric", 0) == 0 || failed.rfind("diverged", 0) == 0) continue;
     margins = margins || l["margin"].is_number();
     csv += csvNumber(l["convergence_time"].get<double>()) + "," + csvNumber(l["peak_torque"].get<double>()) +

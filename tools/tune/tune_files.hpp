@@ -18,7 +18,7 @@ namespace lagrange::tools {
 nlohmann::ordered_json evaluationJson(int index, SearchPhase phase, const TuneEvaluation& e,
                                       double torque_limit);
 /// The evaluation a line holds (what a resume replays). @throws BadInput for a line that is not one.
-TuneEvaluation evaluationFromJson(const nlohmann::json& line);
+TuneEvaluation evaluationFromJson(const nlohmann::ordered_json& line);
 
 /// The evaluations already in DIR/tune.jsonl, by their point (the gains,
 /// flattened in the variables' order). A torn last line (an interrupt while
@@ -26,7 +26,7 @@ TuneEvaluation evaluationFromJson(const nlohmann::json& line);
 std::map<std::vector<double>, TuneEvaluation> readEvaluations(const std::string& dir);
 
 /// The evaluations of DIR/tune.jsonl in order, as written.
-std::vector<nlohmann::json> readEvaluationLines(const std::string& dir);
+std::vector<nlohmann::ordered_json> readEvaluationLines(const std::string& dir);
 
 /// Appends one line to DIR/tune.jsonl (flushed: an interrupt keeps it).
 void appendEvaluation(const std::string& dir, const nlohmann::ordered_json& line);
@@ -51,6 +51,6 @@ void writeTunedYaml(const std::string& dir, const TuneProblem& p, const TuneGain
 /// time against peak torque of every candidate that met the metric from the
 /// initial state, coloured by eq. (12)'s margin, the input marked. Returns
 /// why it was not drawn, or "".
-std::string drawFront(const std::string& dir, const std::vector<nlohmann::json>& lines);
+std::string drawFront(const std::string& dir, const std::vector<nlohmann::ordered_json>& lines);
 
 }  // namespace lagrange::tools
