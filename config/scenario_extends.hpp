@@ -4,7 +4,9 @@
 /// this one's folder; it may extend a third) is read first and this file's
 /// keys are merged over it -- maps key by key, any other value (a list, a
 /// number) replaced whole, and a map whose `type` changes (a controller of
-/// another kind) replaced whole -- before `--set` applies. A cycle is refused,
+/// another kind) replaced whole, the rule `--set` follows too when it changes
+/// a type (config/scenario.cpp; docs/configuration.md, "Changing a section's
+/// type") -- before `--set` applies. A cycle is refused,
 /// naming the chain. A relative path a base file gives (`robot.urdf`,
 /// `controller.working_directory`) stays relative to the base file's folder.
 /// The resolved scenario (config.resolved.yaml) holds the merged result and
