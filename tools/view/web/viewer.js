@@ -5,6 +5,11 @@
 // the torques. A log comes whole from /api/log and plays on the page's own
 // clock; a running scenario streams from /api/live (Server-Sent Events).
 // window.lagrangeViewer is what the browser tests read and drive.
+//
+// The ready signal: <body data-ready="true"> once the first frame of the
+// arm and its plots is on the screen (set an animation frame after it was
+// drawn, so the browser has presented it), "error" when the run cannot be
+// loaded. A headless screenshot waits for it (docs/viewer.md).
 
 const ARM_COLOR = 0x4a78b8, GHOST_COLOR = 0x999999, TIP_COLOR = 0xff00ff, ROTOR_COLOR = 0xf08c00;
 
@@ -27,6 +32,7 @@ const view = {
   arm: null, ghost: null,
   dirty: true,           // something changed since the last render: only then is the scene drawn again
   errors: [],
+  presentedT: null,      // the time of the frame last on the screen (an animation frame after its draw)
 };
 
 function status(text) { document.getElementById('status').textContent = text; }
@@ -257,6 +263,13 @@ function draw() {
     controls.update();
     renderer.render(scene, camera);
   }
+  if (view.arm && i >= 0) {
+    const drawnT = view.t;
+    requestAnimationFrame(() => {
+      view.presentedT = drawnT;
+      document.body.dataset.ready = 'true';
+    });
+  }
 }
 
 function animate(now) {
@@ -347,7 +360,7 @@ async function start() {
 
 // What the browser tests read and drive (tests/integration/view_test.cpp).
 window.lagrangeViewer = {
-  ready: false,
+  ready: false,  // the source is loaded (its first frame on the screen: body[data-ready])
   state() {
     return {mode: view.mode, t: view.t, index: view.index, frames: view.frames.t.length, playing: view.playing,
             speed: view.speed, follow: view.follow, described: view.description !== null,
@@ -355,7 +368,7 @@ window.lagrangeViewer = {
             wall: view.lastWall, frameT: view.index >= 0 ? view.frames.t[view.index] : null,
             q: view.index >= 0 ? view.frames.q[view.index] : null,
             q_desired: view.index >= 0 ? view.frames.q_desired[view.index] : null,
-            motor: view.index >= 0 ? view.frames.motor[view.index] : null};
+            motor: view.index >= 0 ? view.frames.motor[view.index] : null, presentedT: view.presentedT};
   },
   // The range each plot draws, in its data's units ([lo, hi]; null before data).
   plotExtents() {
@@ -371,4 +384,7 @@ window.lagrangeViewer = {
 };
 
 start().then(() => { window.lagrangeViewer.ready = true; },
-             (e) => status('cannot load the run: ' + e.message));
+             (e) => {
+               status('cannot load the run: ' + e.message);
+               document.body.dataset.ready = 'error';
+             });
