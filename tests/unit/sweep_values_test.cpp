@@ -23,7 +23,7 @@ namespace lagrange::tools::sweep_values_test {
 
 namespace fs = std::filesystem;
 using Row = nlohmann::ordered_json;
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;  // what typedParam gives: a map in the order written
 
 std::string fileText(const fs::path& p) {
   std::ifstream in(p);
@@ -62,8 +62,8 @@ TEST(SweepValue, EachAxisTextIsTheValueTheScenarioReads) {
   // A quoted scalar is the string it holds (YAML's flow text of "a, b").
   EXPECT_EQ(typedParam("\"a, b\""), Json("a, b"));
   EXPECT_EQ(typedParam("'true'"), Json("true"));
-  EXPECT_EQ(typedParam("{type: sine, amplitude: [1, 0.5]}"),
-            Json::parse(R"({"type": "sine", "amplitude": [1.0, 0.5]})"));
+  EXPECT_EQ(typedParam("{type: sine, amplitude: [1, 0.5]}").dump(),
+            R"({"type":"sine","amplitude":[1.0,0.5]})");
   // Not YAML: the text as it is; infinite: not a JSON number, the text.
   EXPECT_EQ(typedParam("[1, 2"), Json("[1, 2"));
   EXPECT_EQ(typedParam("inf"), Json("inf"));
@@ -173,6 +173,14 @@ TEST_F(SweepValues, TheMapsNameAVectorValueAsItWasWritten) {
   EXPECT_EQ(maps.convergence_axis, "controller.kd");
   EXPECT_NE(maps.scripts.front().find("set xtics ('[5, 0.4]' 0, '[20, 2]' 1)"), std::string::npos)
       << maps.scripts.front();
+  // A map value (a payload) likewise, its keys in the order written.
+  plan_.param_columns = {"plant.payload"};
+  rows[0]["plant.payload"] = typedParam("{mass: 2.0, com: 0.1}");
+  rows[1]["plant.payload"] = typedParam("{mass: 1, com: 0.1}");
+  const SweepMapFiles payload = writeSweepMapFiles(out_.string(), plan_, rows);
+  EXPECT_NE(payload.scripts.front().find("set xtics ('{mass: 2, com: 0.1}' 0, '{mass: 1, com: 0.1}' 1)"),
+            std::string::npos)
+      << payload.scripts.front();
 }
 
 }  // namespace lagrange::tools::sweep_values_test

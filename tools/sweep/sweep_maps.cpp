@@ -37,12 +37,19 @@ std::string num(double x) {
 }
 
 // A parameter's value in a legend or on an axis: 20, not 20.0; a vector
-// gain [20, 30], as its YAML was written, not [20.0,30.0].
+// gain [20, 30] and a map {mass: 2, com: 0.1} as their YAML was written,
+// not [20.0,30.0].
 std::string label(const Row& v) {
   if (v.is_array()) {
     std::string text = "[";
     for (size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + label(v[i]);
     return text + "]";
+  }
+  if (v.is_object()) {  // a map value ({mass: 2, com: 0.1}), in the order written
+    std::string text = "{";
+    for (auto it = v.begin(); it != v.end(); ++it)
+      text += (it == v.begin() ? "" : ", ") + it.key() + ": " + label(it.value());
+    return text + "}";
   }
   if (!v.is_number()) return v.is_string() ? v.get<std::string>() : v.dump();
   char buf[32];

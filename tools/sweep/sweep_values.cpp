@@ -20,7 +20,7 @@ constexpr int kMaxTypedDepth = 16;
 // A plain scalar as the scenario reads it: true/false as config's boolean()
 // reads them, a number as the row's numbers were always read (strtod, all
 // of the text, finite).
-nlohmann::json plainScalar(const std::string& text) {
+nlohmann::ordered_json plainScalar(const std::string& text) {
   if (text == "true" || text == "false") return text == "true";
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
@@ -28,27 +28,27 @@ nlohmann::json plainScalar(const std::string& text) {
   return text;
 }
 
-std::optional<nlohmann::json> typedNode(const YAML::Node& node, int depth) {
+std::optional<nlohmann::ordered_json> typedNode(const YAML::Node& node, int depth) {
   if (depth > kMaxTypedDepth) return std::nullopt;
   switch (node.Type()) {
     case YAML::NodeType::Null:
     case YAML::NodeType::Undefined:
-      return nlohmann::json();
+      return nlohmann::ordered_json();
     case YAML::NodeType::Scalar:  // "!" is a quoted scalar: a string, whatever it reads as
-      return node.Tag() == "!" ? nlohmann::json(node.Scalar()) : plainScalar(node.Scalar());
+      return node.Tag() == "!" ? nlohmann::ordered_json(node.Scalar()) : plainScalar(node.Scalar());
     case YAML::NodeType::Sequence: {
-      nlohmann::json list = nlohmann::json::array();
+      nlohmann::ordered_json list = nlohmann::ordered_json::array();
       for (const YAML::Node& item : node) {
-        std::optional<nlohmann::json> v = typedNode(item, depth + 1);
+        std::optional<nlohmann::ordered_json> v = typedNode(item, depth + 1);
         if (!v) return std::nullopt;
         list.push_back(std::move(*v));
       }
       return list;
     }
     case YAML::NodeType::Map: {
-      nlohmann::json map = nlohmann::json::object();
+      nlohmann::ordered_json map = nlohmann::ordered_json::object();  // in the order written
       for (const auto& kv : node) {
-        std::optional<nlohmann::json> v = typedNode(kv.second, depth + 1);
+        std::optional<nlohmann::ordered_json> v = typedNode(kv.second, depth + 1);
         if (!v || !kv.first.IsScalar()) return std::nullopt;
         map[kv.first.Scalar()] = std::move(*v);
       }
@@ -67,9 +67,9 @@ bool isNumberList(const nlohmann::ordered_json& v) {
 
 }  // namespace
 
-nlohmann::json typedParam(const std::string& yaml_text) {
+nlohmann::ordered_json typedParam(const std::string& yaml_text) {
   try {
-    if (std::optional<nlohmann::json> v = typedNode(YAML::Load(yaml_text), 0)) return std::move(*v);
+    if (std::optional<nlohmann::ordered_json> v = typedNode(YAML::Load(yaml_text), 0)) return std::move(*v);
   } catch (const YAML::Exception&) {  // not YAML: kept as it is
   }
   return yaml_text;
@@ -85,9 +85,9 @@ void typeOldParams(nlohmann::ordered_json& row, const std::vector<std::string>& 
     const bool yaml_text = text == "true" || text == "false" || quoted ||
                            (!text.empty() && (text.front() == '[' || text.front() == '{'));
     if (!yaml_text) continue;
-    nlohmann::json typed = typedParam(text);
+    nlohmann::ordered_json typed = typedParam(text);
     if (typed.is_array() || typed.is_object() || typed.is_boolean() || (quoted && typed.is_string()))
-      *found = nlohmann::ordered_json(std::move(typed));
+      *found = std::move(typed);
   }
 }
 

@@ -23,7 +23,7 @@ namespace lagrange::tools {
 /// another scalar (a quoted one too) its text; a list a JSON list and a map
 /// a JSON object of the same, element by element. Text that is not YAML,
 /// or nested more than 16 levels, stays the text it is.
-nlohmann::json typedParam(const std::string& yaml_text);
+nlohmann::ordered_json typedParam(const std::string& yaml_text);
 
 /// A row written before axis values were typed: each parameter column whose
 /// value is a string holding a YAML list, a map, `true`/`false` or a quoted
