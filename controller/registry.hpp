@@ -5,8 +5,9 @@
 /// (theorem1, cascaded, flexible) in paper_controllers.cpp, the baselines in
 /// baselines.cpp, a new controller likewise:
 ///
-///     const bool registered = lagrange::controller::registerControllerKind({
-///         "my_pd", {{"kp", true, "stiffness [N m/rad]"}}, [](const config::Scenario& s) { ... }});
+///     const bool registered = lagrange::controller::registerControllerKind(withTunable(
+///         {"my_pd", {{"kp", true, "stiffness [N m/rad]"}}, [](const config::Scenario& s) { ... }},
+///         {{"kp", true, 1e-2, 1e5, 100.0}}));  // the gains `lagrange tune` searches
 ///
 /// Its keys are then valid in controller.*, read into
 /// ScenarioConfig::controller.params, written back to config.resolved.yaml,

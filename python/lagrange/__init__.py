@@ -34,3 +34,4 @@ from .scenario_t import scenario_t
 from .status_t import status_t
 
 from .programs import LagrangeError, run, sweep  # noqa: E402  (after the types: log needs them)
+from .tune import tune  # noqa: E402  (lagrange tune, docs/tuning.md)

@@ -55,7 +55,7 @@ TEST(Help, TheFrontEndListsOneLinePerCommandWithin80Columns) {
   std::set<std::string> names;
   for (const auto& [name, summary] : listed) names.insert(name);
   EXPECT_EQ(names, (std::set<std::string>{"run", "check-gains", "replay", "report", "export", "compare",
-                                          "sweep", "keygen", "keys", "spy", "view"}))
+                                          "sweep", "tune", "keygen", "keys", "spy", "view"}))
       << r.output;
 }
 

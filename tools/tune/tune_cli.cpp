@@ -22,7 +22,7 @@ Subcommand addTuneCommand(CLI::App& app) {
       "extends the input with the best gains), OUT/tune.json and OUT/front.png. A local search over a few "
       "initial states, not a proof. Exit 0 gains found, 1 none passed (what binds is named), 2 bad input, "
       "130 interrupted (docs/tuning.md)",
-      {"lagrange tune configs/rigid_2dof.yaml --out runs/tuned --evaluations 40"});
+      {"lagrange tune configs/rigid_2dof.yaml --out runs/tuned --evaluations 8 --set duration=3"});
   cmd->add_option("scenario", o->scenario, "Scenario YAML file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
   cmd->add_option("-o,--out", o->out_dir,
