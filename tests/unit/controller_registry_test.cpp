@@ -96,7 +96,8 @@ ControllerKind sectionedKind() {
     out << YAML::Key << "gain" << YAML::Value << settings.gain;
     out << YAML::Key << "label" << YAML::Value << settings.label;
   };
-  kind.listing = 1000;  // after every shipped type
+  kind.listing = 1000;                               // after every shipped type
+  kind.tunable = {{"gain", false, 0.1, 10.0, 1.0}};  // every kind declares one (lagrange tune)
   return kind;
 }
 const bool sectioned_registered = registerControllerKind(sectionedKind());
