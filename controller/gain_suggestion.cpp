@@ -251,10 +251,13 @@ GainSearch searchTheorem1(const config::Scenario& in) {
 }  // namespace
 
 GainSearch searchGains(const config::Scenario& s) {
+  // Held for the search: every candidate's linearisation builds the
+  // reference again, and a free_motion one is then integrated once (model/reference.hpp).
+  const model::Reference reference(s.reference);
   const PaperSettings& paper = paperSettings(s);
   if (s.controller.type == "theorem1") return searchTheorem1(s);
   GainSearch out;
-  out.kdelta = model::referenceBound(model::Reference(s.reference));
+  out.kdelta = model::referenceBound(reference);
   if (s.controller.type != "cascaded" || paper.stages.empty()) {
     out.binding =
         "--suggest searches the gains of controller.type theorem1 and cascaded; this is " + s.controller.type;

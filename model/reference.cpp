@@ -1,13 +1,75 @@
 #include "model/reference.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <mutex>
 #include <stdexcept>
 
 namespace lagrange::model {
 
+struct FreeMotionTable {
+  std::vector<Eigen::VectorXd> nodes;         ///< [q; q'] every kFreeStep seconds from 0
+  std::vector<std::array<double, 3>> bounds;  ///< per joint, orders 0..2
+  uint64_t id = nextId();                     ///< never reused in the process (freeState's memo)
+
+  static uint64_t nextId() {
+    static std::atomic<uint64_t> next{1};
+    return next++;
+  }
+};
+
 namespace {
 constexpr double kFreeStep = 1e-4;
+
+// The free motions integrated and still held by a Reference, by what decides
+// them: the model object (constant once built: robot_model.hpp), the initial
+// state and the horizon, bit for bit. A sampled-data check builds a
+// scenario's reference in every simulation it runs, twice (the controller's,
+// the metrics'): a 10 s free motion is 100 000 RK4 steps of the arm's forward
+// dynamics, a quarter of a flexible arm's simulation, the same each time.
+// Weak pointers: a table lives as long as a Reference holds it, so this keeps
+// no memory of its own; a model ended and another built at its address does
+// not match (the first one's weak pointer has expired).
+struct HeldFreeMotion {
+  std::weak_ptr<const RobotModel> model;
+  Eigen::VectorXd q, qdot;
+  double horizon = 0.0;
+  std::weak_ptr<const FreeMotionTable> table;
+};
+std::mutex& heldMutex() {
+  static std::mutex m;
+  return m;
+}
+std::vector<HeldFreeMotion>& held() {
+  static std::vector<HeldFreeMotion> all;
+  return all;
+}
+
+bool sameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), static_cast<size_t>(a.size()) * sizeof(double)) == 0;
+}
+
+std::shared_ptr<const FreeMotionTable> heldFreeMotion(const ReferenceParams& p) {
+  const std::lock_guard<std::mutex> lock(heldMutex());
+  std::vector<HeldFreeMotion>& all = held();
+  all.erase(std::remove_if(all.begin(), all.end(),
+                           [](const HeldFreeMotion& h) { return h.table.expired() || h.model.expired(); }),
+            all.end());
+  for (const HeldFreeMotion& h : all)
+    if (h.model.lock() == p.model && std::memcmp(&h.horizon, &p.horizon, sizeof(double)) == 0 &&
+        sameBits(h.q, p.initial_q) && sameBits(h.qdot, p.initial_qdot))
+      if (std::shared_ptr<const FreeMotionTable> table = h.table.lock()) return table;
+  return nullptr;
+}
+
+void holdFreeMotion(const ReferenceParams& p, const std::shared_ptr<const FreeMotionTable>& table) {
+  const std::lock_guard<std::mutex> lock(heldMutex());
+  held().push_back({p.model, p.initial_q, p.initial_qdot, p.horizon, table});
+}
 }  // namespace
 
 Reference::Reference(ReferenceParams params) : params_(std::move(params)) {
@@ -83,11 +145,16 @@ void Reference::integrateFreeMotion() {
                                 std::to_string(n) + " entries");
   if (!params_.initial_q.allFinite() || !params_.initial_qdot.allFinite() || !(params_.horizon > 0.0))
     throw std::invalid_argument("reference: free_motion needs a finite initial state and a positive horizon");
+  if ((free_ = heldFreeMotion(params_))) return;  // integrated already, and still held
+  const auto table = std::make_shared<FreeMotionTable>();
+  free_ = table;  // the refinement below reads the nodes through evaluate()
+  std::vector<Eigen::VectorXd>& nodes = table->nodes;
+  std::vector<std::array<double, 3>>& bounds = table->bounds;
   Eigen::VectorXd x(2 * n);
   x << params_.initial_q, params_.initial_qdot;
   const long steps = static_cast<long>(std::ceil(params_.horizon / kFreeStep)) + 1;
-  nodes_.reserve(static_cast<size_t>(steps) + 1);
-  free_bounds_.assign(n, {0.0, 0.0, 0.0});
+  nodes.reserve(static_cast<size_t>(steps) + 1);
+  bounds.assign(n, {0.0, 0.0, 0.0});
   auto f = [this, n](const Eigen::VectorXd& s) {
     Eigen::VectorXd d(2 * n);
     d << s.tail(n), params_.model->acceleration(s.head(n), s.tail(n), Eigen::VectorXd::Zero(n));
@@ -95,13 +162,13 @@ void Reference::integrateFreeMotion() {
   };
   std::vector<std::array<long, 3>> argmax(static_cast<size_t>(n), {0, 0, 0});
   for (long k = 0; k <= steps; ++k) {
-    nodes_.push_back(x);
+    nodes.push_back(x);
     const Eigen::VectorXd d = f(x);
     for (int i = 0; i < n; ++i) {
       const double values[3] = {std::abs(x(i)), std::abs(x(n + i)), std::abs(d(n + i))};
       for (int order = 0; order < 3; ++order) {
-        if (values[order] <= free_bounds_[i][order]) continue;
-        free_bounds_[i][order] = values[order];
+        if (values[order] <= bounds[i][order]) continue;
+        bounds[i][order] = values[order];
         argmax[i][order] = k;
       }
     }
@@ -111,7 +178,7 @@ void Reference::integrateFreeMotion() {
   }
   // Local maximisation between the nodes around each sampled maximum (golden
   // section on the RK4 interpolant): the peak of a derivative need not fall on a node.
-  const double last = static_cast<double>(nodes_.size() - 1) * kFreeStep;
+  const double last = static_cast<double>(nodes.size() - 1) * kFreeStep;
   for (int i = 0; i < n; ++i) {
     for (int order = 0; order < 3; ++order) {
       const double centre = static_cast<double>(argmax[i][order]) * kFreeStep;
@@ -126,19 +193,31 @@ void Reference::integrateFreeMotion() {
           lo = x1, x1 = x2, f1 = f2, x2 = lo + ratio * (hi - lo), f2 = value(x2);
         }
       }
-      free_bounds_[i][order] = std::max({free_bounds_[i][order], f1, f2});
+      bounds[i][order] = std::max({bounds[i][order], f1, f2});
     }
   }
+  holdFreeMotion(params_, table);
 }
 
 Eigen::VectorXd Reference::freeState(double t) const {
-  const double last = static_cast<double>(nodes_.size() - 1) * kFreeStep;
+  const std::vector<Eigen::VectorXd>& nodes = free_->nodes;
+  const double last = static_cast<double>(nodes.size() - 1) * kFreeStep;
   if (!(t >= 0.0) || t > last)
     throw std::invalid_argument("reference: free_motion was integrated over [0, " + std::to_string(last) +
                                 "] s, asked for t = " + std::to_string(t));
-  const size_t i = std::min(nodes_.size() - 1, static_cast<size_t>(t / kFreeStep));
+  // The last state this thread computed, by table and instant: a loop's
+  // metrics and controller ask for the same instant one after the other (an
+  // RK4 step of the forward dynamics each), and the second gets the first's.
+  struct Memo {
+    uint64_t table = 0;
+    double t = 0.0;
+    Eigen::VectorXd x;
+  };
+  thread_local Memo memo;
+  if (memo.table == free_->id && std::memcmp(&memo.t, &t, sizeof t) == 0) return memo.x;
+  const size_t i = std::min(nodes.size() - 1, static_cast<size_t>(t / kFreeStep));
   const double h = t - static_cast<double>(i) * kFreeStep;
-  const Eigen::VectorXd& x = nodes_[i];
+  const Eigen::VectorXd& x = nodes[i];
   if (h <= 0.0) return x;
   const int n = params_.model->dof();
   auto f = [this, n](const Eigen::VectorXd& s) {
@@ -147,7 +226,12 @@ Eigen::VectorXd Reference::freeState(double t) const {
     return d;
   };
   const Eigen::VectorXd k1 = f(x), k2 = f(x + h / 2 * k1), k3 = f(x + h / 2 * k2), k4 = f(x + h * k3);
-  return x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+  Eigen::VectorXd state = x + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+  memo.table = 0;  // until it holds this state whole
+  memo.x = state;
+  memo.table = free_->id;
+  memo.t = t;
+  return state;
 }
 
 double Reference::jointDerivative(int joint, int order, double t) const {
@@ -193,7 +277,7 @@ ReferenceSample Reference::evaluate(double t, int max_order) const {
 double Reference::jointBound(int joint, int order) const {
   if (params_.type == ReferenceType::kFreeMotion) {
     if (order > 2) throw std::invalid_argument("reference: free_motion provides derivatives up to the 2nd");
-    return 1.02 * free_bounds_[joint][order];  // sampled at every 1e-4 s node, refined between nodes
+    return 1.02 * free_->bounds[joint][order];  // sampled at every 1e-4 s node, refined between nodes
   }
   const double b = params_.offset(joint), c = params_.amplitude(joint);
   const double w = params_.frequency(joint);

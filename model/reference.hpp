@@ -11,10 +11,15 @@
 ///                 given state (Assumption 2). Integrated once by RK4 with a
 ///                 1e-4 s step over [0, horizon]; between nodes the state is
 ///                 one further RK4 step from the node before t, and q_d'' comes
-///                 from the model. Derivatives up to the 2nd only.
+///                 from the model. Derivatives up to the 2nd only. The
+///                 integration is shared, read-only, by every Reference of the
+///                 same model object, initial state and horizon alive at once
+///                 (copies, and the controller's and the metrics' of one
+///                 scenario): it is the same computation, done once.
 
 #include <Eigen/Dense>
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +54,8 @@ struct ReferenceSample {
   const Eigen::VectorXd& qd() const { return derivative[1]; }
   const Eigen::VectorXd& qdd() const { return derivative[2]; }
 };
+
+struct FreeMotionTable;  ///< a free_motion reference's integration (reference.cpp)
 
 class Reference {
  public:
@@ -89,9 +96,9 @@ class Reference {
   Eigen::VectorXd freeState(double t) const;
 
   ReferenceParams params_;
-  // free_motion only: nodes every kFreeStep seconds, and sampled bounds.
-  std::vector<Eigen::VectorXd> nodes_;
-  std::vector<std::array<double, 3>> free_bounds_;  ///< per joint, orders 0..2
+  // free_motion only: nodes every kFreeStep seconds, and sampled bounds,
+  // immutable once integrated and shared (reference.cpp).
+  std::shared_ptr<const FreeMotionTable> free_;
 };
 
 /// The spelling in scenario files (reference.type).

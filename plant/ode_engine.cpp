@@ -45,6 +45,13 @@ class OdeEngine final : public PhysicsEngine {
   explicit OdeEngine(const EngineSetup& setup)
       : dof_(setup.arm.dof), physics_step_(setup.physics_step), flexible_(setup.flexible) {
     world_ = dWorldCreate();
+    // A stepping dispatcher of this world's own: ODE's default one is a single
+    // object per process, which two worlds stepped on two threads at once (the
+    // sampled-data check's simulations) would share. The same self-threaded
+    // kind as the default: the same computation in the same order.
+    threading_ = dThreadingAllocateSelfThreadedImplementation();
+    dWorldSetStepThreadingImplementation(world_, dThreadingImplementationGetFunctions(threading_),
+                                         threading_);
     dWorldSetLinearDamping(world_, 0.0);
     dWorldSetAngularDamping(world_, 0.0);
     dWorldSetMaxAngularSpeed(world_, dInfinity);
@@ -181,6 +188,8 @@ class OdeEngine final : public PhysicsEngine {
     arm_.reset();
     if (world_) dWorldDestroy(world_);  // destroys bodies and joints too
     world_ = nullptr;
+    if (threading_) dThreadingFreeImplementation(threading_);  // after the world that used it
+    threading_ = nullptr;
   }
 
   OdeLibrary library_;  // first member: initialised before, closed after the world
@@ -188,6 +197,7 @@ class OdeEngine final : public PhysicsEngine {
   double physics_step_;
   std::optional<model::FlexibleParams> flexible_;
   dWorldID world_ = nullptr;
+  dThreadingImplementationID threading_ = nullptr;  ///< the world's own (see the constructor)
   std::unique_ptr<ArmWorld> arm_;
   std::vector<dBodyID> rotors_;  // flexible joints only
   std::vector<dJointID> rotor_hinges_;

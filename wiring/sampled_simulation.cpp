@@ -1,18 +1,11 @@
 #include "wiring/sampled_simulation.hpp"
 
-#include <poll.h>
-#include <signal.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <iostream>
+#include <system_error>
 #include <thread>
 
 #include "model/reference.hpp"
@@ -31,12 +24,6 @@ using controller::SampledSimulation;
 constexpr int kMaxRefinement = 64;
 
 using Loop = LoopOutcome;
-
-Loop simulate(const config::Scenario& s) {
-  const InProcessOutcome o = simulateInProcess(s, nullptr, nullptr, nullptr);
-  return {o.status == "completed" ? "completed" : "diverged", o.tracking.convergence_time,
-          o.tracking.rms_last_second};
-}
 
 struct StartState {
   std::string what;
@@ -245,119 +232,59 @@ bool probeGrew(const Loop& probe, double offset, double fine_error, double toler
          (probe.error > 2.0 * offset && probe.error > 10.0 * std::max(fine_error, tolerance));
 }
 
-// Runs each scenario's loop in a child process of its own, up to `processes`
-// at a time, and returns what each did, in order. Processes, not threads:
-// ODE's default threading object is one per process, and the models a
-// scenario shares between copies are not all safe to step from two threads.
-// A child that throws or is killed (ODE aborts on a state it cannot
-// normalise) counts as a loop that diverged.
-class Children {
- public:
-  explicit Children(bool (*stop_requested)()) : stop_requested_(stop_requested) {}
-  ~Children() {  // on an error midway: no child outlives the check
-    for (const Child& c : running_) {
-      kill(c.pid, SIGKILL);
-      close(c.fd);
-      waitFor(c.pid);
-    }
-  }
-  bool full(int processes) const { return static_cast<int>(running_.size()) >= processes; }
-  bool empty() const { return running_.empty(); }
+// What a loop costs, to start the longest first: its physics steps, and its
+// ticks at about three physics steps' time each (a 2-joint arm's tick in
+// process: sensors, controller, actuator, metrics).
+double cost(const config::Scenario& s) {
+  return static_cast<double>(s.lastTick() + 1) * (s.substepsPerTick() + 3.0);
+}
 
-  void start(const config::Scenario& scenario, size_t index) {
-    int fds[2];
-    if (pipe(fds) != 0)
-      throw lagrange::RuntimeFault(std::string("sampled-data simulation: pipe: ") + strerror(errno));
-    std::cout.flush();
-    std::cerr.flush();
-    const pid_t parent = getpid();
-    const pid_t pid = fork();
-    if (pid < 0) {
-      close(fds[0]);
-      close(fds[1]);
-      throw lagrange::RuntimeFault(std::string("sampled-data simulation: fork: ") + strerror(errno));
-    }
-    if (pid == 0) {
-      // Ends with its parent, however that ends (a SIGKILLed sweep shard),
-      // including before this line (the parent is then another process).
-      prctl(PR_SET_PDEATHSIG, SIGKILL);
-      if (getppid() != parent) _exit(1);
-      close(fds[0]);
-      double record[4] = {1.0, 0.0, 0.0, 0.0};  // status (0 completed), has_time, time, error
-      try {
-        const Loop loop = simulate(scenario);
-        record[0] = loop.status == "completed" ? 0.0 : 1.0;
-        record[1] = loop.time ? 1.0 : 0.0;
-        record[2] = loop.time.value_or(0.0);
-        record[3] = loop.error;
-      } catch (...) {  // the loop failed in a core: it diverged
-      }
-      const bool sent = write(fds[1], record, sizeof record) == static_cast<ssize_t>(sizeof record);
-      _exit(sent ? 0 : 1);
-    }
-    close(fds[1]);
-    running_.push_back({pid, fds[0], index});
-  }
-
-  /// Waits for the oldest child; its index and loop.
-  /// @throws SimulationStopped if the stop check turns true meanwhile (the destructor ends every child).
-  std::pair<size_t, Loop> finishOldest() {
-    const Child c = running_.front();
-    // A child inherits its parent's signal handlers (a sweep shard's only
-    // note a stop), so the parent asks, and ends it (~Children).
-    while (stop_requested_) {
-      if (stop_requested_()) throw SimulationStopped();
-      pollfd ready{c.fd, POLLIN, 0};
-      const int polled = poll(&ready, 1, 100);
-      if (polled > 0 || (polled < 0 && errno != EINTR)) break;  // its result, its end, or a poll error
-    }
-    running_.erase(running_.begin());
-    double record[4] = {1.0, 0.0, 0.0, 0.0};
-    size_t got = 0;
-    while (got < sizeof record) {
-      const ssize_t n = read(c.fd, reinterpret_cast<char*>(record) + got, sizeof record - got);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) break;
-      got += static_cast<size_t>(n);
-    }
-    close(c.fd);
-    waitFor(c.pid);
-    if (got != sizeof record) record[0] = 1.0;  // killed before it could say: diverged
-    return {c.index,
-            {record[0] == 0.0 ? "completed" : "diverged",
-             record[1] != 0.0 ? std::optional<double>(record[2]) : std::nullopt, record[3]}};
-  }
-
- private:
-  struct Child {
-    pid_t pid;
-    int fd;
-    size_t index;
-  };
-  static void waitFor(pid_t pid) {
-    int wstatus = 0;
-    while (waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
-    }
-  }
-  std::vector<Child> running_;
-  bool (*stop_requested_)() = nullptr;
-};
-
-std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int processes,
+// Runs each scenario's loop in process, up to `threads` at a time (the
+// calling thread one of them), and returns what each did, in order. Each
+// loop is a function of its scenario alone -- its own plant, ODE world,
+// controller and metrics; the models and a free_motion reference's
+// integration shared read-only -- so a result does not depend on the thread
+// it ran on, nor on the order: the longest start first, so that the last to
+// finish is a short one. A loop that throws counts as one that diverged.
+// @throws SimulationStopped when `stop_requested` (asked every 100 ticks by
+// each loop, from the threads) turns true: the loops running end, no verdict.
+std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, int threads,
                               bool (*stop_requested)() = nullptr) {
   std::vector<Loop> out(scenarios.size());
-  Children children(stop_requested);
-  for (size_t i = 0; i < scenarios.size(); ++i) {
-    if (children.full(processes)) {
-      const auto [index, loop] = children.finishOldest();
-      out[index] = loop;
+  std::vector<size_t> order(scenarios.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return cost(scenarios[a]) > cost(scenarios[b]); });
+  std::atomic<size_t> next{0};
+  std::atomic<bool> stopped{false};
+  auto work = [&] {
+    for (size_t k = next++; k < order.size() && !stopped; k = next++) {
+      const size_t i = order[k];
+      try {
+        const InProcessOutcome o = simulateInProcess(scenarios[i], nullptr, nullptr, stop_requested);
+        if (o.status == "interrupted") {
+          stopped = true;
+          return;
+        }
+        out[i] = {o.status == "completed" ? "completed" : "diverged", o.tracking.convergence_time,
+                  o.tracking.rms_last_second};
+      } catch (...) {  // the loop failed in a core: it diverged
+        out[i] = {"diverged", std::nullopt, 0.0};
+      }
     }
-    children.start(scenarios[i], i);
+  };
+  std::vector<std::thread> helpers;
+  const size_t wanted = std::min(static_cast<size_t>(std::max(1, threads)), scenarios.size());
+  for (size_t w = 1; w < wanted; ++w) {
+    try {
+      helpers.emplace_back(work);
+    } catch (const std::system_error&) {  // no thread to be had: fewer do the same work
+      break;
+    }
   }
-  while (!children.empty()) {
-    const auto [index, loop] = children.finishOldest();
-    out[index] = loop;
-  }
+  work();
+  for (std::thread& t : helpers) t.join();
+  if (stopped) throw SimulationStopped();
   return out;
 }
 
@@ -366,7 +293,7 @@ std::vector<Loop> simulateAll(const std::vector<config::Scenario>& scenarios, in
 // x the rate, then each start's sampled loop (the first one's given as
 // `known_first` when already run) against its fine loop.
 SampledSimulation check(const config::Scenario& s, const std::vector<StartState>& starts, int max_refinement,
-                        int processes, const std::optional<Loop>& known_first,
+                        int threads, const std::optional<Loop>& known_first,
                         bool (*stop_requested)() = nullptr) {
   const auto wall_start = std::chrono::steady_clock::now();
   SampledSimulation out;
@@ -375,37 +302,54 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
   out.tolerance = s.metrics.tolerance;
   out.one_period_delay = s.mode == config::Mode::kRealtime;
 
-  // The fine rate, confirmed by refinement on the initial state.
+  // A free_motion reference is integrated once for every loop below (model/reference.hpp).
+  const model::Reference shared_reference(s.reference);
+
+  // Every loop in one batch, so that the threads stay busy to the end: the
+  // initial state's fine loop at F = 8 x the rate and at 2F (the
+  // refinement's first test), the sampled loop from every start (the first
+  // unless known), and the fine loop at F from the others -- run before F is
+  // confirmed, and again at the confirmed F when that is finer.
   double fine = 8.0 * out.rate;
-  Loop fine_initial;
+  std::vector<config::Scenario> runs = {fineScenario(s, starts[0].state, fine),
+                                        fineScenario(s, starts[0].state, 2.0 * fine)};
+  for (size_t i = known_first ? 1 : 0; i < starts.size(); ++i)
+    runs.push_back(sampledScenario(s, starts[i].state));
+  const size_t simulated_sampled = runs.size() - 2;
+  for (size_t i = 1; i < starts.size(); ++i) runs.push_back(fineScenario(s, starts[i].state, fine));
+  const std::vector<Loop> loops = simulateAll(runs, threads, stop_requested);
+
+  // The fine rate, confirmed by refinement on the initial state: F and 2F
+  // agree, else F doubles (its loop is the 2F one already run) up to the cap.
+  Loop fine_initial = loops[0], finer = loops[1];
+  bool refined = false;
   for (;;) {
-    const std::vector<Loop> pair =
-        simulateAll({fineScenario(s, starts[0].state, fine), fineScenario(s, starts[0].state, 2.0 * fine)},
-                    processes, stop_requested);
-    fine_initial = pair[0];
-    if (agree(pair[0], pair[1], s.metrics.tolerance, 1.0 / fine)) {
+    if (agree(fine_initial, finer, s.metrics.tolerance, 1.0 / fine)) {
       out.confirmed_at = 2.0 * fine;
       break;
     }
     if (2.0 * fine >= max_refinement * out.rate) break;
     fine *= 2.0;
+    refined = true;
+    fine_initial = finer;
+    finer = simulateAll({fineScenario(s, starts[0].state, 2.0 * fine)}, threads, stop_requested).front();
   }
   out.fine_rate = fine;
 
-  // The sampled loop from every start (the first unless known), the fine one
-  // from the others.
-  std::vector<config::Scenario> runs;
-  for (size_t i = known_first ? 1 : 0; i < starts.size(); ++i)
-    runs.push_back(sampledScenario(s, starts[i].state));
-  for (size_t i = 1; i < starts.size(); ++i) runs.push_back(fineScenario(s, starts[i].state, fine));
-  const std::vector<Loop> loops = simulateAll(runs, processes, stop_requested);
   std::vector<Loop> sampled_loops;
   if (known_first) sampled_loops.push_back(*known_first);
-  const size_t simulated_sampled = starts.size() - sampled_loops.size();
-  sampled_loops.insert(sampled_loops.end(), loops.begin(),
-                       loops.begin() + static_cast<long>(simulated_sampled));
+  sampled_loops.insert(sampled_loops.end(), loops.begin() + 2,
+                       loops.begin() + 2 + static_cast<long>(simulated_sampled));
   std::vector<Loop> fine_loops = {fine_initial};
-  fine_loops.insert(fine_loops.end(), loops.begin() + static_cast<long>(simulated_sampled), loops.end());
+  if (!refined) {
+    fine_loops.insert(fine_loops.end(), loops.begin() + 2 + static_cast<long>(simulated_sampled),
+                      loops.end());
+  } else {  // F was refined: the other starts' fine loops at the F confirmed
+    std::vector<config::Scenario> refined;
+    for (size_t i = 1; i < starts.size(); ++i) refined.push_back(fineScenario(s, starts[i].state, fine));
+    const std::vector<Loop> again = simulateAll(refined, threads, stop_requested);
+    fine_loops.insert(fine_loops.end(), again.begin(), again.end());
+  }
 
   const double period = 1.0 / out.rate;
   std::vector<std::string> whys;
@@ -430,7 +374,7 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
   if (suspect) {
     const double offset = starts[0].error > 0.0 ? std::min(kProbeTolerances * out.tolerance, starts[0].error)
                                                 : kProbeTolerances * out.tolerance;
-    probe = simulateAll({probeScenario(s, offset)}, processes, stop_requested).front();
+    probe = simulateAll({probeScenario(s, offset)}, threads, stop_requested).front();
     const bool grew = probeGrew(*probe, offset, fine_initial.error, out.tolerance);
     char buf[512];
     char ended[96];
@@ -531,8 +475,8 @@ SampledSimulation notAssessedExternal(const config::Scenario& s) {
 
 SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
   if (s.controller.type == "external" || s.plant.external()) return notAssessedExternal(s);
-  const int processes = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  return check(s, startsOf(s), kMaxRefinement, processes, std::nullopt);
+  const int threads = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return check(s, startsOf(s), kMaxRefinement, threads, std::nullopt);
 }
 
 SampledSimulation judgeRun(const config::Scenario& s, const LoopOutcome& run, bool (*stop_requested)()) {

@@ -48,7 +48,11 @@ namespace lagrange::wiring {
 inline constexpr int kSeededStates = 2;
 
 /// The verdict for the scenario at its plant.publish_rate. Runs the
-/// simulations in up to `jobs` child processes at a time (0: one per core).
+/// simulations in process on up to `jobs` threads at a time, the calling
+/// thread one of them (0: one per core; 1: all on the calling thread). The
+/// verdict is the same whatever `jobs` (each simulation is its scenario's
+/// alone, and the results are read in a fixed order); safe to call from
+/// several threads at once (lagrange tune's workers, with jobs = 1).
 controller::SampledSimulation simulateSampledData(const config::Scenario& scenario, int jobs = 0);
 
 /// What one loop did: "completed", or "diverged" (the simulation was
@@ -59,8 +63,8 @@ struct LoopOutcome {
   double error = 0.0;
 };
 
-/// Thrown by judgeRun when its stop check turns true: the children are
-/// killed and no verdict is made (a sweep runs the row again on a restart).
+/// Thrown by judgeRun when its stop check turns true: the simulations end
+/// and no verdict is made (a sweep runs the row again on a restart).
 struct SimulationStopped : lagrange::RuntimeFault {
   SimulationStopped() : lagrange::RuntimeFault("the sampled-data simulation was stopped") {}
 };
@@ -72,10 +76,10 @@ inline constexpr int kRunRefinement = 16;
 /// The verdict for one run already made in process from the scenario's
 /// initial state (a sweep's row: `run` is that loop at the configured rate),
 /// against the fine-rate loop from the same start: 8 x the rate, confirmed at
-/// 16 x (else "not assessed"), in one child process at a time. No seeded
+/// 16 x (else "not assessed"), one at a time on the calling thread. No seeded
 /// starts: the row is the start. A realtime scenario is judged as the
 /// in-process loop it ran, without the one-period delay. `stop_requested`,
-/// if given, is asked every 100 ms while a child simulates.
+/// if given, is asked every 100 ticks of a simulation.
 /// @throws SimulationStopped once `stop_requested` returns true.
 controller::SampledSimulation judgeRun(const config::Scenario& scenario, const LoopOutcome& run,
                                        bool (*stop_requested)() = nullptr);

@@ -9,6 +9,7 @@
 #include "config/scenario.hpp"
 #include "controller/gain_report.hpp"
 #include "controller/gain_suggestion.hpp"
+#include "model/reference.hpp"
 #include "tools/command_error.hpp"
 #include "util/error.hpp"
 #include "util/terminal_text.hpp"
@@ -78,6 +79,9 @@ int checkGainsCommand(const std::string& config_path, const std::vector<std::str
                       bool suggest_gains, bool simulate) {
   try {
     const config::Scenario s = config::loadScenario(config_path, overrides);
+    // Held while the checks run: a free_motion reference is then integrated
+    // once for the report, the simulations and the suggestion (model/reference.hpp).
+    const model::Reference reference(s.reference);
     controller::GainReport r = controller::checkGains(s);
     // With --suggest the simulation is the suggestion's (seconds each): the
     // configured gains get the conditions and the linearised check.
