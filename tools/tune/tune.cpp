@@ -105,7 +105,10 @@ std::vector<std::string> whatBinds(const TuneProblem& p, const std::vector<TuneE
                   (p.torque_from_saturation ? "actuator.saturation" : "the input gains' peak") +
                   "); the least found was " + shortNumber(lightest->peak_torque) + " N m (" +
                   gainsText(lightest->gains) + ")");
-  if (!fastest && !lightest) {
+  // (Candidates eq. (12) kept out with --require-condition were never run.)
+  const bool any_run =
+      std::any_of(all.begin(), all.end(), [](const TuneEvaluation& e) { return !e.status.empty(); });
+  if (!fastest && !lightest && any_run) {
     // Nothing met the metric from the initial state: the closest, and what
     // the linearised check says of the rate at its gains.
     const TuneEvaluation* closest = nullptr;
@@ -113,7 +116,7 @@ std::vector<std::string> whatBinds(const TuneProblem& p, const std::vector<TuneE
       if (!e.status.empty() && std::isfinite(e.final_error) &&
           (!closest || e.final_error < closest->final_error))
         closest = &e;
-    std::string text = "the metric: no gains tried met it from the initial state (converged to " +
+    std::string text = "the metric: no gains run met it from the initial state (||q~|| below " +
                        shortNumber(p.input.metrics.tolerance) + " rad by " +
                        shortNumber(p.input.metrics.convergence_deadline) + " s)";
     if (closest) {
