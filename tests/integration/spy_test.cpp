@@ -1,6 +1,8 @@
-// `lagrange spy` for real: under a virtual display (Xvfb), a realtime run in
-// its own private network namespace, lcm-spy started on it by `lagrange spy
-// OUT`, a screenshot of its window read back by OCR (tesseract). The project's
+// `lagrange spy` for real: under a virtual display (Xvfb), `lagrange spy OUT`
+// started first, as the README's tour types it, waits for the run; a
+// realtime run in its own private network namespace then starts there, and
+// lcm-spy on it is read back from a screenshot of its window by OCR
+// (tesseract). The project's
 // types must be decoded: lcm-spy reports finding them, and the Type column
 // names them. A control run of the same lcm-spy without the project's types
 // jar finds none, so the check can fail.
@@ -12,6 +14,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <regex>
 #include <sstream>
@@ -61,22 +64,34 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
       << "Xvfb did not start: " << slurp(dir + "/xvfb.log");
   setenv("DISPLAY", display.c_str(), 1);
 
-  // A run long enough to watch, in its own network namespace (the default),
-  // where `lagrange spy --help`'s example looks for it.
   const std::string run = dir + "/runs/live";
-  Child scenario({kBin + "/lagrange", "run", std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml",
-                  "-o", run, "--mode", "realtime", "--set", "duration=60", "-q"},
-                 dir + "/run.out");
-  ASSERT_TRUE(waitFor([&] { return fs::exists(run + "/lcm.json"); }, 20)) << slurp(dir + "/run.out");
-
+  std::unique_ptr<Child> scenario;
   std::string letters;
   {
-    // The example `lagrange spy --help` ends with, typed in the run's folder.
+    // The example `lagrange spy --help` ends with, typed in the run's folder
+    // before the run: it waits, and says how to start one.
     const CommandHelp help = commandHelp("spy");
     ASSERT_EQ(help.examples, std::vector<std::string>{"lagrange spy runs/live"}) << help.text;
     Child spy(
         {"sh", "-c", "cd " + quote(dir) + " && PATH=" + quote(kBin) + ":\"$PATH\" exec " + help.examples[0]},
         dir + "/spy.out");
+    ASSERT_TRUE(waitFor(
+        [&] {
+          return slurp(dir + "/spy.out")
+                     .find(
+                         "lagrange spy: waiting for a live run in runs/live (start one with: lagrange run "
+                         "SCENARIO --mode realtime --out runs/live); Ctrl-C stops") != std::string::npos;
+        },
+        10))
+        << slurp(dir + "/spy.out");
+    EXPECT_TRUE(spy.running()) << slurp(dir + "/spy.out");
+    // The run, long enough to watch, in its own network namespace (the default).
+    scenario = std::make_unique<Child>(
+        std::vector<std::string>{kBin + "/lagrange", "run",
+                                 std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid_2dof.yaml", "-o", run,
+                                 "--mode", "realtime", "--set", "duration=60", "-q"},
+        dir + "/run.out");
+    ASSERT_TRUE(waitFor([&] { return fs::exists(run + "/lcm.json"); }, 20)) << slurp(dir + "/run.out");
     ASSERT_TRUE(waitFor([&] { return slurp(dir + "/spy.out").find("LCM types") != std::string::npos; }, 30))
         << slurp(dir + "/spy.out");
     // Traffic fills the table: read it until four of the types show (a
@@ -127,8 +142,31 @@ TEST(Spy, ShowsTheProjectsMessagesDecodedOnARunInItsPrivateNamespace) {
     EXPECT_NE(control_letters.find("scenario"), std::string::npos)  // the OCR did read the table
         << control_letters;
   }
-  scenario.signal(SIGINT);
-  EXPECT_GE(scenario.wait(30), 0);
+  scenario->signal(SIGINT);
+  EXPECT_GE(scenario->wait(30), 0);
+}
+
+// Without Xvfb or a run: a folder that never holds a run is named when the
+// wait ends -- what it is, what was expected, the wait -- not CLI11's "run:
+// Directory does not exist"; without a display spy says so before waiting.
+TEST(SpyFolder, AMissingRunFolderIsNamedWithWhatWasExpected) {
+  const std::string dir = freshDir("spy-folder");
+  fs::create_directories(dir);
+  const RunResult r =
+      shell("cd " + quote(dir) + " && DISPLAY=:9 " + kBin + "/lagrange spy runs/live --wait 0.5");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("lagrange spy: waiting for a live run in runs/live"), std::string::npos)
+      << r.output;
+  EXPECT_NE(
+      r.output.find("lagrange spy: the run folder runs/live does not exist; expected the output folder of a "
+                    "running `lagrange run SCENARIO --mode realtime --out runs/live` (waited 0.5 s: --wait)"),
+      std::string::npos)
+      << r.output;
+  const RunResult headless =
+      shell("cd " + quote(dir) + " && env -u DISPLAY " + kBin + "/lagrange spy runs/live");
+  EXPECT_EQ(headless.exit_code, 2) << headless.output;
+  EXPECT_NE(headless.output.find("DISPLAY is not set"), std::string::npos) << headless.output;
+  EXPECT_EQ(headless.output.find("waiting"), std::string::npos) << headless.output;
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 // The logic of `lagrange spy`, `report` and `replay` that needs no run:
-// the endpoint file a run leaves for spy and view (tools/spy/spy.hpp), the
+// the endpoint file a run leaves for spy and view (tools/spy/spy.hpp), how
+// spy waits for a run to be going in a folder (tools/spy/live_run.hpp), the
 // plots report draws from a run's CSV files (tools/report/plots.hpp), and
 // replay's bit-for-bit comparison (tools/replay/replay_log.hpp).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +15,15 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/temp_dir.hpp"
 #include "tools/replay/replay_log.hpp"
 #include "tools/report/plots.hpp"
+#include "tools/spy/live_run.hpp"
 #include "tools/spy/spy.hpp"
 #include "util/error.hpp"
 #include "util/number_text.hpp"
@@ -76,6 +82,78 @@ TEST_F(SubcommandLogic, SpyRefusesAMissingOrForeignEndpointFileNamingIt) {
       EXPECT_NE(std::string(e.what()).find("is not what lagrange run writes"), std::string::npos) << e.what();
     }
   }
+}
+
+// What a folder holds, as spy's wait sees it; each state not a live run is
+// said with what was expected and how to start one.
+TEST_F(SubcommandLogic, SpyTellsAMissingFolderAnEmptyOneAndAnEndedRunApart) {
+  const std::string missing = dir_ + "/runs/live";
+  LiveRunProbe p = probeLiveRun(missing);
+  EXPECT_EQ(p.state, LiveRunProbe::State::kMissing);
+  EXPECT_EQ(notLiveText(missing, p),
+            "the run folder " + missing +
+                " does not exist; expected the output folder of a running `lagrange run "
+                "SCENARIO --mode realtime --out " +
+                missing + "`");
+  p = probeLiveRun(dir_);
+  EXPECT_EQ(p.state, LiveRunProbe::State::kNoEndpoint);
+  EXPECT_NE(notLiveText(dir_, p).find("inproc runs have no LCM traffic"), std::string::npos);
+  writeFile("lcm.json", "{not json");
+  p = probeLiveRun(dir_);
+  EXPECT_EQ(p.state, LiveRunProbe::State::kRefused);
+  EXPECT_NE(notLiveText(dir_, p).find("is not what lagrange run writes"), std::string::npos);
+  // A launcher that is gone: a child of this test, exited and reaped.
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  ASSERT_GT(child, 0);
+  waitpid(child, nullptr, 0);
+  writeFile("lcm.json", R"({"lcm_url": "udpm://239.255.76.67:7667?ttl=0", "run_id": 1, "netns_pid": null,)"
+                        R"( "launcher_pid": )" +
+                            std::to_string(child) + "}");
+  p = probeLiveRun(dir_);
+  EXPECT_EQ(p.state, LiveRunProbe::State::kEnded);
+  EXPECT_NE(notLiveText(dir_, p).find("has ended (its launcher, pid " + std::to_string(child)),
+            std::string::npos);
+  writeFile("file", "");
+  EXPECT_EQ(probeLiveRun(dir_ + "/file").state, LiveRunProbe::State::kNotAFolder);
+}
+
+// spy started before the run: it says it waits (once) and how to start a
+// run, and returns the run's endpoint once the folder holds a going run's
+// lcm.json; given up, it names what the folder held and the wait.
+TEST_F(SubcommandLogic, SpyWaitsForARunToAppearAndSaysWhatItWaitedFor) {
+  const std::string live = dir_ + "/runs/live";
+  std::ostringstream said;
+  int before = 0;
+  std::thread run([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    std::filesystem::create_directories(live);
+    // Half written first, as a reader may find it: looked at again, not refused at once.
+    std::ofstream(live + "/lcm.json") << R"({"lcm_url": "udpm://239.255.)";
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    std::ofstream(live + "/lcm.json")
+        << R"({"lcm_url": "udpm://239.255.76.67:7701?ttl=0", "netns_pid": null})";
+  });
+  const RunEndpoint e = waitForLiveRun(live, 60, said, [&] { ++before; });
+  run.join();
+  EXPECT_EQ(e.lcm_url, "udpm://239.255.76.67:7701?ttl=0");
+  EXPECT_EQ(before, 1);
+  EXPECT_EQ(said.str(), "lagrange spy: waiting for a live run in " + live +
+                            " (start one with: lagrange run SCENARIO --mode realtime --out " + live +
+                            "); Ctrl-C stops\n");
+
+  const std::string never = dir_ + "/never";
+  try {
+    waitForLiveRun(never, 0.3, said, [] {});
+    FAIL() << "a folder that never appeared was waited for and accepted";
+  } catch (const BadInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the run folder " + never + " does not exist; expected"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("(waited 0.3 s: --wait)"), std::string::npos) << e.what();
+  }
+  // Nothing to wait for: what before_waiting throws ends the wait before it starts.
+  EXPECT_THROW(waitForLiveRun(never, 60, said, [] { throw BadInput("no display"); }), BadInput);
 }
 
 TEST_F(SubcommandLogic, ReportDrawsOnlyWhatTheCsvFilesHold) {

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "tools/command_error.hpp"
+#include "tools/spy/live_run.hpp"
 #include "util/error.hpp"
 #include "util/input_file.hpp"
 #include "util/output_file.hpp"
@@ -183,11 +184,31 @@ std::vector<std::string> spyCommand(const std::string& lcm_url) {
   return cmd;
 }
 
+namespace {
+const char* const kNoDisplay =
+    "lcm-spy opens a window and DISPLAY is not set (log in with ssh -X, or use a virtual display: xvfb-run "
+    "lagrange spy ...)";
+
+// The run in `dir`: printing the command takes lcm.json as it is (a run
+// ended too); lcm-spy itself waits up to `seconds` for a run to be going.
+RunEndpoint runIn(const std::string& dir, bool print_only, double seconds) {
+  if (!print_only)
+    return waitForLiveRun(dir, seconds, std::cerr, [] {
+      if (std::getenv("DISPLAY") == nullptr)
+        throw BadInput(kNoDisplay);  // said before a long wait, not after
+    });
+  const LiveRunProbe p = probeLiveRun(dir);
+  if (p.state != LiveRunProbe::State::kLive && p.state != LiveRunProbe::State::kEnded)
+    throw BadInput(notLiveText(dir, p));
+  return p.endpoint;
+}
+}  // namespace
+
 int runSpy(const SpyOptions& opt) {
   try {
     std::string url = opt.lcm_url;
     if (!opt.run_dir.empty()) {
-      const RunEndpoint e = readEndpoint(opt.run_dir);
+      const RunEndpoint e = runIn(opt.run_dir, opt.print_only, opt.wait_seconds);
       if (url.empty()) url = e.lcm_url;
       // Only the namespace of a live launcher (readEndpoint: netns_pid is
       // the launcher's): a file written before launcher_pid existed names
@@ -205,10 +226,7 @@ int runSpy(const SpyOptions& opt) {
       for (const auto& c : cmd) std::cout << c << (&c == &cmd.back() ? "\n" : " ");
       return kExitOk;
     }
-    if (std::getenv("DISPLAY") == nullptr)
-      throw BadInput(
-          "lcm-spy opens a window and DISPLAY is not set (log in with ssh -X, or use a virtual "
-          "display: xvfb-run lagrange spy ...)");
+    if (std::getenv("DISPLAY") == nullptr) throw BadInput(kNoDisplay);
     std::vector<char*> argv;
     for (const auto& c : cmd) argv.push_back(const_cast<char*>(c.c_str()));
     argv.push_back(nullptr);

@@ -1,12 +1,13 @@
 #pragma once
 /// @file
-/// `lagrange spy [RUN_DIR] [--lcm-url URL]`: LCM's own lcm-spy with this
+/// `lagrange spy [RUN_DIR] [--lcm-url URL] [--wait S]`: LCM's own lcm-spy with this
 /// project's message types, on the LCM URL of a running scenario. Debian's
 /// lcm-spy script cannot be used as it is: it passes -Xincgc, which current
 /// Java refuses, and its class path lacks user types, so every channel
 /// would show as undecodable. A run started by `lagrange run` leaves
 /// OUT/lcm.json (its URL and, for a private network namespace, the pid whose
-/// namespace to join), so `lagrange spy OUT` sees that run's traffic.
+/// namespace to join), so `lagrange spy OUT` sees that run's traffic -- and
+/// waits for it when started first (live_run.hpp).
 
 #include <optional>
 #include <string>
@@ -61,10 +62,13 @@ struct SpyOptions {
   std::string run_dir;  ///< empty: no run (use lcm_url, or LCM's default)
   std::string lcm_url;  ///< overrides the run's URL
   bool print_only = false;
+  /// How long to wait for a run to be going in run_dir (live_run.hpp); 0: look once.
+  double wait_seconds = 0.0;
 };
 
-/// Joins the run's network namespace and replaces this process with lcm-spy;
-/// returns an exit code only on failure (or with print_only).
+/// Waits for a run in run_dir (unless print_only), joins its network
+/// namespace and replaces this process with lcm-spy; returns an exit code
+/// only on failure (or with print_only).
 int runSpy(const SpyOptions& options);
 
 /// Declares `spy` and its options on the front end (tools/spy/spy_cli.cpp).
