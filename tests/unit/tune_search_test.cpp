@@ -102,6 +102,18 @@ TEST(TuneSearch, StartsAtTheStartItselfThenFindsTheBottomWithinTheBudget) {
   EXPECT_EQ(bowl.calls.front(), (std::vector<double>{1.0, 1.5, 2.0}));  // exactly, not exp(log(x))
   EXPECT_EQ(bowl.phases.front(), SearchPhase::kStart);
   EXPECT_LE(out.evaluations, 300);
+  for (int budget : {37, 61, 95}) {  // never one over, whichever phase the budget ends in
+    SearchSettings b = s;
+    b.max_evaluations = budget;
+    b.global_evaluations = 40;
+    int calls = 0;
+    Bowl eight{std::vector<double>(8, 2.0)};
+    search(box(8), b, [&](const auto& x, SearchPhase p) {
+      ++calls;
+      return eight(x, p);
+    });
+    EXPECT_LE(calls, budget);
+  }
   EXPECT_EQ(out.evaluations, static_cast<int>(bowl.calls.size()));
   EXPECT_TRUE(std::count(bowl.phases.begin(), bowl.phases.end(), SearchPhase::kLocal) > 0);
   for (const auto& x : bowl.calls)

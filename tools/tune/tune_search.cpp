@@ -43,6 +43,12 @@ double call(Run& run, const std::vector<double>& log_point) {
   // Stopped: NLopt may call again before it looks (CRS2 draws its whole
   // population first); the objective is not asked again.
   if (run.error) return std::numeric_limits<double>::infinity();
+  // The budget is the caller's: NLopt's own count may run one over (CRS2's
+  // mutation step evaluates two points before it looks).
+  if (run.left <= 0) {
+    if (run.opt) run.opt->force_stop();
+    return std::numeric_limits<double>::infinity();
+  }
   std::vector<double> point(log_point.size());
   for (size_t i = 0; i < point.size(); ++i)
     point[i] = log_point[i] == run.log_start[i] ? run.start[i] : std::exp(log_point[i]);
