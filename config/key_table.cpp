@@ -98,7 +98,7 @@ std::vector<KeyInfo> armKeys() {
           "joints stay rigid, and every branch off the chain (the Panda's fingers) is held at its zero "
           "position with its mass lumped into the link it hangs from. Gravity acts along the URDF "
           "world's −z, base_link's frame is the world (a fixed base). URDF joint limits and `<dynamics "
-          "damping friction>` are not in the controllers' model (lossless, eq. 10); the plant applies "
+          "damping friction>` are not in the controllers' model (lossless, eq. (1)); the plant applies "
           "them only when asked (`plant.urdf_dynamics`, `plant.joint_limits`, `actuator.saturation: "
           "urdf`), and `lagrange run` lists them at start. Refused before anything starts, with the file and "
           "the link or joint named: a "
@@ -118,7 +118,7 @@ std::vector<KeyInfo> armKeys() {
       row("robot.gravity", "number ≥ 0", "`9.81`", "g [m/s²], downwards in the plane of motion.",
           {0.0, 1e3, false, "m/s^2", "about 100 g"}),
       row("robot.flexible.stiffness", "vector or scalar > 0", "— (section optional)",
-          "K [N m/rad]: elastic joints (eq. 595), each joint driven through a torsional spring by a "
+          "K [N m/rad]: elastic joints (eq. (41)), each joint driven through a torsional spring by a "
           "base-mounted rotor.",
           {0.0, 1e12, true, "N m/rad", ""}),
       row("robot.flexible.rotor_inertia", "vector or scalar > 0", "required with `flexible`",
@@ -147,7 +147,7 @@ std::vector<KeyInfo> referenceKeys() {
       row("reference.type", "string", "required",
           "`sine`: q_d,i = b_i + c_i sin(w_i t + p_i); `smooth_sine`: the same times (1 − exp(−alpha_i "
           "t³)); `free_motion`: the unforced motion D(q)q'' + C(q,q')q' + g(q) = 0 of the configured "
-          "robot (Assumption 2 of Theorems 2 and 3), integrated by RK4 with a 0.1 ms step over the run "
+          "robot (Assumption 2 of Theorems 5 and 6), integrated by RK4 with a 0.1 ms step over the run "
           "and a second more (derivatives up to q_d'' only). Sinusoids are not free motions: the "
           "cascaded controller then warns that the theorems' hypothesis does not hold"),
       only("free_motion",
@@ -231,7 +231,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "viscous damping of the arm's joints, D_i [N m s/rad]: a torque −D_i q̇_i in the plant (on ODE a "
           "motor solved with the step, so stable for any D; on MuJoCo the joint's `damping`, explicit "
           "under `plant.mujoco_integrator: rk4`), which the controllers' lossless model "
-          "(eq. 10) does not know. Overrides the URDF's `<dynamics damping>` under `plant.urdf_dynamics`. "
+          "(eq. (1)) does not know. Overrides the URDF's `<dynamics damping>` under `plant.urdf_dynamics`. "
           "PLANT_TRUTH's energies then fall by what the damping and the friction take: E(t) − E(0) = "
           "∫ τᵀq̇ − ∫ (D q̇² + F |q̇|) dt without stops (a test holds it on a run's log).",
           {0.0, 1e6, false, "N m s/rad", ""}),
@@ -289,7 +289,7 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
           "the same plant.",
           {0.0, 1e9, false, "", ""}),
       row("actuator.order", "integer 0–4", "`0`",
-          "m, the order of the actuator's integrator chain (eq. 600): 0, the torque passes through "
+          "m, the order of the actuator's integrator chain (eq. (39)): 0, the torque passes through "
           "(controller `theorem1`); m ≥ 1, u drives xi_m' and xi_1 is the torque (controller "
           "`cascaded`). The chain is integrated exactly for u held over each period; the plant applies "
           "xi_1 as it is at each actuator update (`actuator.rate`), held in between.",
@@ -313,9 +313,10 @@ std::vector<KeyInfo> plantAndActuatorKeys() {
 std::vector<KeyInfo> controllerKeys() {
   return {
       row("controller.type", "string", "required",
-          "`theorem1`: eq. (90), for `actuator.order` 0; `cascaded`: eqs. (610a), (750), for "
+          "`theorem1`: Theorem 4, eq. (13), for `actuator.order` 0; `cascaded`: Theorem 5, eqs. (48), (66), "
+          "for "
           "`actuator.order` ≥ 1 (its stage 0 takes `kp`, `kd`, `a`, `b`, `initial_filter_state` "
-          "below); `flexible`: the Corollary, eq. (830), for an arm with `robot.flexible` and "
+          "below); `flexible`: Corollary 3, eq. (83), for an arm with `robot.flexible` and "
           "`actuator.order` 0 (the cascade with m = 2 on xi_1 = K q2, xi_2 = K q2'; stages below); "
           "`pd_plus_differenced`: PD+ with the velocity replaced by the backward difference of the "
           "positions, a baseline (docs/baselines.md; keys `kp`, `kd`, `actuator.order` 0); "
@@ -433,7 +434,8 @@ std::vector<KeyInfo> judgementKeys() {
       row("supervision.restart", "list of `controller`, `actuator`", "`[]`",
           "processes the launcher restarts when they die (crash, signal): a fresh process with a fresh "
           "state takes over mid-run. In realtime the plant's stale-torque policy holds the arm "
-          "meanwhile; a restarted Theorem 1 controller starts its filter afresh and brings the arm "
+          "meanwhile; a restarted Theorem 4 (`theorem1`) controller starts its filter afresh and brings the "
+          "arm "
           "back from wherever the gap left it. That it does is what the tests show for the shipped "
           "configs; the paper's *global* result is about the continuous-time loop, and the sampled 1 "
           "kHz loop is only covered locally, by the linearised sampled-data check, and from three "

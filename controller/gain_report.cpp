@@ -47,12 +47,12 @@ GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {
     if (s.reference.type != model::ReferenceType::kFreeMotion)
       r.warnings.push_back(
           "the reference (" + std::string(model::toString(s.reference.type)) +
-          ") is not a free motion of the " + (s.flexible ? "arm with its springs (eq. 608)" : "arm") +
-          ": Assumption 2, a hypothesis of Theorems 2 and 3" + (s.flexible ? " and the Corollary" : "") +
+          ") is not a free motion of the " + (s.flexible ? "arm with its springs (eq. (46))" : "arm") +
+          ": Assumption 2, a hypothesis of Theorems 5 and 6" + (s.flexible ? " and Corollary 3" : "") +
           ", does not hold, so their guarantee does not apply to this run");
     if (s.controller.type == "flexible" && paper.motor_rate == MotorRate::kFiltered)
       r.warnings.push_back(
-          "motor_rate: filtered estimates q2' by a dirty derivative; the Corollary assumes xi_2 = K q2' "
+          "motor_rate: filtered estimates q2' by a dirty derivative; Corollary 3 assumes xi_2 = K q2' "
           "is measured, so its guarantee does not cover this controller");
     r.eta = model::estimateEta(*arm, reference, g0.kp, g0.kd, g0.a, g0.b);
     if (paper.stages.size() == 1) {
@@ -98,7 +98,7 @@ std::string describe(const GainReport& r) {
                 r.kdelta_exact ? "closed form" : "estimate: sampled supremum x 1.02");
   std::string out = line(r.condition) + "  [" + kc + ", " + kdelta + "]";
   if (!r.kc_proven || !r.kdelta_exact)
-    out += std::string("\n  (eq. (11)'s verdict rests on the estimated ") +
+    out += std::string("\n  (eq. (12)'s verdict rests on the estimated ") +
            (!r.kc_proven && !r.kdelta_exact ? "k_c and k_delta"
             : !r.kc_proven                  ? "k_c"
                                             : "k_delta") +
@@ -107,13 +107,13 @@ std::string describe(const GainReport& r) {
     char eta[320];
     std::snprintf(eta, sizeof eta,
                   "\nestimated eta_1 = %.6g, eta_2 = %.6g (sampled suprema refined by local ascent, x 1.1), "
-                  "eta_3 = %.6g (exact) (bound 650); the verdicts below rest on these estimates",
+                  "eta_3 = %.6g (exact) (bound (54)); the verdicts below rest on these estimates",
                   r.eta->eta1, r.eta->eta2, r.eta->eta3);
     out += eta;
   }
   for (const auto& c : r.chain) out += "\n" + line(c);
   if (!r.proposition.empty()) {
-    out += std::string("\nProposition 1 (constructive, sufficient for Theorem 3) ") +
+    out += std::string("\nProposition 1 (constructive, sufficient for Theorem 6) ") +
            (r.propositionHolds() ? "HOLDS:" : "does not hold:");
     for (const auto& c : r.proposition) out += "\n  " + line(c);
   }

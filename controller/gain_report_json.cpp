@@ -37,7 +37,9 @@ double numberFrom(const json& j) {
 }
 
 json conditionJson(const model::ConditionReport& c) {
+  const std::string label = model::paperLabel(c.name);
   return {{"name", c.name},
+          {"paper_label", label.empty() ? json(nullptr) : json(label)},
           {"expression", c.expression},
           {"lhs", number(c.lhs)},
           {"rhs", number(c.rhs)},

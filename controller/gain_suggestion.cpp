@@ -88,7 +88,7 @@ config::Scenario suggestGains(const config::Scenario& in) {
           "Proposition 1's constructive gains for m = " + std::to_string(m) + " overflow " +
           "double precision at stage " + std::to_string(i) +
           " (they grow like e^(3^(i-1)), e = eta_2^2 + eta_3^2); expected m <= " + std::to_string(i - 1) +
-          " for this rule, or gains checked against Theorem 3 directly");
+          " for this rule, or gains checked against Theorem 6 directly");
   }
   return s;
 }
@@ -229,7 +229,7 @@ GainSearch searchTheorem1(const config::Scenario& in) {
   }
   out.sufficient_rate = best_rate;
   std::string binding =
-      "eq. (11) against the rate: eq. (11) asks kd_min b_min / a_max > 2 k_c k_delta = " +
+      "eq. (12) against the rate: eq. (12) asks kd_min b_min / a_max > 2 k_c k_delta = " +
       number(2.0 * kc * out.kdelta) + " (k_c " + number(kc) + ", k_delta " + number(out.kdelta) +
       "), and no candidate that keeps it (kd at least " + number(kd_need) +
       " on every joint, the filter a, b scaled by 1/256 to 8, kp by 1 to 1/4; " +
@@ -240,10 +240,10 @@ GainSearch searchTheorem1(const config::Scenario& in) {
                        : "No rate up to 1024 x this one makes such a candidate adequate. ";
   binding += out.kdelta_allowed
                  ? "The reference's size binds through k_delta: gains stable at " + number(rate) +
-                       " Hz meet eq. (11) only for k_delta < " + number(*out.kdelta_allowed) +
+                       " Hz meet eq. (12) only for k_delta < " + number(*out.kdelta_allowed) +
                        ", and this reference's is " + number(out.kdelta) +
                        " (a smaller or slower reference: reference.offset, amplitude, frequency)"
-                 : "No gains tried are stable at " + number(rate) + " Hz even without eq. (11)";
+                 : "No gains tried are stable at " + number(rate) + " Hz even without eq. (12)";
   out.binding = binding;
   return out;
 }

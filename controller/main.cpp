@@ -25,10 +25,11 @@ int DoMain(int argc, char** argv) {
   std::string gains_path;
   controller::GainReport gains;
   return runtime::runProcess(
-      "controller", "The scenario's controller.type over LCM (Theorem 1, eq. 90; eq. 750; eq. 830)", argc,
+      "controller", "The scenario's controller.type over LCM (Theorem 4, eq. (13); eq. (66); eq. (83))", argc,
       argv,
       {{"--strict", &strict,
-        "Refuse to start when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated"},
+        "Refuse to start when an evaluated gain condition (eq. (12); eqs. (56a)-(56c) for m = 1) is "
+        "violated"},
        {"--gains", &gains_path,
         "The launcher's gain report of this scenario (OUT/gains.json), instead of checking the gains again"}},
       // The launcher prints the sampled-data check; here it would only delay the first tick.

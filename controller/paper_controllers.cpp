@@ -103,7 +103,7 @@ ControllerKind paperKind(const char* type, int listing) {
 
 std::vector<ControllerKind> paperControllerKinds() {
   ControllerKind flexible = paperKind<Flexible>("flexible", 2);
-  flexible.elastic_joints_title = "the flexible controller (eq. 830)";
+  flexible.elastic_joints_title = "the flexible controller (eq. (83))";
   return {paperKind<Theorem1>("theorem1", 0), paperKind<Cascaded>("cascaded", 1), flexible};
 }
 

@@ -16,9 +16,16 @@ namespace {
 // (a program from outside reports NaN for what it does not measure).
 nlohmann::json measured(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
+// name: the paper's printed number; paper_label: its LaTeX source's label (null: not numbered).
 nlohmann::json conditionJson(const model::ConditionReport& c) {
-  return {{"name", c.name}, {"expression", c.expression}, {"lhs", c.lhs},
-          {"rhs", c.rhs},   {"holds", c.holds},           {"margin", c.margin()}};
+  const std::string label = model::paperLabel(c.name);
+  return {{"name", c.name},
+          {"paper_label", label.empty() ? nlohmann::json() : nlohmann::json(label)},
+          {"expression", c.expression},
+          {"lhs", c.lhs},
+          {"rhs", c.rhs},
+          {"holds", c.holds},
+          {"margin", c.margin()}};
 }
 
 // gains: the controller's stability conditions and the constants they rest on.

@@ -155,13 +155,13 @@ std::vector<ConditionReport> theorem2Conditions(double kc, double kdelta, const 
   const double e2 = eta.eta2 * eta.eta2, e3 = eta.eta3 * eta.eta3;
   return {
       makeCondition(
-          "eq. (632a)", "kd0_min (a0_min / (4 b0_max) - 1) > 3/2 + (k_c k_delta + 3/2) (a0_max / b0_min)^2",
+          "eq. (56a)", "kd0_min (a0_min / (4 b0_max) - 1) > 3/2 + (k_c k_delta + 3/2) (a0_max / b0_min)^2",
           kd0.minCoeff() * (ratio_low / 4.0 - 1.0), 1.5 + (kc * kdelta + 1.5) * ratio_high * ratio_high),
-      makeCondition("eq. (632b)", "kp1_min > (eta_2^2 + eta_3^2) / 2 + 2", kp1.minCoeff(),
+      makeCondition("eq. (56b)", "kp1_min > (eta_2^2 + eta_3^2) / 2 + 2", kp1.minCoeff(),
                     0.5 * (e2 + e3) + 2.0),
       // As printed, (632c) reads a1 > (eta_2^2 + eta_3^2 b1^2 + 1) / 2; the proof's
       // own bound (700) and the alpha_3 before (745) need b1^2 on eta_2^2 too.
-      makeCondition("eq. (632c)", "a1_min > (b1_max^2 (eta_2^2 + eta_3^2) + 1) / 2 (corrected reading)",
+      makeCondition("eq. (56c)", "a1_min > (b1_max^2 (eta_2^2 + eta_3^2) + 1) / 2 (corrected reading)",
                     a1.minCoeff(), 0.5 * (b1.maxCoeff() * b1.maxCoeff() * (e2 + e3) + 1.0)),
   };
 }

@@ -10,7 +10,7 @@ namespace lagrange::model {
 
 /// Verdict on one inequality "lhs > rhs".
 struct ConditionReport {
-  std::string name;        ///< e.g. "eq. (11)"
+  std::string name;        ///< the paper's printed number, e.g. "eq. (12)"
   std::string expression;  ///< the inequality in words
   double lhs = 0.0;
   double rhs = 0.0;
@@ -21,6 +21,11 @@ struct ConditionReport {
 
 /// A report of "lhs > rhs".
 ConditionReport makeCondition(const std::string& name, const std::string& expression, double lhs, double rhs);
+
+/// The LaTeX source's label of a condition named by its printed number ("eq. (12)" -> "11",
+/// "eq. (74)" -> "lego"; docs/citing.md's table), or "" for a condition the paper does not number
+/// (A Hurwitz, Q - diag(Q)/2 >= 0). The label is a secondary key: what the paper prints is the name.
+std::string paperLabel(const std::string& name);
 
 /// eq. (11) for per-joint gains kd, a, b (all positive) and the constants k_c, k_delta.
 ConditionReport theorem1Condition(const Eigen::VectorXd& kd, const Eigen::VectorXd& a,

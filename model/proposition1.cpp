@@ -65,18 +65,18 @@ std::vector<ConditionReport> proposition1Conditions(const EtaEstimate& eta,
   std::snprintf(tolerance, sizeof tolerance, "%g", kEqualityTolerance);
   const std::string tol = tolerance;
   return {
-      makeCondition("eq. (794a)", "kp1 = kd1: " + tol + " > |kp1 - kd1| / max(kp1, kd1) (worst joint)",
+      makeCondition("eq. (79a)", "kp1 = kd1: " + tol + " > |kp1 - kd1| / max(kp1, kd1) (worst joint)",
                     kEqualityTolerance, mismatch_794a),
-      makeCondition("eq. (794b)", "min{a1 / b1^2, kp1} > eta_2^2 + eta_3^2 (corrected reading; worst joint)",
+      makeCondition("eq. (79b)", "min{a1 / b1^2, kp1} > eta_2^2 + eta_3^2 (corrected reading; worst joint)",
                     w794b.lhs, w794b.rhs),
-      makeCondition("eq. (795a)",
+      makeCondition("eq. (80a)",
                     "kd_i^2 = kp_i (kp_i - kp_{i-1}) (the printed 4 kd_i under the root read as 4 kd_i^2): " +
                         tol + " > relative mismatch (worst joint and stage)",
                     kEqualityTolerance, mismatch_795a),
-      makeCondition("eq. (795b)",
+      makeCondition("eq. (80b)",
                     "kp_i > (eta_2^2 + eta_3^2) (prod_{j<i} beta_j)^2 + kp_{i-1} (worst joint and stage)",
                     w795b.lhs, w795b.rhs),
-      makeCondition("eq. (795c)",
+      makeCondition("eq. (80c)",
                     "a_i > (eta_2^2 + eta_3^2) (b_i prod_{j<i} beta_j)^2 (worst joint and stage)", w795c.lhs,
                     w795c.rhs),
       // Q - diag(Q)/2 >= 0  <=>  lambda_min(D Q D) >= 1/2, D = diag(Q)^-1/2 (a congruence).

@@ -145,26 +145,25 @@ std::vector<ConditionReport> theorem3Conditions(double kc, double kdelta, const 
   const double half = (m + 2) / 2.0;
   std::vector<ConditionReport> out;
   ConditionReport hurwitz_report = makeCondition(
-      "A Hurwitz (Theorem 3)",
+      "A Hurwitz (Theorem 6)",
       std::string("-max Re eig(A) > 0 (balanced A, worst joint)") +
           (certified ? "; the eigenvalues are inaccurate here, but -(A + A^T) > 0 proves A Hurwitz" : ""),
       hurwitz, 0.0);
   hurwitz_report.holds = all_hurwitz;
   out.push_back(hurwitz_report);
   out.push_back(makeCondition(
-      "eq. (lego)",
-      "kd0_min (a0_min / (4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max / b0_min)^2",
+      "eq. (74)", "kd0_min (a0_min / (4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max / b0_min)^2",
       kd0.minCoeff() * (low / 4.0 - m), half + (kc * kdelta + half) * high * high));
   if (all_hurwitz)
     out.push_back(makeCondition(
-        "eq. (786)",
+        "eq. (75)",
         std::string("lambda_min(D (Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2}) D) > 0, D = diag(Q)^-1/2, "
                     "the better of P = I with Q = -(A + A^T) and Q = I with P from the Lyapunov equation "
                     "(worst joint)") +
             (unsolved ? "; P could not be computed accurately for this A" : ""),
         lyapunov, 0.0));
   else
-    out.push_back(makeCondition("eq. (786)", "needs A Hurwitz first", -1.0, 0.0));
+    out.push_back(makeCondition("eq. (75)", "needs A Hurwitz first", -1.0, 0.0));
   return out;
 }
 

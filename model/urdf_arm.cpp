@@ -306,7 +306,7 @@ std::shared_ptr<const UrdfArm> UrdfArm::build(const UrdfChainSpec& spec) {
       impl->joint_properties.push_back(props);
       if (!unused.str().empty())
         impl->notes.push_back("joint '" + joint.name + "':" + unused.str() +
-                              " not in the controllers' model (lossless, eq. 10, without joint limits); the "
+                              " not in the controllers' model (lossless, eq. (1), without joint limits); the "
                               "plant applies them only when asked (plant.urdf_dynamics, plant.joint_limits)");
     }
     impl->chain.addSegment(KDL::Segment(link.name, kdl_joint, origin, inertia));

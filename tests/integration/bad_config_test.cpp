@@ -118,7 +118,7 @@ std::string chainConfig(int links) {
 }
 
 // The gain check of a long chain (check-gains, and the launcher's check of
-// eq. (11) before a run) takes seconds at the joint bound, and a chain past it
+// eq. (12) before a run) takes seconds at the joint bound, and a chain past it
 // is refused at once with the bound (50 links took 40 s and 6 GB, past 100 aborted).
 TEST(BadConfigFile, TheGainCheckOfTheLongestChainTakesSecondsAndALongerOneIsRefused) {
   const std::string longest = chainConfig(16);

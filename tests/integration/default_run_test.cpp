@@ -65,7 +65,7 @@ TEST_F(DefaultRun, ConvergesAndLeavesEveryOutput) {
   ASSERT_FALSE(j["tracking"]["convergence_time"].is_null());
   EXPECT_LE(j["tracking"]["convergence_time"].get<double>(), 5.0);
   EXPECT_LT(j["tracking"]["final_error"].get<double>(), 1e-3);
-  EXPECT_NE(result_.output.find("gain condition eq. (11) HOLDS"), std::string::npos);
+  EXPECT_NE(result_.output.find("gain condition eq. (12) HOLDS"), std::string::npos);
   // The log is complete: every tick's truth, the scenario first.
   const auto channels = readChannels(dir_ + "/run.lcm");
   ASSERT_FALSE(channels.empty());

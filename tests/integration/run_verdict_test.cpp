@@ -1,7 +1,7 @@
 // What a user reads first is what happened: runs a user met, each ending in
 // a block whose first line says it (logger/verdict.hpp decides it, the
 // result block, compare and sweep read it). A 3-link chain whose gains
-// satisfy eq. (11) but whose loop at 200 Hz is unstable flies off, and its
+// satisfy eq. (12) but whose loop at 200 Hz is unstable flies off, and its
 // block says "NOT met", the divergence and the rate that would suffice; a
 // plant that takes 1.5 s over one step in lockstep is named while it lasts
 // and counted in answers.plant.
@@ -18,7 +18,7 @@ namespace lagrange::testing {
 namespace {
 
 // The 5-link chain's first three links and gains (configs/rigid_5link.yaml):
-// eq. (11) holds; at 200 Hz the sampled loop is unstable.
+// eq. (12) holds; at 200 Hz the sampled loop is unstable.
 std::string threeLinkChain() {
   const std::string path = freshDir("verdict-3link") + ".yaml";
   std::ofstream(path) << R"(name: my_3link
@@ -45,7 +45,7 @@ TEST(RunVerdict, ADivergingChainEndsSayingNotMetTheDivergenceAndTheRate) {
   const RunResult r = runScenario(threeLinkChain(), out, "");
   const nlohmann::json s = readSummary(out);
   ASSERT_EQ(s["gains"]["sampled_data"]["verdict"], "unstable") << s["gains"].dump(2);
-  ASSERT_TRUE(s["gains"]["condition_holds"].get<bool>()) << "eq. (11) holds: only the sampled loop fails";
+  ASSERT_TRUE(s["gains"]["condition_holds"].get<bool>()) << "eq. (12) holds: only the sampled loop fails";
   const nlohmann::json& v = s["verdict"];
   EXPECT_EQ(v["tracking"], "NOT met") << v.dump(2);
   // The block's first line: the status, then the verdict with its reasons.

@@ -42,10 +42,13 @@ void expectItsStatedMetric(const std::string& name, const std::string& dir) {
   const auto j = readSummary(dir);
   EXPECT_TRUE(j["tracking"]["met"].get<bool>()) << j["tracking"].dump();
   const config::Scenario scenario = config::loadScenario(kConfigs + "/" + name + ".yaml");
-  if (scenario.controller.type == "theorem1") {  // the rigid arms, planar and URDF: eq. (11) holds
+  if (scenario.controller.type == "theorem1") {  // the rigid arms, planar and URDF: eq. (12) holds
     EXPECT_TRUE(j["gains"]["condition_holds"].get<bool>()) << j["gains"].dump();
+    // Named as the paper prints it, with the LaTeX source's label beside.
+    EXPECT_EQ(j["gains"]["conditions"][0]["name"], "eq. (12)");
+    EXPECT_EQ(j["gains"]["conditions"][0]["paper_label"], "11");
   } else {
-    // Theorems 2 (m = 1) and 3 (m >= 2): evaluated -- and, as the configs
+    // Theorems 5 (m = 1) and 6 (m >= 2): evaluated -- and, as the configs
     // explain, far from met; the reference is not a free motion.
     EXPECT_EQ(j["gains"]["conditions"].size(), 4u);
     EXPECT_FALSE(j["gains"]["condition_holds"].get<bool>());
@@ -55,7 +58,7 @@ void expectItsStatedMetric(const std::string& name, const std::string& dir) {
       EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("not a free motion"), std::string::npos);
     else if (controller::paperSettings(scenario).motor_rate ==
              controller::MotorRate::kFiltered)  // outside the Corollary, and said
-      EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("Corollary assumes"), std::string::npos);
+      EXPECT_NE(j["gains"]["warnings"][0].get<std::string>().find("Corollary 3 assumes"), std::string::npos);
     else
       EXPECT_FALSE(j["gains"].contains("warnings"));
   }

@@ -40,13 +40,13 @@ TEST(SampledDataCheck, ApprovesRigid2dofAndTheRunsAgreeAt1And10kHz) {
   EXPECT_NEAR(t1, t10, 0.05 * t10);
 }
 
-// Warns: rigid_5link's gains at 1 kHz (eq. 11 still holds: the continuous loop
+// Warns: rigid_5link's gains at 1 kHz (eq. (12) still holds: the continuous loop
 // is fine). The check calls the sampled loop unstable and names a rate that
 // suffices; the run at 1 kHz does not converge, the run at that rate does.
 TEST(SampledDataCheck, WarnsOnRigid5linkAt1kHzAndTheRunsConfirmIt) {
   const RunResult check =
       lagrange("check-gains " + quote(kConfigs + "/rigid_5link.yaml") + " --set plant.publish_rate=1000");
-  EXPECT_NE(check.output.find("gain condition eq. (11) HOLDS"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("gain condition eq. (12) HOLDS"), std::string::npos) << check.output;
   EXPECT_NE(check.output.find("linearised check at 1000 Hz: UNSTABLE"), std::string::npos) << check.output;
   // Simulated: the 1 kHz loop does not converge within the run, the fine-rate
   // one does, and a start 0.01 rad off the reference grows: unstable about it.
@@ -137,8 +137,8 @@ TEST(SampledDataCheck, TheLinearisedCheckDoesNotJudgeAPlantWithFrictionAndTheSim
 }
 
 // A URDF arm behind m = 1..4 integrators gets every check a planar chain
-// gets, with the same keys: eq. (11) on the estimated k_c, the eta estimates,
-// eq. (632) for m = 1, Theorem 3 and Proposition 1 for m >= 2, and the
+// gets, with the same keys: eq. (12) on the estimated k_c, the eta estimates,
+// eqs. (56a)-(56c) for m = 1, Theorem 3 and Proposition 1 for m >= 2, and the
 // sampled-data verdict -- each saying what it rests on.
 TEST(GainVerdicts, AUrdfArmBehindAnActuatorChainGetsEveryCheck) {
   for (int m = 1; m <= 4; ++m) {
@@ -156,16 +156,16 @@ TEST(GainVerdicts, AUrdfArmBehindAnActuatorChainGetsEveryCheck) {
                  " --set controller.b=50 --set actuator.order=" +
                  std::to_string(m) + " --set 'actuator.initial_state=" + initial +
                  "]' --set 'controller.stages=" + stages + "]'");
-    EXPECT_NE(r.output.find("eq. (11)'s verdict rests on the estimated k_c"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("eq. (12)'s verdict rests on the estimated k_c"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("estimated eta_1 = "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("the verdicts below rest on these estimates"), std::string::npos) << r.output;
     if (m == 1) {
-      EXPECT_NE(r.output.find("gain condition eq. (632"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("gain condition eq. (56"), std::string::npos) << r.output;
     } else {
-      EXPECT_NE(r.output.find("gain condition A Hurwitz (Theorem 3)"), std::string::npos) << r.output;
-      EXPECT_NE(r.output.find("Proposition 1 (constructive, sufficient for Theorem 3)"), std::string::npos)
+      EXPECT_NE(r.output.find("gain condition A Hurwitz (Theorem 6)"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("Proposition 1 (constructive, sufficient for Theorem 6)"), std::string::npos)
           << r.output;
-      EXPECT_NE(r.output.find("gain condition eq. (795b)"), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("gain condition eq. (80b)"), std::string::npos) << r.output;
     }
     EXPECT_NE(r.output.find("linearised check at 1000 Hz: "), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("nan"), std::string::npos) << r.output;
@@ -343,7 +343,7 @@ TEST(GainVerdicts, SayWhichConstantsAreProvenAndWhichEstimated) {
   const RunResult free =
       lagrange("check-gains --no-simulation " + quote(kConfigs + "/chain_m1_free_motion.yaml"));
   EXPECT_NE(free.output.find("(estimate: sampled supremum x 1.02)]"), std::string::npos) << free.output;
-  EXPECT_NE(free.output.find("eq. (11)'s verdict rests on the estimated k_delta"), std::string::npos)
+  EXPECT_NE(free.output.find("eq. (12)'s verdict rests on the estimated k_delta"), std::string::npos)
       << free.output;
   EXPECT_NE(free.output.find("the verdicts below rest on these estimates"), std::string::npos) << free.output;
 }

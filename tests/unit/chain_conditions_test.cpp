@@ -31,17 +31,17 @@ TEST(Theorem2Conditions, EachPassesOrFailsByItsOwnInequality) {
   auto a = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(20, 400), v2(10, 10), v2(10, 12), v2(60, 70),
                               v2(2, 2));
   EXPECT_FALSE(a[0].holds);  // a0_min / (4 b0_max) = 0.5: the bracket is negative
-  EXPECT_EQ(a[0].name, "eq. (632a)");
+  EXPECT_EQ(a[0].name, "eq. (56a)");
   EXPECT_TRUE(a[1].holds && a[2].holds);
   auto b = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(8.4, 12), v2(60, 70),
                               v2(2, 2));
   EXPECT_FALSE(b[1].holds);  // kp1_min = 8.4 < 8.5
-  EXPECT_EQ(b[1].name, "eq. (632b)");
+  EXPECT_EQ(b[1].name, "eq. (56b)");
   EXPECT_TRUE(b[0].holds && b[2].holds);
   auto c = theorem2Conditions(0.02, 1.0, eta, v2(300, 320), v2(400, 400), v2(10, 10), v2(10, 12),
                               v2(26.4, 70), v2(2, 2));
   EXPECT_FALSE(c[2].holds);  // a1_min = 26.4 < 26.5
-  EXPECT_EQ(c[2].name, "eq. (632c)");
+  EXPECT_EQ(c[2].name, "eq. (56c)");
   EXPECT_LT(c[2].margin(), 0.0);
 }
 

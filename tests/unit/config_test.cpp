@@ -208,7 +208,7 @@ TEST(Scenario, FlexibleDefaultsHoldTheLinksAtRestAndRoundTrip) {
   const Eigen::VectorXd spring =
       s.flexible->params.stiffness.cwiseProduct(s.initial_state.motor_q - s.initial_state.q);
   EXPECT_LT((spring - links.gravity(s.initial_state.q)).norm(), 1e-12);
-  // The controller's model is the links with their springs (eq. 608).
+  // The controller's model is the links with their springs (eq. (46)).
   const auto springs = std::dynamic_pointer_cast<const model::JointSprings>(s.controlModel());
   ASSERT_TRUE(springs);
   EXPECT_EQ(springs->stiffness(), s.flexible->params.stiffness);

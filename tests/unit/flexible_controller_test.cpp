@@ -1,4 +1,4 @@
-// The flexible-joint controller (eq. 830) is the m = 2 cascade on
+// The flexible-joint controller (eq. (83)) is the m = 2 cascade on
 // xi = [K q2; K q2'] with the link model g + K q, plus the torque map (830a).
 #include <gtest/gtest.h>
 

@@ -108,7 +108,7 @@ TEST(FrontEnd, ARealCommandGetsItsOwnOptionsThroughTheDispatch) {
   const std::string config = testing::kRigid;
   EXPECT_EQ(dispatchArgs({"lagrange", "check-gains", config}, {addGreetCommand, addCheckGainsCommand}),
             kExitOk);
-  // --set reaches the scenario: a gain eq. (11) refuses, then a key no reader knows.
+  // --set reaches the scenario: a gain eq. (12) refuses, then a key no reader knows.
   EXPECT_EQ(dispatchArgs({"lagrange", "check-gains", config, "--set", "controller.kp=[0.001, 0.001]"},
                          {addCheckGainsCommand}),
             kExitFailed);

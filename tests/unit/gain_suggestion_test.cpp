@@ -75,14 +75,14 @@ TEST(GainSuggestion, SaysWhenTheConstructiveGainsOverflowDouble) {
   }
 }
 
-// The search (#52): at a rate where no gains keeping eq. (11) are stable it
+// The search (#52): at a rate where no gains keeping eq. (12) are stable it
 // suggests nothing and names both binding conditions with their numbers; where
-// some are, it suggests gains that hold eq. (11) and are stable at the rate.
+// some are, it suggests gains that hold eq. (12) and are stable at the rate.
 TEST(GainSearch, SuggestsNothingWhereEq11AndTheRateCannotBothHold) {
   const config::Scenario s = config::loadScenario(kConfigs + "/rigid_5link.yaml", {"plant.publish_rate=200"});
   const GainSearch search = searchGains(s);
   EXPECT_FALSE(search.suggested);
-  EXPECT_NE(search.binding.find("eq. (11) against the rate"), std::string::npos) << search.binding;
+  EXPECT_NE(search.binding.find("eq. (12) against the rate"), std::string::npos) << search.binding;
   ASSERT_TRUE(search.sufficient_rate) << search.binding;
   EXPECT_GT(*search.sufficient_rate, 200.0);
   ASSERT_TRUE(search.kdelta_allowed) << search.binding;

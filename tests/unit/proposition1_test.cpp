@@ -78,31 +78,31 @@ TEST(Proposition1Conditions, AllHoldForAPassingSet) {
 TEST(Proposition1Conditions, EachFailsByItsOwnInequality) {
   auto s = passing();
   s[0].kd = 3.1;
-  EXPECT_FALSE(named(proposition1Conditions(kSmallEta, vectors(s)), "eq. (794a)").holds);
+  EXPECT_FALSE(named(proposition1Conditions(kSmallEta, vectors(s)), "eq. (79a)").holds);
 
   const auto big_eta = proposition1Conditions(EtaEstimate{0.0, 2.0, 0.0}, vectors(passing()));  // e = 4 > 3
-  EXPECT_FALSE(named(big_eta, "eq. (794b)").holds);
-  EXPECT_TRUE(named(big_eta, "eq. (795b)").holds);
+  EXPECT_FALSE(named(big_eta, "eq. (79b)").holds);
+  EXPECT_TRUE(named(big_eta, "eq. (80b)").holds);
 
   s = passing();
   s[1].kd = 1000.0 * 997.0;  // the printed reading of (795a)
-  EXPECT_FALSE(named(proposition1Conditions(kSmallEta, vectors(s)), "eq. (795a)").holds);
+  EXPECT_FALSE(named(proposition1Conditions(kSmallEta, vectors(s)), "eq. (80a)").holds);
 
   s = passing();  // e = 1: (795b) needs kp2 > 36 + 3, (795c) with b2 = 0.5 needs a2 > 9
   s[1] = {30.0, std::sqrt(30.0 * 27.0), 1000.0, 0.5};
   const auto r795b = proposition1Conditions(EtaEstimate{0.0, 1.0, 0.0}, vectors(s));
-  EXPECT_FALSE(named(r795b, "eq. (795b)").holds);
-  EXPECT_TRUE(named(r795b, "eq. (795c)").holds);
-  EXPECT_TRUE(named(r795b, "eq. (794b)").holds);
+  EXPECT_FALSE(named(r795b, "eq. (80b)").holds);
+  EXPECT_TRUE(named(r795b, "eq. (80c)").holds);
+  EXPECT_TRUE(named(r795b, "eq. (79b)").holds);
 
   s = passing();
   s[1].a = 0.5;  // below e beta_1^2 = 0.02 * 36
-  EXPECT_FALSE(named(proposition1Conditions(kSmallEta, vectors(s)), "eq. (795c)").holds);
+  EXPECT_FALSE(named(proposition1Conditions(kSmallEta, vectors(s)), "eq. (80c)").holds);
 
   s = passing();
   s[1].a = 10.0;  // (795c) still holds, but mu_21 now dominates a_2 in Q
   const auto matrix = proposition1Conditions(kSmallEta, vectors(s));
-  EXPECT_TRUE(named(matrix, "eq. (795c)").holds);
+  EXPECT_TRUE(named(matrix, "eq. (80c)").holds);
   EXPECT_FALSE(named(matrix, "Q - diag(Q)/2 >= 0 (Proposition 1)").holds);
 }
 
@@ -113,11 +113,11 @@ TEST(Proposition1Conditions, Eq794bDividesA1ByB1Squared) {
   auto s = passing();
   s[0] = {10.0, 10.0, 10.0, 2.0};
   const EtaEstimate eta{0.0, 2.0, 0.0};
-  const auto wide = named(proposition1Conditions(eta, vectors(s)), "eq. (794b)");
+  const auto wide = named(proposition1Conditions(eta, vectors(s)), "eq. (79b)");
   EXPECT_FALSE(wide.holds);
   EXPECT_DOUBLE_EQ(wide.lhs, 2.5);
   s[0].b = 1.0;  // both readings agree
-  const auto unit = named(proposition1Conditions(eta, vectors(s)), "eq. (794b)");
+  const auto unit = named(proposition1Conditions(eta, vectors(s)), "eq. (79b)");
   EXPECT_TRUE(unit.holds);
   EXPECT_DOUBLE_EQ(unit.lhs, 10.0);
 }

@@ -132,7 +132,7 @@ TEST(Bounds, TheClosedFormOfCIsTheChristoffelSymbols) {
 
 // k_c used to be 1.05 x the largest G(q) = ||[C_1(q) ... C_n(q)]|| on 20000
 // random relative angles. For the heavy-tipped 8-link chain a local ascent
-// finds states beyond that, so eq. (11) could be reported as holding on a k_c
+// finds states beyond that, so eq. (12) could be reported as holding on a k_c
 // that bounded nothing. The proven k_c bounds every ratio found.
 TEST(Bounds, KcBoundsAHeavyTippedEightLinkChainWhereTheSampledValueDidNot) {
   const PlanarChain chain(heavyTipChain());

@@ -33,14 +33,14 @@ TEST(Theorem3Conditions, PassAndFailEachByItsOwnInequality) {
   auto lego =
       theorem3Conditions(0.001, 0.1, small, kd0, Eigen::Vector2d(10, 10), b0, stages(2, 3.0, 1.0, 5.0, 0.5));
   EXPECT_FALSE(lego[1].holds);
-  EXPECT_EQ(lego[1].name, "eq. (lego)");
+  EXPECT_EQ(lego[1].name, "eq. (74)");
   EXPECT_TRUE(lego[0].holds && lego[2].holds);
   // (786): a large eta_2 breaks it, A is unchanged.
   auto big = theorem3Conditions(0.001, 0.1, EtaEstimate{0.1, 50.0, 0.05}, kd0, a0, b0,
                                 stages(2, 3.0, 1.0, 5.0, 0.5));
   EXPECT_TRUE(big[0].holds);
   EXPECT_FALSE(big[2].holds);
-  EXPECT_EQ(big[2].name, "eq. (786)");
+  EXPECT_EQ(big[2].name, "eq. (75)");
 }
 
 TEST(Theorem3A, FirstRowsAreThoseThePaperPrints) {

@@ -36,7 +36,7 @@ json completedRun() {
           {"torque", {{"max_abs", 61.5}, {"saturated_fraction", nullptr}}},
           {"gains",
            {{"checked", true},
-            {"condition", "eq. (11)"},
+            {"condition", "eq. (12)"},
             {"condition_holds", true},
             {"margin", 9.457},
             {"sampled_data", {{"rate", 1000.0}, {"verdict", "adequate"}, {"sufficient_rate", nullptr}}}}},
@@ -45,7 +45,7 @@ json completedRun() {
           {"log", {{"missing_ticks", {{"PLANT_TRUTH", 0}}}}}};
 }
 
-// Case 1: the 3-link chain at 200 Hz -- eq. (11) holds, the sampled loop is
+// Case 1: the 3-link chain at 200 Hz -- eq. (12) holds, the sampled loop is
 // unstable, the arm flew off; the logger saw every tick ("completed").
 json divergedChain() {
   json j = completedRun();
@@ -92,11 +92,11 @@ TEST(Verdict, ADivergingChainNamesTheDivergenceThenTheRateThatWouldSuffice) {
       << headline;
 
   // The block a user reads first: its first line says it; the gain line
-  // says eq. (11) is the continuous-time condition, beside the sampled one.
+  // says eq. (12) is the continuous-time condition, beside the sampled one.
   const std::string block = tools::resultText(divergedChain());
   const std::string first = block.substr(1, block.find('\n', 1) - 1);
   EXPECT_EQ(first.rfind("scenario my_3link: completed -- tracking NOT met: diverged", 0), 0u) << block;
-  EXPECT_NE(block.find("eq. (11) holds (continuous time; margin 9.457); sampled at 200 Hz: UNSTABLE "
+  EXPECT_NE(block.find("eq. (12) holds (continuous time; margin 9.457); sampled at 200 Hz: UNSTABLE "
                        "(linearised check)"),
             std::string::npos)
       << block;
@@ -293,7 +293,7 @@ TEST(Verdict, AMetRunIsNotWarnedOfSaturationOrTheConditionButOfALateDivergenceAn
   j["torque"]["saturated_fraction"] = 0.3;
   j["gains"]["condition_holds"] = false;
   EXPECT_EQ(runVerdict(j)["headline"], "tracking met")
-      << "saturation may be by design; the gain line shows eq. (11)";
+      << "saturation may be by design; the gain line shows eq. (12)";
   j["failure"] = {{"process", "plant"}, {"diverged", true}, {"reason", "plant stopped: joint 1 ..."}};
   j["supervision"] = {{"restarts", {{"controller", 2}}}};
   j["log"]["complete"] = false;

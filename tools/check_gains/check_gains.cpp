@@ -66,7 +66,7 @@ int suggest(const config::Scenario& s, bool simulate) {
         << "\n";
     return kExitFailed;
   }
-  std::cout << "\nsuggested gains (pass eq. (11) or the chain's conditions, and the sampled-data checks at "
+  std::cout << "\nsuggested gains (pass eq. (12) or the chain's conditions, and the sampled-data checks at "
             << at << "; other keys unchanged):\n"
             << util::terminalSafeLines(controller::controllerYaml(*search.suggested)) << "\nwith them:\n"
             << util::terminalSafeLines(controller::describe(check)) << "\n";

@@ -23,8 +23,8 @@ Subcommand addCheckGainsCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("check-gains", "Check a scenario's gains and sampling rate");
   describeCommand(
       *cmd,
-      "Print the gain conditions of a scenario (k_c, k_delta, eq. 11; "
-      "eta and eq. 632 for m = 1; Theorem 3 and Proposition 1 "
+      "Print the gain conditions of a scenario (k_c, k_delta, eq. (12); "
+      "eta and eqs. (56a)-(56c) for m = 1; Theorem 6 and Proposition 1 "
       "for m >= 2) and whether the sampled implementation at the configured rate is adequate "
       "(the loop simulated in process from the initial state and seeded states against the same loop "
       "at a fine rate, and linearised near the reference). The simulated verdict's first word: ADEQUATE, "
@@ -39,10 +39,11 @@ Subcommand addCheckGainsCommand(CLI::App& app) {
       {"lagrange check-gains configs/rigid_2dof.yaml"});
   cmd->add_option("config", o->config_path, "Scenario YAML file")->required();
   cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
-  cmd->add_flag("--suggest", o->suggest,
-                "Propose gains that pass every check at the configured rate: eq. 11 (lego/632a, 794, 795 for "
-                "chains), the linearised check, the torque limits and the simulated check; or say that none "
-                "was found and which condition binds (exit 1). Simulates the suggestion only");
+  cmd->add_flag(
+      "--suggest", o->suggest,
+      "Propose gains that pass every check at the configured rate: eq. (12) ((74)/(56a), (79), (80) for "
+      "chains), the linearised check, the torque limits and the simulated check; or say that none "
+      "was found and which condition binds (exit 1). Simulates the suggestion only");
   cmd->add_flag("--no-simulation", o->no_simulation,
                 "Skip the sampled loop's simulation (seconds; tens for a flexible URDF arm): the theory's "
                 "conditions and the linearised check only");

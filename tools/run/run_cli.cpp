@@ -71,8 +71,9 @@ Subcommand addRunCommand(CLI::App& app) {
                 "Use the machine's network instead of a private network namespace "
                 "(LCM traffic then reaches other processes on this host)");
   cmd->add_option("--lcm-url", run.lcm_url, "LCM URL for the run (default: a fresh udpm port, TTL 0)");
-  cmd->add_flag("--strict", run.strict,
-                "Refuse to run when an evaluated gain condition (eq. 11; eq. 632 for m = 1) is violated");
+  cmd->add_flag(
+      "--strict", run.strict,
+      "Refuse to run when an evaluated gain condition (eq. (12); eqs. (56a)-(56c) for m = 1) is violated");
   cmd->add_flag(
       "--check-sampled", run.check_sampled,
       "Before the run, simulate the sampled loop as configured against the same loop at a fine rate "
