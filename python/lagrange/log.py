@@ -420,7 +420,10 @@ def _require_numpy(what):
 
 
 class Tracking(dict):
-    """Run.tracking: the columns "tick", "t", "q_error", "error_norm", with
+    """Run.tracking: the columns "tick", "t", "q" (PLANT_TRUTH.q), "q_desired"
+    (CONTROL_COMMAND.q_desired), "q_error" (q - q_desired), "error_norm" and,
+    for a run whose controller has a chain (CONTROL_COMMAND.chain_order > 0),
+    "xi_error" (per tick, the chain's stage errors, one row per stage), with
     `unjoined` (per channel, ticks found in that channel only), `mismatched`
     (ticks whose two rows hold different numbers of joints) and
     `publish_rate` (what t is computed with, or None)."""
@@ -466,7 +469,8 @@ def _tracking_of(run):
     both = sorted(truth_row.keys() & command_row.keys())
     unjoined = {"PLANT_TRUTH": len(truth_row) - len(both), "CONTROL_COMMAND": len(command_row) - len(both)}
     q, q_desired = truth.get("q", ()), command.get("q_desired", ())
-    ticks, errors, norms = [], [], []
+    stages = command.get("xi_error", ())
+    ticks, actuals, desireds, errors, norms, xi = [], [], [], [], [], []
     mismatched = 0
     for tick in both:
         actual, desired = q[truth_row[tick]], q_desired[command_row[tick]]
@@ -475,11 +479,17 @@ def _tracking_of(run):
             continue
         error = [float(a) - float(d) for a, d in zip(actual, desired)]
         ticks.append(tick)
+        actuals.append([float(a) for a in actual])
+        desireds.append([float(d) for d in desired])
         errors.append(error)
         norms.append(math.sqrt(math.fsum(e * e for e in error)))
+        if len(stages) > command_row[tick]:
+            xi.append([[float(v) for v in stage] for stage in stages[command_row[tick]]])
     rate = _publish_rate_of(run)
-    columns = {"tick": ticks, "t": None if rate is None else [tick * (1.0 / rate) for tick in ticks], "q_error": errors,
-               "error_norm": norms}
+    columns = {"tick": ticks, "t": None if rate is None else [tick * (1.0 / rate) for tick in ticks], "q": actuals,
+               "q_desired": desireds, "q_error": errors, "error_norm": norms}
+    if any(xi):  # a chain: its stage errors beside the links' (none for theorem1, the baselines)
+        columns["xi_error"] = xi
     if run.numpy:
         numpy = _require_numpy("Run.tracking")
         columns["tick"] = numpy.asarray(ticks, dtype=numpy.int64)
@@ -488,5 +498,9 @@ def _tracking_of(run):
             columns["t"] = numpy.asarray(columns["t"], dtype=float)
         joints = {len(row) for row in errors}
         if len(joints) <= 1:  # one row per tick, one column per joint (rows of mixed lengths stay lists)
-            columns["q_error"] = numpy.asarray(errors, dtype=float).reshape(len(errors), max(joints, default=0))
+            for name in ("q", "q_desired", "q_error"):
+                columns[name] = numpy.asarray(columns[name], dtype=float).reshape(len(errors), max(joints, default=0))
+            shapes = {(len(rows), len(rows[0]) if rows else 0) for rows in xi}
+            if "xi_error" in columns and len(shapes) == 1:  # ticks x stages x joints
+                columns["xi_error"] = numpy.asarray(xi, dtype=float).reshape((len(xi),) + shapes.pop())
     return Tracking(columns, unjoined, mismatched, rate)

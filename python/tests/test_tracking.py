@@ -99,7 +99,7 @@ class Tracking(unittest.TestCase):
         self.assertEqual(tr.unjoined, {"PLANT_TRUTH": 1, "CONTROL_COMMAND": 1})
         self.assertEqual(tr.mismatched, 0)
         self.assertEqual(tr.publish_rate, 1000.0)
-        self.assertEqual(set(tr), {"tick", "t", "q_error", "error_norm"})
+        self.assertEqual(set(tr), {"tick", "t", "q", "q_desired", "q_error", "error_norm"})
 
     def test_a_command_left_out_as_corrupt_leaves_its_tick_unjoined(self):
         d = self.folder()
@@ -165,6 +165,26 @@ class Tracking(unittest.TestCase):
         self.assertEqual(tr["q_error"], [list(row) for row in cmd["q_error"]])
         self.assertEqual(tr["t"], [tick * (1.0 / 1000.0) for tick in tr["tick"]])
         self.assertLess(tr["error_norm"][-1], 1e-3)
+        # q and q_d beside the error: the truth's and the command's rows of each tick.
+        truth_row = {tick: k for k, tick in enumerate(run.channels["PLANT_TRUTH"]["header.tick"])}
+        cmd_row = {tick: k for k, tick in enumerate(cmd["header.tick"])}
+        for k in (0, 500, 1000):
+            tick = tr["tick"][k]
+            self.assertEqual(tr["q"][k], list(run.channels["PLANT_TRUTH"]["q"][truth_row[tick]]))
+            self.assertEqual(tr["q_desired"][k], list(cmd["q_desired"][cmd_row[tick]]))
+            self.assertEqual(tr["q_error"][k], [a - d for a, d in zip(tr["q"][k], tr["q_desired"][k])])
+        self.assertNotIn("xi_error", tr)  # theorem1 has no chain
+
+    def test_a_chain_run_gives_its_stage_errors(self):
+        # chain_m2 (the cascade behind two integrators): xi_error per tick, one row per stage.
+        run = lagrange.log.load(os.path.join(GOLDEN, "chain_m2_lockstep.lcm"), numpy=False)
+        tr = run.tracking
+        cmd = run.channels["CONTROL_COMMAND"]
+        self.assertEqual(len(tr["xi_error"]), len(tr["tick"]))
+        row = {tick: k for k, tick in enumerate(cmd["header.tick"])}
+        last = tr["tick"][-1]
+        self.assertEqual(len(tr["xi_error"][-1]), 2)
+        self.assertEqual(tr["xi_error"][-1], [list(stage) for stage in cmd["xi_error"][row[last]]])
 
     @unittest.skipIf(numpy is None, "numpy is not installed (python3 -S does not see Debian's python3-numpy)")
     def test_with_numpy_the_columns_are_arrays(self):
