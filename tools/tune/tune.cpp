@@ -205,7 +205,7 @@ int runTune(const TuneOptions& o) {
   std::vector<TuneEvaluation> seen;  // in the search's order
   std::optional<size_t> best;        // into seen: the fastest feasible
   int computed = 0, read = 0;
-  std::map<std::vector<double>, TuneEvaluation> made;  // this run's, for a point the search repeats
+  std::map<std::vector<double>, TuneEvaluation> made;  // this run's, made or read: a repeated point's
 
   const SearchObjective objective = [&](const std::vector<double>& point, SearchPhase phase) {
     if (stopRequested()) throw TuneInterrupted();
@@ -213,12 +213,14 @@ int runTune(const TuneOptions& o) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() > 60.0 * o.minutes)
       throw BudgetSpent{};
     TuneEvaluation e;
-    if (const auto c = cache.find(point); c != cache.end()) {
-      e = c->second;
-      cache.erase(c);  // each line is read once; a repeat is made again
-      ++read;
-    } else if (const auto m = made.find(point); m != made.end()) {
+    // A point the search repeats gets its first evaluation again (never a
+    // second line); one tune.jsonl holds from a run before is read, not made.
+    if (const auto m = made.find(point); m != made.end()) {
       e = m->second;
+    } else if (const auto c = cache.find(point); c != cache.end()) {
+      e = c->second;
+      ++read;
+      made.emplace(point, e);
     } else {
       const std::optional<double> best_time = best ? seen[*best].convergence_time : std::optional<double>();
       e = evaluateGains(p, gainsOf(p, point), best_time, stopRequested);
