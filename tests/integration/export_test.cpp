@@ -33,10 +33,11 @@ def check_tracking(run, f):
     assert [list(r) for r in g["q_error"][:]] == tr["q_error"], "q_error"
     assert list(g["error_norm"][:]) == tr["error_norm"], "error_norm"
     assert numpy.array_equal(g["q"][:] - g["q_desired"][:], g["q_error"][:])
-    for channel, field, name in (("PLANT_TRUTH", "q", "q"), ("CONTROL_COMMAND", "q_desired", "q_desired")):
-        row = {t: k for k, t in enumerate(run.channels[channel]["header.tick"])}
-        want = [list(run.channels[channel][field][row[t]]) for t in tr["tick"]]
-        assert [list(r) for r in g[name][:]] == want, name
+    assert [list(r) for r in g["q"][:]] == tr["q"], "q"
+    assert [list(r) for r in g["q_desired"][:]] == tr["q_desired"], "q_desired"
+    assert set(g) == set(k for k in tr if tr[k] is not None), (set(g), set(tr))  # every column, no other
+    if "xi_error" in tr:
+        assert [[list(s) for s in r] for r in g["xi_error"][:]] == tr["xi_error"], "xi_error"
     assert g.attrs["unjoined_PLANT_TRUTH"] == tr.unjoined["PLANT_TRUTH"]
     assert g.attrs["unjoined_CONTROL_COMMAND"] == tr.unjoined["CONTROL_COMMAND"]
     assert g.attrs["mismatched"] == tr.mismatched
@@ -80,7 +81,8 @@ for channel, columns in sorted(run.channels.items()):
         assert "units" in g[name].attrs, (channel, name)
         checked += got.size
 print(len(run.channels), checked, list(f.attrs["joint_names"]), f["PLANT_TRUTH/q"].attrs["units"],
-      f["ACTUATOR_STATE/xi"].shape if "xi" in f["ACTUATOR_STATE"] else None, "tracking", check_tracking(run, f))
+      f["ACTUATOR_STATE/xi"].shape if "xi" in f["ACTUATOR_STATE"] else None, "tracking", check_tracking(run, f),
+      f["tracking/xi_error"].shape if "xi_error" in f["tracking"] else None)
 )PY";
 
 // Debian's python3 (with h5py) running `code` on `first` and `second`
@@ -115,7 +117,7 @@ TEST(Export, H5pyReadsEverySampleBitForBitWithUnitsAndJointNames) {
   const RunResult r = compareWithH5py(out, h5);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.rfind("4 ", 0), 0u) << r.output;  // four per-tick channels
-  EXPECT_NE(r.output.find("['joint1', 'joint2'] rad None tracking 2001"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("['joint1', 'joint2'] rad None tracking 2001 None"), std::string::npos) << r.output;
 
   // An existing file stays unless --force; a missing run is named.
   const RunResult again = lagrange("export " + quote(out) + " -o " + quote(h5));
@@ -144,7 +146,7 @@ TEST(Export, AnActuatorChainsStatesAreThreeDimensional) {
   ASSERT_EQ(lagrange("export " + quote(out) + " -o " + quote(h5) + " -q").exit_code, 0);
   const RunResult r = compareWithH5py(out, h5);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("(501, 2, 2) tracking 501"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(501, 2, 2) tracking 501 (501, 2, 2)"), std::string::npos) << r.output;
 }
 
 // Without -o the file goes into the run's folder (RUN/run.h5; a log named

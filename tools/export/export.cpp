@@ -245,11 +245,15 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_path, boo
   }
   {
     const auto truth = tables.find(transport::kPlantTruth);
-    size_t joints = 0;
+    const auto command = tables.find(transport::kControlCommand);
+    size_t joints = 0, stages = 0;
     if (truth != tables.end())
       for (const FieldShape& f : truth->second.fields)
         if (f.name == "q") joints = f.size();
-    tracking.plan(joints, tick_period);
+    if (command != tables.end())
+      for (const FieldShape& f : command->second.fields)
+        if (f.name == "xi_error" && f.dims.size() == 2 && f.dims[1] == joints) stages = f.dims[0];
+    tracking.plan(joints, stages, tick_period);
   }
 
   const std::string partial = out_file + ".partial-" + std::to_string(getpid());
@@ -293,7 +297,7 @@ HdfExport exportHdf5(const std::string& target, const std::string& out_path, boo
           using Message = std::decay_t<decltype(m)>;
           if constexpr (std::is_same_v<Message, lagrange::plant_truth_t>) tracking.truth(m.header.tick, m.q);
           if constexpr (std::is_same_v<Message, lagrange::control_command_t>)
-            tracking.command(m.header.tick, m.q_desired);
+            tracking.command(m.header.tick, m.q_desired, m.xi_error);
           FlatVisitor flat{c.fields, {}, 0, false};
           transport::fields(flat, m);
           if (flat.misshapen) ++c.misshapen;

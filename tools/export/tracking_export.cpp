@@ -64,8 +64,9 @@ double correctlyRoundedSum(const std::vector<double>& values) {
   return hi;
 }
 
-void TrackingExport::plan(size_t joints, std::optional<double> period) {
+void TrackingExport::plan(size_t joints, size_t stages, std::optional<double> period) {
   joints_ = joints;
+  stages_ = stages;
   period_ = period;
   const auto truth = firstCopies(std::move(truth_seen_)), command = firstCopies(std::move(command_seen_));
   truth_seen_ = {}, command_seen_ = {};  // done with
@@ -125,10 +126,29 @@ void TrackingExport::create(H5::H5File& file) {
       dataset(group_, "q_desired", H5::PredType::NATIVE_DOUBLE, {n, j}, "rad", "CONTROL_COMMAND.q_desired");
   q_error_ = dataset(group_, "q_error", H5::PredType::NATIVE_DOUBLE, {n, j}, "rad", "q - q_desired");
   error_norm_ = dataset(group_, "error_norm", H5::PredType::NATIVE_DOUBLE, {n}, "rad", "||q - q_desired||");
+  if (stages_ > 0)
+    xi_error_ =
+        dataset(group_, "xi_error", H5::PredType::NATIVE_DOUBLE, {n, stages_, j}, "N m / s^(k-1) for stage k",
+                "CONTROL_COMMAND.xi_error: the chain's stage errors, stage 1 first");
   if (!period_) hdf5::textAttribute(group_, "t", "left out: the log's scenario does not read");
 }
 
-void TrackingExport::half(int64_t tick, const std::vector<double>& values, bool is_truth) {
+void TrackingExport::command(int64_t tick, const std::vector<double>& q_desired,
+                             const std::vector<std::vector<double>>& xi_error) {
+  std::vector<double> flat;
+  if (stages_ > 0) {
+    // A row of another shape than the first message's: NaN, as the channel's own group has it.
+    bool shaped = xi_error.size() == stages_;
+    for (const auto& stage : xi_error) shaped = shaped && stage.size() == joints_;
+    if (!shaped) ++xi_misshapen_;
+    for (size_t i = 0; i < stages_; ++i)
+      for (size_t j = 0; j < joints_; ++j) flat.push_back(shaped ? xi_error[i][j] : std::nan(""));
+  }
+  half(tick, q_desired, false, std::move(flat));
+}
+
+void TrackingExport::half(int64_t tick, const std::vector<double>& values, bool is_truth,
+                          std::vector<double> xi_error) {
   const auto at = std::lower_bound(ticks_.begin(), ticks_.end(), tick);
   // Not a joined tick, or a row of another width (the log grew between the passes).
   if (at == ticks_.end() || *at != tick || values.size() != joints_) return;
@@ -137,6 +157,7 @@ void TrackingExport::half(int64_t tick, const std::vector<double>& values, bool 
   Halves& h = pending_[row];
   if (is_truth ? h.has_q : h.has_q_desired) return;
   (is_truth ? h.q : h.q_desired) = values;
+  if (!is_truth) h.xi_error = std::move(xi_error);
   (is_truth ? h.has_q : h.has_q_desired) = true;
   if (!h.has_q || !h.has_q_desired) return;
   done_[row] = std::move(h);
@@ -150,7 +171,7 @@ void TrackingExport::flush() {
     size_t count = 0;
     for (auto it = done_.begin(); it != done_.end() && it->first == first + count; ++it) ++count;
     std::vector<int64_t> ticks;
-    std::vector<double> times, q, q_desired, q_error, norms;
+    std::vector<double> times, q, q_desired, q_error, norms, xi;
     auto it = done_.begin();
     for (size_t k = 0; k < count; ++k, ++it) {
       const int64_t tick = ticks_[it->first];
@@ -165,6 +186,7 @@ void TrackingExport::flush() {
         squares.push_back(e * e);
       }
       norms.push_back(std::sqrt(correctlyRoundedSum(squares)));
+      xi.insert(xi.end(), h.xi_error.begin(), h.xi_error.end());
     }
     hdf5::writeRows(tick_, H5::PredType::NATIVE_INT64, ticks.data(), first, count);
     if (period_) hdf5::writeRows(t_, H5::PredType::NATIVE_DOUBLE, times.data(), first, count);
@@ -172,6 +194,7 @@ void TrackingExport::flush() {
     hdf5::writeRows(q_desired_, H5::PredType::NATIVE_DOUBLE, q_desired.data(), first, count);
     hdf5::writeRows(q_error_, H5::PredType::NATIVE_DOUBLE, q_error.data(), first, count);
     hdf5::writeRows(error_norm_, H5::PredType::NATIVE_DOUBLE, norms.data(), first, count);
+    if (stages_ > 0) hdf5::writeRows(xi_error_, H5::PredType::NATIVE_DOUBLE, xi.data(), first, count);
     done_.erase(done_.begin(), it);
   }
 }
@@ -189,6 +212,10 @@ std::vector<std::string> TrackingExport::warnings() const {
   if (other_width_ > 0)
     w.push_back("/tracking: " + std::to_string(other_width_) + " ticks of another number of joints than " +
                 std::to_string(joints_) + " (PLANT_TRUTH/q's) are left out (attribute other_joint_count)");
+  if (xi_misshapen_ > 0)
+    w.push_back("/tracking: " + std::to_string(xi_misshapen_) + " commands' xi_error of another shape than " +
+                std::to_string(stages_) + " stages x " + std::to_string(joints_) +
+                " joints; their xi_error is NaN");
   if (!pending_.empty())
     w.push_back("/tracking: " + std::to_string(pending_.size()) +
                 " rows lack a half the first pass saw (the log changed while it was read); they hold zeros");

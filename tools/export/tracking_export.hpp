@@ -4,8 +4,9 @@
 /// columns as Python's Run.tracking (python/lagrange/log.py) -- PLANT_TRUTH.q
 /// less CONTROL_COMMAND.q_desired, joined by header.tick (the first intact
 /// copy of each tick, the row the channels' groups hold), t = tick /
-/// plant.publish_rate of the log's scenario, the error's norm -- with q and
-/// q_desired beside them (docs/export.md).
+/// plant.publish_rate of the log's scenario, q and q_desired, the error and
+/// its norm, and for a controller with a chain CONTROL_COMMAND.xi_error, the
+/// stages' errors (docs/export.md).
 ///
 /// Two passes, as the export reads the log: the first learns which ticks
 /// both channels have (and with how many joints), so the datasets are made
@@ -38,8 +39,10 @@ class TrackingExport {
   void seeCommand(int64_t tick, size_t joints) { command_seen_.emplace_back(tick, joints); }
 
   /// Between the passes: the rows, `joints` wide (PLANT_TRUTH/q's width);
-  /// `period` is 1 / plant.publish_rate, absent when no scenario reads (no `t`).
-  void plan(size_t joints, std::optional<double> period);
+  /// `stages` of xi_error (CONTROL_COMMAND's first message's; 0: no chain, no
+  /// xi_error); `period` is 1 / plant.publish_rate, absent when no scenario
+  /// reads (no `t`).
+  void plan(size_t joints, size_t stages, std::optional<double> period);
 
   /// After plan(): whether the log has both channels (else there is no /tracking; why()).
   bool wanted() const { return any_truth_ && any_command_ && joints_ > 0; }
@@ -50,7 +53,8 @@ class TrackingExport {
 
   /// Pass 2: the first intact copy of a tick (the channel's row).
   void truth(int64_t tick, const std::vector<double>& q) { half(tick, q, true); }
-  void command(int64_t tick, const std::vector<double>& q_desired) { half(tick, q_desired, false); }
+  void command(int64_t tick, const std::vector<double>& q_desired,
+               const std::vector<std::vector<double>>& xi_error);
 
   /// Writes the finished rows held.
   void flush();
@@ -61,21 +65,23 @@ class TrackingExport {
 
  private:
   struct Halves {
-    std::vector<double> q, q_desired;
+    std::vector<double> q, q_desired, xi_error;  // xi_error: stages x joints, row-major
     bool has_q = false, has_q_desired = false;
   };
-  void half(int64_t tick, const std::vector<double>& values, bool is_truth);
+  void half(int64_t tick, const std::vector<double>& values, bool is_truth,
+            std::vector<double> xi_error = {});
 
   std::vector<std::pair<int64_t, size_t>> truth_seen_, command_seen_;
   std::vector<int64_t> ticks_;  // joined, sorted: the rows
-  size_t joints_ = 0;
+  size_t joints_ = 0, stages_ = 0;
+  long long xi_misshapen_ = 0;
   bool any_truth_ = false, any_command_ = false;
   std::optional<double> period_;
   long long unjoined_truth_ = 0, unjoined_command_ = 0, mismatched_ = 0, other_width_ = 0;
   std::map<size_t, Halves> pending_;  // rows waiting for their other half
   std::map<size_t, Halves> done_;     // rows with both, not yet written
   H5::Group group_;
-  H5::DataSet tick_, t_, q_, q_desired_, q_error_, error_norm_;
+  H5::DataSet tick_, t_, q_, q_desired_, q_error_, error_norm_, xi_error_;
 };
 
 }  // namespace lagrange::tools
