@@ -186,6 +186,11 @@ int runTune(const TuneOptions& o) {
       throw BadInput("--span " + shortNumber(o.span) + ": expected a positive number of decades");
     p = makeTuneProblem(o.scenario, o.overrides, o.span);
     p.require_condition = o.require_condition;
+    if (o.require_condition && !p.kc)
+      throw BadInput(
+          "--require-condition: controller type '" + p.input.controller.type +
+          "' has no eq. (12) to require; expected one of the paper's controllers (theorem1, cascaded, "
+          "flexible), or no --require-condition");
     p.jobs = o.jobs;
     arguments = tuneArguments(p, o.seed, o.span);
     prepareTuneDir(o.out_dir, arguments);
