@@ -9,8 +9,7 @@ namespace lagrange::tools {
 
 Subcommand addTuneCommand(CLI::App& app) {
   auto o = std::make_shared<TuneOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("tune", "Search a scenario's controller gains for the fastest that pass");
+  CLI::App* cmd = app.add_subcommand("tune", "Search gains: the fastest that pass the checks");
   describeCommand(
       *cmd,
       "Search the scenario's controller gains (each controller declares its tunable gains and their ranges) "
