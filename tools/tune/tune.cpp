@@ -192,7 +192,7 @@ int runTune(const TuneOptions& o) {
           "' has no eq. (12) to require; expected one of the paper's controllers (theorem1, cascaded, "
           "flexible), or no --require-condition");
     p.jobs = o.jobs;
-    arguments = tuneArguments(p, o.seed, o.span);
+    arguments = tuneArguments(p, o.seed, o.span, o.global);
     prepareTuneDir(o.out_dir, arguments);
     cache = readEvaluations(o.out_dir);
   } catch (const std::exception& e) {

@@ -140,13 +140,14 @@ void appendEvaluation(const std::string& dir, const nlohmann::ordered_json& line
   ::close(fd);
 }
 
-nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double span_decades) {
+nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double span_decades, int global) {
   nlohmann::ordered_json a;
   a["scenario"] = fs::absolute(p.scenario_path).lexically_normal().string();
   a["overrides"] = p.overrides;
   a["controller"] = p.input.controller.type;
   a["seed"] = seed;
   a["span"] = span_decades;
+  a["global"] = global;  // 0: the default, 10 (n + 1)
   a["require_condition"] = p.require_condition;
   nlohmann::json variables = nlohmann::json::array();
   for (const SearchVariable& v : p.variables) variables.push_back({v.label, v.lower, v.upper, v.start});
@@ -169,11 +170,12 @@ void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& argume
   }
   for (const auto& [key, value] : arguments.items())
     if (!before.contains(key) || before.at(key) != nlohmann::json(value))
-      throw BadInput(dir + " holds a tune with other arguments (" + key + ": " +
-                     (before.contains(key) ? before.at(key).dump() : std::string("none")) + ", now " +
-                     nlohmann::json(value).dump() +
-                     "); a resume repeats the same scenario, --set, --seed, --span and --require-condition; "
-                     "expected those, or another --out");
+      throw BadInput(
+          dir + " holds a tune with other arguments (" + key + ": " +
+          (before.contains(key) ? before.at(key).dump() : std::string("none")) + ", now " +
+          nlohmann::json(value).dump() +
+          "); a resume repeats the same scenario, --set, --seed, --span, --global and --require-condition; "
+          "expected those, or another --out");
 }
 
 void writeTuneJson(const std::string& dir, const nlohmann::ordered_json& arguments,

@@ -32,7 +32,7 @@ std::vector<nlohmann::ordered_json> readEvaluationLines(const std::string& dir);
 void appendEvaluation(const std::string& dir, const nlohmann::ordered_json& line);
 
 /// The arguments that decide the search's sequence (a resume must repeat them).
-nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double span_decades);
+nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double span_decades, int global);
 
 /// Starts or resumes DIR: creates it, and compares tune.json's arguments
 /// with `arguments` when tune.jsonl holds evaluations.
