@@ -25,8 +25,7 @@ int DoMain(int argc, char** argv) {
   std::string gains_path;
   controller::GainReport gains;
   return runtime::runProcess(
-      "controller", "The scenario's controller.type over LCM (Theorem 4, eq. (13); eq. (66); eq. (83))", argc,
-      argv,
+      "controller", "The scenario's controller.type over LCM (Theorem 4, eq. (13); (66); (83))", argc, argv,
       {{"--strict", &strict,
         "Refuse to start when an evaluated gain condition (eq. (12); eqs. (56a)-(56c) for m = 1) is "
         "violated"},
