@@ -40,6 +40,10 @@ TEST(Suggest, FindsNothingForTheFiveLinkChainAt200HzAndNamesWhatBinds) {
       << r.output;
   EXPECT_LT(std::stod(kdelta[1]), std::stod(kdelta[2]));
   EXPECT_EQ(r.output.find("suggested gains"), std::string::npos) << r.output;
+  // ... and names the search that looks further (#55: --suggest names tune).
+  EXPECT_NE(r.output.find("lagrange tune " + kConfigs + "/rigid_5link.yaml --out DIR (docs/tuning.md)"),
+            std::string::npos)
+      << r.output;
 }
 
 // The Panda about its "ready" pose (k_delta 3.2): eq. (12) asks kd about 27

@@ -25,10 +25,18 @@ std::string hz(double rate) {
   return buf;
 }
 
+// --suggest's last line: it stops at the first gains its rules give that pass;
+// lagrange tune searches for the fastest that pass (#55).
+void nameTune(const std::string& config_path) {
+  std::cout << "\nfor the gains that converge fastest and pass the same checks (eq. (12) kept with "
+               "--require-condition): lagrange tune "
+            << util::terminalSafe(config_path) << " --out DIR (docs/tuning.md)\n";
+}
+
 // --suggest: the search (controller/gain_suggestion.hpp), then the full
 // check of what it found, the simulation included; exit 0 only when that
 // passes at the configured rate.
-int suggest(const config::Scenario& s, bool simulate) {
+int suggestGains(const config::Scenario& s, bool simulate) {
   const std::string at = hz(s.plant.publish_rate);
   controller::GainSearch search;
   try {
@@ -95,9 +103,12 @@ int checkGainsCommand(const std::string& config_path, const std::vector<std::str
       return r.holds() && r.sampled.verdict != "unstable" && !(r.simulated && r.simulated->fails()) ? 0 : 1;
     if (r.unchecked) {
       std::cout << "\nno suggestion: --suggest knows the paper's controllers only\n";
+      nameTune(config_path);
       return kExitFailed;
     }
-    return suggest(s, simulate);
+    const int exit_code = suggestGains(s, simulate);
+    nameTune(config_path);
+    return exit_code;
   } catch (const config::ConfigError& e) {
     return failWith("lagrange check-gains", e);
   } catch (const std::exception& e) {
