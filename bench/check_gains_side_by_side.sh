@@ -3,8 +3,9 @@
 # side (issue #55; docs/performance.md "check-gains"): for each round and
 # each scenario, the first build's command then the second's, so that both
 # meet the same load. Prints each scenario's median wall time per build and
-# their ratio, and says whether the two printed the same (the evidence
-# line's own wall time aside). Exit 1 when they printed differently.
+# their ratio, the median CPU time (user + system, the children's included)
+# of each, and says whether the two printed the same (the evidence line's
+# own wall time aside). Exit 1 when they printed differently.
 #   bench/check_gains_side_by_side.sh BEFORE_BIN AFTER_BIN [ROUNDS] [CONFIG...]
 #   bench/check_gains_side_by_side.sh /tmp/old/lagrange build/bin/lagrange 5
 # ROUNDS defaults to 5; the scenarios to every configs/*.yaml without a URDF arm.
@@ -17,18 +18,17 @@ configs=("$@")
 [[ ${#configs[@]} -gt 0 ]] || mapfile -t configs < <(grep -L '^ *urdf:' configs/*.yaml)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# Wall time of one command [s]; its output into $2.
+# "wall cpu" of one command [s]; its output into $1.
 timed() {
-  local out=$1 start end
+  local out=$1
   shift
-  start=$(date +%s.%N)
-  "$@" >"$out" 2>&1 || true  # exit 1 is a verdict (a condition violated), not a failure here
-  end=$(date +%s.%N)
-  echo "$end - $start" | bc
+  # exit 1 is a verdict (a condition violated), not a failure here
+  /usr/bin/time -f '%e %U %S' -o "$work/time" "$@" >"$out" 2>&1 || true
+  awk '{ print $1, $2 + $3 }' "$work/time"
 }
 median() { sort -g | awk '{ v[NR] = $1 } END { print v[int(NR / 2) + 1] }'; }
 status=0
-printf '%-30s %10s %10s %7s  %s\n' scenario before after ratio output
+printf '%-30s %10s %10s %7s %10s %10s  %s\n' scenario before after ratio "cpu before" "cpu after" output
 for config in "${configs[@]}"; do
   name=$(basename "$config" .yaml)
   : >"$work/$name.before" && : >"$work/$name.after"
@@ -40,8 +40,10 @@ for config in "${configs[@]}"; do
   # The evidence line ends with what the simulations took ("; 6.2 s; see"): not a verdict.
   cmp -s <(sed -E 's/; [0-9.]+ s; see/; T s; see/' "$work/out.before") \
     <(sed -E 's/; [0-9.]+ s; see/; T s; see/' "$work/out.after") || { same=DIFFERENT; status=1; }
-  b=$(median <"$work/$name.before") a=$(median <"$work/$name.after")
-  printf '%-30s %9.2fs %9.2fs %7.2f  %s\n' "$name" "$b" "$a" "$(echo "$a / $b" | bc -l)" "$same"
+  b=$(cut -d' ' -f1 "$work/$name.before" | median) a=$(cut -d' ' -f1 "$work/$name.after" | median)
+  cb=$(cut -d' ' -f2 "$work/$name.before" | median) ca=$(cut -d' ' -f2 "$work/$name.after" | median)
+  printf '%-30s %9.2fs %9.2fs %7.2f %9.2fs %9.2fs  %s\n' "$name" "$b" "$a" "$(echo "$a / $b" | bc -l)" "$cb" "$ca" \
+    "$same"
 done
-echo "($rounds rounds, medians of wall time; $(nproc) cores; load average $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "($rounds rounds alternating, medians; $(nproc) cores; load average $(cut -d' ' -f1-3 /proc/loadavg))"
 exit $status
