@@ -11,6 +11,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <set>
 
 #include "tools/command_error.hpp"
 #include "tools/tune/tune_evaluate.hpp"
@@ -27,6 +28,9 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 void onSignal(int) { g_stop = 1; }
 bool stopRequested() { return g_stop != 0; }
+
+// The confirm phase's most evaluations.
+constexpr size_t kConfirmed = 3;
 
 // The --minutes budget spent: the search ends as if its evaluations were.
 struct BudgetSpent {};
@@ -179,7 +183,8 @@ int runTune(const TuneOptions& o) {
   const std::string who = "lagrange tune";
   TuneProblem p;
   nlohmann::ordered_json arguments;
-  std::map<std::vector<double>, TuneEvaluation> cache;
+  std::map<std::vector<double>, TuneEvaluation> cache,
+      confirmed;  // read from tune.jsonl: the search's, confirm's
   try {
     if (o.out_dir.empty()) throw BadInput("expected --out DIR, the folder for tune.jsonl and tuned.yaml");
     if (!(o.span > 0.0))
@@ -194,7 +199,8 @@ int runTune(const TuneOptions& o) {
     p.jobs = o.jobs;
     arguments = tuneArguments(p, o.seed, o.span, o.global);
     prepareTuneDir(o.out_dir, arguments);
-    cache = readEvaluations(o.out_dir);
+    cache = readEvaluations(o.out_dir, SearchPhase::kStart);
+    confirmed = readEvaluations(o.out_dir, SearchPhase::kConfirm);
   } catch (const std::exception& e) {
     return failWith(who, e);
   }
@@ -264,10 +270,53 @@ int runTune(const TuneOptions& o) {
     if (tty && !o.quiet) std::cerr << "\n";
     return failWith(who, e);
   }
+  // The confirm phase: the fastest runs the search left unchecked (they
+  // did not beat the best by kCheckedGain), checked now, fastest first,
+  // until one passes or kConfirmed were tried.
+  const size_t searched = seen.size();
+  if (!interrupted && best) {
+    std::vector<size_t> unchecked;
+    std::set<std::vector<double>> queued;
+    for (size_t i = 0; i < seen.size(); ++i)
+      if (!seen[i].feasible && seen[i].convergence_time &&
+          *seen[i].convergence_time < *seen[*best].convergence_time &&
+          queued.insert(flattened(seen[i].gains)).second)
+        unchecked.push_back(i);
+    std::stable_sort(unchecked.begin(), unchecked.end(), [&](size_t a, size_t b) {
+      return *seen[a].convergence_time < *seen[b].convergence_time;
+    });
+    if (unchecked.size() > kConfirmed) unchecked.resize(kConfirmed);
+    try {
+      for (const size_t i : unchecked) {
+        if (stopRequested()) throw TuneInterrupted();
+        const std::vector<double> point = flattened(seen[i].gains);
+        TuneEvaluation e;
+        if (const auto c = confirmed.find(point); c != confirmed.end()) {
+          e = c->second;
+          ++read;
+        } else {
+          e = evaluateGains(p, seen[i].gains, std::nullopt, stopRequested);
+          ++computed;
+          appendEvaluation(o.out_dir, evaluationJson(static_cast<int>(seen.size()), SearchPhase::kConfirm, e,
+                                                     p.torque_limit));
+        }
+        seen.push_back(e);
+        if (e.feasible == true) {
+          best = seen.size() - 1;
+          break;
+        }
+      }
+    } catch (const TuneInterrupted&) {
+      interrupted = true;
+    } catch (const std::exception& e) {
+      return failWith(who, e);
+    }
+  }
   if (tty && !o.quiet && !seen.empty()) std::cerr << "\n";
 
   nlohmann::ordered_json result;
-  result["evaluations"] = seen.size();
+  result["evaluations"] = searched;
+  result["confirmed"] = seen.size() - searched;
   result["computed"] = computed;
   result["read"] = read;
   result["interrupted"] = interrupted;

@@ -145,6 +145,9 @@ double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torq
 TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
                              bool (*stop_requested)()) {
   const auto wall_start = std::chrono::steady_clock::now();
+  const auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   TuneEvaluation e;
   e.gains = gains;
   const auto finish = [&](const config::Scenario& s) {
@@ -162,6 +165,7 @@ TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::
     e.failed = std::string("scenario refused: ") + error.what();
     return finish(p.input);
   }
+  e.load_time = since(wall_start);
 
   // eq. (11) (printed (12)) with k_c and k_delta of the problem: cheap, so first.
   if (p.kc && p.kdelta) {
@@ -180,8 +184,10 @@ TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::
   // scenario's own wiring (a realtime scenario with its period of delay).
   config::Scenario in_process = s;
   in_process.mode = config::Mode::kInproc;
+  const auto run_start = std::chrono::steady_clock::now();
   const wiring::InProcessOutcome run =
       wiring::simulateInProcess(in_process, nullptr, nullptr, stop_requested);
+  e.run_time = since(run_start);
   if (run.status == "interrupted") throw TuneInterrupted();
   e.status = run.status;
   e.convergence_time = run.tracking.convergence_time;
@@ -203,15 +209,21 @@ TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::
     return finish(s);
   }
   // The costly check only for a candidate that would be the new best.
-  if (best_time && *e.convergence_time >= *best_time) return finish(s);
+  if (best_time &&
+      *e.convergence_time >= *best_time - std::max(kCheckedGain * *best_time, 2.0 * s.tickPeriod()))
+    return finish(s);
 
+  const auto check_start = std::chrono::steady_clock::now();
   const controller::SampledSimulation check = wiring::simulateSampledData(s, p.jobs);
+  e.check_time = since(check_start);
   if (stop_requested && stop_requested()) throw TuneInterrupted();
   e.sampled_verdict = check.verdict;
   e.sampled_why = check.why;
   for (const controller::SampledSimulation::Start& st : check.starts)
     e.start_times.push_back(st.sampled_time);
+  const auto linearised_start = std::chrono::steady_clock::now();
   const controller::SampledDataCheck linearised = controller::checkSampledData(s);
+  e.linearised_time = since(linearised_start);
   e.linearised_verdict = linearised.verdict;
   e.sufficient_rate = linearised.sufficient_rate;
   const bool starts_met = std::all_of(e.start_times.begin(), e.start_times.end(), [&](const auto& t) {

@@ -77,6 +77,9 @@ struct TuneEvaluation {
   std::string linearised_verdict;                  ///< "": not run
   std::optional<double> sufficient_rate;           ///< the linearised check's, when not adequate [Hz]
   double wall_time = 0.0;                          ///< [s]
+  /// Where wall_time went [s]: building the scenario, the run from the
+  /// initial state, the sampled-data check (its simulations), the linearised check.
+  double load_time = 0.0, run_time = 0.0, check_time = 0.0, linearised_time = 0.0;
 };
 
 /// The value of the findings (pure; docs/tuning.md, "The objective"):
@@ -90,9 +93,17 @@ struct TuneEvaluation {
 /// how far it misses.
 double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torque_limit);
 
+/// A candidate is given the sampled-data check only when its run beats the
+/// best so far by this share of the best's time (or two control periods,
+/// whichever is more): a check costs 20 to 40 runs, and a local descent
+/// improves by small steps. Those left unchecked are confirmed at the end
+/// (tune's "confirm" phase), the fastest first.
+inline constexpr double kCheckedGain = 0.01;
+
 /// Evaluates `gains`. `best_time`: the best feasible convergence time so
-/// far: a candidate whose run from the initial state is no faster is not
-/// given the sampled-data check (its value is its time; feasible unset).
+/// far: a candidate whose run from the initial state does not beat it by
+/// kCheckedGain is not given the sampled-data check (its value is its time;
+/// feasible unset).
 /// The torque limit is p.torque_limit (0: none, for the input's own
 /// evaluation when the limit is its peak). `stop_requested` is asked during
 /// the run and after the check. @throws TuneInterrupted when it says stop.

@@ -16,6 +16,12 @@ namespace lagrange::tools {
 
 namespace fs = std::filesystem;
 
+std::vector<double> flattened(const TuneGains& gains) {
+  std::vector<double> out;
+  for (const auto& g : gains) out.insert(out.end(), g.second.begin(), g.second.end());
+  return out;
+}
+
 namespace {
 
 nlohmann::json optionalNumber(const std::optional<double>& v) {
@@ -24,12 +30,6 @@ nlohmann::json optionalNumber(const std::optional<double>& v) {
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 std::optional<double> numberOf(const nlohmann::json& v) {
   return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
-}
-
-std::vector<double> flattened(const TuneGains& gains) {
-  std::vector<double> out;
-  for (const auto& g : gains) out.insert(out.end(), g.second.begin(), g.second.end());
-  return out;
 }
 
 std::string csvNumber(double v) {
@@ -68,6 +68,8 @@ nlohmann::ordered_json evaluationJson(int index, SearchPhase phase, const TuneEv
       e.linearised_verdict.empty() ? nlohmann::json() : nlohmann::json(e.linearised_verdict);
   j["sufficient_rate"] = optionalNumber(e.sufficient_rate);
   j["wall_time"] = e.wall_time;
+  j["times"] = {
+      {"load", e.load_time}, {"run", e.run_time}, {"check", e.check_time}, {"linearised", e.linearised_time}};
   return j;
 }
 
@@ -93,6 +95,13 @@ TuneEvaluation evaluationFromJson(const nlohmann::ordered_json& j) {
       e.linearised_verdict = j.at("linearised_verdict").get<std::string>();
     e.sufficient_rate = numberOf(j.at("sufficient_rate"));
     e.wall_time = j.at("wall_time").get<double>();
+    if (j.contains("times")) {  // (older lines have none)
+      const auto& t = j.at("times");
+      e.load_time = t.value("load", 0.0);
+      e.run_time = t.value("run", 0.0);
+      e.check_time = t.value("check", 0.0);
+      e.linearised_time = t.value("linearised", 0.0);
+    }
     return e;
   } catch (const nlohmann::json::exception& error) {
     throw BadInput(std::string("a line of tune.jsonl is not an evaluation (") + error.what() +
@@ -119,9 +128,11 @@ std::vector<nlohmann::ordered_json> readEvaluationLines(const std::string& dir) 
   return out;
 }
 
-std::map<std::vector<double>, TuneEvaluation> readEvaluations(const std::string& dir) {
+std::map<std::vector<double>, TuneEvaluation> readEvaluations(const std::string& dir, SearchPhase which) {
   std::map<std::vector<double>, TuneEvaluation> out;
+  const bool confirm = which == SearchPhase::kConfirm;
   for (const nlohmann::ordered_json& line : readEvaluationLines(dir)) {
+    if ((line.value("phase", "") == toString(SearchPhase::kConfirm)) != confirm) continue;
     TuneEvaluation e = evaluationFromJson(line);
     out.emplace(flattened(e.gains), std::move(e));
   }

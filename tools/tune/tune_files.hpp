@@ -21,9 +21,14 @@ nlohmann::ordered_json evaluationJson(int index, SearchPhase phase, const TuneEv
 TuneEvaluation evaluationFromJson(const nlohmann::ordered_json& line);
 
 /// The evaluations already in DIR/tune.jsonl, by their point (the gains,
-/// flattened in the variables' order). A torn last line (an interrupt while
-/// writing) is dropped. @throws BadInput for a file that is no tune's.
-std::map<std::vector<double>, TuneEvaluation> readEvaluations(const std::string& dir);
+/// flattened in the variables' order): the search's (`phase` kStart: every
+/// phase but confirm), or the confirm phase's (kConfirm). A torn last line
+/// (an interrupt while writing) is dropped. @throws BadInput for a file
+/// that is no tune's.
+std::map<std::vector<double>, TuneEvaluation> readEvaluations(const std::string& dir, SearchPhase which);
+
+/// The gains as one point, in the variables' order.
+std::vector<double> flattened(const TuneGains& gains);
 
 /// The evaluations of DIR/tune.jsonl in order, as written.
 std::vector<nlohmann::ordered_json> readEvaluationLines(const std::string& dir);

@@ -17,9 +17,13 @@ const char* toString(SearchPhase phase) {
       return "global";
     case SearchPhase::kLocal:
       return "local";
+    case SearchPhase::kConfirm:
+      return "confirm";
   }
   return "?";
 }
+
+int defaultGlobalEvaluations(size_t n) { return std::min(10 * static_cast<int>(n + 1), kMostGlobal); }
 
 namespace {
 
@@ -84,7 +88,16 @@ void phase(Run& run, nlopt::algorithm algorithm, SearchPhase which, int most,
   opt.set_upper_bounds(upper);
   opt.set_min_objective(callback, &run);
   opt.set_maxeval(calls);
-  if (which == SearchPhase::kLocal) opt.set_xtol_rel(1e-4);
+  if (which == SearchPhase::kLocal) {
+    opt.set_xtol_rel(1e-4);
+    // Subplex's first steps: a factor of e^0.4 (about 1.5) per gain, or a
+    // quarter of the box where that is narrower. NLopt's default, a quarter
+    // of the box (a factor of 10 in +-2 decades), throws a many-joint arm's
+    // loop unstable at every first step (docs/tuning.md).
+    std::vector<double> step(lower.size());
+    for (size_t i = 0; i < step.size(); ++i) step[i] = std::min(kLocalStep, 0.25 * (upper[i] - lower[i]));
+    opt.set_initial_step(step);
+  }
   // CRS2's population (NLopt's default, 10 (n + 1), would spend the whole
   // default global phase drawing it): half the phase, at least n + 1.
   if (which == SearchPhase::kGlobal)
@@ -136,7 +149,7 @@ SearchOutcome search(const std::vector<SearchVariable>& variables, const SearchS
   if (run.error) std::rethrow_exception(run.error);
 
   const int global =
-      settings.global_evaluations > 0 ? settings.global_evaluations : 10 * static_cast<int>(n + 1);
+      settings.global_evaluations > 0 ? settings.global_evaluations : defaultGlobalEvaluations(n);
   nlopt::srand(settings.seed);  // CRS2's draws: the same points for the same seed
   phase(run, nlopt::GN_CRS2_LM, SearchPhase::kGlobal, global, lower, upper, start);
 

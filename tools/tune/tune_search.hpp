@@ -6,7 +6,8 @@
 ///
 /// The sequence: the start point first; then a global phase (NLopt's
 /// GN_CRS2_LM, controlled random search with local mutation, seeded by
-/// `seed` through nlopt::srand) of at most `global_evaluations` calls; then
+/// `seed` through nlopt::srand) of at most `global_evaluations` calls
+/// (defaultGlobalEvaluations); then
 /// a local phase (LN_SBPLX, Rowan's subplex: a Nelder-Mead variant that
 /// tolerates the penalty's steps) from the best point found, until the budget
 /// is spent or it converges (relative step 1e-4). The global phase's length
@@ -28,7 +29,9 @@ struct SearchVariable {
   double start = 0.0;  ///< clamped into [lower, upper]
 };
 
-enum class SearchPhase { kStart, kGlobal, kLocal };
+/// kConfirm is not the search's: tune's last evaluations, the sampled-data
+/// check of the fastest runs the search left unchecked (docs/tuning.md).
+enum class SearchPhase { kStart, kGlobal, kLocal, kConfirm };
 const char* toString(SearchPhase phase);
 
 /// The value of the candidate `point` (one number per variable, in the
@@ -36,10 +39,19 @@ const char* toString(SearchPhase phase);
 /// (the exception leaves search() as it is).
 using SearchObjective = std::function<double(const std::vector<double>& point, SearchPhase phase)>;
 
+/// The global phase's default length: 10 (n + 1), at most kMostGlobal. In
+/// many dimensions (the Panda's 28 gains) random points of the box are
+/// almost all unstable loops; the budget is better spent descending from
+/// the best of them (the input's gains, as a rule).
+inline constexpr int kMostGlobal = 60;
+int defaultGlobalEvaluations(size_t n);
+/// The local phase's first step on the log scale (e^0.4: a factor of about 1.5).
+inline constexpr double kLocalStep = 0.4;
+
 struct SearchSettings {
   unsigned seed = 1;
   int max_evaluations = 100;   ///< calls of the objective in all, the start's included
-  int global_evaluations = 0;  ///< the global phase's most; 0: 10 (n + 1)
+  int global_evaluations = 0;  ///< the global phase's most; 0: defaultGlobalEvaluations(n)
 };
 
 struct SearchOutcome {
