@@ -1,6 +1,7 @@
 #include "controller/gain_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -25,6 +26,19 @@ double GainReport::margin() const {
   double m = condition.margin();
   for (const auto& c : chain) m = std::min(m, c.margin());
   return m;
+}
+
+const model::ConditionReport& GainReport::binding() const {
+  std::vector<const model::ConditionReport*> all{&condition};
+  for (const auto& c : chain) all.push_back(&c);
+  const bool violated = !holds();
+  const model::ConditionReport* best = nullptr;
+  for (const model::ConditionReport* c : all) {
+    if (violated && c->holds) continue;
+    // A margin that is not a number binds only when nothing else is left.
+    if (!best || c->margin() < best->margin() || std::isnan(best->margin())) best = c;
+  }
+  return best ? *best : condition;
 }
 
 GainReport checkPaperGains(const config::Scenario& s, bool sampled_data) {

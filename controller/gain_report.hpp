@@ -47,6 +47,10 @@ struct GainReport {
   bool holds() const;
   /// The smallest margin among the evaluated conditions.
   double margin() const;
+  /// The condition a reader should be told of: when holds(), the one with the
+  /// smallest margin (margin()'s); when not, the violated one with the smallest
+  /// margin -- never a holding condition beside a violated verdict.
+  const model::ConditionReport& binding() const;
   /// Every condition of Proposition 1 holds (false when it does not apply).
   bool propositionHolds() const;
 };

@@ -40,6 +40,7 @@ nlohmann::json gainsJson(const controller::GainReport& g) {
       {"rhs", g.condition.rhs},
       {"condition_holds", g.holds()},
       {"margin", g.margin()},
+      {"binding_condition", g.binding().name},
       {"k_c", g.kc},
       {"k_c_method", g.kc_proven ? "proven: closed-form Christoffel symbols"
                                  : "estimate: largest ratio found (no closed form of C)"},

@@ -280,7 +280,9 @@ class Verdict {
     if (met_ || at(gains, "/checked") != true || at(gains, "/condition_holds") != false) return;
     found("condition_violated",
           fmt::format("{} does not hold (margin {}): the continuous-time guarantee is not given",
-                      text(at(gains, "/condition")), g(number(at(gains, "/margin")))),
+                      text(gains.contains("binding_condition") ? at(gains, "/binding_condition")
+                                                               : at(gains, "/condition")),
+                      g(number(at(gains, "/margin")))),
           met_);
   }
 

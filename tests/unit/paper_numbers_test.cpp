@@ -51,6 +51,16 @@ TEST(PaperNumbers, ConditionsAreNamedAsPrintedWithTheirLabels) {
   for (const char* name :
        {"eq. (12)", "eq. (56a)", "eq. (74)", "eq. (75)", "eq. (80c)", "A Hurwitz (Theorem 6)"})
     EXPECT_TRUE(seen.count(name)) << name;
+  // What a reader is told of is the failing condition: chain_m2's eq. (12)
+  // holds, its Theorem 6 conditions do not.
+  const auto chain = controller::checkGains(config::loadScenario(kConfigs + "/chain_m2.yaml"), false);
+  ASSERT_TRUE(chain.condition.holds);
+  ASSERT_FALSE(chain.holds());
+  EXPECT_FALSE(chain.binding().holds);
+  EXPECT_EQ(chain.binding().margin(), chain.margin());
+  EXPECT_NE(chain.binding().name, "eq. (12)");
+  const auto rigid = controller::checkGains(config::loadScenario(kConfigs + "/rigid_2dof.yaml"), false);
+  EXPECT_EQ(rigid.binding().name, "eq. (12)");
   // A LaTeX label is never a condition's name any more.
   for (const char* old : {"eq. (11)", "eq. (632a)", "eq. (lego)", "eq. (786)"})
     EXPECT_FALSE(seen.count(old)) << old;

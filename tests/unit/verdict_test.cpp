@@ -104,6 +104,37 @@ TEST(Verdict, ADivergingChainNamesTheDivergenceThenTheRateThatWouldSuffice) {
   EXPECT_NE(block.find("why not met (most likely first):"), std::string::npos) << block;
 }
 
+// A chain whose eq. (12) holds but whose Theorem 6 condition (75) fails: the
+// block and the reason name (75), the failing one, never eq. (12) beside a
+// VIOLATED verdict and another condition's margin (a reviewer's find).
+TEST(Verdict, AViolatedChainNamesTheConditionThatFailsNotEq12) {
+  json j = divergedChain();
+  j["gains"]["condition_holds"] = false;
+  j["gains"]["margin"] = -6.603e16;
+  j["gains"]["binding_condition"] = "eq. (75)";
+  j["gains"]["conditions"] = json::array({{{"name", "eq. (12)"}, {"holds", true}},
+                                          {{"name", "A Hurwitz (Theorem 6)"}, {"holds", true}},
+                                          {{"name", "eq. (74)"}, {"holds", false}},
+                                          {{"name", "eq. (75)"}, {"holds", false}}});
+  const std::string block = tools::resultText(j);
+  EXPECT_NE(block.find("gain condition        eq. (75) VIOLATED (continuous time; margin -6.603e+16, 2 of 4 "
+                       "conditions violated)"),
+            std::string::npos)
+      << block;
+  EXPECT_EQ(block.find("eq. (12) VIOLATED"), std::string::npos) << block;
+  const json v = runVerdict(j);
+  EXPECT_NE(v.dump().find("eq. (75) does not hold (margin -6.6e+16)"), std::string::npos) << v.dump(2);
+  // All holding: the smallest margin's condition, said as the smallest of them.
+  j["gains"]["condition_holds"] = true;
+  j["gains"]["margin"] = 0.25;
+  j["gains"]["binding_condition"] = "eq. (74)";
+  for (auto& c : j["gains"]["conditions"]) c["holds"] = true;
+  EXPECT_NE(
+      tools::resultText(j).find("eq. (74) holds (continuous time; margin 0.25, the smallest of 4 that hold)"),
+      std::string::npos)
+      << tools::resultText(j);
+}
+
 TEST(Verdict, ThePlantThatCouldNotHoldItsRateIsTheTimingReasonWithItsTorque) {
   json j = divergedChain();
   j["gains"]["sampled_data"] = {{"rate", 1000.0}, {"verdict", "adequate"}, {"sufficient_rate", nullptr}};

@@ -46,11 +46,26 @@ std::string numberOr(const nlohmann::json& v, const char* fmt, const char* other
 std::string gainLine(const nlohmann::json& gains) {
   if (!gains.value("checked", true))
     return format("  gain condition        not checked (%s)\n", gains.value("why", "").c_str());
-  std::string line = format(
-      "  gain condition        %s%s (continuous time; margin %s)",
-      gains.contains("condition") ? (gains.at("condition").get<std::string>() + " ").c_str() : "",
-      gains.at("condition_holds").get<bool>() ? "holds" : "VIOLATED",
-      numberOr(gains.at("margin"), "%.4g", "not finite").c_str());  // an infinite margin is null in JSON
+  // The condition named is the one the verdict and the margin are of: with
+  // several (a chain's), the violated one with the smallest margin, or the
+  // smallest margin's when all hold -- never eq. (12) beside another's failure.
+  const char* name_key = gains.contains("binding_condition") ? "binding_condition" : "condition";
+  const auto conditions = gains.find("conditions");
+  const std::size_t count = conditions != gains.end() && conditions->is_array() ? conditions->size() : 1;
+  std::size_t violated = 0;
+  if (count > 1)
+    for (const auto& c : *conditions) violated += c.value("holds", true) ? 0 : 1;
+  const bool holds = gains.at("condition_holds").get<bool>();
+  const std::string name = gains.contains(name_key) ? gains.at(name_key).get<std::string>() + " " : "";
+  const std::string of_all = count <= 1
+                                 ? ""
+                                 : (holds ? format(", the smallest of %zu that hold", count)
+                                          : format(", %zu of %zu conditions violated", violated, count));
+  std::string line =
+      format("  gain condition        %s%s (continuous time; margin %s%s)", name.c_str(),
+             holds ? "holds" : "VIOLATED",
+             numberOr(gains.at("margin"), "%.4g", "not finite").c_str(),  // infinite: null in JSON
+             of_all.c_str());
   if (const auto sd = gains.find("sampled_data"); sd != gains.end() && sd->is_object()) {
     std::string word = sd->value("verdict", std::string("not assessed"));
     std::transform(word.begin(), word.end(), word.begin(), ::toupper);
