@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// The cascaded approximate-differentiator controller of eqs. (602), (610a)
-/// and (750) for an arm driven through m integrators (eq. 600), m >= 1:
+/// The cascaded approximate-differentiator controller of eqs. (602), (48)
+/// and (66) for an arm driven through m integrators (eq. (39)), m >= 1:
 ///
-///   xi_1*     = Theorem 1 law (eq. 610a = 90c with kp0, kd0, theta_0)
+///   xi_1*     = Theorem 4 law (eq. 610a = 90c with kp0, kd0, theta_0)
 ///   for i = 1..m:
 ///     xit_i     = xi_i - xi_i*                      (xi_i measured)
 ///     theta_i   = qc_i + b_i xi_i* + zeta_i
@@ -28,7 +28,7 @@
 namespace lagrange::controller {
 
 struct CascadedGains {
-  Theorem1Gains stage0;            ///< kp0, kd0, a0, b0 of eq. (610a) and filter (602)
+  Theorem1Gains stage0;            ///< kp0, kd0, a0, b0 of eq. (48) and filter (602)
   std::vector<StageGains> stages;  ///< i = 1..m
 };
 
@@ -48,7 +48,7 @@ struct CascadeSignals {
 /// sigma_i of eq. (750d) for stage i (1-based), per joint.
 Eigen::VectorXd cascadeSigma(const CascadedGains& gains, int stage);
 
-/// The algebraic part of eq. (750): signals from xi_1*, the measured xi
+/// The algebraic part of eq. (66): signals from xi_1*, the measured xi
 /// (m x n) and the cascade state. No state change.
 CascadeSignals evaluateCascade(const CascadedGains& gains, const Eigen::VectorXd& xi1_star,
                                const Eigen::MatrixXd& xi, const CascadeState& state);

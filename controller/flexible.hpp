@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The flexible-joint controller of the Corollary, eq. (830): the cascaded
-/// controller (750) with m = 2 on xi_1 = K q2, xi_2 = K q2', its xi_1* from
-/// eq. (830c) -- the Theorem 1 law on the link model whose g is g(q1) + K q1
+/// The flexible-joint controller of Corollary 3, eq. (83): the cascaded
+/// controller (66) with m = 2 on xi_1 = K q2, xi_2 = K q2', its xi_1* from
+/// eq. (83c) -- the Theorem 4 law on the link model whose g is g(q1) + K q1
 /// (model::JointSprings) -- and the motor torque
 ///   tau = K (q2 - q1) + J K^-1 u          (830a),
 /// which makes xi_2' = K q2'' = u exactly on the plant (595).

@@ -1,11 +1,11 @@
 #pragma once
 /// @file
 /// The gain check of a scenario: k_c and k_delta from the configured robot
-/// and reference, then eq. (11) (Theorem 1) and, for the cascaded controller
-/// with m = 1, eq. (632) (Theorem 2), with m >= 2 Theorem 3's (A Hurwitz,
-/// (lego), (786)), using the estimated eta_1..eta_3. For m >= 2 Proposition 1's
+/// and reference, then eq. (12) (Theorem 4) and, for the cascaded controller
+/// with m = 1, eqs. (56a)–(56c) (Theorem 5), with m >= 2 Theorem 6's (A Hurwitz,
+/// (74), (75)), using the estimated eta_1..eta_3. For m >= 2 Proposition 1's
 /// constructive conditions are reported too; they are sufficient for
-/// Theorem 3's, which alone decide holds().
+/// Theorem 6's, which alone decide holds().
 
 #include <optional>
 #include <string>
@@ -24,8 +24,8 @@ struct GainReport {
   double kc_found = 0.0;  ///< the largest ||C(q, y)|| / ||y|| found: how tight kc is
   double kdelta = 0.0;    ///< exact for a sine reference, else a sampled estimate
   bool kdelta_exact = true;
-  model::ConditionReport condition;                 ///< eq. (11), on the stage-0 gains
-  std::vector<model::ConditionReport> chain;        ///< eq. (632a-c) for m = 1, Theorem 3's for m >= 2
+  model::ConditionReport condition;                 ///< eq. (12), on the stage-0 gains
+  std::vector<model::ConditionReport> chain;        ///< eqs. (56a)–(56c) for m = 1, Theorem 6's for m >= 2
   std::vector<model::ConditionReport> proposition;  ///< m >= 2: (632a-c), (794), (795), Q - diag Q / 2 >= 0
   std::optional<model::EtaEstimate> eta;            ///< cascaded controller
   std::vector<std::string> warnings;                ///< hypotheses of the theorems that do not hold

@@ -3,9 +3,9 @@
 /// `lagrange check-gains --suggest`: gains that satisfy the evaluated
 /// conditions, by the constructive rules of the paper.
 ///
-///   m = 0: kd from eq. (11) with 10 % margin, kp, a, b kept.
+///   m = 0: kd from eq. (12) with 10 % margin, kp, a, b kept.
 ///   m >= 1, stage 0: b0 kept, a0 = 8 m b0 (so a0/(4 b0) - m = m), kd0 from
-///     (lego) (= 632a for m = 1) with 10 % margin; kp0 kept. eta_1..3 are then
+///     (74) (= 632a for m = 1) with 10 % margin; kp0 kept. eta_1..3 are then
 ///     estimated for these stage-0 gains.
 ///   stage 1 (794): kp1 = kd1 = a1 = 1.1 (eta_2^2 + eta_3^2) + 2, b1 = 1.
 ///   stage i >= 2 (795): b_i = 1, kp_i = f_i [(eta_2^2 + eta_3^2) (prod_{j<i} beta_j)^2 + kp_{i-1}],
@@ -34,9 +34,9 @@ config::Scenario suggestGains(const config::Scenario& scenario);
 /// What `check-gains --suggest` found at the configured rate
 /// (plant.publish_rate): gains its cheap checks pass, or none and why.
 ///
-/// Theorem 1 (controller.type theorem1): eq. (11) asks kd_min b_min / a_max
+/// Theorem 4 (controller.type theorem1): eq. (12) asks kd_min b_min / a_max
 /// > 2 k_c k_delta. Only the products kd_i b_i, the filter poles a_i and kp
-/// shape the loop, so the candidates keep eq. (11) with 10 % margin -- kd
+/// shape the loop, so the candidates keep eq. (12) with 10 % margin -- kd
 /// raised to kd_need = 1.1 * 2 k_c k_delta a_max / b_min where below it --
 /// and scale the filter (a and b together by 1, 1/2, ..., 1/256, then 2, 4,
 /// 8: a slower filter lowers the loop's high-frequency gain kd b / D(q), which
@@ -47,8 +47,8 @@ config::Scenario suggestGains(const config::Scenario& scenario);
 /// torque (the inverse dynamics along q_d) is held against
 /// actuator.saturation: no gains track a reference the limits cannot drive.
 /// When none passes, `binding` says which condition binds: the torque limits,
-/// or eq. (11) against the rate -- then what rate would let an eq. (11)
-/// candidate be adequate, and up to which k_delta eq. (11) holds with gains
+/// or eq. (12) against the rate -- then what rate would let an eq. (12)
+/// candidate be adequate, and up to which k_delta eq. (12) holds with gains
 /// the rate allows (kd lowered from kd_need by halves until the loop is not
 /// unstable). The cascaded controller keeps the constructive rules below,
 /// linearised the same way; other controllers get no suggestion. The
@@ -60,8 +60,8 @@ struct GainSearch {
   std::vector<std::string> tried;             ///< one line per candidate linearised: gains and verdict
   std::string binding;                        ///< when none: which condition binds, with the numbers
   std::optional<double>
-      sufficient_rate;  ///< when none: a rate at which an eq. (11) candidate is adequate [Hz]
-  std::optional<double> kdelta_allowed;  ///< when none: k_delta below which eq. (11) holds with stable gains
+      sufficient_rate;  ///< when none: a rate at which an eq. (12) candidate is adequate [Hz]
+  std::optional<double> kdelta_allowed;  ///< when none: k_delta below which eq. (12) holds with stable gains
   double kdelta = 0.0;                   ///< the reference's k_delta
 };
 

@@ -2,7 +2,7 @@
 /// @file
 /// The paper's controllers behind the Controller interface: theorem1
 /// (eq. 90), cascaded (eq. 750, behind an integrator chain of order
-/// actuator.order) and flexible (the Corollary, eq. 830). Each owns its
+/// actuator.order) and flexible (Corollary 3, eq. (83)). Each owns its
 /// control model and reference, which the cores refer to.
 
 #include <vector>

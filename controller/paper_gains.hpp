@@ -10,7 +10,7 @@
 
 namespace lagrange::controller {
 
-/// Diagonal gains of eq. (90), one entry per joint, all positive.
+/// Diagonal gains of eq. (13), one entry per joint, all positive.
 struct Theorem1Gains {
   Eigen::VectorXd kp;  ///< proportional [N m / rad]
   Eigen::VectorXd kd;  ///< damping on theta [N m s / rad when b = a]

@@ -10,7 +10,7 @@
 ///
 /// q~ = q - q_d, every reference term at t_k. At the first sample there is no
 /// previous position: v_0 = q_d'(t_0), so the first command carries no damping
-/// kick (the analogue of Theorem 1's bumpless filter start). PD+ with the true
+/// kick (the analogue of Theorem 4's bumpless filter start). PD+ with the true
 /// velocity tracks globally; with the difference there is no guarantee, and
 /// noise on q reaches u multiplied by Kd / T. Pure: no I/O, no clock.
 

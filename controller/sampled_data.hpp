@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// Is the sampled implementation adequate at the configured rate? The paper's
-/// conditions (eq. 11, (632), Theorem 3) are about the continuous-time loop; a
+/// conditions (eq. (12), (632), Theorem 6) are about the continuous-time loop; a
 /// controller running at 1 kHz can converge far slower than that loop, or not
-/// at all, while eq. (11) holds with a wide margin -- e.g. uniform gains on an
+/// at all, while eq. (12) holds with a wide margin -- e.g. uniform gains on an
 /// arm whose lightest joint then has a closed-loop mode near the sampling rate.
 ///
 /// Method: the linearisation of the discretised closed loop along the reference.

@@ -9,7 +9,7 @@
 ///
 /// realised as qc' = -a (qc + b q), theta = qc + b q, the filter discretised
 /// exactly with q held over each period (controller/dirty_derivative.hpp, the
-/// Theorem 1 controller's). It starts bumpless, qc(t0) = -b q(t0), so
+/// Theorem 4 controller's). It starts bumpless, qc(t0) = -b q(t0), so
 /// theta(t0) = 0. Global asymptotic regulation for every positive diagonal
 /// Kp, Kd, a, b (Kelly 1993); it is not a tracking controller, and the
 /// scenario must hold q_d constant. Pure: no I/O, no clock.

@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// The position-feedback tracking controller of Theorem 1, eq. (90):
+/// The position-feedback tracking controller of Theorem 4, eq. (13):
 ///   qc'   = -a (qc + b q~),       q~ = q - q_d(t)
 ///   theta = qc + b q~
 ///   u     = -kp q~ - kd theta + D(q) q_d'' + C(q, q_d') q_d' + g(q)
-/// Gains are per joint (diagonal matrices, Remark 1). The only measurement is q.
+/// Gains are per joint (diagonal matrices, the paper's Remark 2). The only measurement is q.
 /// Pure: no I/O, no clock; the caller supplies time.
 
 #include <Eigen/Dense>

@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// Sufficient gain conditions of Theorem 2 (one added integrator, m = 1),
-/// eq. (632), and the constants eta_1, eta_2, eta_3 of the bound (650):
+/// Sufficient gain conditions of Theorem 5 (one added integrator, m = 1),
+/// eqs. (56a)–(56c), and the constants eta_1, eta_2, eta_3 of the bound (650):
 ///   ||xi_1*'|| <= eta_1 sat(||q~||) + eta_2 ||q~'|| + eta_3 ||theta_0||.
 ///
-/// With h(t, q) = D(q) qd'' + C(q, qd') qd' + g(q), differentiating eq. (610a)
+/// With h(t, q) = D(q) qd'' + C(q, qd') qd' + g(q), differentiating eq. (48)
 /// along the closed loop gives
 ///   xi_1*' = [dh/dq - diag(kp0 + kd0 b0)] q~' + diag(kd0 a0) theta_0 + [dh/dq qd' + dh/dt],
 /// so eta_3 = max(kd0 a0) exactly, and

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Sufficient gain condition of Theorem 1, eq. (11), with Remark 1 for
+/// Sufficient gain condition of Theorem 4, eq. (12), with the paper's Remark 2 for
 /// diagonal gains:  (kd_min / 2) (b_min / a_max) > k_c k_delta.
 
 #include <Eigen/Dense>
@@ -27,7 +27,7 @@ ConditionReport makeCondition(const std::string& name, const std::string& expres
 /// (A Hurwitz, Q - diag(Q)/2 >= 0). The label is a secondary key: what the paper prints is the name.
 std::string paperLabel(const std::string& name);
 
-/// eq. (11) for per-joint gains kd, a, b (all positive) and the constants k_c, k_delta.
+/// eq. (12) for per-joint gains kd, a, b (all positive) and the constants k_c, k_delta.
 ConditionReport theorem1Condition(const Eigen::VectorXd& kd, const Eigen::VectorXd& a,
                                   const Eigen::VectorXd& b, double kc, double kdelta);
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Proposition 1: constructive sufficient conditions for Theorem 3 (m >= 2).
-/// Besides (632) and (lego), which are reported elsewhere, it asks for
+/// Proposition 1: constructive sufficient conditions for Theorem 6 (m >= 2).
+/// Besides (632) and (74), which are reported elsewhere, it asks for
 ///   (794a) kp_1 = kd_1,
 ///   (794b) min{a_1 / b_1^2, kp_1} > eta_2^2 + eta_3^2,
 ///   (795a) kd_i^2 = kp_i (kp_i - kp_{i-1}), i in [2, m],
@@ -15,7 +15,7 @@
 /// Appendix's eta_ik is confirmed against a numerical derivative (tests), so the
 /// typo is in (795a): this code uses sqrt(kp_{i-1}^2 + 4 kd_i^2). With it and
 /// (794a) every eta_ik vanishes and the printed Q equals -(A + A^T), i.e. P = I
-/// in Theorem 3 (tested for m = 2..4).
+/// in Theorem 6 (tested for m = 2..4).
 ///
 /// (794b) as printed, min{a_1, kp_1} > eta_2^2 + eta_3^2, lacks b_1^2 on a_1:
 /// (795c) at i = 1 (beta_0 = 1) reads a_1 > (eta_2^2 + eta_3^2) b_1^2, and the

@@ -70,7 +70,7 @@ class Reference {
   const ReferenceParams& params() const { return params_; }
 
   /// q_d and its derivatives up to max_order (0..4) at t; higher orders are
-  /// left empty (the Theorem 1 controller needs 2, the chains up to m + 2).
+  /// left empty (the Theorem 4 controller needs 2, the chains up to m + 2).
   ReferenceSample evaluate(double t, int max_order = 4) const;
 
   /// d^order q_d,joint / dt^order at t, order 0..4.

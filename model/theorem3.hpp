@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// Theorem 3 (m >= 2 added integrators): the matrix A and vector B of the
+/// Theorem 6 (m >= 2 added integrators): the matrix A and vector B of the
 /// cascade's error dynamics chi' = A chi + B xi_1*', chi = [xit_1..xit_m,
-/// theta_1..theta_m] (eq. 787), and the gain conditions: A Hurwitz, (lego),
-/// and (786) for a Lyapunov pair (P, Q).
+/// theta_1..theta_m] (eq. 787), and the gain conditions: A Hurwitz, (74),
+/// and (75) for a Lyapunov pair (P, Q).
 ///
 /// A is built from eq. (778) with the sigma_i of eq. (750d) kept (eq. 770
 /// drops it): A = [[-(Kp + G1), Kd - G2], [-(Kd - S) + B G1, -A_f + B G2]],
@@ -46,11 +46,11 @@ struct StageVectors {
   Eigen::VectorXd kp, kd, a, b;
 };
 
-/// Theorem 3's conditions for m = stages.size() >= 1 (worst joint each):
+/// Theorem 6's conditions for m = stages.size() >= 1 (worst joint each):
 ///   "A Hurwitz": -max Re eig(A) > 0 on the balanced A; when -(A + A^T) > 0
 ///     (P = I is a Lyapunov matrix) A is Hurwitz whatever the eigenvalue solver says;
-///   "(lego)": kd0_min (a0_min/(4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max/b0_min)^2;
-///   "(786)": Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2} > 0 for one of two (P, Q):
+///   "(74)": kd0_min (a0_min/(4 b0_max) - m) > (m+2)/2 + [k_c k_delta + (m+2)/2] (a0_max/b0_min)^2;
+///   "(75)": Q - (eta_2^2 + eta_3^2) diag{|[P B]_i|^2} > 0 for one of two (P, Q):
 ///     P = I with Q = -(A + A^T) (Proposition 1's choice) and Q = I with P > 0 solving
 ///     the Lyapunov equation; the value is the smallest eigenvalue after scaling by
 ///     diag(Q)^-1/2 (see definiteness.hpp), the better pair per joint.

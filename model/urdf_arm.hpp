@@ -11,7 +11,7 @@
 /// zero position and its mass lumped into the link it hangs from. Gravity
 /// points along the URDF world's -z; base_link's frame is taken as the world
 /// (a fixed base). Joint limits, damping and friction in the URDF are not
-/// in this model -- it is lossless (eq. 10), as the controllers assume --
+/// in this model -- it is lossless (eq. (1)), as the controllers assume --
 /// but are kept per joint (jointProperties()) for the plant, which applies
 /// them when the scenario asks (plant.urdf_dynamics, plant.joint_limits,
 /// actuator.saturation: urdf); notes() lists them for the processes to
