@@ -120,12 +120,15 @@ TEST_F(SweepMapsFiles, AnAxisOfVectorsIsDrawnInOrderAndTheHeatMapCountsMetVerdic
   EXPECT_NE(script.find("controller.kd = 20"), std::string::npos) << script;  // coloured by the other axis
   EXPECT_EQ(fileText(out_ / "maps" / "convergence_not_met_late.csv"),
             "x,y,group\n0,0.4,2\n1,0.6,2\n2,0.8,2\n");
-  // Two numeric columns are needed for the heat map: one of them is not.
-  ASSERT_EQ(maps.not_drawn.size(), 3u);
-  EXPECT_NE(maps.not_drawn[0].find("heat_map.png: no finished run has numbers in both"), std::string::npos);
+  // The heat map is drawn over the vectors too, each a named tick (sweep_map_axes_test.cpp).
+  EXPECT_EQ(maps.heat_map_axes, (std::vector<std::string>{"controller.a", "controller.kd"}));
 
+  // x0_norm is one value: a heat map over it only when the file asks (and then with a note).
   plan_.param_columns = {"controller.kd", "x0_norm"};
+  plan_.spec.heat_map = plan_.param_columns;
   const SweepMapFiles heat = writeSweepMapFiles(out_.string(), plan_, rows);
+  ASSERT_EQ(heat.notes.size(), 1u);
+  EXPECT_NE(heat.notes[0].find("x0_norm has one value (3)"), std::string::npos) << heat.notes[0];
   EXPECT_EQ(
       fileText(out_ / "maps" / "heat_map.csv"),
       "controller.kd,x0_norm,met_fraction,runs,met,not_met,not_judged\n5,3,1,3,3,0,0\n20,3,0,3,0,3,0\n");

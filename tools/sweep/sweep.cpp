@@ -200,6 +200,8 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
       for (const std::string& png : maps.plots.written) std::cout << who << "wrote " << png << "\n";
       for (const std::string& why : maps.not_drawn)
         std::cout << who << "map not drawn: " << util::terminalSafeLines(why) << "\n";
+      for (const std::string& note : maps.notes)
+        std::cout << who << "map note: " << util::terminalSafeLines(note) << "\n";
     }
     for (const std::string& png : maps.plots.failed)
       std::cerr << who << "gnuplot could not draw " << png << " (see " << maps.plots.log << ")\n";

@@ -133,6 +133,41 @@ AxisValues valuesOf(const std::map<long, Row>& rows, const std::string& column) 
   return a;
 }
 
+// An axis of values that are not numbers: each value a tick at its place
+// (0, 1, ... in the order the rows first hold it), named by the value.
+std::string namedTics(const char* axis, const std::vector<std::string>& texts) {
+  std::string tics;
+  for (size_t k = 0; k < texts.size(); ++k)
+    tics += (k ? ", " : "") + gnuplotString(texts[k].substr(0, 24)) + " " + std::to_string(k);
+  const bool rotate = axis[0] == 'x' && texts.size() > 6;  // long names side by side overlap
+  return std::string("set ") + axis + "range [-0.5:" + num(static_cast<double>(texts.size()) - 0.5) +
+         "]\nset " + axis + "tics (" + tics + ") noenhanced" + (rotate ? " rotate by -30" : "") + "\n";
+}
+
+// A row's place on an axis: its number on a numeric axis, its value's place
+// on another; none when the row has no value there.
+std::optional<double> placeOf(const Row& row, const std::string& column, const AxisValues& axis) {
+  const auto v = row.find(column);
+  if (v == row.end() || v->is_null()) return std::nullopt;
+  if (axis.numeric) return v->is_number() ? std::optional<double>(v->get<double>()) : std::nullopt;
+  const auto at = std::find(axis.texts.begin(), axis.texts.end(), label(*v));
+  if (at == axis.texts.end()) return std::nullopt;
+  return static_cast<double>(at - axis.texts.begin());
+}
+
+// A CSV field: quoted, so that a vector's commas stay in it.
+std::string csvQuoted(const std::string& text) {
+  std::string q = "\"";
+  for (const char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// "controller.a has one value (50)"; the column of an axis that varies not at all.
+std::string oneValue(const std::string& column, const AxisValues& axis) {
+  if (axis.distinct() == 0) return column + " has no value in any run";
+  return column + " has one value (" + axis.texts.front() + ")";
+}
+
 struct ConvergenceMap {
   Picture picture;
   std::vector<std::string> classes;
@@ -237,11 +272,7 @@ std::optional<ConvergenceMap> convergenceMap(const fs::path& dir, const std::str
     if (wantsLog(xs)) script += "set logscale x\nset format x '10^{%L}'\n";
     script += "set offsets graph 0.03, graph 0.03, 0, 0\n";
   } else {  // the values in order, each named
-    std::string tics;
-    for (size_t k = 0; k < xvalues.texts.size(); ++k)
-      tics += (k ? ", " : "") + gnuplotString(xvalues.texts[k].substr(0, 24)) + " " + std::to_string(k);
-    script += "set xrange [-0.5:" + num(static_cast<double>(xvalues.texts.size()) - 0.5) + "]\nset xtics (" +
-              tics + ") noenhanced" + (xvalues.texts.size() > 6 ? " rotate by -30" : "") + "\n";
+    script += namedTics("x", xvalues.texts);
   }
   if (log_y)
     script += "set logscale y\nset format y '10^{%L}'\n";
@@ -260,15 +291,18 @@ std::optional<ConvergenceMap> convergenceMap(const fs::path& dir, const std::str
   return map;
 }
 
+// Numbers at their values; an axis of vectors, maps or texts by its values'
+// places, each tick named by its value.
 std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, const std::map<long, Row>& rows,
-                               const std::string& xcol, const std::string& ycol) {
+                               const std::string& xcol, const AxisValues& xaxis, const std::string& ycol,
+                               const AxisValues& yaxis) {
   struct Cell {
     int met = 0, not_met = 0, not_judged = 0, runs = 0;
   };
   std::map<std::pair<double, double>, Cell> cells;
   std::vector<double> xs, ys;
   for (const auto& [i, r] : rows) {
-    const auto x = numberOf(r, xcol), y = numberOf(r, ycol);
+    const auto x = placeOf(r, xcol, xaxis), y = placeOf(r, ycol, yaxis);
     if (!x || !y) continue;
     Cell& c = cells[{*x, *y}];
     const VerdictClass v = verdictClass(r);
@@ -280,18 +314,32 @@ std::optional<Picture> heatMap(const fs::path& dir, const std::string& title, co
     ys.push_back(*y);
   }
   if (cells.empty()) return std::nullopt;
+  // An axis of values that are not numbers: its column holds the place, and
+  // a last column the value itself (what the tick names).
   util::OutputStream out(dir / "heat_map.csv");
-  out << xcol << "," << ycol << ",met_fraction,runs,met,not_met,not_judged\n";
+  out << xcol << "," << ycol << ",met_fraction,runs,met,not_met,not_judged"
+      << (xaxis.numeric ? "" : "," + csvQuoted(xcol + " value"))
+      << (yaxis.numeric ? "" : "," + csvQuoted(ycol + " value")) << "\n";
+  const auto valueAt = [](const AxisValues& axis, double place) {
+    return axis.numeric ? std::string() : "," + csvQuoted(axis.texts.at(static_cast<size_t>(place)));
+  };
   for (const auto& [xy, c] : cells)
     out << num(xy.first) << "," << num(xy.second) << "," << num(double(c.met) / c.runs) << "," << c.runs
-        << "," << c.met << "," << c.not_met << "," << c.not_judged << "\n";
+        << "," << c.met << "," << c.not_met << "," << c.not_judged << valueAt(xaxis, xy.first)
+        << valueAt(yaxis, xy.second) << "\n";
   std::string script = header("heat_map.png", title + ": fraction of runs whose verdict is met") +
                        "set xlabel " + gnuplotString(xcol) + " noenhanced\nset ylabel " +
                        gnuplotString(ycol) +
                        " noenhanced\nset cbrange [0:1]\nset cblabel 'fraction met (verdict)'\n"
                        "set palette defined (0 '#b2182b', 0.5 '#fdae61', 1 '#2166ac')\nset key off\n";
-  if (wantsLog(xs)) script += "set logscale x\n";
-  if (wantsLog(ys)) script += "set logscale y\n";
+  if (!xaxis.numeric)
+    script += namedTics("x", xaxis.texts);
+  else if (wantsLog(xs))
+    script += "set logscale x\n";
+  if (!yaxis.numeric)
+    script += namedTics("y", yaxis.texts);
+  else if (wantsLog(ys))
+    script += "set logscale y\n";
   script +=
       "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n"
       "plot 'heat_map.csv' skip 1 using 1:2:3 with points pt 5 ps 3 palette\n";
@@ -441,9 +489,14 @@ SweepMapFiles writeSweepMapFiles(const std::string& out_dir, const SweepPlan& pl
       group = a;
       break;
     }
+  // The axes that vary: an axis of one value is no map's axis unless the
+  // sweep file names it (maps.heat_map).
+  std::vector<std::string> varying;
+  for (const std::string& a : axes)
+    if (values[a].distinct() >= 2) varying.push_back(a);
   std::optional<ConvergenceMap> convergence;
   if (!xcol.empty())
-    convergence = convergenceMap(dir, title, rows, xcol, values[xcol], group, axes.size() == 1);
+    convergence = convergenceMap(dir, title, rows, xcol, values[xcol], group, varying.size() <= 1);
   if (convergence) {
     pictures.push_back(convergence->picture);
     maps.convergence_axis = xcol;
@@ -452,16 +505,49 @@ SweepMapFiles writeSweepMapFiles(const std::string& out_dir, const SweepPlan& pl
     maps.not_drawn.push_back("convergence_time.png: no finished run has a value of " +
                              (xcol.empty() ? std::string("an axis") : xcol));
   }
-  const std::vector<std::string> heat = plan.spec.heat_map.size() == 2 ? plan.spec.heat_map : axes;
-  if (heat.size() < 2)
+  std::vector<std::string> heat, constant;
+  for (const std::string& a : axes)
+    if (values[a].distinct() < 2) constant.push_back(oneValue(a, values[a]));
+  if (plan.spec.heat_map.size() == 2) {  // as the file asks, an axis of one value too: said so
+    heat = plan.spec.heat_map;
+    for (size_t k = 0; k < 2; ++k) {
+      const AxisValues v = valuesOf(rows, heat[k]);
+      if (v.distinct() == 1)
+        maps.notes.push_back("heat_map.png: " + oneValue(heat[k], v) +
+                             ", yet maps.heat_map names it: every point is in one " +
+                             (k == 0 ? "column" : "row"));
+    }
+  } else if (axes.size() < 2) {
     maps.not_drawn.push_back("heat_map.png: the sweep has " + std::to_string(axes.size()) +
                              (axes.size() == 1 ? " axis" : " axes") +
                              "; a heat map needs two (maps.heat_map names them)");
-  else if (auto p = heatMap(dir, title, rows, heat[0], heat[1]))
-    pictures.push_back(*p);
-  else
-    maps.not_drawn.push_back("heat_map.png: no finished run has numbers in both " + heat[0] + " and " +
-                             heat[1]);
+  } else if (varying.size() >= 2) {
+    heat = {varying[0], varying[1]};
+    if (heat[0] != axes[0] || heat[1] != axes[1]) {
+      std::string why;
+      for (const std::string& c : constant) why += (why.empty() ? "" : "; ") + c;
+      maps.notes.push_back("heat_map.png: drawn over " + heat[0] + " and " + heat[1] +
+                           ", the first two axes that vary (" + why + ")");
+    }
+  } else {
+    std::string why;
+    for (size_t k = 0; k < constant.size(); ++k)
+      why += (k == 0 ? "" : k + 1 == constant.size() ? " and " : ", ") + constant[k];
+    maps.not_drawn.push_back(
+        "heat_map.png: " + why +
+        (varying.empty() ? "; no axis varies, and a heat map needs two that do"
+                         : "; only " + varying[0] + " varies, and convergence_time.png is drawn against it"));
+  }
+  if (heat.size() == 2) {
+    if (auto p =
+            heatMap(dir, title, rows, heat[0], valuesOf(rows, heat[0]), heat[1], valuesOf(rows, heat[1]))) {
+      pictures.push_back(*p);
+      maps.heat_map_axes = heat;
+    } else {
+      maps.not_drawn.push_back("heat_map.png: no finished run has a value of both " + heat[0] + " and " +
+                               heat[1]);
+    }
+  }
   std::set<double> margins;
   for (const auto& [i, r] : rows)
     if (const auto m = numberOf(r, "gain_margin")) margins.insert(*m);
@@ -497,10 +583,12 @@ SweepMaps drawSweepMaps(const std::string& out_dir, const SweepPlan& plan, const
   const fs::path dir = fs::path(out_dir) / "maps";
   std::string all;
   for (const std::string& why : files.not_drawn) all += "# not drawn: " + why + "\n";
+  for (const std::string& note : files.notes) all += "# note: " + note + "\n";
   for (const std::string& script : files.scripts) all += script + "\n";
   util::writeOutputFile((dir / "maps.gp").string(), all);
   SweepMaps maps;
   maps.not_drawn = files.not_drawn;
+  maps.notes = files.notes;
   maps.plots = drawPictures(dir.string(), files.pngs, files.scripts);
   return maps;
 }

@@ -13,7 +13,11 @@
 ///    time drawn above the others; a sweep of one axis joins the median
 ///    convergence time at each value with a line;
 ///  - heat_map.png: the fraction of runs whose verdict is met over two
-///    parameter columns (maps.heat_map; default the first two axes);
+///    parameter columns: maps.heat_map's, drawn as asked (a note when one
+///    holds one value); by default the first two axes that vary -- an axis
+///    of one value is never chosen, and with one varying axis there is no
+///    heat map (convergence_time.png draws against it). Numbers at their
+///    values; vectors, maps and texts each a tick named by its value;
 ///  - margin.png: eq. (11)'s margin against the fraction met, per gain
 ///    setting (where the condition fails yet runs meet the metric), when the
 ///    margin takes two values or more;
@@ -48,10 +52,12 @@ VerdictClass verdictClass(const nlohmann::ordered_json& row);
 
 /// The maps' data files and scripts, written into OUT/maps/ without running gnuplot.
 struct SweepMapFiles {
-  std::vector<std::string> pngs;       ///< the pictures to draw
-  std::vector<std::string> scripts;    ///< a whole gnuplot script per picture
-  std::vector<std::string> not_drawn;  ///< "NAME.png: why", one per map left out
-  std::string convergence_axis;        ///< the column convergence_time.png is drawn against
+  std::vector<std::string> pngs;           ///< the pictures to draw
+  std::vector<std::string> scripts;        ///< a whole gnuplot script per picture
+  std::vector<std::string> not_drawn;      ///< "NAME.png: why", one per map left out
+  std::vector<std::string> notes;          ///< "NAME.png: what to know", of a map drawn
+  std::string convergence_axis;            ///< the column convergence_time.png is drawn against
+  std::vector<std::string> heat_map_axes;  ///< heat_map.png's x and y columns; empty when not drawn
   /// convergence_time.png's legend classes (VerdictClass::label), in drawing order.
   std::vector<std::string> convergence_classes;
 };
@@ -61,6 +67,7 @@ SweepMapFiles writeSweepMapFiles(const std::string& out_dir, const SweepPlan& pl
 struct SweepMaps {
   Plots plots;
   std::vector<std::string> not_drawn;  ///< "NAME.png: why", one per map left out
+  std::vector<std::string> notes;      ///< "NAME.png: what to know", of a map drawn
 };
 
 /// writeSweepMapFiles, maps.gp, then gnuplot once per picture.
