@@ -145,6 +145,30 @@ TEST(TuneSearch, TheSameSeedGivesTheSamePointsAndALongerBudgetRepeatsAShorterOne
   EXPECT_NE(a.calls, other.calls);
 }
 
+TEST(TuneSearch, ManyGainsGetAShortGlobalPhaseAndLocalStepsOfAboutAFactorOfOnePointFive) {
+  // 28 numbers (the Panda's): 60 global calls, not 290, then the local phase
+  // from the best, whose first steps stay within a factor of e^0.4 (and
+  // do not jump a quarter of the box, a factor of 10 in +-2 decades).
+  const std::vector<SearchVariable> panda = box(28);
+  Bowl bowl{std::vector<double>(28, 1.0)};
+  SearchSettings s;
+  s.max_evaluations = 100;
+  search(panda, s, [&](const auto& x, SearchPhase p) { return bowl(x, p); });
+  EXPECT_EQ(defaultGlobalEvaluations(28), kMostGlobal);
+  EXPECT_EQ(defaultGlobalEvaluations(2), 30);
+  // (CRS2's mutation step may evaluate two points before NLopt looks at its count.)
+  const long global = std::count(bowl.phases.begin(), bowl.phases.end(), SearchPhase::kGlobal);
+  EXPECT_GE(global, kMostGlobal);
+  EXPECT_LE(global, kMostGlobal + 2);
+  const auto first_local = std::find(bowl.phases.begin(), bowl.phases.end(), SearchPhase::kLocal);
+  ASSERT_NE(first_local, bowl.phases.end());
+  // The local phase's start is the best point so far; its next call one step from it.
+  const size_t k = static_cast<size_t>(first_local - bowl.phases.begin());
+  ASSERT_LT(k + 1, bowl.calls.size());
+  for (size_t i = 0; i < 28; ++i)
+    EXPECT_LE(std::abs(std::log(bowl.calls[k + 1][i] / bowl.calls[k][i])), kLocalStep + 1e-9) << i;
+}
+
 TEST(TuneSearch, AnObjectivesExceptionEndsTheSearchAsItIs) {
   struct Stop {};
   int calls = 0;
