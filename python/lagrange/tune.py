@@ -38,7 +38,8 @@ def _read_json(path, expected, out):
 
 
 def evaluations_of(out):
-    """OUT/tune.jsonl's evaluations, one dict each, in the search's order."""
+    """OUT/tune.jsonl's evaluations, one dict each, in the search's order (then
+    the confirm phase's, `phase` "confirm": docs/tuning.md)."""
     path = os.path.join(str(out), "tune.jsonl")
     rows = []
     if not os.path.exists(path):
