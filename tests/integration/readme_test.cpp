@@ -74,5 +74,38 @@ TEST(Readme, TheDocsMapNamesEveryDocAndNoDocIsOver400Lines) {
   EXPECT_GE(docs, 20);
 }
 
+// The paper is cited where a reader starts (#54 item 5), and its equations and
+// theorems are named as it prints them: the LaTeX source's labels ("eq. (11)",
+// "(lego)", "eq. 830") and the project's old "Theorem 1..3" appear only where
+// the two are mapped (citing.md, paper_in_code.md's table).
+TEST(Readme, ThePaperIsCitedAndItsNumbersAreThePrintedOnes) {
+  for (const char* doc : {"README.md", "docs/paper_in_code.md", "docs/citing.md"}) {
+    const std::string text = readFile(kRoot / doc);
+    EXPECT_NE(text.find("arXiv:1307.4659"), std::string::npos) << doc;
+    EXPECT_NE(text.find("Observer-less output feedback global tracking control"), std::string::npos) << doc;
+  }
+  const std::string table = readFile(kRoot / "docs/paper_in_code.md");
+  for (const char* row :
+       {"| `11` | (12) |", "| `lego` | (74) |", "| `786` | (75) |", "| `830`, `830a`, `830c` |"})
+    EXPECT_NE(table.find(row), std::string::npos) << row;
+  const std::vector<std::string> labels = {
+      "eq. (11)", "eq. 11",  "(lego)",     "eq. (632",   "eq. 632",    "(786)",      "eq. 830",
+      "(830)",    "eq. 750", "Theorem 1 ", "Theorem 2 ", "Theorem 3 ", "Theorem 1'", "Theorem 3'"};
+  std::vector<fs::path> read{kRoot / "README.md"};
+  for (const auto& entry : fs::directory_iterator(kRoot / "docs"))
+    if (entry.path().extension() == ".md") read.push_back(entry.path());
+  for (const auto& entry : fs::directory_iterator(kRoot / "configs")) read.push_back(entry.path());
+  for (const fs::path& path : read) {
+    const std::string name = path.filename().string();
+    if (name == "citing.md" || name == "paper_in_code.md") continue;
+    const std::vector<std::string> lines = linesOf(readFile(path));
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      for (const std::string& label : labels)
+        EXPECT_EQ(lines[i].find(label), std::string::npos)
+            << name << ":" << i + 1 << " names \"" << label
+            << "\", not the paper's printed number: " << lines[i];
+  }
+}
+
 }  // namespace
 }  // namespace lagrange::testing
