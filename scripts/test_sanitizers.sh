@@ -68,7 +68,9 @@
 #    (Failure.Malformed*/WrongActuatorStates*, 30 s each): the same messages
 #    are refused in process here (InputValidation.*);
 #  - lagrange tune's tests (tune_tests is not built here: tests/CMakeLists.txt
-#    says why).
+#    says why), and the controller seam's second set of five programs
+#    (bin-test-controller/: ControllerSeam.* is left out above, so they are
+#    not linked here).
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 set -euo pipefail
