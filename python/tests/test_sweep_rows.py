@@ -14,16 +14,9 @@ import sys
 import tempfile
 import unittest
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "python"))
+from built_program import NO_PROGRAM, PROGRAM, ROOT  # noqa: E402  (python/ on sys.path first)
 
 import lagrange  # noqa: E402
-import lagrange.programs  # noqa: E402
-
-try:
-    PROGRAM, NO_PROGRAM = lagrange.programs.program(), ""
-except lagrange.LagrangeError as e:
-    PROGRAM, NO_PROGRAM = None, str(e)
 
 
 @unittest.skipIf(PROGRAM is None, "no lagrange program to run the sweep: %s" % NO_PROGRAM)
