@@ -71,14 +71,37 @@
 #    says why), and the controller seam's second set of five programs
 #    (bin-test-controller/: ControllerSeam.* is left out above, so they are
 #    not linked here).
+#  - (CI 46.8 minutes on 2026-12-07) the unit tests that are convergence
+#    studies or repeat a search (10 to 18 s each instrumented: the plant
+#    against its model at several steps, on both engines; the constructive
+#    gains of Theorems 5 and 6 for every chain; eta2 against a dense
+#    sampling; k_c of an eight-link chain; --suggest's search that succeeds):
+#    the shorter tests of the same suites run the same code here; and two
+#    integration runs: the violated gain condition under --strict (47 s: the
+#    sampled-data check's numerics, a computed verdict) and the 2-joint arm
+#    under faults (chain_m2's run under the same faults is kept: it has the
+#    actuator's process too).
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
+# The integration tests' own program is not built here (CI at 46.8 minutes
+# on 2026-12-07; compiling it instrumented was about 3 of them): the normal
+# build's integration_tests runs the instrumented programs of build-asan/bin
+# (LAGRANGE_TEST_PROGRAMS, tests/support/launch.hpp). The processes of a run
+# -- what those tests send forged, malformed and faulty input to -- are
+# instrumented; the test program's own checks are not, and the library code
+# it calls in process is the unit tests' to run here.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cmake -S . -B build-asan -DLAGRANGE_SANITIZE=ON -DLAGRANGE_BUILD_JAVA=OFF -DLAGRANGE_BUILD_BENCH=OFF \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" >/dev/null
 cmake --build build-asan -j2
+# The normal build's integration tests (a no-op after scripts/test.sh).
+if [[ -f build/CMakeCache.txt ]]; then
+  cmake --build build -j2 --target integration_tests
+else
+  bash scripts/build.sh -DLAGRANGE_BUILD_BENCH=OFF
+fi
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
@@ -90,5 +113,13 @@ front='Help\.|Readme\.'
 outputs='integration\.(SampledWords|Suggest|SampledDataCheck|GainVerdicts|SampledVerdict|Sensors|Compare|Report|View|Export|RealArm|PlantLimits|Policies|Engines|ControllerSeam|RunCheck|Flexible|DefaultRun|ChainM1|Registered)[./]'
 wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger|HostilePlant|ExternalPlant|RunVerdict|TerminalOutput|CrossRun)\.|^layers\.|^errors\.|^python\.'
 numerics='SweepMemory\.|Failure\.(MalformedPositionMessages|WrongActuatorStates)AreRejected|GainSearch\.SuggestsNothing|FrontEnd\.ARealCommand|ContinuousLoop|FollowsContinuousPdPlus'
-# In parallel as scripts/test.sh runs them (those labelled `serial` alone).
-exec tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$timing|$sweeps|$java|$slurm|$front|$outputs|$numerics|$wiring" "$@"
+studies='PlantSim\.(MatchesTheAnalyticModelAndConvergesWithTheStep|OnMujocoChains|OnMujocoTheLongestChain)|GainSuggestion\.MeetsTheorem|EtaEstimate\.Eta2ReachesTheLargestValue|Bounds\.KcBoundsAHeavyTipped|UrdfPlant\.FollowsTheModelCloser|FlexiblePlant\.MatchesTheAnalyticModelAndConverges|GainSearch\.SuggestsGainsThatHold|BadInput\.ViolatedGainCondition|LockstepUnderFaults\.[A-Za-z]*/"rigid_2dof"'
+left_out="$timing|$sweeps|$java|$slurm|$front|$outputs|$numerics|$wiring|$studies"
+# In parallel as scripts/test.sh runs them (those labelled `serial` alone):
+# the unit tests instrumented, then the integration tests against the
+# instrumented programs; both run, and either failing fails the pass.
+status=0
+tests/in_netns.sh ctest --test-dir build-asan --output-on-failure -j "${LAGRANGE_TEST_JOBS:-3}" -E "$left_out" "$@" || status=$?
+LAGRANGE_TEST_PROGRAMS="$PWD/build-asan/bin" tests/in_netns.sh ctest --test-dir build --output-on-failure \
+  -j "${LAGRANGE_TEST_JOBS:-3}" -R '^integration\.' -E "$left_out" "$@" || status=$?
+exit "$status"

@@ -6,13 +6,23 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
 
 namespace lagrange::testing {
 
-inline const std::string kBin = LAGRANGE_BIN_DIR;
+/// The folder of the programs the tests run: this build's, or the one
+/// LAGRANGE_TEST_PROGRAMS names. The sanitizer pass runs the normal build's
+/// integration tests against its instrumented programs that way
+/// (scripts/test_sanitizers.sh): the programs are what it checks, and the
+/// test program's own build under the sanitizers was 3 minutes of CI.
+inline std::string testProgramsDir() {
+  const char* dir = std::getenv("LAGRANGE_TEST_PROGRAMS");
+  return dir != nullptr && *dir != '\0' ? std::string(dir) : std::string(LAGRANGE_BIN_DIR);
+}
+inline const std::string kBin = testProgramsDir();
 
 struct RunResult {
   int exit_code = -1;
