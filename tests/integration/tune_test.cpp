@@ -21,10 +21,11 @@ const std::string kScenario = std::string(LAGRANGE_SOURCE_DIR) + "/configs/rigid
 // Short runs: 2 s at a coarser physics step, the metric by 1.5 s (the
 // shipped gains converge at about 0.9 s).
 const std::string kShort =
-    "--set duration=2 --set plant.physics_step=1e-4 --set metrics.convergence_deadline=1.5 -j 2 ";
+    "--set duration=2 --set plant.physics_step=1e-4 --set metrics.convergence_deadline=1.5 ";
 
-RunResult tune(const std::string& out, const std::string& extra) {
-  return lagrange("tune " + quote(kScenario) + " --out " + quote(out) + " " + kShort + extra);
+RunResult tune(const std::string& out, const std::string& extra, int jobs = 2) {
+  return lagrange("tune " + quote(kScenario) + " --out " + quote(out) + " " + kShort + "-j " +
+                  std::to_string(jobs) + " " + extra);
 }
 
 std::vector<nlohmann::json> lines(const std::string& dir) {
@@ -117,16 +118,32 @@ TEST_F(Tune, ARateNoGainsCanMeetIsRefusedNamingTheRate) {
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/slow/tuned.yaml"));
 }
 
-TEST_F(Tune, OneSeedGivesTheSameEvaluations) {
-  ASSERT_EQ(tune(dir_ + "/a", "--evaluations 8 --global 6 --seed 5").exit_code, 0);
-  ASSERT_EQ(tune(dir_ + "/b", "--evaluations 8 --global 6 --seed 5").exit_code, 0);
+// One seed, the same evaluations, whether the candidates' runs are made one
+// at a time (-j 1) or ahead of the search on two threads (-j 2).
+TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
+  ASSERT_EQ(tune(dir_ + "/a", "--evaluations 12 --global 8 --seed 5", 1).exit_code, 0);
+  ASSERT_EQ(tune(dir_ + "/b", "--evaluations 12 --global 8 --seed 5", 2).exit_code, 0);
   const std::vector<nlohmann::json> a = lines(dir_ + "/a"), b = lines(dir_ + "/b");
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 3u);
   for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].at("gains"), b[i].at("gains")) << i;
-    EXPECT_EQ(a[i].at("value"), b[i].at("value")) << i;
+    for (const char* key : {"index", "phase", "gains", "value", "feasible", "failed", "convergence_time",
+                            "peak_torque", "sampled_verdict"})
+      EXPECT_EQ(a[i].at(key), b[i].at(key)) << i << " " << key;
   }
+  // -j 1 made every run when the search asked; -j 2 made runs ahead on its
+  // threads, and the search used one run per evaluation it computed.
+  const nlohmann::json ra = result(dir_ + "/a").at("runs"), rb = result(dir_ + "/b").at("runs");
+  EXPECT_EQ(ra.at("ahead"), 0);
+  EXPECT_EQ(ra.at("made"), ra.at("used"));
+  EXPECT_GT(rb.at("ahead").get<int>(), 0);
+  EXPECT_GE(rb.at("made").get<int>(), rb.at("used").get<int>());
+  const auto searched = [](const std::vector<nlohmann::json>& all) {
+    return std::count_if(all.begin(), all.end(),
+                         [](const nlohmann::json& l) { return l.at("phase") != "confirm"; });
+  };
+  EXPECT_EQ(ra.at("used").get<long>(), searched(a));
+  EXPECT_EQ(rb.at("used").get<long>(), searched(b));
 }
 
 }  // namespace

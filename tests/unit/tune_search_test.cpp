@@ -169,6 +169,57 @@ TEST(TuneSearch, ManyGainsGetAShortGlobalPhaseAndLocalStepsOfAboutAFactorOfOnePo
     EXPECT_LE(std::abs(std::log(bowl.calls[k + 1][i] / bowl.calls[k][i])), kLocalStep + 1e-9) << i;
 }
 
+TEST(TuneSearch, ALookaheadChangesNoCallAndItsFirstPointIsTheNextCall) {
+  // A bowl with a penalty step (as tune's bands): values the search sees far
+  // apart, so that a guess could mislead it if the replay were wrong.
+  const auto stepped = [](Bowl& b) {
+    return [&b](const std::vector<double>& x, SearchPhase p) {
+      const double f = b(x, p);
+      return x[0] > 20.0 ? 3e6 + f : f;
+    };
+  };
+  SearchSettings s;
+  s.seed = 11;
+  s.max_evaluations = 120;
+  Bowl alone{{3.0, 0.2, 40.0}};
+  const SearchOutcome one = search(box(3), s, stepped(alone));
+  for (int lookahead : {2, 3, 5}) {
+    SCOPED_TRACE(lookahead);
+    SearchSettings ahead = s;
+    ahead.lookahead = lookahead;
+    Bowl with{{3.0, 0.2, 40.0}};
+    std::vector<std::vector<std::vector<double>>> batches;
+    const auto objective = stepped(with);
+    const SearchOutcome two = search(
+        box(3), ahead,
+        [&](const std::vector<double>& x, SearchPhase p) {
+          // Every call was handed over first, as the first point of the last batch.
+          EXPECT_FALSE(batches.empty());
+          if (!batches.empty()) {
+            EXPECT_EQ(batches.back().front(), x);
+          }
+          return objective(x, p);
+        },
+        [&](const std::vector<std::vector<double>>& points) {
+          EXPECT_LE(points.size(), static_cast<size_t>(lookahead));
+          batches.push_back(points);
+        });
+    EXPECT_EQ(with.calls, alone.calls);
+    EXPECT_EQ(with.phases, alone.phases);
+    EXPECT_EQ(two.best, one.best);
+    EXPECT_EQ(two.best_value, one.best_value);
+    EXPECT_EQ(two.evaluations, one.evaluations);
+    // The guesses that came true: CRS2's population (30 points here, drawn
+    // before any value is looked at) is guessed whole, batch after batch.
+    std::set<std::vector<double>> asked(with.calls.begin(), with.calls.end());
+    size_t right = 0;
+    for (const auto& batch : batches)
+      right += static_cast<size_t>(
+          std::count_if(batch.begin() + 1, batch.end(), [&](const auto& x) { return asked.count(x) > 0; }));
+    EXPECT_GE(right, 25u);
+  }
+}
+
 TEST(TuneSearch, AnObjectivesExceptionEndsTheSearchAsItIs) {
   struct Stop {};
   int calls = 0;

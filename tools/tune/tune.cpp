@@ -12,8 +12,10 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <thread>
 
 #include "tools/command_error.hpp"
+#include "tools/tune/tune_ahead.hpp"
 #include "tools/tune/tune_evaluate.hpp"
 #include "tools/tune/tune_files.hpp"
 #include "tools/tune/tune_search.hpp"
@@ -218,6 +220,11 @@ int runTune(const TuneOptions& o) {
   int computed = 0, read = 0;
   std::map<std::vector<double>, TuneEvaluation> made;  // this run's, made or read: a repeated point's
 
+  // The runs from the initial state, made ahead on -j threads (one per core by default).
+  const int workers =
+      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  CandidateRuns runs(p, workers, stopRequested);
+
   const SearchObjective objective = [&](const std::vector<double>& point, SearchPhase phase) {
     if (stopRequested()) throw TuneInterrupted();
     if (o.minutes > 0.0 &&
@@ -234,7 +241,7 @@ int runTune(const TuneOptions& o) {
       made.emplace(point, e);
     } else {
       const std::optional<double> best_time = best ? seen[*best].convergence_time : std::optional<double>();
-      e = evaluateGains(p, gainsOf(p, point), best_time, stopRequested);
+      e = judgeCandidate(p, runs.take(point), best_time, stopRequested);
       ++computed;
       appendEvaluation(o.out_dir, evaluationJson(static_cast<int>(seen.size()), phase, e, p.torque_limit));
       made.emplace(point, e);
@@ -256,13 +263,22 @@ int runTune(const TuneOptions& o) {
     return e.value;
   };
 
+  // The points the search asks next: those not already made or read, run ahead.
+  const SearchLookahead lookahead = [&](const std::vector<std::vector<double>>& points) {
+    std::vector<std::vector<double>> to_run;
+    for (const std::vector<double>& point : points)
+      if (made.count(point) == 0 && cache.count(point) == 0) to_run.push_back(point);
+    runs.ahead(to_run);
+  };
+
   SearchSettings settings;
   settings.seed = o.seed;
   settings.max_evaluations = budget;
   settings.global_evaluations = o.global;
+  settings.lookahead = workers;
   bool interrupted = false;
   try {
-    search(p.variables, settings, objective);
+    search(p.variables, settings, objective, lookahead);
   } catch (const BudgetSpent&) {
   } catch (const TuneInterrupted&) {
     interrupted = true;
@@ -320,6 +336,7 @@ int runTune(const TuneOptions& o) {
   result["computed"] = computed;
   result["read"] = read;
   result["interrupted"] = interrupted;
+  result["runs"] = {{"made", runs.made()}, {"ahead", runs.madeAhead()}, {"used", runs.used()}};
   result["input"] = seen.empty() ? nlohmann::json() : nlohmann::json(side(seen.front()));
   result["best"] = best ? nlohmann::json(side(seen[*best])) : nlohmann::json();
   try {

@@ -20,7 +20,7 @@ struct TuneOptions {
   std::string out_dir;
   int evaluations = 0;   ///< the budget in evaluations; 0: kDefaultEvaluations unless minutes is set
   double minutes = 0.0;  ///< the budget in wall time; 0: none
-  int jobs = 0;          ///< the sampled-data check's processes; 0: one per core
+  int jobs = 0;          ///< candidates run at a time, and the check's simulations; 0: one per core
   unsigned seed = 1;
   double span = 2.0;  ///< decades either side of the input's gains
   int global = 0;     ///< the global phase's evaluations; 0: 10 (n + 1)

@@ -33,7 +33,8 @@ Subcommand addTuneCommand(CLI::App& app) {
   cmd->add_option("--minutes", o->minutes, "Stop starting evaluations after this much wall time")
       ->check(CLI::PositiveNumber);
   cmd->add_option("-j,--jobs", o->jobs,
-                  "Processes the sampled-data check simulates in at a time (default: one per core)")
+                  "Candidates run at a time, ahead of the search, and the sampled-data check's "
+                  "simulations at a time (default: one per core)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", o->seed, "The global phase's random seed: the same seed, the same evaluations");
   cmd->add_option("--span", o->span,

@@ -142,30 +142,26 @@ double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torq
          1e5 * squeezed(static_cast<double>(word - std::begin(words)) + 0.1 * static_cast<double>(missed));
 }
 
-TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
-                             bool (*stop_requested)()) {
-  const auto wall_start = std::chrono::steady_clock::now();
+CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)()) {
   const auto since = [](std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  TuneEvaluation e;
+  const auto load_start = std::chrono::steady_clock::now();
+  CandidateRun out;
+  TuneEvaluation& e = out.findings;
   e.gains = gains;
-  const auto finish = [&](const config::Scenario& s) {
-    e.value = tuneValue(e, s, p.torque_limit);
-    e.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    return e;
-  };
   std::vector<std::string> overrides = p.overrides;
   for (const std::string& o : gainOverrides(gains)) overrides.push_back(o);
-  config::Scenario s;
   try {
-    s = config::loadScenario(p.scenario_path, overrides);
+    out.scenario = config::loadScenario(p.scenario_path, overrides);
   } catch (const std::exception& error) {
+    out.scenario = p.input;
     e.feasible = false;
     e.failed = std::string("scenario refused: ") + error.what();
-    return finish(p.input);
+    return out;
   }
-  e.load_time = since(wall_start);
+  e.load_time = since(load_start);
+  const config::Scenario& s = out.scenario;
 
   // eq. (11) (printed (12)) with k_c and k_delta of the problem: cheap, so first.
   if (p.kc && p.kdelta) {
@@ -176,42 +172,61 @@ TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::
     if (p.require_condition && !c.holds) {
       e.feasible = false;
       e.failed = "condition eq. (12) violated (--require-condition)";
-      return finish(s);
+      return out;
     }
   }
 
-  // The run in process; the sampled-data check below examines the
-  // scenario's own wiring (a realtime scenario with its period of delay).
+  // The run in process; the sampled-data check examines the scenario's own
+  // wiring (a realtime scenario with its period of delay).
   config::Scenario in_process = s;
   in_process.mode = config::Mode::kInproc;
   const auto run_start = std::chrono::steady_clock::now();
   const wiring::InProcessOutcome run =
       wiring::simulateInProcess(in_process, nullptr, nullptr, stop_requested);
   e.run_time = since(run_start);
-  if (run.status == "interrupted") throw TuneInterrupted();
+  out.interrupted = run.status == "interrupted";
   e.status = run.status;
   e.convergence_time = run.tracking.convergence_time;
   e.final_error = run.tracking.final_error;
   e.peak_torque = run.tracking.max_abs_torque;
-  if (run.status != "completed") {
+  if (run.status != "completed" && !out.interrupted) {
     e.feasible = false;
     e.failed = "diverged from the initial state" + (run.stop_message.empty() ? "" : ": " + run.stop_message);
-    return finish(s);
   }
+  return out;
+}
+
+TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optional<double> best_time,
+                              bool (*stop_requested)()) {
+  const auto judge_start = std::chrono::steady_clock::now();
+  const auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  if (run.interrupted) throw TuneInterrupted();
+  TuneEvaluation e = std::move(run.findings);
+  const config::Scenario& s = run.scenario;
+  // Wall time: the first part's (perhaps made on another thread, ahead) and this one's.
+  const double first_part = e.load_time + e.run_time;
+  const auto finish = [&] {
+    e.value = tuneValue(e, s, p.torque_limit);
+    e.wall_time = first_part + since(judge_start);
+    return e;
+  };
+  if (!e.failed.empty()) return finish();  // refused, eq. (12) with --require-condition, diverged
   if (!e.convergence_time || *e.convergence_time > s.metrics.convergence_deadline) {
     e.feasible = false;
     e.failed = "metric not met from the initial state";
-    return finish(s);
+    return finish();
   }
   if (p.torque_limit > 0.0 && e.peak_torque > p.torque_limit * (1.0 + 1e-9)) {
     e.feasible = false;
     e.failed = "torque over the limit";
-    return finish(s);
+    return finish();
   }
   // The costly check only for a candidate that would be the new best.
   if (best_time &&
       *e.convergence_time >= *best_time - std::max(kCheckedGain * *best_time, 2.0 * s.tickPeriod()))
-    return finish(s);
+    return finish();
 
   const auto check_start = std::chrono::steady_clock::now();
   const controller::SampledSimulation check = wiring::simulateSampledData(s, p.jobs);
@@ -233,10 +248,15 @@ TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::
     e.feasible = false;
     e.failed = !check.adequate() ? "sampled-data check " + check.verdict
                                  : "sampled-data check: a seeded start missed the metric";
-    return finish(s);
+    return finish();
   }
   e.feasible = true;
-  return finish(s);
+  return finish();
+}
+
+TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
+                             bool (*stop_requested)()) {
+  return judgeCandidate(p, runCandidate(p, gains, stop_requested), best_time, stop_requested);
 }
 
 controller::SampledDataCheck linearisedCheckOf(const TuneProblem& p, const TuneGains& gains) {

@@ -100,13 +100,31 @@ double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torq
 /// (tune's "confirm" phase), the fastest first.
 inline constexpr double kCheckedGain = 0.01;
 
-/// Evaluates `gains`. `best_time`: the best feasible convergence time so
-/// far: a candidate whose run from the initial state does not beat it by
-/// kCheckedGain is not given the sampled-data check (its value is its time;
-/// feasible unset).
-/// The torque limit is p.torque_limit (0: none, for the input's own
-/// evaluation when the limit is its peak). `stop_requested` is asked during
-/// the run and after the check. @throws TuneInterrupted when it says stop.
+/// A candidate's first part, which depends on its gains alone: the
+/// scenario with them (or its refusal), eq. (12), and the run from the
+/// initial state. Tune makes it ahead of the search's asking, on several
+/// threads (tools/tune/tune_ahead.hpp); judgeCandidate does the rest.
+struct CandidateRun {
+  TuneEvaluation findings;    ///< gains, margin, status, times, the run's numbers; `failed` when refused
+  config::Scenario scenario;  ///< with the gains (the input's when refused)
+  bool interrupted = false;   ///< the stop came during the run: nothing of it counts
+};
+
+/// The first part. Never throws for a candidate's own failure (a refused
+/// scenario, a diverged run: said in `findings`). `stop_requested` is asked
+/// during the run.
+CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)());
+
+/// The rest: what the run says against the metric and the torque limit
+/// (p.torque_limit; 0: none, for the input's own evaluation when the limit
+/// is its peak), then the sampled-data check -- only when the run beats
+/// `best_time`, the best feasible convergence time so far, by kCheckedGain
+/// (else its value is its time and feasible unset). @throws TuneInterrupted
+/// when the run was interrupted or `stop_requested` says stop after the check.
+TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optional<double> best_time,
+                              bool (*stop_requested)());
+
+/// Both parts of `gains` at once.
 TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
                              bool (*stop_requested)());
 

@@ -39,6 +39,14 @@ const char* toString(SearchPhase phase);
 /// (the exception leaves search() as it is).
 using SearchObjective = std::function<double(const std::vector<double>& point, SearchPhase phase)>;
 
+/// The points the search will ask for next, handed over before the first of
+/// them is asked: `points[0]` is the next call's; the others are the calls
+/// that would follow were each value worse than any (a guess: they may never
+/// be asked). For making evaluations ahead of the search, in parallel
+/// (tune's runs, tools/tune/tune_ahead.hpp); the search's sequence is the
+/// same with and without it.
+using SearchLookahead = std::function<void(const std::vector<std::vector<double>>& points)>;
+
 /// The global phase's default length: 10 (n + 1), at most kMostGlobal. In
 /// many dimensions (the Panda's 28 gains) random points of the box are
 /// almost all unstable loops; the budget is better spent descending from
@@ -52,6 +60,8 @@ struct SearchSettings {
   unsigned seed = 1;
   int max_evaluations = 100;   ///< calls of the objective in all, the start's included
   int global_evaluations = 0;  ///< the global phase's most; 0: defaultGlobalEvaluations(n)
+  /// Points handed to the lookahead at once, the next one's included; 1: no lookahead.
+  int lookahead = 1;
 };
 
 struct SearchOutcome {
@@ -60,9 +70,19 @@ struct SearchOutcome {
   int evaluations = 0;  ///< calls made
 };
 
-/// Runs the search. @throws std::invalid_argument for variables without a
-/// valid range, or no variables; whatever the objective throws.
+/// Runs the search. With a lookahead (and settings.lookahead > 1) the
+/// optimisers are replayed from the start for each call, the values of the
+/// calls made so far given back in order, up to the first call without one:
+/// its point is the next call's, and the replay goes on past it with a
+/// guessed value (worse than any) to find the points handed to the
+/// lookahead with it. The calls
+/// of the objective, their order and the outcome are those of the search
+/// without a lookahead: NLopt is deterministic for the same values and seed
+/// (CRS2's population, drawn before any value is looked at, is always
+/// guessed right; a subplex step only when the value was bad).
+/// @throws std::invalid_argument for variables without a valid range, or no
+/// variables; whatever the objective throws.
 SearchOutcome search(const std::vector<SearchVariable>& variables, const SearchSettings& settings,
-                     const SearchObjective& objective);
+                     const SearchObjective& objective, const SearchLookahead& lookahead = {});
 
 }  // namespace lagrange::tools
