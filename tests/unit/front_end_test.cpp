@@ -119,3 +119,20 @@ TEST(FrontEnd, ARealCommandGetsItsOwnOptionsThroughTheDispatch) {
 
 }  // namespace
 }  // namespace lagrange::tools
+
+namespace lagrange::tools {
+namespace {
+
+// `lagrange run`'s scenario is required (its absence is named), though
+// optional to the parser (a bare --check may take it first): the usage line
+// shows it so, without brackets (#54).
+TEST(FrontEnd, RunsUsageShowsTheScenarioAsRequired) {
+  CLI::App app{"test", "lagrange"};
+  const Subcommand run = addRunCommand(app);
+  const std::string help = run.cli->help();
+  EXPECT_NE(help.find("run [OPTIONS] SCENARIO\n"), std::string::npos) << help;
+  EXPECT_EQ(help.find("[SCENARIO]"), std::string::npos) << help;
+}
+
+}  // namespace
+}  // namespace lagrange::tools

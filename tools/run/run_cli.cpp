@@ -36,6 +36,17 @@ bool scenarioFromCheck(RunOptions& options) {
   }
   return false;
 }
+
+// The usage line shows SCENARIO without brackets: it is required, though
+// optional to the parser (addRunCommand says why).
+class RunUsage : public CLI::Formatter {
+ public:
+  std::string make_option_usage(const CLI::Option* opt) const override {
+    const std::string usage = CLI::Formatter::make_option_usage(opt);
+    const bool bracketed = usage.size() > 2 && usage.front() == '[' && usage.back() == ']';
+    return opt->get_name(true) == "SCENARIO" && bracketed ? usage.substr(1, usage.size() - 2) : usage;
+  }
+};
 }  // namespace
 
 Subcommand addRunCommand(CLI::App& app) {
@@ -56,6 +67,7 @@ Subcommand addRunCommand(CLI::App& app) {
   // whose value is optional; the callback takes it back (scenarioFromCheck).
   // Required, though optional to the parser: a `--check` that swallowed the
   // scenario hands it back (scenarioFromCheck), and its absence is named then.
+  cmd->formatter(std::make_shared<RunUsage>());
   cmd->add_option("SCENARIO", run.config_path, "Scenario YAML file, e.g. configs/rigid_2dof.yaml (required)")
       ->type_name("");
   cmd->add_option("-o,--out", run.out_dir, "Output directory (created if missing)")->required();
