@@ -8,7 +8,9 @@
 # initial state and its sampled-data check's simulations (tune.jsonl's
 # times.run and times.check): loading the scenario for each candidate, the
 # linearised check, eq. (12)'s k_c and k_delta, NLopt, writing the files,
-# starting the program. The target is < 10 %.
+# starting the program. The target is < 10 %. The share is meaningful at -j 1
+# (TUNE_ARGS ... -j 1): at -j 2 the runs overlap (bench/tune_jobs_side_by_side.sh
+# times -j 1 against -j N).
 #   bench/tune_throughput.sh [LAGRANGE_BIN] [ROUNDS] [-- TUNE_ARGS...]
 #   bench/tune_throughput.sh build/bin/lagrange 5
 # LAGRANGE_BIN defaults to build/bin/lagrange, ROUNDS to 5; TUNE_ARGS
