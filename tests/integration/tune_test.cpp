@@ -109,6 +109,33 @@ TEST_F(Tune, ARerunWithALargerBudgetReadsTheEvaluationsMadeAndComputesOnlyTheRes
   EXPECT_NE(other.output.find("seed"), std::string::npos) << other.output;
 }
 
+// Ctrl-C while the runs are made ahead on two threads: exit 130 at once, the
+// evaluations made kept, and a resume gives what an uninterrupted tune gives.
+TEST_F(Tune, AnInterruptWhileRunsAreMadeAheadKeepsWhatWasMadeAndResumesToTheSameEvaluations) {
+  const std::string out = dir_ + "/interrupted", whole = dir_ + "/whole";
+  const RunResult stopped =
+      shell("timeout --preserve-status -s INT 5 " + kBin + "/lagrange tune " + quote(kScenario) + " --out " +
+            quote(out) + " " + kShort + "-j 2 --evaluations 2000 --global 20 -q");
+  ASSERT_EQ(stopped.exit_code, 130) << stopped.output;  // the interrupt came, and was said
+  EXPECT_NE(stopped.output.find("interrupted after"), std::string::npos) << stopped.output;
+  EXPECT_TRUE(result(out).at("interrupted").get<bool>());
+  const std::vector<nlohmann::json> kept = lines(out);  // every line whole (lines() parses each)
+  ASSERT_GT(kept.size(), 3u);
+  ASSERT_LT(kept.size(), 1000u) << "not interrupted midway";
+  const int budget = static_cast<int>(kept.size()) + 5;
+  const std::string more = "--evaluations " + std::to_string(budget) + " --global 20";
+  const RunResult resumed = tune(out, more, 2);
+  ASSERT_LE(resumed.exit_code, 1) << resumed.output;
+  ASSERT_LE(tune(whole, more, 1).exit_code, 1);
+  EXPECT_GE(result(out).at("read").get<size_t>(), kept.size());
+  const std::vector<nlohmann::json> a = lines(out), b = lines(whole);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].at("gains"), b[i].at("gains")) << i;
+    EXPECT_EQ(a[i].at("value"), b[i].at("value")) << i;
+  }
+}
+
 TEST_F(Tune, ARateNoGainsCanMeetIsRefusedNamingTheRate) {
   const RunResult r = tune(dir_ + "/slow", "--set plant.publish_rate=20 --evaluations 8 --global 6");
   EXPECT_EQ(r.exit_code, 1) << r.output;
