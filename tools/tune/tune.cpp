@@ -286,6 +286,7 @@ int runTune(const TuneOptions& o) {
     if (tty && !o.quiet) std::cerr << "\n";
     return failWith(who, e);
   }
+  runs.finish();  // no guess of the search's runs beside the confirm phase's checks
   // The confirm phase: the fastest runs the search left unchecked (they
   // did not beat the best by kCheckedGain), checked now, fastest first,
   // until one passes or kConfirmed were tried.

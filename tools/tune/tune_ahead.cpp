@@ -16,7 +16,9 @@ CandidateRuns::CandidateRuns(const TuneProblem& p, int workers, bool (*stop_requ
   }
 }
 
-CandidateRuns::~CandidateRuns() {
+CandidateRuns::~CandidateRuns() { finish(); }
+
+void CandidateRuns::finish() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     closing_ = true;
@@ -24,6 +26,7 @@ CandidateRuns::~CandidateRuns() {
   }
   changed_.notify_all();
   for (std::thread& t : workers_) t.join();
+  workers_.clear();
 }
 
 void CandidateRuns::ahead(const std::vector<std::vector<double>>& points) {

@@ -26,7 +26,10 @@ class CandidateRuns {
   /// `workers` threads (none for 0 or 1: take() then runs each itself).
   /// `p` and `stop_requested` must outlive this object.
   CandidateRuns(const TuneProblem& p, int workers, bool (*stop_requested)());
-  ~CandidateRuns();  ///< waits for the runs in progress (a stop request ends them early)
+  ~CandidateRuns();  ///< as finish()
+  /// Drops the queued runs and waits for those in progress (a stop request
+  /// ends them early): the search is over, its guesses must not hold a core.
+  void finish();
   CandidateRuns(const CandidateRuns&) = delete;
   CandidateRuns& operator=(const CandidateRuns&) = delete;
 

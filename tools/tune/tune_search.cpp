@@ -155,7 +155,10 @@ void phase(Run& run, nlopt::algorithm algorithm, SearchPhase which, int most,
   } catch (const nlopt::forced_stop&) {
   } catch (const nlopt::roundoff_limited&) {  // converged as far as doubles tell: a normal end
   } catch (const std::runtime_error&) {
-    if (!run.error) throw;  // NLopt's own failure
+    // NLopt's own failure -- unless a replay had its next point already: a
+    // failure past it may come of the guessed values, which the search never sees.
+    if (!run.error && !(run.known && !run.ahead.empty())) throw;
+    if (run.known && !run.ahead.empty()) run.ahead_full = true;
   }
   run.opt = nullptr;
   if (run.error) std::rethrow_exception(run.error);
