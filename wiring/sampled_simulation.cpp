@@ -11,6 +11,7 @@
 #include "model/reference.hpp"
 #include "plant/scenario_plant.hpp"
 #include "util/error.hpp"
+#include "util/jobs.hpp"
 #include "util/splitmix.hpp"
 #include "wiring/inproc_runner.hpp"
 
@@ -345,9 +346,9 @@ SampledSimulation check(const config::Scenario& s, const std::vector<StartState>
     fine_loops.insert(fine_loops.end(), loops.begin() + 2 + static_cast<long>(simulated_sampled),
                       loops.end());
   } else {  // F was refined: the other starts' fine loops at the F confirmed
-    std::vector<config::Scenario> refined;
-    for (size_t i = 1; i < starts.size(); ++i) refined.push_back(fineScenario(s, starts[i].state, fine));
-    const std::vector<Loop> again = simulateAll(refined, threads, stop_requested);
+    std::vector<config::Scenario> at_fine;
+    for (size_t i = 1; i < starts.size(); ++i) at_fine.push_back(fineScenario(s, starts[i].state, fine));
+    const std::vector<Loop> again = simulateAll(at_fine, threads, stop_requested);
     fine_loops.insert(fine_loops.end(), again.begin(), again.end());
   }
 
@@ -475,7 +476,7 @@ SampledSimulation notAssessedExternal(const config::Scenario& s) {
 
 SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
   if (s.controller.type == "external" || s.plant.external()) return notAssessedExternal(s);
-  const int threads = jobs > 0 ? jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = util::jobsOrCores(jobs);
   return check(s, startsOf(s), kMaxRefinement, threads, std::nullopt);
 }
 

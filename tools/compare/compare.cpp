@@ -16,7 +16,6 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
-#include <thread>
 
 #include "config/controller_params.hpp"
 #include "config/scenario.hpp"
@@ -30,6 +29,7 @@
 #include "transport/channels.hpp"
 #include "transport/messages.hpp"
 #include "util/error.hpp"
+#include "util/jobs.hpp"
 #include "util/output_stream.hpp"
 #include "util/terminal_text.hpp"
 #include "wiring/spawn_logged.hpp"
@@ -120,7 +120,7 @@ pid_t startRun(const CompareOptions& o, const CompareRun& run) {
 
 // Runs every run, at most `jobs` at a time; returns each one's exit status.
 std::vector<int> runAll(const CompareOptions& o, const std::vector<CompareRun>& runs) {
-  const int jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int jobs = util::jobsOrCores(o.jobs);
   std::vector<int> status(runs.size(), -1);
   std::map<pid_t, size_t> running;
   size_t next = 0, done = 0;

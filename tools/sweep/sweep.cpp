@@ -18,7 +18,6 @@
 #include <map>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "logs/out_dir_lock.hpp"
 #include "tools/command_error.hpp"
@@ -30,6 +29,7 @@
 #include "tools/sweep/sweep_runner.hpp"
 #include "tools/sweep/sweep_store.hpp"
 #include "util/error.hpp"
+#include "util/jobs.hpp"
 #include "util/output_file.hpp"
 #include "util/terminal_text.hpp"
 #include "wiring/spawn_logged.hpp"
@@ -225,8 +225,7 @@ Finished finish(const std::string& out_dir, const SweepPlan& plan, bool quiet, c
 
 // Local: shards as processes, one per core; progress from the rows files.
 int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining, const std::string& plan_digest) {
-  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  const int n = static_cast<int>(std::min<long>(o.jobs > 0 ? o.jobs : cores, remaining));
+  const int n = static_cast<int>(std::min<long>(util::jobsOrCores(o.jobs), remaining));
   util::makeOutputDirectory((fs::path(o.out_dir) / "logs").string());  // never a planted link
   std::map<pid_t, int> running;
   for (int k = 0; k < n; ++k) {

@@ -12,7 +12,6 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <thread>
 
 #include "tools/command_error.hpp"
 #include "tools/tune/tune_ahead.hpp"
@@ -20,6 +19,7 @@
 #include "tools/tune/tune_files.hpp"
 #include "tools/tune/tune_search.hpp"
 #include "util/error.hpp"
+#include "util/jobs.hpp"
 
 namespace lagrange::tools {
 
@@ -221,8 +221,7 @@ int runTune(const TuneOptions& o) {
   std::map<std::vector<double>, TuneEvaluation> made;  // this run's, made or read: a repeated point's
 
   // The runs from the initial state, made ahead on -j threads (one per core by default).
-  const int workers =
-      o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int workers = util::jobsOrCores(o.jobs);
   CandidateRuns runs(p, workers, stopRequested);
 
   const SearchObjective objective = [&](const std::vector<double>& point, SearchPhase phase) {

@@ -39,6 +39,11 @@ std::string exactNumber(double v) {
   return buf;
 }
 
+// Seconds since t0.
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // x / (1 + x) for x >= 0: a miss squeezed into [0, 1), so that a band's
 // penalties stay inside it whatever the miss.
 double squeezed(double miss) {
@@ -143,9 +148,6 @@ double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torq
 }
 
 CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)()) {
-  const auto since = [](std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
   const auto load_start = std::chrono::steady_clock::now();
   CandidateRun out;
   TuneEvaluation& e = out.findings;
@@ -199,9 +201,6 @@ CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*s
 TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optional<double> best_time,
                               bool (*stop_requested)()) {
   const auto judge_start = std::chrono::steady_clock::now();
-  const auto since = [](std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
   if (run.interrupted) throw TuneInterrupted();
   TuneEvaluation e = std::move(run.findings);
   const config::Scenario& s = run.scenario;
