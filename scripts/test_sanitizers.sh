@@ -20,9 +20,10 @@
 #    on the JVM, the Python one in CPython, which the sanitizers do not see;
 #    the C++ one is built outside the tree against the installed package,
 #    without the sanitizers' runtime its instrumented library would need;
-#  - the sweep's Slurm test: most of its time is the scheduler's polling, and
-#    what its array tasks run is the sweep's own shard code, which the local
-#    sweep's tests (Sweep.*) run under the sanitizers;
+#  - the sweep's and tune's Slurm tests: most of their time is the scheduler's
+#    polling, and what their array tasks run is the sweep's own shard code,
+#    which the local sweep's tests (Sweep.*) run under the sanitizers, and
+#    tune, whose tests (tune_tests) this pass does not build;
 #  - the C++ plant helper's run (CppPlant.*), built outside the tree against
 #    the installed package as the C++ controller is; and the front door's
 #    tests (Help.*, Readme.*): every command's examples and the demo's run,
@@ -110,7 +111,7 @@ export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
 timing='SdkPlantLoad\.APlantTwoPeriodsLate|Progress\.|Spy\.|RealtimeUnderAttack|OrdinaryRunSaysItsLogIsComplete|StoppedLoggerIsCounted|RestartedControllerTakesOver|RealtimeConvergesLikeLockstep|StaleTorquePolicy|RealtimeUnderDrops|SeesTheRealtimeWiringsDelay|AVelocityControllerRunsInRealtime'
 sweeps='Configs/|DefaultRun\.|Load\.|ChainM1\.|LargeError\.|AUrdfArmBehindAnActuatorChain|LockstepUnderFaults.*(panda|flexible)|FilteredMotorRateConverges'
 java='ExternalController\.|CppPlant\.'
-slurm='SlurmSweep\.'
+slurm='SlurmSweep\.|SlurmTune\.'
 front='Help\.|Readme\.'
 outputs='integration\.(SampledWords|Suggest|SampledDataCheck|GainVerdicts|SampledVerdict|Sensors|Compare|Report|View|Export|RealArm|PlantLimits|Policies|Engines|ControllerSeam|RunCheck|Flexible|DefaultRun|ChainM1|Registered)[./]'
 wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger|HostilePlant|ExternalPlant|RunVerdict|TerminalOutput|CrossRun)\.|^layers\.|^errors\.|^python\.'

@@ -1,11 +1,8 @@
 // `lagrange sweep --slurm` against a real one-node Slurm cluster from
-// Debian's packages (tests/integration/slurm_cluster.sh starts munge,
-// slurmctld and slurmd inside this test's private network namespace and
-// stops them afterwards): the shards run as a job array, sbatch's options
+// Debian's packages (support/slurm_cluster.hpp): the shards run as a job array, sbatch's options
 // pass through, and the table -- waited for, or collected after --no-wait --
 // is the one a local sweep writes.
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <chrono>
 #include <filesystem>
@@ -14,6 +11,7 @@
 
 #include "support/configs.hpp"
 #include "support/launch.hpp"
+#include "support/slurm_cluster.hpp"
 #include "support/sweep_files.hpp"
 
 namespace lagrange::testing {
@@ -21,34 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kCluster = std::string(LAGRANGE_SOURCE_DIR) + "/tests/integration/slurm_cluster.sh";
-
-class SlurmSweep : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dir_ = new std::string(freshDir("slurm"));
-    const RunResult r = shell(kCluster + " start " + quote(*dir_ + "/cluster"));
-    started_ = r.exit_code == 0;
-    start_output_ = new std::string(r.output);
-    setenv("SLURM_CONF", (*dir_ + "/cluster/slurm.conf").c_str(), 1);
-  }
-  static void TearDownTestSuite() {
-    shell(kCluster + " stop " + quote(*dir_ + "/cluster"));
-    delete dir_;
-    delete start_output_;
-  }
-  void SetUp() override { ASSERT_TRUE(started_) << "the test cluster did not start:\n" << *start_output_; }
-
-  static std::string* dir_;
-  static std::string* start_output_;
-  static bool started_;
-};
-std::string* SlurmSweep::dir_ = nullptr;
-std::string* SlurmSweep::start_output_ = nullptr;
-bool SlurmSweep::started_ = false;
+class SlurmSweep : public SlurmClusterTest {};
 
 TEST_F(SlurmSweep, RunsAsAJobArrayAndGivesTheTableALocalSweepGives) {
-  const std::string dir = *dir_;
+  const std::string dir = dir_;
   const std::string sweep = dir + "/sweep.yaml";
   std::ofstream(sweep) << "scenario: " << kConfigs << "/rigid_2dof.yaml\nset: {duration: 1}\nseed: 2\naxes:\n"
                        << "  - {key: controller.kd, values: [5, 20]}\n"

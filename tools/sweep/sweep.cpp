@@ -32,6 +32,7 @@
 #include "util/jobs.hpp"
 #include "util/output_file.hpp"
 #include "util/terminal_text.hpp"
+#include "wiring/slurm_array.hpp"
 #include "wiring/spawn_logged.hpp"
 
 namespace lagrange::tools {
@@ -270,23 +271,6 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining, const
   return done.exitCode(failed);
 }
 
-// The job id sbatch --parsable prints ("ID" or "ID;CLUSTER") on a line of its
-// own, when it has submitted; warnings may come before it. Empty until then.
-std::string jobIdOf(const std::string& sbatch_output) {
-  std::istringstream lines(sbatch_output);
-  for (std::string line; std::getline(lines, line);)
-    if (!line.empty() && !lines.eof() && std::isdigit(static_cast<unsigned char>(line[0])) &&
-        line.find_first_not_of("0123456789") == line.find(';'))
-      return line.substr(0, line.find(';'));
-  return "";
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 // --slurm: a job array of shards, then (unless --no-wait) wait for it.
 int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining, const std::string& plan_digest) {
   const int n = static_cast<int>(std::min<long>(o.shards > 0 ? o.shards : 64, remaining));
@@ -294,33 +278,18 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining, const
   const fs::path slurm = dir / "slurm";
   util::makeOutputDirectory(slurm.string());  // never a planted link (Slurm writes its outputs there)
   const fs::path script = slurm / "shard.sh";
-  util::writeOutputFile(
+  wiring::writeJobScript(
       script.string(),
       "#!/bin/sh\n# One shard of a lagrange sweep: Slurm array task K runs rows with index % " +
-          std::to_string(n) + " == K.\nexec " + shellQuote(o.self_exe) + " sweep-shard " +
-          shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) +
+          std::to_string(n) + " == K.\nexec " + wiring::shellQuote(o.self_exe) + " sweep-shard " +
+          wiring::shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) +
           " --plan-digest " + plan_digest + "\n");
-  fs::permissions(script, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                              fs::perms::others_read | fs::perms::others_exec);
-  std::vector<std::string> args = {"sbatch",
-                                   "--parsable",
-                                   "--job-name=lagrange-sweep",
-                                   "--array=0-" + std::to_string(n - 1),
-                                   "--output=" + (slurm / "shard-%a.out").string(),
-                                   "--chdir=" + dir.string()};
-  if (!o.partition.empty()) args.push_back("--partition=" + o.partition);
-  if (!o.time_limit.empty()) args.push_back("--time=" + o.time_limit);
-  if (!o.account.empty()) args.push_back("--account=" + o.account);
-  args.insert(args.end(), o.sbatch_args.begin(), o.sbatch_args.end());
-  if (!o.no_wait) args.push_back("--wait");
-  args.push_back(script.string());
   const fs::path sbatch_out = slurm / "sbatch.out";
-  pid_t pid = -1;
-  try {  // in a process group of its own: Ctrl-C stops the waiting, not the job
-    pid = wiring::spawnLogged(args, {sbatch_out.string()}, /*own_group=*/true);
-  } catch (const RuntimeFault& e) {
-    throw RuntimeFault(std::string(e.what()) + "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
-  }
+  const wiring::SlurmArray array{"lagrange-sweep", "0-" + std::to_string(n - 1),
+                                 script.string(),  (slurm / "shard-%a.out").string(),
+                                 dir.string(),     sbatch_out.string()};
+  const pid_t pid =
+      wiring::submitSlurmArray(array, {o.partition, o.time_limit, o.account, o.sbatch_args, o.no_wait});
   RowCounter counter(o.out_dir);
   std::string job;
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);
@@ -328,7 +297,7 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining, const
   for (;;) {
     const pid_t done = waitpid(pid, &wstatus, WNOHANG);
     if (job.empty()) {
-      job = jobIdOf(readFile(sbatch_out));
+      job = wiring::slurmJobIdOf(readFile(sbatch_out));
       if (!job.empty()) {
         if (!o.quiet) {
           progress.interrupt();

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tools/subcommand.hpp"
+#include "wiring/slurm_array.hpp"
 
 namespace lagrange::tools {
 
@@ -26,15 +27,27 @@ struct TuneOptions {
   int global = 0;     ///< the global phase's evaluations; 0: 10 (n + 1)
   bool require_condition = false;
   bool quiet = false;
+  // --slurm (docs/tuning.md, "On a Slurm cluster"): independent searches,
+  // one seed each, as one job array; the best of them is the result.
+  bool slurm = false;
+  int starts = 0;  ///< --slurm: array tasks, seeds seed .. seed + starts - 1; 0: kDefaultStarts
+  wiring::SlurmOptions slurm_options;
+  std::string self_exe;  ///< this lagrange binary (every node runs it)
 };
 
 inline constexpr int kDefaultEvaluations = 200;
+inline constexpr int kDefaultStarts = 8;
 
 /// Runs the tune. Exit 0 when gains that pass every check were found, 1
 /// when none was (what binds is named), 2 for bad input, 130 interrupted.
 int runTune(const TuneOptions& options);
 
-/// Declares `tune` on the front end.
+struct TuneProblem;
+/// The problem `options` asks for, checked as a tune starts (--span, the
+/// scenario, --require-condition). @throws BadInput, config::ConfigError.
+TuneProblem checkedTuneProblem(const TuneOptions& options);
+
+/// Declares `tune` (and `tune collect`) on the front end.
 Subcommand addTuneCommand(CLI::App& app);
 
 }  // namespace lagrange::tools

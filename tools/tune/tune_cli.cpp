@@ -1,14 +1,24 @@
 /// @file
 /// `lagrange tune`: its command line (tools/tune/tune.hpp).
 #include <CLI/CLI.hpp>
+#include <iostream>
 #include <memory>
 
 #include "tools/tune/tune.hpp"
+#include "tools/tune/tune_slurm.hpp"
+#include "util/error.hpp"
 
 namespace lagrange::tools {
 
 Subcommand addTuneCommand(CLI::App& app) {
-  auto o = std::make_shared<TuneOptions>();
+  struct TuneCommandLine {
+    TuneOptions tune;
+    CLI::App* collect = nullptr;
+    std::string collect_dir;
+    bool collect_quiet = false;
+  };
+  auto line = std::make_shared<TuneCommandLine>();
+  TuneOptions* o = &line->tune;
   CLI::App* cmd = app.add_subcommand("tune", "Search gains: the fastest that pass the checks");
   describeCommand(
       *cmd,
@@ -22,11 +32,11 @@ Subcommand addTuneCommand(CLI::App& app) {
       "initial states, not a proof. Exit 0 gains found, 1 none passed (what binds is named), 2 bad input, "
       "130 interrupted (docs/tuning.md)",
       {"lagrange tune configs/rigid_2dof.yaml --out runs/tuned --evaluations 8 --set duration=3"});
-  cmd->add_option("scenario", o->scenario, "Scenario YAML file")->required()->check(CLI::ExistingFile);
+  cmd->add_option("scenario", o->scenario, "Scenario YAML file (required but with `collect`)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--set", o->overrides, "Override a config key: key=value; repeatable");
   cmd->add_option("-o,--out", o->out_dir,
-                  "Output directory (created if missing; resumed if it holds this tune)")
-      ->required();
+                  "Output directory (created if missing; resumed if it holds this tune)");
   cmd->add_option("--evaluations", o->evaluations,
                   "Evaluations in all, the input's included (default 200, or unbounded with --minutes)")
       ->check(CLI::PositiveNumber);
@@ -49,7 +59,43 @@ Subcommand addTuneCommand(CLI::App& app) {
       "Keep only gains for which eq. (12) holds (the paper's guarantee); if none, name the reference "
       "size for which it could");
   cmd->add_flag("-q,--quiet", o->quiet, "Print errors only");
-  return {cmd, [o](const Invocation&) { return runTune(*o); }};
+  cmd->add_flag(
+      "--slurm", o->slurm,
+      "Run --starts independent searches (seeds --seed, --seed + 1, ...) as a Slurm job array, each "
+      "into OUT/starts/K, and keep the best; OUT on a directory every node shares, this binary on "
+      "every node at the same path (docs/tuning.md)");
+  cmd->add_option("--starts", o->starts, "--slurm: searches, one array task each, 1 to 100000 (default 8)")
+      ->check(CLI::Range(1, 100000).description(""));
+  cmd->add_flag("--no-wait", o->slurm_options.no_wait,
+                "--slurm: return once the job is submitted; then `lagrange tune collect OUT`");
+  cmd->add_option("--partition", o->slurm_options.partition, "--slurm: sbatch --partition");
+  cmd->add_option("--time", o->slurm_options.time_limit, "--slurm: sbatch --time, each array task's limit");
+  cmd->add_option("--account", o->slurm_options.account, "--slurm: sbatch --account");
+  cmd->add_option(
+      "--sbatch-arg", o->slurm_options.sbatch_args,
+      "--slurm: one more sbatch option as it is, e.g. --sbatch-arg=--cpus-per-task=4; repeatable");
+  line->collect = cmd->add_subcommand("collect", "The best of a Slurm tune's starts");
+  describeCommand(
+      *line->collect,
+      "Collect the starts of a tune run with --slurm (after --no-wait, or a stopped wait): the best "
+      "of them into OUT/tuned.yaml, OUT/tune.json and OUT/front.png; exit 1 while a start is not "
+      "finished or when none passed (docs/tuning.md)",
+      {"lagrange tune collect runs/tuned"});
+  line->collect->add_option("out", line->collect_dir, "The tune's output directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  line->collect->add_flag("-q,--quiet", line->collect_quiet, "Print errors only");
+  return {
+      cmd, [line](const Invocation& inv) {
+        if (*line->collect) return collectTune(line->collect_dir, line->collect_quiet);
+        TuneOptions options = line->tune;
+        if (options.scenario.empty() || options.out_dir.empty()) {
+          std::cerr << "lagrange tune: expected a scenario and --out DIR (or: lagrange tune collect DIR)\n";
+          return static_cast<int>(kExitBadInput);
+        }
+        options.self_exe = inv.self_exe;
+        return runTune(options);
+      }};
 }
 
 }  // namespace lagrange::tools

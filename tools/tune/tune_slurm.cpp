@@ -1,0 +1,435 @@
+#include "tools/tune/tune_slurm.hpp"
+
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "tools/command_error.hpp"
+#include "tools/tune/tune_evaluate.hpp"
+#include "tools/tune/tune_files.hpp"
+#include "tools/tune/tune_report.hpp"
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+
+namespace lagrange::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kTuneSlurm = "lagrange tune";
+
+volatile std::sig_atomic_t g_waiting_stopped = 0;
+void stopWaiting(int) { g_waiting_stopped = 1; }
+
+// A start's files are read only when they are what a start of this tune
+// wrote there: regular files (never through a link), owned by whoever owns
+// DIR/starts.json, of a size a tune writes. DIR may be on a shared file system.
+constexpr std::uintmax_t kLargestStartFile = 256u << 20;
+
+std::string readTrustedFile(const fs::path& path, uid_t owner) {
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0) throw RuntimeFault(path.string() + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw BadInput(path.string() +
+                   " is not a regular file (a link, a FIFO, a directory?); expected the file "
+                   "lagrange tune writes there");
+  if (st.st_uid != owner)
+    throw BadInput(path.string() + " is owned by user " + std::to_string(st.st_uid) + ", not by user " +
+                   std::to_string(owner) + " who owns the tune's starts.json; expected the tune's own files");
+  if (static_cast<std::uintmax_t>(st.st_size) > kLargestStartFile)
+    throw BadInput(path.string() + " is larger than 256 MiB; expected a tune's file");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path startDir(const fs::path& dir, int k) { return dir / "starts" / std::to_string(k); }
+
+// DIR/starts.json's arguments: what decides each start's search (a rerun
+// must repeat them), the starts and the budget (which a rerun may change).
+nlohmann::ordered_json startsArguments(const TuneOptions& o, int starts) {
+  nlohmann::ordered_json a;
+  a["scenario"] = fs::absolute(o.scenario).lexically_normal().string();
+  a["overrides"] = o.overrides;
+  a["seed"] = o.seed;
+  a["span"] = o.span;
+  a["global"] = o.global;
+  a["require_condition"] = o.require_condition;
+  a["starts"] = starts;
+  a["evaluations"] = o.evaluations;
+  a["minutes"] = o.minutes;
+  return a;
+}
+
+struct StartsFile {
+  nlohmann::ordered_json arguments;
+  uid_t owner = 0;
+};
+
+std::optional<StartsFile> readStartsFile(const fs::path& dir) {
+  const fs::path path = dir / "starts.json";
+  struct stat st {};
+  if (lstat(path.c_str(), &st) != 0) return std::nullopt;
+  StartsFile f;
+  f.owner = st.st_uid;
+  try {
+    f.arguments = nlohmann::ordered_json::parse(readTrustedFile(path, st.st_uid)).at("arguments");
+  } catch (const nlohmann::json::exception& e) {
+    throw BadInput(path.string() + " is not a Slurm tune's starts.json (" + e.what() +
+                   "); expected the file lagrange tune --slurm writes");
+  }
+  return f;
+}
+
+TuneOptions optionsOf(const nlohmann::ordered_json& a) {
+  TuneOptions o;
+  try {
+    o.scenario = a.at("scenario").get<std::string>();
+    o.overrides = a.at("overrides").get<std::vector<std::string>>();
+    o.seed = a.at("seed").get<unsigned>();
+    o.span = a.at("span").get<double>();
+    o.global = a.at("global").get<int>();
+    o.require_condition = a.at("require_condition").get<bool>();
+    o.starts = a.at("starts").get<int>();
+    o.evaluations = a.at("evaluations").get<int>();
+    o.minutes = a.at("minutes").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw BadInput(std::string("starts.json's arguments are not a Slurm tune's (") + e.what() +
+                   "); expected the file lagrange tune --slurm writes");
+  }
+  if (o.starts < 1 || o.starts > 100000)
+    throw BadInput("starts.json: starts " + std::to_string(o.starts) + "; expected 1 to 100000");
+  return o;
+}
+
+// One start as collect finds it.
+struct Start {
+  bool finished = false;
+  std::string not_finished;                   // why, when not
+  nlohmann::json result;                      // its tune.json's result
+  std::vector<nlohmann::ordered_json> lines;  // its tune.jsonl
+  std::vector<TuneEvaluation> evaluations;    // the same, read
+};
+
+Start readStart(const fs::path& dir, int k, const nlohmann::ordered_json& expected, uid_t owner) {
+  Start s;
+  const fs::path folder = startDir(dir, k);
+  struct stat st {};
+  if (lstat(folder.c_str(), &st) != 0) {
+    s.not_finished = "not started";
+    return s;
+  }
+  if (!S_ISDIR(st.st_mode))
+    throw BadInput(folder.string() + " is not a directory (a link?); expected a start's folder");
+  if (lstat((folder / "tune.json").c_str(), &st) != 0) {
+    s.not_finished = "running or stopped (no tune.json yet)";
+    return s;
+  }
+  nlohmann::json tune;
+  try {
+    tune = nlohmann::json::parse(readTrustedFile(folder / "tune.json", owner));
+    s.result = tune.at("result");
+  } catch (const nlohmann::json::exception& e) {
+    throw BadInput((folder / "tune.json").string() + " is not a tune's (" + e.what() +
+                   "); expected the file lagrange tune writes");
+  }
+  if (tune.at("arguments") != nlohmann::json(expected))
+    throw BadInput((folder / "tune.json").string() + " holds another tune's arguments than start " +
+                   std::to_string(k) + "'s (seed " + nlohmann::json(expected.at("seed")).dump() +
+                   "); expected the folder this tune's start wrote");
+  std::istringstream jsonl(readTrustedFile(folder / "tune.jsonl", owner));
+  for (std::string line; std::getline(jsonl, line);) {
+    if (line.empty()) continue;
+    try {
+      s.lines.push_back(nlohmann::ordered_json::parse(line));
+    } catch (const nlohmann::json::exception&) {
+      if (jsonl.peek() == EOF) break;  // torn by an interrupt: the start resumes it
+      throw BadInput((folder / "tune.jsonl").string() +
+                     " holds a line that is not JSON; expected the lines "
+                     "lagrange tune writes");
+    }
+    s.evaluations.push_back(evaluationFromJson(s.lines.back()));
+  }
+  if (s.result.value("interrupted", true)) {
+    s.not_finished = "interrupted (a Slurm time limit?): submit the same command again to resume it";
+    return s;
+  }
+  s.finished = true;
+  return s;
+}
+
+// The evaluation of `s` that is its tune.json's best: the first feasible one with those gains.
+const TuneEvaluation* bestOf(const Start& s) {
+  if (!s.finished || !s.result.contains("best") || !s.result["best"].is_object()) return nullptr;
+  const nlohmann::json& gains = s.result["best"]["gains"];
+  const auto same = [&](const TuneGains& g) {
+    if (!gains.is_object() || gains.size() != g.size()) return false;
+    for (const auto& [name, values] : g)
+      if (!gains.contains(name) || gains[name] != nlohmann::json(values)) return false;
+    return true;
+  };
+  for (const TuneEvaluation& e : s.evaluations)
+    if (e.feasible == true && same(e.gains)) return &e;
+  return nullptr;
+}
+
+std::string startText(int k, unsigned seed) {
+  return "start " + std::to_string(k) + " (seed " + std::to_string(seed) + ")";
+}
+
+}  // namespace
+
+int collectTune(const std::string& dir_text, bool quiet) {
+  const fs::path dir = fs::absolute(dir_text).lexically_normal();
+  TuneOptions o;
+  TuneProblem p;
+  std::optional<StartsFile> starts_file;
+  std::vector<Start> starts;
+  try {
+    starts_file = readStartsFile(dir);
+    if (!starts_file)
+      throw BadInput(dir.string() +
+                     " holds no Slurm tune (no starts.json); expected the --out of a lagrange tune --slurm");
+    o = optionsOf(starts_file->arguments);
+    o.out_dir = dir.string();
+    p = checkedTuneProblem(o);
+    for (int k = 0; k < o.starts; ++k)
+      starts.push_back(readStart(dir, k, tuneArguments(p, o.seed + k, o.span, o.global), starts_file->owner));
+  } catch (const std::exception& e) {
+    return failWith(kTuneSlurm + " collect", e);
+  }
+
+  // The best: the fastest of the starts' bests, the first start on a tie.
+  std::optional<int> best_start;
+  const TuneEvaluation* best = nullptr;
+  std::vector<TuneEvaluation> all;
+  std::vector<nlohmann::ordered_json> all_lines;
+  std::vector<int> missing;
+  long evaluations = 0;
+  nlohmann::ordered_json per_start = nlohmann::ordered_json::array();
+  for (int k = 0; k < o.starts; ++k) {
+    const Start& s = starts[static_cast<size_t>(k)];
+    all.insert(all.end(), s.evaluations.begin(), s.evaluations.end());
+    all_lines.insert(all_lines.end(), s.lines.begin(), s.lines.end());
+    evaluations += static_cast<long>(s.evaluations.size());
+    if (!s.finished) missing.push_back(k);
+    const TuneEvaluation* b = bestOf(s);
+    if (b && (!best || *b->convergence_time < *best->convergence_time)) {
+      best = b;
+      best_start = k;
+    }
+    nlohmann::ordered_json row;
+    row["start"] = k;
+    row["seed"] = o.seed + static_cast<unsigned>(k);
+    row["finished"] = s.finished;
+    row["evaluations"] = s.evaluations.size();
+    row["best"] = b ? nlohmann::json(side(*b)) : nlohmann::json();
+    per_start.push_back(row);
+  }
+  // Without saturation, the limit the starts held candidates to: the input gains' peak.
+  if (!p.torque_from_saturation)
+    for (const auto& line : all_lines)
+      if (line.contains("torque_limit") && line["torque_limit"].is_number()) {
+        p.torque_limit = line["torque_limit"].get<double>();
+        break;
+      }
+
+  nlohmann::ordered_json result;
+  result["starts"] = per_start;
+  result["evaluations"] = evaluations;
+  result["missing"] = missing;
+  result["input"] = all.empty() ? nlohmann::json() : nlohmann::json(side(all.front()));
+  result["best_start"] = best_start ? nlohmann::json(*best_start) : nlohmann::json();
+  result["best"] = best ? nlohmann::json(side(*best)) : nlohmann::json();
+  try {
+    nlohmann::ordered_json j;
+    j["arguments"] = starts_file->arguments;
+    j["result"] = result;
+    util::writeOutputFile((dir / "tune.json").string(), j.dump(2) + "\n");
+    const std::string not_drawn = drawFront(dir.string(), all_lines);
+    if (!not_drawn.empty() && !quiet) std::cerr << kTuneSlurm << ": " << not_drawn << "\n";
+    if (best) writeTunedYaml(dir.string(), p, best->gains);
+  } catch (const std::exception& e) {
+    return failWith(kTuneSlurm + " collect", e);
+  }
+
+  for (const int k : missing)
+    std::cerr << kTuneSlurm << ": " << startText(k, o.seed + static_cast<unsigned>(k))
+              << " is not finished: " << starts[static_cast<size_t>(k)].not_finished << "; see "
+              << (dir / "slurm").string() << "/start-" << k << ".out\n";
+  if (!best) {
+    if (!missing.empty()) {
+      std::cerr << kTuneSlurm << ": no finished start found gains that pass every check yet ("
+                << missing.size() << " of " << o.starts
+                << " not finished); once the job has ended: lagrange tune collect " << dir_text << "\n";
+      return kExitFailed;
+    }
+    std::cerr << kTuneSlurm << ": no gains passed every check in " << evaluations << " evaluations of "
+              << o.starts << " starts; what binds:\n";
+    for (const std::string& line : whatBinds(p, all)) std::cerr << "  - " << line << "\n";
+    return kExitFailed;
+  }
+  if (!quiet) {
+    std::cout << kTuneSlurm << ": " << o.scenario << " (" << p.input.controller.type << ", "
+              << p.variables.size() << " gains searched), " << o.starts << " starts (seeds " << o.seed
+              << " to " << o.seed + static_cast<unsigned>(o.starts) - 1 << "), " << evaluations
+              << " evaluations made; the best from "
+              << startText(*best_start, o.seed + static_cast<unsigned>(*best_start)) << "\n";
+    printSummary(all.front(), *best, p);
+    std::cout << "wrote " << dir_text << "/tuned.yaml (lagrange run / check-gains it as it is), tune.json, "
+              << "front.png; each start's own in " << dir_text << "/starts/K\n";
+  }
+  if (!missing.empty()) {
+    std::cerr << kTuneSlurm << ": " << missing.size() << " of " << o.starts
+              << " starts not finished: tuned.yaml holds the best of the others; once the job has ended: "
+                 "lagrange tune collect "
+              << dir_text << "\n";
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+int runTuneSlurm(const TuneOptions& given) {
+  TuneOptions o = given;
+  const fs::path dir = fs::absolute(o.out_dir).lexically_normal();
+  std::string indices;  // the starts to submit
+  int to_run = 0;
+  try {
+    if (o.starts < 0 || o.starts > 100000)
+      throw BadInput("--starts " + std::to_string(o.starts) + ": expected 1 to 100000");
+    if (o.starts == 0) o.starts = kDefaultStarts;
+    const TuneProblem p = checkedTuneProblem(o);
+    util::makeOutputDirectories(dir.string());
+    if (fs::exists(fs::symlink_status(dir / "tune.jsonl")))
+      throw BadInput(o.out_dir +
+                     " holds a tune run here, not on Slurm (tune.jsonl); expected another --out, or the "
+                     "same command without --slurm to resume it");
+    const nlohmann::ordered_json arguments = startsArguments(o, o.starts);
+    const std::optional<StartsFile> before = readStartsFile(dir);
+    bool same_budget = false;
+    if (before) {
+      for (const char* key : {"scenario", "overrides", "seed", "span", "global", "require_condition"})
+        if (!before->arguments.contains(key) ||
+            before->arguments.at(key) != arguments.at(key))
+          throw BadInput(
+              o.out_dir + " holds a Slurm tune with other arguments (" + key + ": " +
+              (before->arguments.contains(key) ? before->arguments.at(key).dump() : "none") + ", now " +
+              nlohmann::json(arguments.at(key)).dump() +
+              "); a rerun repeats the scenario, --set, --seed, --span, --global and "
+              "--require-condition (--starts and the budget may change); expected those, or another "
+              "--out");
+      same_budget = before->arguments.value("evaluations", -1) == o.evaluations &&
+                    before->arguments.value("minutes", -1.0) == o.minutes;
+    }
+    // The starts already finished at this budget are not submitted again.
+    const uid_t owner = before ? before->owner : geteuid();
+    for (int k = 0; k < o.starts; ++k) {
+      const bool done =
+          same_budget &&
+          readStart(dir, k, tuneArguments(p, o.seed + static_cast<unsigned>(k), o.span, o.global), owner)
+              .finished;
+      if (done) continue;
+      indices += (indices.empty() ? "" : ",") + std::to_string(k);
+      ++to_run;
+    }
+    util::writeOutputFile((dir / "starts.json").string(),
+                          nlohmann::ordered_json({{"arguments", arguments}}).dump(2) + "\n");
+  } catch (const std::exception& e) {
+    return failWith(kTuneSlurm, e);
+  }
+  if (to_run == 0) {
+    if (!o.quiet) std::cout << kTuneSlurm << ": every start of " << o.out_dir << " is finished; collecting\n";
+    return collectTune(o.out_dir, o.quiet);
+  }
+
+  const fs::path slurm = dir / "slurm";
+  const fs::path sbatch_out = slurm / "sbatch.out";
+  pid_t pid = -1;
+  try {
+    util::makeOutputDirectory(slurm.string());  // never a planted link (Slurm writes its outputs there)
+    util::makeOutputDirectory((dir / "starts").string());
+    std::string command = wiring::shellQuote(o.self_exe) + " tune " +
+                          wiring::shellQuote(fs::absolute(o.scenario).lexically_normal().string());
+    for (const std::string& s : o.overrides) command += " --set " + wiring::shellQuote(s);
+    command += " --out " + wiring::shellQuote((dir / "starts").string()) + "/\"$k\" --seed \"$((" +
+               std::to_string(o.seed) + " + k))\"";
+    if (o.evaluations > 0) command += " --evaluations " + std::to_string(o.evaluations);
+    if (o.minutes > 0.0) command += " --minutes " + nlohmann::json(o.minutes).dump();
+    command += " --span " + nlohmann::json(o.span).dump();
+    if (o.global > 0) command += " --global " + std::to_string(o.global);
+    if (o.require_condition) command += " --require-condition";
+    // The task's CPUs, not the node's cores: a tune at -j 1 on a 64-core
+    // node given one CPU is as fast as one at -j 64 there, and gives the
+    // same evaluations whatever -j.
+    command += o.jobs > 0 ? " -j " + std::to_string(o.jobs) : " -j \"${SLURM_CPUS_PER_TASK:-1}\"";
+    wiring::writeJobScript(
+        (slurm / "start.sh").string(),
+        "#!/bin/sh\n# One start of a lagrange tune: Slurm array task K searches from seed " +
+            std::to_string(o.seed) + " + K into " + (dir / "starts").string() +
+            "/K (docs/tuning.md).\nk=\"$SLURM_ARRAY_TASK_ID\"\nexec " + command + "\n");
+    pid = wiring::submitSlurmArray({"lagrange-tune", indices, (slurm / "start.sh").string(),
+                                    (slurm / "start-%a.out").string(), dir.string(), sbatch_out.string()},
+                                   o.slurm_options);
+  } catch (const std::exception& e) {
+    return failWith(kTuneSlurm, e);
+  }
+  g_waiting_stopped = 0;
+  std::signal(SIGINT, stopWaiting);
+  std::signal(SIGTERM, stopWaiting);
+  std::string job;
+  int wstatus = 0;
+  for (;;) {
+    const pid_t done = waitpid(pid, &wstatus, WNOHANG);
+    if (job.empty()) {
+      std::ifstream in(sbatch_out);
+      std::ostringstream text;
+      text << in.rdbuf();
+      job = wiring::slurmJobIdOf(text.str());
+      if (!job.empty() && !o.quiet)
+        std::cout << kTuneSlurm << ": submitted Slurm job " << job << ", " << to_run
+                  << " array tasks (starts " << indices << " of " << o.starts << ")\n"
+                  << std::flush;
+    }
+    if (done == pid) break;
+    if (g_waiting_stopped) {
+      std::cerr << kTuneSlurm << ": stopped waiting; job " << (job.empty() ? "?" : job)
+                << " keeps running (scancel it to stop it); then: lagrange tune collect " << o.out_dir
+                << "\n";
+      return kExitInterrupted;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  if (job.empty()) {
+    std::ifstream in(sbatch_out);
+    std::ostringstream text;
+    text << in.rdbuf();
+    std::cerr << kTuneSlurm << ": sbatch "
+              << (WIFEXITED(wstatus) ? "exited with code " + std::to_string(WEXITSTATUS(wstatus))
+                                     : "was killed by signal " + std::to_string(WTERMSIG(wstatus)))
+              << " without submitting a job:\n"
+              << text.str();
+    return kExitFailed;
+  }
+  if (o.slurm_options.no_wait) {
+    std::cout << kTuneSlurm << ": when job " << job << " has ended: lagrange tune collect " << o.out_dir
+              << "\n";
+    return kExitOk;
+  }
+  // sbatch --wait exits non-zero when a task did -- a start that found
+  // nothing exits 1 -- so what each start did is collect's to say.
+  return collectTune(o.out_dir, o.quiet);
+}
+
+}  // namespace lagrange::tools

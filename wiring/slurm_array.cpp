@@ -1,0 +1,59 @@
+#include "wiring/slurm_array.hpp"
+
+#include <cctype>
+#include <filesystem>
+#include <sstream>
+
+#include "util/error.hpp"
+#include "util/output_file.hpp"
+#include "wiring/spawn_logged.hpp"
+
+namespace lagrange::wiring {
+
+std::vector<std::string> sbatchCommand(const SlurmArray& array, const SlurmOptions& options) {
+  std::vector<std::string> args = {"sbatch",
+                                   "--parsable",
+                                   "--job-name=" + array.job_name,
+                                   "--array=" + array.indices,
+                                   "--output=" + array.output,
+                                   "--chdir=" + array.chdir};
+  if (!options.partition.empty()) args.push_back("--partition=" + options.partition);
+  if (!options.time_limit.empty()) args.push_back("--time=" + options.time_limit);
+  if (!options.account.empty()) args.push_back("--account=" + options.account);
+  args.insert(args.end(), options.sbatch_args.begin(), options.sbatch_args.end());
+  if (!options.no_wait) args.push_back("--wait");
+  args.push_back(array.script);
+  return args;
+}
+
+pid_t submitSlurmArray(const SlurmArray& array, const SlurmOptions& options) {
+  try {
+    return spawnLogged(sbatchCommand(array, options), {array.sbatch_output}, /*own_group=*/true);
+  } catch (const RuntimeFault& e) {
+    throw RuntimeFault(std::string(e.what()) + "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
+  }
+}
+
+std::string slurmJobIdOf(const std::string& sbatch_output) {
+  std::istringstream lines(sbatch_output);
+  for (std::string line; std::getline(lines, line);)
+    if (!line.empty() && !lines.eof() && std::isdigit(static_cast<unsigned char>(line[0])) &&
+        line.find_first_not_of("0123456789") == line.find(';'))
+      return line.substr(0, line.find(';'));
+  return "";
+}
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+void writeJobScript(const std::string& path, const std::string& text) {
+  util::writeOutputFile(path, text);
+  namespace fs = std::filesystem;
+  fs::permissions(path, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                            fs::perms::others_read | fs::perms::others_exec);
+}
+
+}  // namespace lagrange::wiring
