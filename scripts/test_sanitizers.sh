@@ -20,10 +20,11 @@
 #    on the JVM, the Python one in CPython, which the sanitizers do not see;
 #    the C++ one is built outside the tree against the installed package,
 #    without the sanitizers' runtime its instrumented library would need;
-#  - the sweep's and tune's Slurm tests: most of their time is the scheduler's
-#    polling, and what their array tasks run is the sweep's own shard code,
-#    which the local sweep's tests (Sweep.*) run under the sanitizers, and
-#    tune, whose tests (tune_tests) this pass does not build;
+#  - the Slurm tests: most of their time is the scheduler's polling. The
+#    sweep's array tasks run its shard code, which the local sweep's tests
+#    (Sweep.*) run under the sanitizers; tune's tasks, and tune collect's
+#    reading of their files, are tune's code, which this pass leaves out
+#    with tune_tests (tests/CMakeLists.txt says why);
 #  - the C++ plant helper's run (CppPlant.*), built outside the tree against
 #    the installed package as the C++ controller is; and the front door's
 #    tests (Help.*, Readme.*): every command's examples and the demo's run,

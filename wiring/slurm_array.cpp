@@ -1,6 +1,7 @@
 #include "wiring/slurm_array.hpp"
 
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -41,6 +42,17 @@ std::string slurmJobIdOf(const std::string& sbatch_output) {
         line.find_first_not_of("0123456789") == line.find(';'))
       return line.substr(0, line.find(';'));
   return "";
+}
+
+bool slurmJobQueued(const std::string& job) {
+  if (job.empty() || job.find_first_not_of("0123456789") != std::string::npos) return false;
+  FILE* pipe = popen(("squeue -h -o %i -j " + job + " 2>/dev/null").c_str(), "r");
+  if (!pipe) return false;
+  std::string out;
+  char buf[256];
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pclose(pipe);
+  return status == 0 && out.find_first_not_of(" \n") != std::string::npos;
 }
 
 std::string shellQuote(const std::string& s) {

@@ -19,7 +19,7 @@ struct SlurmOptions {
   bool no_wait = false;                  ///< return once submitted (no sbatch --wait)
 };
 
-/// One job array: task K of `tasks` (or of the listed indices) runs `script`.
+/// One job array: each task (its index in $SLURM_ARRAY_TASK_ID) runs `script`.
 struct SlurmArray {
   std::string job_name;       ///< --job-name
   std::string indices;        ///< --array, e.g. "0-7" or "1,3"
@@ -41,6 +41,11 @@ pid_t submitSlurmArray(const SlurmArray& array, const SlurmOptions& options);
 /// The job id sbatch --parsable prints ("ID" or "ID;CLUSTER") on a line of
 /// its own, once it has submitted; warnings may come before it. Empty until then.
 std::string slurmJobIdOf(const std::string& sbatch_output);
+
+/// Whether Slurm's queue still lists job `job` (pending, running or
+/// completing: `squeue -h -j JOB`). False for a job that has ended, an id
+/// that is not a number, or no squeue.
+bool slurmJobQueued(const std::string& job);
 
 /// `s` quoted for a POSIX shell (single quotes).
 std::string shellQuote(const std::string& s);

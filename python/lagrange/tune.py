@@ -85,4 +85,5 @@ def tune(scenario, out=None, evaluations=None, minutes=None, jobs=None, seed=Non
     command += ["--out", str(out), "--quiet"]
     _call(command + sets + [str(a) for a in args], out, "lagrange tune %s" % scenario)
     result = _read_json(os.path.join(str(out), "tune.json"), "the tune.json lagrange tune writes", out)
-    return result.get("result", {}).get("best"), evaluations_of(out)
+    # (result is null while a tune runs, and after one was killed.)
+    return (result.get("result") or {}).get("best"), evaluations_of(out)

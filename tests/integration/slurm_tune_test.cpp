@@ -103,6 +103,7 @@ TEST_F(SlurmTune, EachStartIsTheLocalTuneOfItsSeedAndTheBestOfThemIsKept) {
   const RunResult again = lagrange(slurm);
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(readText(out + "/slurm/sbatch.out"), sbatch);
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(out + "/starts.json")).at("job"), job);
 
   // `tune collect`, as its --help shows it, from the folder the example names.
   const CommandHelp collect = commandHelp("tune collect");
@@ -112,15 +113,36 @@ TEST_F(SlurmTune, EachStartIsTheLocalTuneOfItsSeedAndTheBestOfThemIsKept) {
   EXPECT_NE(merged.output.find("the best from start " + std::to_string(second ? 1 : 0)), std::string::npos)
       << merged.output;
 
-  // A start without its tune.json is not finished: named, exit 1, tuned.yaml the best of the rest.
-  fs::rename(out + "/starts/1/tune.json", dir_ + "/start-1-tune.json");
+  // A start killed midway (its tune.json's result null, as a tune leaves it
+  // until its end) is not finished: named, exit 1, and tuned.yaml written
+  // anew from the best of the rest.
+  const nlohmann::json start_1 = nlohmann::json::parse(std::ifstream(out + "/starts/1/tune.json"));
+  std::ofstream(out + "/starts/1/tune.json")
+      << nlohmann::json({{"arguments", start_1.at("arguments")}, {"result", nullptr}}).dump();
+  fs::remove(out + "/tuned.yaml");
   const RunResult partial = lagrange("tune collect " + quote(out));
   EXPECT_EQ(partial.exit_code, 1) << partial.output;
-  EXPECT_NE(partial.output.find("start 1 (seed 4) is not finished"), std::string::npos) << partial.output;
-  EXPECT_TRUE(fs::exists(out + "/tuned.yaml"));
+  EXPECT_NE(partial.output.find("start 1 (seed 4) is not finished: no result in its tune.json"),
+            std::string::npos)
+      << partial.output;
   EXPECT_EQ(tuneResult(out).at("best_start"), 0);
+  EXPECT_EQ(tuneResult(out).at("missing"), nlohmann::json::array({1}));
+  EXPECT_EQ(tuneResult(out).at("best").at("gains"), a.at("gains"));
+  EXPECT_TRUE(fs::exists(out + "/tuned.yaml"));
+
+  // The same command then submits start 1 alone, which resumes from its
+  // tune.jsonl (nothing computed again) to the same result.
+  const std::string start_0_out = readText(out + "/slurm/start-0.out");
+  const RunResult resumed = lagrange(slurm);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(readText(out + "/slurm/sbatch.out"), sbatch);
+  EXPECT_EQ(readText(out + "/slurm/start-0.out"), start_0_out);
+  EXPECT_NE(readText(out + "/slurm/start-1.out").find("0 computed"), std::string::npos)
+      << readText(out + "/slurm/start-1.out");
+  EXPECT_EQ(tuneResult(out).at("best"), collected.at("best"));
 
   // Start 0's tune.json put in start 1's folder: another seed's, refused.
+  ASSERT_TRUE(fs::remove(out + "/starts/1/tune.json"));
   fs::copy_file(out + "/starts/0/tune.json", out + "/starts/1/tune.json");
   const RunResult planted = lagrange("tune collect " + quote(out));
   EXPECT_EQ(planted.exit_code, 2) << planted.output;

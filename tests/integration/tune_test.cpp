@@ -173,5 +173,32 @@ TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
   EXPECT_EQ(rb.at("used").get<long>(), searched(b));
 }
 
+// What a tune on Slurm refuses before anything is submitted (no cluster
+// needed: each refusal comes before sbatch): its options without --slurm, a
+// seed range past the largest seed, a folder of the other kind of tune, and
+// options given with `collect`.
+TEST_F(Tune, SlurmOptionsAndFoldersOfTheOtherKindAreRefusedNamingWhatWasWrong) {
+  const auto refused = [](const RunResult& r, const std::string& named) {
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(named), std::string::npos) << r.output;
+  };
+  refused(tune(dir_ + "/a", "--starts 3"), "--starts is an option of a tune on Slurm");
+  refused(tune(dir_ + "/a", "--partition short"), "--partition is an option of a tune on Slurm");
+  refused(tune(dir_ + "/a", "--slurm --seed 4294967295 --starts 2"),
+          "the last start's seed, seed + starts - 1, is over 4294967295");
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/a/starts.json"));
+
+  // A local tune's folder is not resumed on Slurm, nor a Slurm tune's here.
+  ASSERT_EQ(tune(dir_ + "/local", "--evaluations 1 -q").exit_code, 0);
+  refused(tune(dir_ + "/local", "--slurm --starts 2"), "holds a tune run here, not on Slurm");
+  std::filesystem::create_directories(dir_ + "/onslurm");
+  std::ofstream(dir_ + "/onslurm/starts.json") << "{}";
+  refused(tune(dir_ + "/onslurm", "--evaluations 1"), "holds a tune on Slurm (starts.json)");
+  refused(lagrange("tune collect " + quote(dir_ + "/local")), "holds no Slurm tune (no starts.json)");
+  refused(lagrange("tune --slurm collect " + quote(dir_ + "/onslurm")),
+          "expected only `lagrange tune collect DIR`");
+  refused(lagrange("tune collect " + quote(dir_ + "/onslurm")), "is not a Slurm tune's starts.json");
+}
+
 }  // namespace
 }  // namespace lagrange::testing

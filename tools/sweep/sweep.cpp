@@ -285,11 +285,20 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining, const
           wiring::shellQuote(dir.string()) + " --shard \"$SLURM_ARRAY_TASK_ID\" --of " + std::to_string(n) +
           " --plan-digest " + plan_digest + "\n");
   const fs::path sbatch_out = slurm / "sbatch.out";
-  const wiring::SlurmArray array{"lagrange-sweep", "0-" + std::to_string(n - 1),
-                                 script.string(),  (slurm / "shard-%a.out").string(),
-                                 dir.string(),     sbatch_out.string()};
-  const pid_t pid =
-      wiring::submitSlurmArray(array, {o.partition, o.time_limit, o.account, o.sbatch_args, o.no_wait});
+  wiring::SlurmArray array;
+  array.job_name = "lagrange-sweep";
+  array.indices = "0-" + std::to_string(n - 1);
+  array.script = script.string();
+  array.output = (slurm / "shard-%a.out").string();
+  array.chdir = dir.string();
+  array.sbatch_output = sbatch_out.string();
+  wiring::SlurmOptions options;
+  options.partition = o.partition;
+  options.time_limit = o.time_limit;
+  options.account = o.account;
+  options.sbatch_args = o.sbatch_args;
+  options.no_wait = o.no_wait;
+  const pid_t pid = wiring::submitSlurmArray(array, options);
   RowCounter counter(o.out_dir);
   std::string job;
   SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);

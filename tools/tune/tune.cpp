@@ -85,6 +85,9 @@ int runTune(const TuneOptions& o) {
                      o.out_dir + ", or another --out");
     arguments = tuneArguments(p, o.seed, o.span, o.global);
     prepareTuneDir(o.out_dir, arguments);
+    // The arguments before the first evaluation, the result null until the
+    // end: a tune killed (SIGKILL, a Slurm time limit) is resumed from them.
+    writeTuneJson(o.out_dir, arguments, nullptr);
     cache = readEvaluations(o.out_dir, SearchPhase::kStart);
     confirmed = readEvaluations(o.out_dir, SearchPhase::kConfirm);
   } catch (const std::exception& e) {
@@ -220,6 +223,7 @@ int runTune(const TuneOptions& o) {
   result["computed"] = computed;
   result["read"] = read;
   result["interrupted"] = interrupted;
+  result["budget"] = tuneBudget(o.evaluations, o.minutes);
   result["runs"] = {{"made", runs.made()}, {"ahead", runs.madeAhead()}, {"used", runs.used()}};
   result["input"] = seen.empty() ? nlohmann::json() : nlohmann::json(side(seen.front()));
   result["best"] = best ? nlohmann::json(side(seen[*best])) : nlohmann::json();

@@ -87,8 +87,16 @@ Subcommand addTuneCommand(CLI::App& app) {
   line->collect->add_flag("-q,--quiet", line->collect_quiet, "Print errors only");
   return {
       cmd, [line](const Invocation& inv) {
-        if (*line->collect) return collectTune(line->collect_dir, line->collect_quiet);
         TuneOptions options = line->tune;
+        if (*line->collect) {
+          if (!options.scenario.empty() || !options.out_dir.empty() || !options.overrides.empty() ||
+              options.slurm || options.starts != 0) {
+            std::cerr << "lagrange tune collect: a scenario, --out, --set, --slurm or --starts given with "
+                         "collect; expected only `lagrange tune collect DIR` (and -q)\n";
+            return static_cast<int>(kExitBadInput);
+          }
+          return collectTune(line->collect_dir, line->collect_quiet || options.quiet);
+        }
         if (options.scenario.empty() || options.out_dir.empty()) {
           std::cerr << "lagrange tune: expected a scenario and --out DIR (or: lagrange tune collect DIR)\n";
           return static_cast<int>(kExitBadInput);

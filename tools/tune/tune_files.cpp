@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tools/report/plots.hpp"
+#include "tools/tune/tune.hpp"
 #include "util/error.hpp"
 #include "util/output_file.hpp"
 
@@ -164,6 +165,14 @@ nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double
   for (const SearchVariable& v : p.variables) variables.push_back({v.label, v.lower, v.upper, v.start});
   a["variables"] = variables;
   return a;
+}
+
+nlohmann::ordered_json tuneBudget(int evaluations, double minutes) {
+  const int n = evaluations > 0 ? evaluations : minutes > 0.0 ? 0 : kDefaultEvaluations;
+  nlohmann::ordered_json b;
+  b["evaluations"] = n > 0 ? nlohmann::json(n) : nlohmann::json();
+  b["minutes"] = minutes > 0.0 ? nlohmann::json(minutes) : nlohmann::json();
+  return b;
 }
 
 void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& arguments) {

@@ -39,6 +39,11 @@ void appendEvaluation(const std::string& dir, const nlohmann::ordered_json& line
 /// The arguments that decide the search's sequence (a resume must repeat them).
 nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double span_decades, int global);
 
+/// tune.json's result.budget: `evaluations` (null: unbounded, --minutes
+/// alone) and `minutes` (null: none) as a tune with these options runs them
+/// (no --evaluations and no --minutes: the default, 200 evaluations).
+nlohmann::ordered_json tuneBudget(int evaluations, double minutes);
+
 /// Starts or resumes DIR: creates it, and compares tune.json's arguments
 /// with `arguments` when tune.jsonl holds evaluations.
 /// @throws BadInput naming the first argument that differs.

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -59,7 +60,7 @@ fs::path startDir(const fs::path& dir, int k) { return dir / "starts" / std::to_
 
 // DIR/starts.json's arguments: what decides each start's search (a rerun
 // must repeat them), the starts and the budget (which a rerun may change).
-nlohmann::ordered_json startsArguments(const TuneOptions& o, int starts) {
+nlohmann::ordered_json startsArguments(const TuneOptions& o) {
   nlohmann::ordered_json a;
   a["scenario"] = fs::absolute(o.scenario).lexically_normal().string();
   a["overrides"] = o.overrides;
@@ -67,7 +68,7 @@ nlohmann::ordered_json startsArguments(const TuneOptions& o, int starts) {
   a["span"] = o.span;
   a["global"] = o.global;
   a["require_condition"] = o.require_condition;
-  a["starts"] = starts;
+  a["starts"] = o.starts;
   a["evaluations"] = o.evaluations;
   a["minutes"] = o.minutes;
   return a;
@@ -75,8 +76,16 @@ nlohmann::ordered_json startsArguments(const TuneOptions& o, int starts) {
 
 struct StartsFile {
   nlohmann::ordered_json arguments;
+  std::string job;  ///< the last job submitted ("" before one was)
   uid_t owner = 0;
 };
+
+void writeStartsFile(const fs::path& dir, const nlohmann::ordered_json& arguments, const std::string& job) {
+  nlohmann::ordered_json j;
+  j["arguments"] = arguments;
+  j["job"] = job.empty() ? nlohmann::json() : nlohmann::json(job);
+  util::writeOutputFile((dir / "starts.json").string(), j.dump(2) + "\n");
+}
 
 std::optional<StartsFile> readStartsFile(const fs::path& dir) {
   const fs::path path = dir / "starts.json";
@@ -85,7 +94,9 @@ std::optional<StartsFile> readStartsFile(const fs::path& dir) {
   StartsFile f;
   f.owner = st.st_uid;
   try {
-    f.arguments = nlohmann::ordered_json::parse(readTrustedFile(path, st.st_uid)).at("arguments");
+    const nlohmann::ordered_json j = nlohmann::ordered_json::parse(readTrustedFile(path, st.st_uid));
+    f.arguments = j.at("arguments");
+    if (j.contains("job") && j.at("job").is_string()) f.job = j.at("job").get<std::string>();
   } catch (const nlohmann::json::exception& e) {
     throw BadInput(path.string() + " is not a Slurm tune's starts.json (" + e.what() +
                    "); expected the file lagrange tune --slurm writes");
@@ -123,47 +134,79 @@ struct Start {
   std::vector<TuneEvaluation> evaluations;    // the same, read
 };
 
-Start readStart(const fs::path& dir, int k, const nlohmann::ordered_json& expected, uid_t owner) {
+Start readStart(const fs::path& dir, int k, const nlohmann::ordered_json& expected,
+                const nlohmann::ordered_json& budget, uid_t owner) {
   Start s;
-  const fs::path folder = startDir(dir, k);
   struct stat st {};
+  if (lstat((dir / "starts").c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+    throw BadInput((dir / "starts").string() + " is not a directory (a link?); expected the starts' folder");
+  const fs::path folder = startDir(dir, k);
   if (lstat(folder.c_str(), &st) != 0) {
-    s.not_finished = "not started";
+    s.not_finished = "no folder: not started yet, or its task failed before the tune began";
     return s;
   }
   if (!S_ISDIR(st.st_mode))
     throw BadInput(folder.string() + " is not a directory (a link?); expected a start's folder");
-  if (lstat((folder / "tune.json").c_str(), &st) != 0) {
-    s.not_finished = "running or stopped (no tune.json yet)";
+  const fs::path json_path = folder / "tune.json";
+  if (lstat(json_path.c_str(), &st) != 0) {
+    s.not_finished = "no tune.json: still running, or its task failed";
     return s;
   }
-  nlohmann::json tune;
   try {
-    tune = nlohmann::json::parse(readTrustedFile(folder / "tune.json", owner));
-    s.result = tune.at("result");
+    const nlohmann::json tune = nlohmann::json::parse(readTrustedFile(json_path, owner));
+    if (!tune.is_object() || !tune.contains("arguments") || !tune.contains("result") ||
+        !(tune["result"].is_object() || tune["result"].is_null()))
+      throw BadInput(json_path.string() +
+                     " is not a tune's: expected an object with `arguments` and `result`, as lagrange tune "
+                     "writes");
+    if (tune["arguments"] != nlohmann::json(expected))
+      throw BadInput(json_path.string() + " holds another tune's arguments than start " + std::to_string(k) +
+                     "'s (seed " + nlohmann::json(expected.at("seed")).dump() +
+                     "); expected the folder this tune's start wrote");
+    s.result = tune["result"];
   } catch (const nlohmann::json::exception& e) {
-    throw BadInput((folder / "tune.json").string() + " is not a tune's (" + e.what() +
+    throw BadInput(json_path.string() + " is not a tune's (" + e.what() +
                    "); expected the file lagrange tune writes");
   }
-  if (tune.at("arguments") != nlohmann::json(expected))
-    throw BadInput((folder / "tune.json").string() + " holds another tune's arguments than start " +
-                   std::to_string(k) + "'s (seed " + nlohmann::json(expected.at("seed")).dump() +
-                   "); expected the folder this tune's start wrote");
-  std::istringstream jsonl(readTrustedFile(folder / "tune.jsonl", owner));
-  for (std::string line; std::getline(jsonl, line);) {
-    if (line.empty()) continue;
-    try {
-      s.lines.push_back(nlohmann::ordered_json::parse(line));
-    } catch (const nlohmann::json::exception&) {
-      if (jsonl.peek() == EOF) break;  // torn by an interrupt: the start resumes it
-      throw BadInput((folder / "tune.jsonl").string() +
-                     " holds a line that is not JSON; expected the lines "
-                     "lagrange tune writes");
+  // No tune.jsonl: stopped before its first evaluation.
+  const fs::path jsonl_path = folder / "tune.jsonl";
+  if (lstat(jsonl_path.c_str(), &st) == 0) {
+    std::istringstream jsonl(readTrustedFile(jsonl_path, owner));
+    long number = 0;
+    for (std::string line; std::getline(jsonl, line);) {
+      ++number;
+      if (line.empty()) continue;
+      try {
+        s.lines.push_back(nlohmann::ordered_json::parse(line));
+      } catch (const nlohmann::json::exception&) {
+        if (jsonl.peek() == EOF) break;  // torn by an interrupt: the start resumes it
+        throw BadInput(jsonl_path.string() + " line " + std::to_string(number) +
+                       " is not JSON; expected the lines lagrange tune writes");
+      }
+      try {
+        s.evaluations.push_back(evaluationFromJson(s.lines.back()));
+      } catch (const BadInput& e) {
+        throw BadInput(jsonl_path.string() + " line " + std::to_string(number) + ": " + e.what());
+      }
     }
-    s.evaluations.push_back(evaluationFromJson(s.lines.back()));
   }
-  if (s.result.value("interrupted", true)) {
-    s.not_finished = "interrupted (a Slurm time limit?): submit the same command again to resume it";
+  if (s.result.is_null()) {
+    s.not_finished = "no result in its tune.json: still running, or killed (a Slurm time limit?)";
+    return s;
+  }
+  const auto interrupted = s.result.find("interrupted");
+  if (interrupted == s.result.end() || !interrupted->is_boolean())
+    throw BadInput(json_path.string() +
+                   ": result.interrupted is not true or false; expected the file lagrange tune writes");
+  if (interrupted->get<bool>()) {
+    s.not_finished = "interrupted (a Slurm time limit, scancel?)";
+    return s;
+  }
+  const auto made_at = s.result.find("budget");
+  if (made_at == s.result.end() || *made_at != nlohmann::json(budget)) {
+    s.not_finished = "finished at another budget (" +
+                     (made_at == s.result.end() ? std::string("not recorded") : made_at->dump()) + ", now " +
+                     budget.dump() + ")";
     return s;
   }
   s.finished = true;
@@ -172,17 +215,42 @@ Start readStart(const fs::path& dir, int k, const nlohmann::ordered_json& expect
 
 // The evaluation of `s` that is its tune.json's best: the first feasible one with those gains.
 const TuneEvaluation* bestOf(const Start& s) {
-  if (!s.finished || !s.result.contains("best") || !s.result["best"].is_object()) return nullptr;
-  const nlohmann::json& gains = s.result["best"]["gains"];
+  if (!s.finished) return nullptr;
+  const auto best = s.result.find("best");
+  if (best == s.result.end() || !best->is_object()) return nullptr;
+  const auto gains = best->find("gains");
+  if (gains == best->end() || !gains->is_object()) return nullptr;
   const auto same = [&](const TuneGains& g) {
-    if (!gains.is_object() || gains.size() != g.size()) return false;
-    for (const auto& [name, values] : g)
-      if (!gains.contains(name) || gains[name] != nlohmann::json(values)) return false;
+    if (gains->size() != g.size()) return false;
+    for (const auto& [name, values] : g) {
+      const auto found = gains->find(name);
+      if (found == gains->end() || *found != nlohmann::json(values)) return false;
+    }
     return true;
   };
   for (const TuneEvaluation& e : s.evaluations)
-    if (e.feasible == true && same(e.gains)) return &e;
+    if (e.feasible == true && e.convergence_time && same(e.gains)) return &e;
   return nullptr;
+}
+
+// "0-3,5,7-8": the starts as sbatch --array takes them (a list of every
+// index would outgrow an argument's length for tens of thousands).
+std::string arrayIndices(const std::vector<int>& ks) {
+  std::string out;
+  for (size_t i = 0; i < ks.size();) {
+    size_t j = i;
+    while (j + 1 < ks.size() && ks[j + 1] == ks[j] + 1) ++j;
+    out += (out.empty() ? "" : ",") + std::to_string(ks[i]) + (j > i ? "-" + std::to_string(ks[j]) : "");
+    i = j + 1;
+  }
+  return out;
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 std::string startText(int k, unsigned seed) {
@@ -206,7 +274,9 @@ int collectTune(const std::string& dir_text, bool quiet) {
     o.out_dir = dir.string();
     p = checkedTuneProblem(o);
     for (int k = 0; k < o.starts; ++k)
-      starts.push_back(readStart(dir, k, tuneArguments(p, o.seed + k, o.span, o.global), starts_file->owner));
+      starts.push_back(readStart(dir, k,
+                                 tuneArguments(p, o.seed + static_cast<unsigned>(k), o.span, o.global),
+                                 tuneBudget(o.evaluations, o.minutes), starts_file->owner));
   } catch (const std::exception& e) {
     return failWith(kTuneSlurm + " collect", e);
   }
@@ -269,11 +339,13 @@ int collectTune(const std::string& dir_text, bool quiet) {
     std::cerr << kTuneSlurm << ": " << startText(k, o.seed + static_cast<unsigned>(k))
               << " is not finished: " << starts[static_cast<size_t>(k)].not_finished << "; see "
               << (dir / "slurm").string() << "/start-" << k << ".out\n";
+  const std::string rest =
+      "collect again when they have run (lagrange tune collect " + dir_text +
+      "), or submit the same command again to run them (each resumes its own tune.jsonl)";
   if (!best) {
     if (!missing.empty()) {
-      std::cerr << kTuneSlurm << ": no finished start found gains that pass every check yet ("
-                << missing.size() << " of " << o.starts
-                << " not finished); once the job has ended: lagrange tune collect " << dir_text << "\n";
+      std::cerr << kTuneSlurm << ": no finished start found gains that pass every check (" << missing.size()
+                << " of " << o.starts << " starts not finished); " << rest << "\n";
       return kExitFailed;
     }
     std::cerr << kTuneSlurm << ": no gains passed every check in " << evaluations << " evaluations of "
@@ -293,9 +365,7 @@ int collectTune(const std::string& dir_text, bool quiet) {
   }
   if (!missing.empty()) {
     std::cerr << kTuneSlurm << ": " << missing.size() << " of " << o.starts
-              << " starts not finished: tuned.yaml holds the best of the others; once the job has ended: "
-                 "lagrange tune collect "
-              << dir_text << "\n";
+              << " starts not finished: tuned.yaml holds the best of the others; " << rest << "\n";
     return kExitFailed;
   }
   return kExitOk;
@@ -304,56 +374,62 @@ int collectTune(const std::string& dir_text, bool quiet) {
 int runTuneSlurm(const TuneOptions& given) {
   TuneOptions o = given;
   const fs::path dir = fs::absolute(o.out_dir).lexically_normal();
-  std::string indices;  // the starts to submit
-  int to_run = 0;
+  if (o.starts == 0) o.starts = kDefaultStarts;
+  nlohmann::ordered_json arguments;
+  std::vector<int> to_run;  // the starts to submit
+  std::string previous_job;
   try {
-    if (o.starts < 0 || o.starts > 100000)
+    if (o.starts < 1 || o.starts > 100000)
       throw BadInput("--starts " + std::to_string(o.starts) + ": expected 1 to 100000");
-    if (o.starts == 0) o.starts = kDefaultStarts;
+    if (static_cast<unsigned long long>(o.seed) + static_cast<unsigned long long>(o.starts) - 1 >
+        std::numeric_limits<unsigned>::max())
+      throw BadInput("--seed " + std::to_string(o.seed) + " with --starts " + std::to_string(o.starts) +
+                     ": the last start's seed, seed + starts - 1, is over " +
+                     std::to_string(std::numeric_limits<unsigned>::max()) + "; expected a smaller --seed");
     const TuneProblem p = checkedTuneProblem(o);
     util::makeOutputDirectories(dir.string());
     if (fs::exists(fs::symlink_status(dir / "tune.jsonl")))
       throw BadInput(o.out_dir +
                      " holds a tune run here, not on Slurm (tune.jsonl); expected another --out, or the "
                      "same command without --slurm to resume it");
-    const nlohmann::ordered_json arguments = startsArguments(o, o.starts);
+    arguments = startsArguments(o);
     const std::optional<StartsFile> before = readStartsFile(dir);
-    bool same_budget = false;
     if (before) {
       for (const char* key : {"scenario", "overrides", "seed", "span", "global", "require_condition"})
-        if (!before->arguments.contains(key) ||
-            before->arguments.at(key) != arguments.at(key))
-          throw BadInput(
-              o.out_dir + " holds a Slurm tune with other arguments (" + key + ": " +
-              (before->arguments.contains(key) ? before->arguments.at(key).dump() : "none") + ", now " +
-              nlohmann::json(arguments.at(key)).dump() +
-              "); a rerun repeats the scenario, --set, --seed, --span, --global and "
-              "--require-condition (--starts and the budget may change); expected those, or another "
-              "--out");
-      same_budget = before->arguments.value("evaluations", -1) == o.evaluations &&
-                    before->arguments.value("minutes", -1.0) == o.minutes;
+        if (!before->arguments.contains(key) || before->arguments.at(key) != arguments.at(key))
+          throw BadInput(o.out_dir + " holds a Slurm tune with other arguments (" + key + ": " +
+                         (before->arguments.contains(key) ? before->arguments.at(key).dump() : "none") +
+                         ", now " + arguments.at(key).dump() +
+                         "); a rerun repeats the scenario, --set, --seed, --span, --global and "
+                         "--require-condition (--starts and the budget may change); expected those, or "
+                         "another --out");
+      // Two tasks of one start would append to one tune.jsonl.
+      previous_job = before->job;
+      if (!previous_job.empty() && wiring::slurmJobQueued(previous_job))
+        throw BadInput(
+            o.out_dir + ": its Slurm job " + previous_job +
+            " is still queued or running (squeue lists it); expected it to end first (or scancel " +
+            previous_job + "), then the same command again");
     }
-    // The starts already finished at this budget are not submitted again.
+    // A start finished at this budget is not submitted again; one finished
+    // at another resumes from its tune.jsonl.
     const uid_t owner = before ? before->owner : geteuid();
-    for (int k = 0; k < o.starts; ++k) {
-      const bool done =
-          same_budget &&
-          readStart(dir, k, tuneArguments(p, o.seed + static_cast<unsigned>(k), o.span, o.global), owner)
-              .finished;
-      if (done) continue;
-      indices += (indices.empty() ? "" : ",") + std::to_string(k);
-      ++to_run;
-    }
-    util::writeOutputFile((dir / "starts.json").string(),
-                          nlohmann::ordered_json({{"arguments", arguments}}).dump(2) + "\n");
+    const nlohmann::ordered_json budget = tuneBudget(o.evaluations, o.minutes);
+    for (int k = 0; k < o.starts; ++k)
+      if (!readStart(dir, k, tuneArguments(p, o.seed + static_cast<unsigned>(k), o.span, o.global), budget,
+                     owner)
+               .finished)
+        to_run.push_back(k);
+    if (to_run.empty()) writeStartsFile(dir, arguments, previous_job);
   } catch (const std::exception& e) {
     return failWith(kTuneSlurm, e);
   }
-  if (to_run == 0) {
+  if (to_run.empty()) {
     if (!o.quiet) std::cout << kTuneSlurm << ": every start of " << o.out_dir << " is finished; collecting\n";
     return collectTune(o.out_dir, o.quiet);
   }
 
+  const std::string indices = arrayIndices(to_run);
   const fs::path slurm = dir / "slurm";
   const fs::path sbatch_out = slurm / "sbatch.out";
   pid_t pid = -1;
@@ -374,52 +450,69 @@ int runTuneSlurm(const TuneOptions& given) {
     // node given one CPU is as fast as one at -j 64 there, and gives the
     // same evaluations whatever -j.
     command += o.jobs > 0 ? " -j " + std::to_string(o.jobs) : " -j \"${SLURM_CPUS_PER_TASK:-1}\"";
+    // (No path in the comment: a newline in one would end it.)
     wiring::writeJobScript(
         (slurm / "start.sh").string(),
         "#!/bin/sh\n# One start of a lagrange tune: Slurm array task K searches from seed " +
-            std::to_string(o.seed) + " + K into " + (dir / "starts").string() +
-            "/K (docs/tuning.md).\nk=\"$SLURM_ARRAY_TASK_ID\"\nexec " + command + "\n");
-    pid = wiring::submitSlurmArray({"lagrange-tune", indices, (slurm / "start.sh").string(),
-                                    (slurm / "start-%a.out").string(), dir.string(), sbatch_out.string()},
-                                   o.slurm_options);
+            std::to_string(o.seed) +
+            " + K into OUT/starts/K (docs/tuning.md).\nk=\"$SLURM_ARRAY_TASK_ID\"\nexec " + command + "\n");
+    wiring::SlurmArray array;
+    array.job_name = "lagrange-tune";
+    array.indices = indices;
+    array.script = (slurm / "start.sh").string();
+    array.output = (slurm / "start-%a.out").string();
+    array.chdir = dir.string();
+    array.sbatch_output = sbatch_out.string();
+    pid = wiring::submitSlurmArray(array, o.slurm_options);
   } catch (const std::exception& e) {
     return failWith(kTuneSlurm, e);
   }
   g_waiting_stopped = 0;
   std::signal(SIGINT, stopWaiting);
   std::signal(SIGTERM, stopWaiting);
+  const auto restoreSignals = [] {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  };
   std::string job;
   int wstatus = 0;
   for (;;) {
     const pid_t done = waitpid(pid, &wstatus, WNOHANG);
     if (job.empty()) {
-      std::ifstream in(sbatch_out);
-      std::ostringstream text;
-      text << in.rdbuf();
-      job = wiring::slurmJobIdOf(text.str());
-      if (!job.empty() && !o.quiet)
-        std::cout << kTuneSlurm << ": submitted Slurm job " << job << ", " << to_run
-                  << " array tasks (starts " << indices << " of " << o.starts << ")\n"
-                  << std::flush;
+      job = wiring::slurmJobIdOf(readText(sbatch_out));
+      if (!job.empty()) {
+        // starts.json with the new budget and the job only once submitted:
+        // a refused submission leaves the tune as it was.
+        try {
+          writeStartsFile(dir, arguments, job);
+        } catch (const std::exception& e) {
+          restoreSignals();
+          std::cerr << kTuneSlurm << ": submitted Slurm job " << job << ", but ";
+          return failWith("writing starts.json", e);
+        }
+        if (!o.quiet)
+          std::cout << kTuneSlurm << ": submitted Slurm job " << job << ", " << to_run.size()
+                    << " array tasks (starts " << indices << " of " << o.starts << ")\n"
+                    << std::flush;
+      }
     }
     if (done == pid) break;
     if (g_waiting_stopped) {
+      restoreSignals();
       std::cerr << kTuneSlurm << ": stopped waiting; job " << (job.empty() ? "?" : job)
-                << " keeps running (scancel it to stop it); then: lagrange tune collect " << o.out_dir
-                << "\n";
+                << " keeps running (scancel it to stop it); once it has ended: lagrange tune collect "
+                << o.out_dir << "\n";
       return kExitInterrupted;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
+  restoreSignals();
   if (job.empty()) {
-    std::ifstream in(sbatch_out);
-    std::ostringstream text;
-    text << in.rdbuf();
     std::cerr << kTuneSlurm << ": sbatch "
               << (WIFEXITED(wstatus) ? "exited with code " + std::to_string(WEXITSTATUS(wstatus))
                                      : "was killed by signal " + std::to_string(WTERMSIG(wstatus)))
               << " without submitting a job:\n"
-              << text.str();
+              << readText(sbatch_out);
     return kExitFailed;
   }
   if (o.slurm_options.no_wait) {
