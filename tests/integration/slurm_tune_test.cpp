@@ -5,10 +5,13 @@
 // says which start is not finished and refuses a start folder of another tune.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/configs.hpp"
@@ -26,7 +29,9 @@ namespace fs = std::filesystem;
 std::string tuneCommand() {
   return "tune " + kConfigs +
          "/rigid_2dof.yaml --set duration=2 --set plant.physics_step=1e-4 "
-         "--set metrics.convergence_deadline=1.5 --evaluations 8 --global 6 --span 0.3 -q ";
+         "--set metrics.convergence_deadline=1.5 --evaluations 8 --global 6 --span 0.3 -q "
+         // A value the job script must quote: spaces, quotes, a $.
+         "--set \"description=a b \\$HOME 'q'\" ";
 }
 
 std::vector<nlohmann::json> evaluations(const std::string& dir) {
@@ -68,6 +73,11 @@ TEST_F(SlurmTune, EachStartIsTheLocalTuneOfItsSeedAndTheBestOfThemIsKept) {
   EXPECT_NE(shown.output.find("Partition=test"), std::string::npos) << shown.output;
   EXPECT_NE(shown.output.find("TimeLimit=00:10:00"), std::string::npos) << shown.output;
 
+  // The --set value reached each start as it was typed.
+  const nlohmann::json overrides =
+      nlohmann::json::parse(std::ifstream(out + "/starts/1/tune.json")).at("arguments").at("overrides");
+  EXPECT_NE(std::find(overrides.begin(), overrides.end(), "description=a b $HOME 'q'"), overrides.end())
+      << overrides;
   // Start K is the local tune with seed 3 + K, evaluation for evaluation
   // (and the seeds' tunes differ: a start that ignored its seed would fail this).
   ASSERT_NE(evaluations(dir_ + "/local-3"), evaluations(dir_ + "/local-4"));
@@ -140,6 +150,19 @@ TEST_F(SlurmTune, EachStartIsTheLocalTuneOfItsSeedAndTheBestOfThemIsKept) {
   EXPECT_NE(readText(out + "/slurm/start-1.out").find("0 computed"), std::string::npos)
       << readText(out + "/slurm/start-1.out");
   EXPECT_EQ(tuneResult(out).at("best"), collected.at("best"));
+
+  // Not waited for: submitted, then collected once the job has left the queue.
+  const std::string later = work + "/runs/later";
+  const RunResult submitted =
+      lagrange(tuneCommand() + "--seed 3 --out " + quote(later) + " --slurm --starts 2 --no-wait");
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  EXPECT_NE(submitted.output.find("has ended: lagrange tune collect"), std::string::npos) << submitted.output;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!shell("squeue -h -o %i").output.empty() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const RunResult collected_later = lagrange("tune collect " + quote(later));
+  EXPECT_EQ(collected_later.exit_code, 0) << collected_later.output;
+  EXPECT_EQ(tuneResult(later).at("best"), collected.at("best"));
 
   // Start 0's tune.json put in start 1's folder: another seed's, refused.
   ASSERT_TRUE(fs::remove(out + "/starts/1/tune.json"));
