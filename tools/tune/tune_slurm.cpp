@@ -120,8 +120,12 @@ TuneOptions optionsOf(const nlohmann::ordered_json& a) {
     throw BadInput(std::string("starts.json's arguments are not a Slurm tune's (") + e.what() +
                    "); expected the file lagrange tune --slurm writes");
   }
-  if (o.starts < 1 || o.starts > 100000)
-    throw BadInput("starts.json: starts " + std::to_string(o.starts) + "; expected 1 to 100000");
+  if (o.starts < 1 || o.starts > 100000 ||
+      static_cast<unsigned long long>(o.seed) + static_cast<unsigned long long>(o.starts) - 1 >
+          std::numeric_limits<unsigned>::max())
+    throw BadInput("starts.json: starts " + std::to_string(o.starts) + " from seed " +
+                   std::to_string(o.seed) + "; expected 1 to 100000 starts, the last seed at most " +
+                   std::to_string(std::numeric_limits<unsigned>::max()));
   return o;
 }
 
