@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kTuneSlurm = "lagrange tune";
+const std::string kTuneCommand = "lagrange tune";
 
 volatile std::sig_atomic_t g_waiting_stopped = 0;
 void stopWaiting(int) { g_waiting_stopped = 1; }
@@ -263,7 +263,7 @@ std::string startText(int k, unsigned seed) {
 
 }  // namespace
 
-int collectTune(const std::string& dir_text, bool quiet) {
+int collectTune(const std::string& dir_text, bool quiet, const std::string& who) {
   const fs::path dir = fs::absolute(dir_text).lexically_normal();
   TuneOptions o;
   TuneProblem p;
@@ -282,7 +282,7 @@ int collectTune(const std::string& dir_text, bool quiet) {
                                  tuneArguments(p, o.seed + static_cast<unsigned>(k), o.span, o.global),
                                  tuneBudget(o.evaluations, o.minutes), starts_file->owner));
   } catch (const std::exception& e) {
-    return failWith(kTuneSlurm + " collect", e);
+    return failWith(who, e);
   }
 
   // The best: the fastest of the starts' bests, the first start on a tie.
@@ -333,14 +333,14 @@ int collectTune(const std::string& dir_text, bool quiet) {
     j["result"] = result;
     util::writeOutputFile((dir / "tune.json").string(), j.dump(2) + "\n");
     const std::string not_drawn = drawFront(dir.string(), all_lines);
-    if (!not_drawn.empty() && !quiet) std::cerr << kTuneSlurm << ": " << not_drawn << "\n";
+    if (!not_drawn.empty() && !quiet) std::cerr << who << ": " << not_drawn << "\n";
     if (best) writeTunedYaml(dir.string(), p, best->gains);
   } catch (const std::exception& e) {
-    return failWith(kTuneSlurm + " collect", e);
+    return failWith(who, e);
   }
 
   for (const int k : missing)
-    std::cerr << kTuneSlurm << ": " << startText(k, o.seed + static_cast<unsigned>(k))
+    std::cerr << who << ": " << startText(k, o.seed + static_cast<unsigned>(k))
               << " is not finished: " << starts[static_cast<size_t>(k)].not_finished << "; see "
               << (dir / "slurm").string() << "/start-" << k << ".out\n";
   const std::string rest =
@@ -348,19 +348,19 @@ int collectTune(const std::string& dir_text, bool quiet) {
       "), or submit the same command again to run them (each resumes its own tune.jsonl)";
   if (!best) {
     if (!missing.empty()) {
-      std::cerr << kTuneSlurm << ": no finished start found gains that pass every check (" << missing.size()
+      std::cerr << who << ": no finished start found gains that pass every check (" << missing.size()
                 << " of " << o.starts << " starts not finished); " << rest << "\n";
       return kExitFailed;
     }
-    std::cerr << kTuneSlurm << ": no gains passed every check in " << evaluations << " evaluations of "
-              << o.starts << " starts; what binds:\n";
+    std::cerr << who << ": no gains passed every check in " << evaluations << " evaluations of " << o.starts
+              << " starts; what binds:\n";
     for (const std::string& line : whatBinds(p, all)) std::cerr << "  - " << line << "\n";
     return kExitFailed;
   }
   if (!quiet) {
-    std::cout << kTuneSlurm << ": " << o.scenario << " (" << p.input.controller.type << ", "
-              << p.variables.size() << " gains searched), " << o.starts << " starts (seeds " << o.seed
-              << " to " << o.seed + static_cast<unsigned>(o.starts) - 1 << "), " << evaluations
+    std::cout << who << ": " << o.scenario << " (" << p.input.controller.type << ", " << p.variables.size()
+              << " gains searched), " << o.starts << " starts (seeds " << o.seed << " to "
+              << o.seed + static_cast<unsigned>(o.starts) - 1 << "), " << evaluations
               << " evaluations made; the best from "
               << startText(*best_start, o.seed + static_cast<unsigned>(*best_start)) << "\n";
     printSummary(all.front(), *best, p);
@@ -368,7 +368,7 @@ int collectTune(const std::string& dir_text, bool quiet) {
               << "front.png; each start's own in " << dir_text << "/starts/K\n";
   }
   if (!missing.empty()) {
-    std::cerr << kTuneSlurm << ": " << missing.size() << " of " << o.starts
+    std::cerr << who << ": " << missing.size() << " of " << o.starts
               << " starts not finished: tuned.yaml holds the best of the others; " << rest << "\n";
     return kExitFailed;
   }
@@ -426,11 +426,12 @@ int runTuneSlurm(const TuneOptions& given) {
         to_run.push_back(k);
     if (to_run.empty()) writeStartsFile(dir, arguments, previous_job);
   } catch (const std::exception& e) {
-    return failWith(kTuneSlurm, e);
+    return failWith(kTuneCommand, e);
   }
   if (to_run.empty()) {
-    if (!o.quiet) std::cout << kTuneSlurm << ": every start of " << o.out_dir << " is finished; collecting\n";
-    return collectTune(o.out_dir, o.quiet);
+    if (!o.quiet)
+      std::cout << kTuneCommand << ": every start of " << o.out_dir << " is finished; collecting\n";
+    return collectTune(o.out_dir, o.quiet, kTuneCommand);
   }
 
   const std::string indices = arrayIndices(to_run);
@@ -469,7 +470,7 @@ int runTuneSlurm(const TuneOptions& given) {
     array.sbatch_output = sbatch_out.string();
     pid = wiring::submitSlurmArray(array, o.slurm_options);
   } catch (const std::exception& e) {
-    return failWith(kTuneSlurm, e);
+    return failWith(kTuneCommand, e);
   }
   g_waiting_stopped = 0;
   std::signal(SIGINT, stopWaiting);
@@ -491,11 +492,11 @@ int runTuneSlurm(const TuneOptions& given) {
           writeStartsFile(dir, arguments, job);
         } catch (const std::exception& e) {
           restoreSignals();
-          std::cerr << kTuneSlurm << ": submitted Slurm job " << job << ", but ";
+          std::cerr << kTuneCommand << ": submitted Slurm job " << job << ", but ";
           return failWith("writing starts.json", e);
         }
         if (!o.quiet)
-          std::cout << kTuneSlurm << ": submitted Slurm job " << job << ", " << to_run.size()
+          std::cout << kTuneCommand << ": submitted Slurm job " << job << ", " << to_run.size()
                     << " array tasks (starts " << indices << " of " << o.starts << ")\n"
                     << std::flush;
       }
@@ -503,7 +504,7 @@ int runTuneSlurm(const TuneOptions& given) {
     if (done == pid) break;
     if (g_waiting_stopped) {
       restoreSignals();
-      std::cerr << kTuneSlurm << ": stopped waiting; job " << (job.empty() ? "?" : job)
+      std::cerr << kTuneCommand << ": stopped waiting; job " << (job.empty() ? "?" : job)
                 << " keeps running (scancel it to stop it); once it has ended: lagrange tune collect "
                 << o.out_dir << "\n";
       return kExitInterrupted;
@@ -512,7 +513,7 @@ int runTuneSlurm(const TuneOptions& given) {
   }
   restoreSignals();
   if (job.empty()) {
-    std::cerr << kTuneSlurm << ": sbatch "
+    std::cerr << kTuneCommand << ": sbatch "
               << (WIFEXITED(wstatus) ? "exited with code " + std::to_string(WEXITSTATUS(wstatus))
                                      : "was killed by signal " + std::to_string(WTERMSIG(wstatus)))
               << " without submitting a job:\n"
@@ -520,13 +521,13 @@ int runTuneSlurm(const TuneOptions& given) {
     return kExitFailed;
   }
   if (o.slurm_options.no_wait) {
-    std::cout << kTuneSlurm << ": when job " << job << " has ended: lagrange tune collect " << o.out_dir
+    std::cout << kTuneCommand << ": when job " << job << " has ended: lagrange tune collect " << o.out_dir
               << "\n";
     return kExitOk;
   }
   // sbatch --wait exits non-zero when a task did -- a start that found
   // nothing exits 1 -- so what each start did is collect's to say.
-  return collectTune(o.out_dir, o.quiet);
+  return collectTune(o.out_dir, o.quiet, kTuneCommand);
 }
 
 }  // namespace lagrange::tools

@@ -21,11 +21,12 @@ namespace lagrange::tools {
 /// waiting was stopped (the job keeps running).
 int runTuneSlurm(const TuneOptions& options);
 
-/// The best of DIR's starts into DIR/tuned.yaml, DIR/tune.json, DIR/front.png.
+/// The best of DIR's starts into DIR/tuned.yaml, DIR/tune.json, DIR/front.png;
+/// `who` begins each message (`lagrange tune` when the tune itself collects).
 /// Exit 0 when every start finished and one found gains that pass every
 /// check; 1 when a start is not finished (tuned.yaml then holds the best of
 /// those that are) or none passed (what binds is named); 2 for a DIR that is
 /// not a Slurm tune's, or a start folder that is not its start's.
-int collectTune(const std::string& dir, bool quiet);
+int collectTune(const std::string& dir, bool quiet, const std::string& who = "lagrange tune collect");
 
 }  // namespace lagrange::tools
