@@ -18,6 +18,7 @@
 #include "support/help_examples.hpp"
 #include "support/launch.hpp"
 #include "support/slurm_cluster.hpp"
+#include "support/tune_files.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -34,21 +35,14 @@ std::string tuneCommand() {
          "--set \"description=a b \\$HOME 'q'\" ";
 }
 
+// What the search found, not what the machine took.
 std::vector<nlohmann::json> evaluations(const std::string& dir) {
-  std::vector<nlohmann::json> out;
-  std::ifstream in(dir + "/tune.jsonl");
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) {
-      nlohmann::json j = nlohmann::json::parse(line);
-      j.erase("wall_time");  // what the machine took, not what the search found
-      j.erase("times");
-      out.push_back(j);
-    }
+  std::vector<nlohmann::json> out = tuneLines(dir);
+  for (nlohmann::json& line : out) {
+    line.erase("wall_time");
+    line.erase("times");
+  }
   return out;
-}
-
-nlohmann::json tuneResult(const std::string& dir) {
-  return nlohmann::json::parse(std::ifstream(dir + "/tune.json")).at("result");
 }
 
 class SlurmTune : public SlurmClusterTest {};

@@ -13,6 +13,7 @@
 
 #include "support/launch.hpp"
 #include "support/temp_dir.hpp"
+#include "support/tune_files.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -28,18 +29,6 @@ RunResult tune(const std::string& out, const std::string& extra, int jobs = 2) {
                   std::to_string(jobs) + " " + extra);
 }
 
-std::vector<nlohmann::json> lines(const std::string& dir) {
-  std::vector<nlohmann::json> out;
-  std::ifstream in(dir + "/tune.jsonl");
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) out.push_back(nlohmann::json::parse(line));
-  return out;
-}
-
-nlohmann::json result(const std::string& dir) {
-  return nlohmann::json::parse(std::ifstream(dir + "/tune.json")).at("result");
-}
-
 class Tune : public TempDirTest {};
 
 TEST_F(Tune, TheTunedScenarioRunsAsItIsAndCheckGainsPassesIt) {
@@ -47,17 +36,17 @@ TEST_F(Tune, TheTunedScenarioRunsAsItIsAndCheckGainsPassesIt) {
   const RunResult r = tune(out, "--evaluations 12 --global 6");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("convergence time"), std::string::npos) << r.output;
-  const nlohmann::json best = result(out).at("best");
+  const nlohmann::json best = tuneResult(out).at("best");
   EXPECT_EQ(best.at("feasible"), true);
   EXPECT_EQ(best.at("sampled_verdict"), "adequate");
   // No slower than the input's gains, which are where the search starts.
   EXPECT_LE(best.at("convergence_time").get<double>(),
-            result(out).at("input").at("convergence_time").get<double>());
+            tuneResult(out).at("input").at("convergence_time").get<double>());
   EXPECT_TRUE(std::filesystem::exists(out + "/front.png"));
   // The best is the fastest that passed every check; a faster run the
   // search left unchecked was confirmed (and failed), unless the confirm
   // phase's three were spent.
-  const std::vector<nlohmann::json> all = lines(out);
+  const std::vector<nlohmann::json> all = tuneLines(out);
   std::vector<nlohmann::json> confirmed;
   for (const nlohmann::json& l : all)
     if (l.at("phase") == "confirm") confirmed.push_back(l.at("gains"));
@@ -88,11 +77,11 @@ TEST_F(Tune, TheTunedScenarioRunsAsItIsAndCheckGainsPassesIt) {
 TEST_F(Tune, ARerunWithALargerBudgetReadsTheEvaluationsMadeAndComputesOnlyTheRest) {
   const std::string out = dir_ + "/resumed";
   ASSERT_EQ(tune(out, "--evaluations 10 --global 30").exit_code, 0);
-  const std::vector<nlohmann::json> first = lines(out);
+  const std::vector<nlohmann::json> first = tuneLines(out);
   ASSERT_FALSE(first.empty());
   const RunResult again = tune(out, "--evaluations 20 --global 30");
   ASSERT_EQ(again.exit_code, 0) << again.output;
-  const nlohmann::json r = result(out);
+  const nlohmann::json r = tuneResult(out);
   EXPECT_EQ(r.at("evaluations"), 20);
   // Every line of the first run's search read, none recomputed (its confirm
   // lines are read only where the longer search confirms the same gains).
@@ -100,7 +89,7 @@ TEST_F(Tune, ARerunWithALargerBudgetReadsTheEvaluationsMadeAndComputesOnlyTheRes
       first.begin(), first.end(), [](const nlohmann::json& l) { return l.at("phase") != "confirm"; }));
   EXPECT_GE(r.at("read").get<size_t>(), searched);
   EXPECT_LE(r.at("read").get<size_t>(), first.size());
-  const std::vector<nlohmann::json> after = lines(out);
+  const std::vector<nlohmann::json> after = tuneLines(out);
   EXPECT_EQ(after.size(), first.size() + r.at("computed").get<size_t>());
   for (size_t i = 0; i < first.size(); ++i) EXPECT_EQ(after[i], first[i]) << i;
   // Other arguments in the same folder: refused, naming the one that differs.
@@ -118,8 +107,8 @@ TEST_F(Tune, AnInterruptWhileRunsAreMadeAheadKeepsWhatWasMadeAndResumesToTheSame
             quote(out) + " " + kShort + "-j 2 --evaluations 2000 --global 20 -q");
   ASSERT_EQ(stopped.exit_code, 130) << stopped.output;  // the interrupt came, and was said
   EXPECT_NE(stopped.output.find("interrupted after"), std::string::npos) << stopped.output;
-  EXPECT_TRUE(result(out).at("interrupted").get<bool>());
-  const std::vector<nlohmann::json> kept = lines(out);  // every line whole (lines() parses each)
+  EXPECT_TRUE(tuneResult(out).at("interrupted").get<bool>());
+  const std::vector<nlohmann::json> kept = tuneLines(out);  // every line whole (tuneLines() parses each)
   ASSERT_GT(kept.size(), 3u);
   ASSERT_LT(kept.size(), 1000u) << "not interrupted midway";
   const int budget = static_cast<int>(kept.size()) + 5;
@@ -127,8 +116,8 @@ TEST_F(Tune, AnInterruptWhileRunsAreMadeAheadKeepsWhatWasMadeAndResumesToTheSame
   const RunResult resumed = tune(out, more, 2);
   ASSERT_LE(resumed.exit_code, 1) << resumed.output;
   ASSERT_LE(tune(whole, more, 1).exit_code, 1);
-  EXPECT_GE(result(out).at("read").get<size_t>(), kept.size());
-  const std::vector<nlohmann::json> a = lines(out), b = lines(whole);
+  EXPECT_GE(tuneResult(out).at("read").get<size_t>(), kept.size());
+  const std::vector<nlohmann::json> a = tuneLines(out), b = tuneLines(whole);
   ASSERT_EQ(a.size(), b.size());
   for (size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].at("gains"), b[i].at("gains")) << i;
@@ -150,7 +139,7 @@ TEST_F(Tune, ARateNoGainsCanMeetIsRefusedNamingTheRate) {
 TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
   ASSERT_EQ(tune(dir_ + "/a", "--evaluations 12 --global 8 --seed 5", 1).exit_code, 0);
   ASSERT_EQ(tune(dir_ + "/b", "--evaluations 12 --global 8 --seed 5", 2).exit_code, 0);
-  const std::vector<nlohmann::json> a = lines(dir_ + "/a"), b = lines(dir_ + "/b");
+  const std::vector<nlohmann::json> a = tuneLines(dir_ + "/a"), b = tuneLines(dir_ + "/b");
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 3u);
   for (size_t i = 0; i < a.size(); ++i) {
@@ -160,7 +149,7 @@ TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
   }
   // -j 1 made every run when the search asked; -j 2 made runs ahead on its
   // threads, and the search used one run per evaluation it computed.
-  const nlohmann::json ra = result(dir_ + "/a").at("runs"), rb = result(dir_ + "/b").at("runs");
+  const nlohmann::json ra = tuneResult(dir_ + "/a").at("runs"), rb = tuneResult(dir_ + "/b").at("runs");
   EXPECT_EQ(ra.at("ahead"), 0);
   EXPECT_EQ(ra.at("made"), ra.at("used"));
   EXPECT_GT(rb.at("ahead").get<int>(), 0);
