@@ -27,7 +27,7 @@
 namespace lagrange::wiring {
 
 InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* log,
-                                   ProgressDisplay* progress, bool (*stop_requested)()) {
+                                   ProgressDisplay* progress, bool (*stop_requested)(), TickWatch* watch) {
   const auto wall_start = std::chrono::steady_clock::now();
   // Every message is built either way (the controller reads its inputs from
   // them); only the writing is skipped without a log.
@@ -92,6 +92,10 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
     record(transport::kActuatorState, state, state.header.publish_utime);
     tau = transport::toEigen(state.tau_applied);
     metrics.addTorque(k, tau);
+    if (watch && !watch->keepGoing(k, error.value_or(std::nan("")), tau)) {
+      outcome.status = "cut";
+      break;
+    }
 
     if (k % 100 == 0) {
       if (progress) {
@@ -114,9 +118,10 @@ InProcessOutcome simulateInProcess(const config::Scenario& s, logger::EventLog* 
     }
   }
   if (log) log->flush();
-  outcome.status = outcome.exit_code == kExitOk       ? "completed"
-                   : outcome.exit_code == kExitFailed ? "diverged"
-                                                      : "interrupted";
+  if (outcome.status.empty())
+    outcome.status = outcome.exit_code == kExitOk       ? "completed"
+                     : outcome.exit_code == kExitFailed ? "diverged"
+                                                        : "interrupted";
   outcome.tracking = metrics.summary();
   outcome.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   return outcome;

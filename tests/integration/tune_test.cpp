@@ -137,21 +137,28 @@ TEST_F(Tune, ARateNoGainsCanMeetIsRefusedNamingTheRate) {
 // One seed, the same evaluations, whether the candidates' runs are made one
 // at a time (-j 1) or ahead of the search on two threads (-j 2).
 TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
-  ASSERT_EQ(tune(dir_ + "/a", "--evaluations 12 --global 8 --seed 5", 1).exit_code, 0);
-  ASSERT_EQ(tune(dir_ + "/b", "--evaluations 12 --global 8 --seed 5", 2).exit_code, 0);
+  // 20 evaluations: the local phase's runs are cut at the best time, those
+  // made ahead at an older, later one (tools/tune/tune_evaluate.hpp).
+  ASSERT_EQ(tune(dir_ + "/a", "--evaluations 20 --global 8 --seed 5", 1).exit_code, 0);
+  ASSERT_EQ(tune(dir_ + "/b", "--evaluations 20 --global 8 --seed 5", 2).exit_code, 0);
   const std::vector<nlohmann::json> a = tuneLines(dir_ + "/a"), b = tuneLines(dir_ + "/b");
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 3u);
+  long cut = 0;
   for (size_t i = 0; i < a.size(); ++i) {
-    for (const char* key : {"index", "phase", "gains", "value", "feasible", "failed", "convergence_time",
-                            "peak_torque", "sampled_verdict"})
+    for (const char* key :
+         {"index", "phase", "gains", "value", "feasible", "failed", "status", "convergence_time", "judged_to",
+          "late_error", "estimated_time", "peak_torque", "sampled_verdict"})
       EXPECT_EQ(a[i].at(key), b[i].at(key)) << i << " " << key;
+    cut += a[i].at("status") == "cut";
   }
+  EXPECT_GT(cut, 0);
   // -j 1 made every run when the search asked; -j 2 made runs ahead on its
   // threads, and the search used one run per evaluation it computed.
   const nlohmann::json ra = tuneResult(dir_ + "/a").at("runs"), rb = tuneResult(dir_ + "/b").at("runs");
   EXPECT_EQ(ra.at("ahead"), 0);
   EXPECT_EQ(ra.at("made"), ra.at("used"));
+  EXPECT_EQ(ra.at("cut").get<long>(), cut);  // -j 1: each run stopped at the cut it is judged at
   EXPECT_GT(rb.at("ahead").get<int>(), 0);
   EXPECT_GE(rb.at("made").get<int>(), rb.at("used").get<int>());
   const auto searched = [](const std::vector<nlohmann::json>& all) {

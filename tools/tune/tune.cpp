@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -107,9 +108,11 @@ int runTune(const TuneOptions& o) {
   int computed = 0, read = 0;
   std::map<std::vector<double>, TuneEvaluation> made;  // this run's, made or read: a repeated point's
 
-  // The runs from the initial state, made ahead on -j threads (one per core by default).
+  // The runs from the initial state, made ahead on -j threads (one per core
+  // by default), each stopped at the cut of the best known when it gets there.
   const int workers = util::jobsOrCores(o.jobs);
-  CandidateRuns runs(p, workers, stopRequested);
+  std::atomic<double> cut_time{std::numeric_limits<double>::infinity()};
+  CandidateRuns runs(p, workers, stopRequested, &cut_time);
 
   const SearchObjective objective = [&](const std::vector<double>& point, SearchPhase phase) {
     if (stopRequested()) throw TuneInterrupted();
@@ -127,7 +130,14 @@ int runTune(const TuneOptions& o) {
       made.emplace(point, e);
     } else {
       const std::optional<double> best_time = best ? seen[*best].convergence_time : std::optional<double>();
-      e = judgeCandidate(p, runs.take(point), best_time, stopRequested);
+      // The local phase's runs are cut (the global phase's judged to their
+      // end: its values choose where the descent starts). The cut only
+      // comes earlier along the sequence: a run made ahead at an older,
+      // later cut is judged the same (runCandidate).
+      const double cut =
+          phase == SearchPhase::kLocal ? cutTime(p, best_time) : std::numeric_limits<double>::infinity();
+      cut_time.store(cut);
+      e = judgeCandidate(p, runs.take(point), best_time, cut, stopRequested);
       ++computed;
       appendEvaluation(o.out_dir, evaluationJson(static_cast<int>(seen.size()), phase, e, p.torque_limit));
       made.emplace(point, e);
@@ -137,8 +147,10 @@ int runTune(const TuneOptions& o) {
         e.peak_torque > 0.0)
       p.torque_limit = e.peak_torque;
     seen.push_back(e);
-    if (e.feasible == true && (!best || *e.convergence_time < *seen[*best].convergence_time))
+    if (e.feasible == true && (!best || *e.convergence_time < *seen[*best].convergence_time)) {
       best = seen.size() - 1;
+      if (phase == SearchPhase::kLocal) cut_time.store(cutTime(p, e.convergence_time));
+    }
     if (!o.quiet && (tty || seen.size() % 10 == 0)) {
       std::cerr << (tty ? "\r\033[K" : "") << who << ": " << seen.size();
       if (budget != std::numeric_limits<int>::max()) std::cerr << "/" << budget;
@@ -224,7 +236,8 @@ int runTune(const TuneOptions& o) {
   result["read"] = read;
   result["interrupted"] = interrupted;
   result["budget"] = tuneBudget(o.evaluations, o.minutes);
-  result["runs"] = {{"made", runs.made()}, {"ahead", runs.madeAhead()}, {"used", runs.used()}};
+  result["runs"] = {
+      {"made", runs.made()}, {"ahead", runs.madeAhead()}, {"used", runs.used()}, {"cut", runs.cut()}};
   result["input"] = seen.empty() ? nlohmann::json() : nlohmann::json(side(seen.front()));
   result["best"] = best ? nlohmann::json(side(seen[*best])) : nlohmann::json();
   try {

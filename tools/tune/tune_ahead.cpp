@@ -5,8 +5,9 @@
 
 namespace lagrange::tools {
 
-CandidateRuns::CandidateRuns(const TuneProblem& p, int workers, bool (*stop_requested)())
-    : problem_(p), stop_requested_(stop_requested) {
+CandidateRuns::CandidateRuns(const TuneProblem& p, int workers, bool (*stop_requested)(),
+                             const std::atomic<double>* cut_time)
+    : problem_(p), stop_requested_(stop_requested), cut_time_(cut_time) {
   for (int i = 0; workers > 1 && i < workers; ++i) {
     try {
       workers_.emplace_back([this] { work(); });
@@ -47,7 +48,7 @@ void CandidateRuns::ahead(const std::vector<std::vector<double>>& points) {
 }
 
 CandidateRun CandidateRuns::runHere(const std::vector<double>& point) {
-  return runCandidate(problem_, gainsOf(problem_, point), stop_requested_);
+  return runCandidate(problem_, gainsOf(problem_, point), stop_requested_, cut_time_);
 }
 
 CandidateRun CandidateRuns::take(const std::vector<double>& point) {
@@ -62,13 +63,17 @@ CandidateRun CandidateRuns::take(const std::vector<double>& point) {
     ++made_;
     ++used_;
     lock.unlock();
-    return runHere(point);
+    CandidateRun run = runHere(point);
+    lock.lock();
+    cut_ += run.findings.status == "cut";
+    return run;
   }
   const std::shared_ptr<Slot> slot = it->second;
   changed_.wait(lock, [&] { return slot->done; });
   slots_.erase(point);
   ++used_;
   if (slot->error) std::rethrow_exception(slot->error);
+  cut_ += slot->run.findings.status == "cut";
   return std::move(slot->run);
 }
 
@@ -110,6 +115,10 @@ int CandidateRuns::madeAhead() const {
 int CandidateRuns::used() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return used_;
+}
+int CandidateRuns::cut() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return cut_;
 }
 
 }  // namespace lagrange::tools

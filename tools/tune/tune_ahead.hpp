@@ -8,6 +8,7 @@
 /// depends on its gains alone, so the evaluations are those made one at a
 /// time, in the same order: only the wall time differs.
 
+#include <atomic>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -24,8 +25,10 @@ namespace lagrange::tools {
 class CandidateRuns {
  public:
   /// `workers` threads (none for 0 or 1: take() then runs each itself).
-  /// `p` and `stop_requested` must outlive this object.
-  CandidateRuns(const TuneProblem& p, int workers, bool (*stop_requested)());
+  /// `p`, `stop_requested` and `cut_time` (runCandidate's; may be null)
+  /// must outlive this object.
+  CandidateRuns(const TuneProblem& p, int workers, bool (*stop_requested)(),
+                const std::atomic<double>* cut_time = nullptr);
   ~CandidateRuns();  ///< as finish()
   /// Drops the queued runs and waits for those in progress (a stop request
   /// ends them early): the search is over, its guesses must not hold a core.
@@ -42,10 +45,12 @@ class CandidateRuns {
   CandidateRun take(const std::vector<double>& point);
 
   /// Runs made (by a worker or in take()), those a worker made, and those
-  /// a take() used (the rest were guesses the search did not ask for).
+  /// a take() used (the rest were guesses the search did not ask for);
+  /// cut(): the runs taken that were stopped at a cut.
   int made() const;
   int madeAhead() const;
   int used() const;
+  int cut() const;
 
  private:
   struct Slot {
@@ -58,12 +63,13 @@ class CandidateRuns {
 
   const TuneProblem& problem_;
   bool (*stop_requested_)();
+  const std::atomic<double>* cut_time_;
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::map<std::vector<double>, std::shared_ptr<Slot>> slots_;
   std::deque<std::vector<double>> queue_;
   bool closing_ = false;
-  int made_ = 0, made_ahead_ = 0, used_ = 0;
+  int made_ = 0, made_ahead_ = 0, used_ = 0, cut_ = 0;
   std::vector<std::thread> workers_;
 };
 

@@ -52,7 +52,76 @@ double squeezed(double miss) {
   return miss / (1.0 + miss);
 }
 
+// Added to the cut time for a cut run whose error is not decaying: after
+// every run estimated to converge.
+constexpr double kNotDecaying = 1e4;
+
+// (k + 1) x period: the time of the sample after tick k's, as the runner computes it.
+double nextSampleTime(long long k, double period) { return static_cast<double>(k + 1) * period; }
+
+// Records what judgeCandidate needs of a run's first part (CandidateRun's
+// per-tick traces, up to the deadline), and stops the run at the cut.
+class CutWatch : public wiring::TickWatch {
+ public:
+  CutWatch(CandidateRun& run, const config::Scenario& s, const std::atomic<double>* cut)
+      : run_(run),
+        period_(s.tickPeriod()),
+        tolerance_(s.metrics.tolerance),
+        record_until_(s.metrics.convergence_deadline),
+        cut_(cut) {}
+  bool keepGoing(long long tick, double error, const Eigen::MatrixXd& tau) override {
+    if (tau.size() > 0) peak_ = std::max(peak_, tau.cwiseAbs().maxCoeff());
+    if (static_cast<double>(tick) * period_ <= record_until_) {  // every cut is at or before the deadline
+      run_.errors.push_back(error);
+      run_.peaks.push_back(peak_);
+    }
+    return !(cut_ && error >= tolerance_ &&
+             nextSampleTime(tick, period_) >= cut_->load(std::memory_order_relaxed));
+  }
+
+ private:
+  CandidateRun& run_;
+  double period_, tolerance_, record_until_;
+  const std::atomic<double>* cut_;
+  double peak_ = 0.0;
+};
+
+// The largest of errors[from..to] (to included).
+double largest(const std::vector<double>& errors, size_t from, size_t to) {
+  return *std::max_element(errors.begin() + static_cast<long>(from),
+                           errors.begin() + static_cast<long>(to) + 1);
+}
+
+// A cut run's late error and estimated convergence time: its error
+// envelope (the largest ||q~||) over the third and the last quarter of the
+// part judged, [X/2, 3X/4) and [3X/4, X]; decaying from one to the next,
+// the time at which that exponential decay would reach the tolerance.
+void estimateFromEnvelope(TuneEvaluation& e, const std::vector<double>& errors, size_t last, double cut,
+                          double period, double tolerance) {
+  const size_t half = std::min(static_cast<size_t>(cutTick(0.5 * cut, period)), last);
+  const size_t three_quarters = std::min(static_cast<size_t>(cutTick(0.75 * cut, period)), last);
+  e.late_error = largest(errors, three_quarters, last);
+  if (half >= three_quarters) return;  // too few ticks judged
+  const double before = largest(errors, half, three_quarters - 1);
+  if (!(e.late_error < before) || !(e.late_error > 0.0)) return;  // not decaying
+  const double per_quarter = std::log(before / e.late_error);
+  const double remaining = 0.25 * cut * std::log(std::max(e.late_error, tolerance) / tolerance) / per_quarter;
+  e.estimated_time = cut + std::min(remaining, kNotDecaying);
+}
+
 }  // namespace
+
+double cutTime(const TuneProblem& p, std::optional<double> best_time) {
+  if (!best_time || !(p.cut_factor > 0.0)) return std::numeric_limits<double>::infinity();
+  return std::min(p.cut_factor * *best_time, p.input.metrics.convergence_deadline);
+}
+
+long long cutTick(double cut, double period) {
+  long long k = std::max(0LL, static_cast<long long>(std::ceil(cut / period)) - 1);
+  while (k > 0 && nextSampleTime(k - 1, period) >= cut) --k;
+  while (nextSampleTime(k, period) < cut) ++k;
+  return k;
+}
 
 TuneProblem makeTuneProblem(const std::string& scenario_path, const std::vector<std::string>& overrides,
                             double span_decades) {
@@ -124,8 +193,11 @@ std::vector<std::string> gainOverrides(const TuneGains& gains) {
 }
 
 double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torque_limit) {
-  if (e.failed.empty()) return e.convergence_time.value_or(0.0);
   const double tolerance = s.metrics.tolerance, deadline = s.metrics.convergence_deadline;
+  if (e.failed.empty() && e.judged_to)
+    return e.estimated_time ? *e.estimated_time
+                            : *e.judged_to + kNotDecaying + squeezed(e.late_error / tolerance);
+  if (e.failed.empty()) return e.convergence_time.value_or(0.0);
   if (e.failed.rfind("scenario", 0) == 0) return 5e6;
   if (e.failed.rfind("condition", 0) == 0)
     return 4e6 + 1e6 * squeezed(e.margin ? -*e.margin / std::max(1e-12, *e.condition_lhs - *e.margin) : 1.0);
@@ -147,7 +219,8 @@ double tuneValue(const TuneEvaluation& e, const config::Scenario& s, double torq
          1e5 * squeezed(static_cast<double>(word - std::begin(words)) + 0.1 * static_cast<double>(missed));
 }
 
-CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)()) {
+CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)(),
+                          const std::atomic<double>* cut_time) {
   const auto load_start = std::chrono::steady_clock::now();
   CandidateRun out;
   TuneEvaluation& e = out.findings;
@@ -183,23 +256,23 @@ CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*s
   config::Scenario in_process = s;
   in_process.mode = config::Mode::kInproc;
   const auto run_start = std::chrono::steady_clock::now();
-  const wiring::InProcessOutcome run =
-      wiring::simulateInProcess(in_process, nullptr, nullptr, stop_requested);
+  CutWatch watch(out, s, cut_time);
+  const wiring::InProcessOutcome run = wiring::simulateInProcess(in_process, nullptr, nullptr, stop_requested,
+                                                                 p.cut_factor > 0.0 ? &watch : nullptr);
   e.run_time = since(run_start);
   out.interrupted = run.status == "interrupted";
   e.status = run.status;
-  e.convergence_time = run.tracking.convergence_time;
+  // A cut run's convergence time is not known (its summary would put it at the cut).
+  if (run.status != "cut") e.convergence_time = run.tracking.convergence_time;
   e.final_error = run.tracking.final_error;
   e.peak_torque = run.tracking.max_abs_torque;
-  if (run.status != "completed" && !out.interrupted) {
-    e.feasible = false;
+  if (run.status == "diverged")
     e.failed = "diverged from the initial state" + (run.stop_message.empty() ? "" : ": " + run.stop_message);
-  }
   return out;
 }
 
 TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optional<double> best_time,
-                              bool (*stop_requested)()) {
+                              double cut, bool (*stop_requested)()) {
   const auto judge_start = std::chrono::steady_clock::now();
   if (run.interrupted) throw TuneInterrupted();
   TuneEvaluation e = std::move(run.findings);
@@ -211,7 +284,35 @@ TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optio
     e.wall_time = first_part + since(judge_start);
     return e;
   };
-  if (!e.failed.empty()) return finish();  // refused, eq. (12) with --require-condition, diverged
+  const bool diverged = e.status == "diverged";
+  if (!e.failed.empty() && !diverged) return finish();  // refused, eq. (12) with --require-condition
+  // Judged up to the cut alone unless it converged before it: what is judged
+  // is then the same however far the run went (its cut was this one or later).
+  if (std::isfinite(cut) && !run.errors.empty() &&
+      !(e.status == "completed" && e.convergence_time && *e.convergence_time < cut)) {
+    const long long last = cutTick(cut, s.tickPeriod());
+    if (diverged && static_cast<long long>(run.errors.size()) <= last) {
+      e.feasible = false;
+      return finish();  // diverged before the cut: as a run to its end says
+    }
+    const size_t k = std::min(static_cast<size_t>(last), run.errors.size() - 1);
+    e.failed.clear();
+    e.status = "cut";
+    e.convergence_time.reset();
+    e.judged_to = cut;
+    e.final_error = run.errors[k];
+    e.peak_torque = run.peaks[k];
+    estimateFromEnvelope(e, run.errors, k, cut, s.tickPeriod(), s.metrics.tolerance);
+    if (p.torque_limit > 0.0 && e.peak_torque > p.torque_limit * (1.0 + 1e-9)) {
+      e.feasible = false;
+      e.failed = "torque over the limit";
+    }
+    return finish();
+  }
+  if (diverged) {
+    e.feasible = false;
+    return finish();
+  }
   if (!e.convergence_time || *e.convergence_time > s.metrics.convergence_deadline) {
     e.feasible = false;
     e.failed = "metric not met from the initial state";
@@ -255,7 +356,8 @@ TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optio
 
 TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,
                              bool (*stop_requested)()) {
-  return judgeCandidate(p, runCandidate(p, gains, stop_requested), best_time, stop_requested);
+  return judgeCandidate(p, runCandidate(p, gains, stop_requested), best_time,
+                        std::numeric_limits<double>::infinity(), stop_requested);
 }
 
 controller::SampledDataCheck linearisedCheckOf(const TuneProblem& p, const TuneGains& gains) {

@@ -6,6 +6,7 @@
 /// nothing.
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <optional>
 #include <string>
 #include <utility>
@@ -43,7 +44,22 @@ struct TuneProblem {
   bool torque_from_saturation = false;
   bool require_condition = false;
   int jobs = 0;  ///< the sampled-data check's processes (0: one per core)
+  /// The local phase judges a candidate's run only up to cut_factor x the
+  /// best feasible time so far (cutTime); 0: every run judged to its end
+  /// (the objective before 2026-12-07, kept for the tests that compare).
+  double cut_factor = 1.0;
 };
+
+/// The time up to which a candidate's run is judged, given the best
+/// feasible convergence time so far: min(cut_factor x best, the deadline);
+/// +inf with no best yet or cut_factor 0. A run whose error is at or above
+/// the tolerance at a sample whose next sample time reaches it converges no
+/// earlier than the cut, so it cannot beat the best: it is stopped there,
+/// and valued by what it did up to the cut (docs/tuning.md, "The objective").
+double cutTime(const TuneProblem& p, std::optional<double> best_time);
+/// The first tick k whose next sample, (k + 1) x period, is at or past `cut`:
+/// the last tick a cut run is judged on.
+long long cutTick(double cut, double period);
 
 /// The problem for a scenario. `span_decades`: each variable's range is the
 /// declared one narrowed to span_decades decades either side of the input's
@@ -64,14 +80,24 @@ struct TuneEvaluation {
   /// true: every check passed; false: one failed (`failed` says which);
   /// none: not checked to the end, its run no faster than the best so far.
   std::optional<bool> feasible;
-  std::string failed;  ///< the first check that failed, in words
-  std::string status;  ///< the initial state's run: completed, diverged, failed (no run: "")
+  std::string failed;                      ///< the first check that failed, in words
+  std::string status;                      ///< the initial state's run: completed, diverged, cut (no run: "")
   std::optional<double> convergence_time;  ///< from the initial state [s]
-  double final_error = 0.0;                ///< [rad]
-  double peak_torque = 0.0;                ///< max |tau_i| applied, from the initial state [N m]
-  std::optional<double> margin;            ///< eq. (11)'s lhs - rhs (printed (12))
-  std::optional<double> condition_lhs;     ///< (kd_min / 2)(b_min / a_max)
-  std::string sampled_verdict;             ///< the simulated check's word; "": not run
+  /// Judged only up to this time (status "cut"): its convergence time is at
+  /// or past it, so neither it nor what follows is known; final_error and
+  /// peak_torque are those of the part judged [s].
+  std::optional<double> judged_to;
+  /// With judged_to: the largest ||q~|| over the last quarter of the part
+  /// judged -- how far from converged it still was [rad] -- and, when that
+  /// is less than over the quarter before, the time at which the decay from
+  /// one to the other would reach the tolerance (an estimate) [s].
+  double late_error = 0.0;
+  std::optional<double> estimated_time;
+  double final_error = 0.0;             ///< [rad]
+  double peak_torque = 0.0;             ///< max |tau_i| applied, from the initial state [N m]
+  std::optional<double> margin;         ///< eq. (11)'s lhs - rhs (printed (12))
+  std::optional<double> condition_lhs;  ///< (kd_min / 2)(b_min / a_max)
+  std::string sampled_verdict;          ///< the simulated check's word; "": not run
   std::string sampled_why;
   std::vector<std::optional<double>> start_times;  ///< each start's sampled-loop convergence time [s]
   std::string linearised_verdict;                  ///< "": not run
@@ -84,7 +110,10 @@ struct TuneEvaluation {
 
 /// The value of the findings (pure; docs/tuning.md, "The objective"):
 /// a feasible candidate's (or one not checked to the end) is its
-/// convergence time [s]; an infeasible one's a penalty above every
+/// convergence time [s]; one judged only to its cut time X, its
+/// estimated_time (at least X: after every convergence time known), or
+/// when its error is not decaying X + 1e4 + late_error / tolerance
+/// squeezed into [0, 1); an infeasible one's a penalty above every
 /// feasible value, by band, worst first -- the scenario refused 5e6, eq.
 /// (11) violated with --require-condition [4e6, 5e6), the run diverged
 /// [3e6, 4e6), the metric not met from the initial state [2e6, 3e6), the
@@ -108,21 +137,33 @@ struct CandidateRun {
   TuneEvaluation findings;    ///< gains, margin, status, times, the run's numbers; `failed` when refused
   config::Scenario scenario;  ///< with the gains (the input's when refused)
   bool interrupted = false;   ///< the stop came during the run: nothing of it counts
+  /// Per tick up to the deadline, for judging the run up to any cut time:
+  /// ||q~||, and the largest |tau| so far.
+  std::vector<double> errors, peaks;
 };
 
 /// The first part. Never throws for a candidate's own failure (a refused
 /// scenario, a diverged run: said in `findings`). `stop_requested` is asked
-/// during the run.
-CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)());
+/// during the run. `cut_time` (null: none) is read at every tick: the run
+/// stops at the first tick cutTime's rule says it can no longer beat the
+/// best. It may only decrease while the run goes on, and judgeCandidate's
+/// cut must be at or before it: what it judges is then the same whenever
+/// the run stopped (runs made ahead on other threads stop at an older, later cut).
+CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*stop_requested)(),
+                          const std::atomic<double>* cut_time = nullptr);
 
 /// The rest: what the run says against the metric and the torque limit
 /// (p.torque_limit; 0: none, for the input's own evaluation when the limit
 /// is its peak), then the sampled-data check -- only when the run beats
 /// `best_time`, the best feasible convergence time so far, by kCheckedGain
-/// (else its value is its time and feasible unset). @throws TuneInterrupted
+/// (else its value is its time and feasible unset). A run that does not
+/// converge before `cut` (cutTime(p, best_time) in the local phase, else
+/// +inf) is judged up to it alone (status "cut"): diverged before it, its
+/// torque over the limit before it, or else not better (judged_to).
+/// @throws TuneInterrupted
 /// when the run was interrupted or `stop_requested` says stop after the check.
 TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optional<double> best_time,
-                              bool (*stop_requested)());
+                              double cut, bool (*stop_requested)());
 
 /// Both parts of `gains` at once.
 TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::optional<double> best_time,

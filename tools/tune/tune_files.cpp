@@ -54,6 +54,9 @@ nlohmann::ordered_json evaluationJson(int index, SearchPhase phase, const TuneEv
   j["failed"] = e.failed.empty() ? nlohmann::json() : nlohmann::json(e.failed);
   j["status"] = e.status.empty() ? nlohmann::json() : nlohmann::json(e.status);
   j["convergence_time"] = optionalNumber(e.convergence_time);
+  j["judged_to"] = optionalNumber(e.judged_to);
+  j["late_error"] = e.judged_to ? finiteOrNull(e.late_error) : nlohmann::json();
+  j["estimated_time"] = optionalNumber(e.estimated_time);
   j["final_error"] = finiteOrNull(e.final_error);
   j["peak_torque"] = finiteOrNull(e.peak_torque);
   j["torque_limit"] = torque_limit > 0.0 ? nlohmann::json(torque_limit) : nlohmann::json();
@@ -84,6 +87,9 @@ TuneEvaluation evaluationFromJson(const nlohmann::ordered_json& j) {
     e.failed = j.at("failed").is_string() ? j.at("failed").get<std::string>() : "";
     e.status = j.at("status").is_string() ? j.at("status").get<std::string>() : "";
     e.convergence_time = numberOf(j.at("convergence_time"));
+    e.judged_to = numberOf(j.value("judged_to", nlohmann::json()));  // (lines before 2026-12-07 have none)
+    e.late_error = numberOf(j.value("late_error", nlohmann::json())).value_or(NAN);
+    e.estimated_time = numberOf(j.value("estimated_time", nlohmann::json()));
     e.final_error = numberOf(j.at("final_error")).value_or(NAN);
     e.peak_torque = numberOf(j.at("peak_torque")).value_or(NAN);
     e.margin = numberOf(j.at("margin"));
@@ -161,6 +167,8 @@ nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double
   a["span"] = span_decades;
   a["global"] = global;  // 0: the default, 10 (n + 1)
   a["require_condition"] = p.require_condition;
+  // The objective's cut (a folder of a tune before it is not resumed with it).
+  a["cut"] = p.cut_factor > 0.0 ? nlohmann::json(p.cut_factor) : nlohmann::json();
   nlohmann::json variables = nlohmann::json::array();
   for (const SearchVariable& v : p.variables) variables.push_back({v.label, v.lower, v.upper, v.start});
   a["variables"] = variables;
@@ -188,7 +196,12 @@ void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& argume
                    " holds a tune.jsonl without a readable tune.json: not a tune this command can "
                    "resume; expected an empty DIR or one a lagrange tune wrote");
   }
-  for (const auto& [key, value] : arguments.items())
+  for (const auto& [key, value] : arguments.items()) {
+    if (key == "cut" && !before.contains(key))
+      throw BadInput(dir +
+                     " holds a tune of an older lagrange, whose objective judged every run to its end (this "
+                     "one stops a run once it cannot beat the best: docs/tuning.md); its evaluations do not "
+                     "resume this tune: expected another --out");
     if (!before.contains(key) || before.at(key) != nlohmann::json(value))
       throw BadInput(
           dir + " holds a tune with other arguments (" + key + ": " +
@@ -196,6 +209,7 @@ void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& argume
           nlohmann::json(value).dump() +
           "); a resume repeats the same scenario, --set, --seed, --span, --global and --require-condition; "
           "expected those, or another --out");
+  }
 }
 
 void writeTuneJson(const std::string& dir, const nlohmann::ordered_json& arguments,
