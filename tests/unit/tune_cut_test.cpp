@@ -117,8 +117,13 @@ TEST_F(TuneCutFolder, ATuneOfTheObjectiveBeforeTheCutIsNotResumed) {
     FAIL() << "resumed";
   } catch (const BadInput& e) {
     EXPECT_NE(std::string(e.what()).find("older lagrange"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("another --out"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("another --out, or --full-runs"), std::string::npos) << e.what();
   }
+  // With --full-runs (no cut: that tune's objective), it is resumed.
+  TuneProblem full = p;
+  full.cut_factor = 0.0;
+  EXPECT_TRUE(tuneArguments(full, 1, 2.0, 0).at("cut").is_null());
+  EXPECT_NO_THROW(prepareTuneDir(dir_, tuneArguments(full, 1, 2.0, 0)));
   // The same arguments, with the cut: resumed.
   writeTuneJson(dir_, tuneArguments(p, 1, 2.0, 0), nullptr);
   EXPECT_NO_THROW(prepareTuneDir(dir_, tuneArguments(p, 1, 2.0, 0)));

@@ -48,6 +48,7 @@ TuneProblem checkedTuneProblem(const TuneOptions& o) {
     throw BadInput("--span " + shortNumber(o.span) + ": expected a positive number of decades");
   TuneProblem p = makeTuneProblem(o.scenario, o.overrides, o.span);
   p.require_condition = o.require_condition;
+  if (o.full_runs) p.cut_factor = 0.0;
   if (o.require_condition && !p.kc)
     throw BadInput(
         "--require-condition: controller type '" + p.input.controller.type +

@@ -26,6 +26,7 @@ struct TuneOptions {
   double span = 2.0;  ///< decades either side of the input's gains
   int global = 0;     ///< the global phase's evaluations; 0: 10 (n + 1)
   bool require_condition = false;
+  bool full_runs = false;  ///< no cut: every candidate's run judged to its end (docs/tuning.md)
   bool quiet = false;
   // --slurm (docs/tuning.md, "On a Slurm cluster"): independent searches,
   // one seed each, as one job array; the best of them is the result.

@@ -58,6 +58,9 @@ Subcommand addTuneCommand(CLI::App& app) {
       "--require-condition", o->require_condition,
       "Keep only gains for which eq. (12) holds (the paper's guarantee); if none, name the reference "
       "size for which it could");
+  cmd->add_flag("--full-runs", o->full_runs,
+                "Judge every candidate's run to its end, none cut once it cannot beat the best: slower, "
+                "and every candidate's convergence time known (front.png draws them all)");
   cmd->add_flag("-q,--quiet", o->quiet, "Print errors only");
   cmd->add_flag(
       "--slurm", o->slurm,

@@ -197,17 +197,20 @@ void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& argume
                    "resume; expected an empty DIR or one a lagrange tune wrote");
   }
   for (const auto& [key, value] : arguments.items()) {
-    if (key == "cut" && !before.contains(key))
+    if (key == "cut" && !before.contains(key)) {
+      if (value.is_null()) continue;  // --full-runs: the objective that tune was made with
       throw BadInput(dir +
                      " holds a tune of an older lagrange, whose objective judged every run to its end (this "
                      "one stops a run once it cannot beat the best: docs/tuning.md); its evaluations do not "
-                     "resume this tune: expected another --out");
+                     "resume this tune: expected another --out, or --full-runs to resume it");
+    }
     if (!before.contains(key) || before.at(key) != nlohmann::json(value))
       throw BadInput(
           dir + " holds a tune with other arguments (" + key + ": " +
           (before.contains(key) ? before.at(key).dump() : std::string("none")) + ", now " +
           nlohmann::json(value).dump() +
-          "); a resume repeats the same scenario, --set, --seed, --span, --global and --require-condition; "
+          "); a resume repeats the same scenario, --set, --seed, --span, --global, --require-condition and "
+          "--full-runs; "
           "expected those, or another --out");
   }
 }

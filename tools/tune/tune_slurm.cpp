@@ -68,6 +68,7 @@ nlohmann::ordered_json startsArguments(const TuneOptions& o) {
   a["span"] = o.span;
   a["global"] = o.global;
   a["require_condition"] = o.require_condition;
+  a["full_runs"] = o.full_runs;
   a["starts"] = o.starts;
   a["evaluations"] = o.evaluations;
   a["minutes"] = o.minutes;
@@ -113,6 +114,7 @@ TuneOptions optionsOf(const nlohmann::ordered_json& a) {
     o.span = a.at("span").get<double>();
     o.global = a.at("global").get<int>();
     o.require_condition = a.at("require_condition").get<bool>();
+    o.full_runs = a.value("full_runs", false);  // (a starts.json before --full-runs has none)
     o.starts = a.at("starts").get<int>();
     o.evaluations = a.at("evaluations").get<int>();
     o.minutes = a.at("minutes").get<double>();
@@ -399,14 +401,16 @@ int runTuneSlurm(const TuneOptions& given) {
     arguments = startsArguments(o);
     const std::optional<StartsFile> before = readStartsFile(dir);
     if (before) {
-      for (const char* key : {"scenario", "overrides", "seed", "span", "global", "require_condition"})
+      for (const char* key :
+           {"scenario", "overrides", "seed", "span", "global", "require_condition", "full_runs"})
         if (!before->arguments.contains(key) || before->arguments.at(key) != arguments.at(key))
-          throw BadInput(o.out_dir + " holds a Slurm tune with other arguments (" + key + ": " +
-                         (before->arguments.contains(key) ? before->arguments.at(key).dump() : "none") +
-                         ", now " + arguments.at(key).dump() +
-                         "); a rerun repeats the scenario, --set, --seed, --span, --global and "
-                         "--require-condition (--starts and the budget may change); expected those, or "
-                         "another --out");
+          throw BadInput(
+              o.out_dir + " holds a Slurm tune with other arguments (" + key + ": " +
+              (before->arguments.contains(key) ? before->arguments.at(key).dump() : "none") + ", now " +
+              arguments.at(key).dump() +
+              "); a rerun repeats the scenario, --set, --seed, --span, --global, "
+              "--require-condition and --full-runs (--starts and the budget may change); expected those, or "
+              "another --out");
       // Two tasks of one start would append to one tune.jsonl.
       previous_job = before->job;
       if (!previous_job.empty() && wiring::slurmJobQueued(previous_job))
@@ -451,6 +455,7 @@ int runTuneSlurm(const TuneOptions& given) {
     command += " --span " + nlohmann::json(o.span).dump();
     if (o.global > 0) command += " --global " + std::to_string(o.global);
     if (o.require_condition) command += " --require-condition";
+    if (o.full_runs) command += " --full-runs";
     // The task's CPUs, not the node's cores: a tune at -j 1 on a 64-core
     // node given one CPU is as fast as one at -j 64 there, and gives the
     // same evaluations whatever -j.
