@@ -167,6 +167,19 @@ TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
   };
   EXPECT_EQ(ra.at("used").get<long>(), searched(a));
   EXPECT_EQ(rb.at("used").get<long>(), searched(b));
+
+  // --full-runs: nothing cut, and the global phase (judged to the end either
+  // way) the same, line for line, as the tune with the cut.
+  ASSERT_EQ(tune(dir_ + "/full", "--evaluations 20 --global 8 --seed 5 --full-runs", 2).exit_code, 0);
+  const std::vector<nlohmann::json> full = tuneLines(dir_ + "/full");
+  EXPECT_TRUE(tuneJson(dir_ + "/full").at("arguments").at("cut").is_null());
+  EXPECT_EQ(tuneJson(dir_ + "/a").at("arguments").at("cut"), 1.0);
+  for (size_t i = 0; i < full.size(); ++i) {
+    EXPECT_NE(full[i].at("status"), "cut") << i;
+    if (i < a.size() && full[i].at("phase") != "local" && full[i].at("phase") != "confirm") {
+      EXPECT_EQ(full[i].at("value"), a[i].at("value")) << i;
+    }
+  }
 }
 
 // What a tune on Slurm refuses before anything is submitted (no cluster

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// A tune's files as the tests read them (docs/tuning.md, "Outputs"):
-/// tune.jsonl's lines and tune.json's result.
+/// tune.jsonl's lines and tune.json.
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -18,9 +18,10 @@ inline std::vector<nlohmann::json> tuneLines(const std::string& dir) {
   return out;
 }
 
-/// DIR/tune.json's `result`.
-inline nlohmann::json tuneResult(const std::string& dir) {
-  return nlohmann::json::parse(std::ifstream(dir + "/tune.json")).at("result");
+/// DIR/tune.json, and its `result`.
+inline nlohmann::json tuneJson(const std::string& dir) {
+  return nlohmann::json::parse(std::ifstream(dir + "/tune.json"));
 }
+inline nlohmann::json tuneResult(const std::string& dir) { return tuneJson(dir).at("result"); }
 
 }  // namespace lagrange::testing
