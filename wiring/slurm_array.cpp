@@ -1,9 +1,15 @@
 #include "wiring/slurm_array.hpp"
 
+#include <sys/wait.h>
+
 #include <cctype>
+#include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "util/error.hpp"
 #include "util/output_file.hpp"
@@ -33,6 +39,39 @@ pid_t submitSlurmArray(const SlurmArray& array, const SlurmOptions& options) {
   } catch (const RuntimeFault& e) {
     throw RuntimeFault(std::string(e.what()) + "; expected Slurm's sbatch on PATH (Debian: slurm-client)");
   }
+}
+
+SlurmWait waitForSlurmArray(pid_t pid, const SlurmArray& array,
+                            const std::function<void(const std::string& job)>& on_submitted,
+                            const std::function<void()>& on_poll, const std::function<bool()>& stop) {
+  SlurmWait w;
+  for (;;) {
+    const pid_t done = waitpid(pid, &w.wstatus, WNOHANG);
+    if (w.job.empty()) {
+      w.job = slurmJobIdOf(sbatchOutputOf(array));
+      if (!w.job.empty() && on_submitted) on_submitted(w.job);
+    }
+    if (done == pid) return w;
+    if (stop && stop()) {
+      w.stopped = true;
+      return w;
+    }
+    if (on_poll) on_poll();
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+}
+
+std::string sbatchOutputOf(const SlurmArray& array) {
+  std::ifstream in(array.sbatch_output, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string waitStatusText(int wstatus) {
+  if (WIFEXITED(wstatus)) return "exited with code " + std::to_string(WEXITSTATUS(wstatus));
+  return std::string("was killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
+         strsignal(WTERMSIG(wstatus)) + ")";
 }
 
 std::string slurmJobIdOf(const std::string& sbatch_output) {

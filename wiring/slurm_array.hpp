@@ -7,6 +7,7 @@
 
 #include <sys/types.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,27 @@ std::vector<std::string> sbatchCommand(const SlurmArray& array, const SlurmOptio
 /// not the job), its output to array.sbatch_output.
 /// @throws RuntimeFault naming sbatch when it cannot be started.
 pid_t submitSlurmArray(const SlurmArray& array, const SlurmOptions& options);
+
+/// How the wait for sbatch ended (waitForSlurmArray).
+struct SlurmWait {
+  std::string job;       ///< the job id; "" when sbatch ended without submitting one
+  int wstatus = 0;       ///< sbatch's wait status, once it ended
+  bool stopped = false;  ///< stop() said stop first: sbatch (and the job) go on without us
+};
+
+/// Waits for the sbatch submitSlurmArray started (`pid`), looking every
+/// 200 ms: `on_submitted(job)` once sbatch has printed the job id,
+/// `on_poll()` at each look while it runs, and `stop()` (may be empty)
+/// asked at each look. What a callback throws leaves the wait as it is.
+SlurmWait waitForSlurmArray(pid_t pid, const SlurmArray& array,
+                            const std::function<void(const std::string& job)>& on_submitted,
+                            const std::function<void()>& on_poll, const std::function<bool()>& stop);
+
+/// sbatch's output so far (array.sbatch_output; "" when there is none yet).
+std::string sbatchOutputOf(const SlurmArray& array);
+
+/// A child's wait status in words: "exited with code N", "was killed by signal N (NAME)".
+std::string waitStatusText(int wstatus);
 
 /// The job id sbatch --parsable prints ("ID" or "ID;CLUSTER") on a line of
 /// its own, once it has submitted; warnings may come before it. Empty until then.

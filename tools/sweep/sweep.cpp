@@ -108,12 +108,6 @@ SweepPlan loadPlan(const std::string& out_dir) {
   return plan;
 }
 
-std::string exitText(int wstatus) {
-  if (WIFEXITED(wstatus)) return "exited with code " + std::to_string(WEXITSTATUS(wstatus));
-  return std::string("was killed by signal ") + std::to_string(WTERMSIG(wstatus)) + " (" +
-         strsignal(WTERMSIG(wstatus)) + ")";
-}
-
 // What finish found: rows of the plan not in OUT/rows, and lines or files
 // there refused (not this sweep's).
 struct Finished {
@@ -251,8 +245,8 @@ int runLocal(const SweepOptions& o, const SweepPlan& plan, long remaining, const
       if (!(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0) && !(stopped && sweep_signal)) {
         failed = true;
         progress.interrupt();
-        std::cerr << "lagrange sweep: shard " << k << " of " << n << " " << exitText(wstatus) << "; see "
-                  << (fs::path(o.out_dir) / "logs").string() << "\n";
+        std::cerr << "lagrange sweep: shard " << k << " of " << n << " " << wiring::waitStatusText(wstatus)
+                  << "; see " << (fs::path(o.out_dir) / "logs").string() << "\n";
       }
       continue;
     }
@@ -292,58 +286,49 @@ int runSlurm(const SweepOptions& o, const SweepPlan& plan, long remaining, const
   array.output = (slurm / "shard-%a.out").string();
   array.chdir = dir.string();
   array.sbatch_output = sbatch_out.string();
-  wiring::SlurmOptions options;
-  options.partition = o.partition;
-  options.time_limit = o.time_limit;
-  options.account = o.account;
-  options.sbatch_args = o.sbatch_args;
-  options.no_wait = o.no_wait;
-  const pid_t pid = wiring::submitSlurmArray(array, options);
+  const pid_t pid = wiring::submitSlurmArray(array, o.slurm_options);
   RowCounter counter(o.out_dir);
-  std::string job;
-  SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows, o.quiet || o.no_wait);
-  int wstatus = 0;
-  for (;;) {
-    const pid_t done = waitpid(pid, &wstatus, WNOHANG);
-    if (job.empty()) {
-      job = wiring::slurmJobIdOf(readFile(sbatch_out));
-      if (!job.empty()) {
-        if (!o.quiet) {
-          progress.interrupt();
-          std::cout << "lagrange sweep: submitted Slurm job " << job << ", " << n << " array tasks ("
-                    << remaining << " runs)\n"
-                    << std::flush;
-        }
-      }
-    }
-    if (done == pid) break;
-    if (sweep_signal) {
-      progress.interrupt();
-      std::cerr << "lagrange sweep: stopped waiting; job " << (job.empty() ? "?" : job)
-                << " keeps running (scancel it to stop it); then: lagrange sweep collect " << o.out_dir
-                << "\n";
-      return kExitInterrupted;
-    }
-    const RowCount c = counter.count();
-    progress.update(c.rows, c.diverged);
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  SweepProgress progress(static_cast<long>(plan.rows.size()), counter.count().rows,
+                         o.quiet || o.slurm_options.no_wait);
+  const wiring::SlurmWait wait = wiring::waitForSlurmArray(
+      pid, array,
+      [&](const std::string& submitted) {
+        if (o.quiet) return;
+        progress.interrupt();
+        std::cout << "lagrange sweep: submitted Slurm job " << submitted << ", " << n << " array tasks ("
+                  << remaining << " runs)\n"
+                  << std::flush;
+      },
+      [&] {
+        const RowCount c = counter.count();
+        progress.update(c.rows, c.diverged);
+      },
+      stopRequested);
+  const std::string& job = wait.job;
+  const int wstatus = wait.wstatus;
+  if (wait.stopped) {
+    progress.interrupt();
+    std::cerr << "lagrange sweep: stopped waiting; job " << (job.empty() ? "?" : job)
+              << " keeps running (scancel it to stop it); then: lagrange sweep collect " << o.out_dir << "\n";
+    return kExitInterrupted;
   }
   const RowCount end = counter.count();
   progress.finish(end.rows, end.diverged);
   const bool sbatch_ok = WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 0;
   if (job.empty()) {  // not submitted
-    std::cerr << "lagrange sweep: sbatch " << exitText(wstatus) << " without submitting a job:\n"
-              << readFile(sbatch_out);
+    std::cerr << "lagrange sweep: sbatch " << wiring::waitStatusText(wstatus)
+              << " without submitting a job:\n"
+              << wiring::sbatchOutputOf(array);
     return kExitFailed;
   }
-  if (o.no_wait) {
+  if (o.slurm_options.no_wait) {
     std::cout << "lagrange sweep: when job " << job << " has ended: lagrange sweep collect " << o.out_dir
               << "\n";
     return kExitOk;
   }
   if (!sbatch_ok)  // sbatch --wait exits non-zero when a task did
-    std::cerr << "lagrange sweep: a task of job " << job << " failed (sbatch --wait " << exitText(wstatus)
-              << "); see " << (slurm / "shard-*.out").string() << "\n";
+    std::cerr << "lagrange sweep: a task of job " << job << " failed (sbatch --wait "
+              << wiring::waitStatusText(wstatus) << "); see " << (slurm / "shard-*.out").string() << "\n";
   return finish(o.out_dir, plan, o.quiet, "lagrange sweep: ").exitCode(false);
 }
 

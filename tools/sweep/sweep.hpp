@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tools/subcommand.hpp"
+#include "wiring/slurm_array.hpp"
 
 namespace lagrange::tools {
 
@@ -20,11 +21,9 @@ struct SweepOptions {
   bool quiet = false;
   bool dry_run = false;  ///< plan and check every row, print the count, run nothing, write nothing
   bool slurm = false;    ///< submit the shards as a Slurm job array
-  bool no_wait = false;  ///< --slurm: return after submitting
   int shards = 0;        ///< --slurm: array tasks; 0: min(runs left, 64)
-  std::string partition, time_limit, account;
-  std::vector<std::string> sbatch_args;  ///< further sbatch options, passed as they are
-  std::string self_exe;                  ///< this lagrange binary (every node runs it)
+  wiring::SlurmOptions slurm_options;  ///< --slurm: sbatch's options, --no-wait
+  std::string self_exe;                ///< this lagrange binary (every node runs it)
 };
 
 /// Plans (exit 2 naming what is wrong, before any run), runs what is not yet

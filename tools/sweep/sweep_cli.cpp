@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "tools/slurm_options.hpp"
 #include "tools/sweep/sweep.hpp"
 #include "util/error.hpp"
 
@@ -50,15 +51,9 @@ Subcommand addSweepCommand(CLI::App& app) {
   cmd->add_flag("--slurm", options.slurm,
                 "Submit the runs as a Slurm job array (sbatch) instead of running them here; OUT must be on "
                 "a directory every node shares, and this binary on every node at the same path");
-  cmd->add_flag("--no-wait", options.no_wait,
-                "--slurm: return once the job is submitted; then `lagrange sweep collect OUT`");
+  addSlurmOptions(*cmd, options.slurm_options, "lagrange sweep collect OUT", "--qos=long");
   cmd->add_option("--shards", options.shards, "--slurm: array tasks (default: min(runs to do, 64))")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--partition", options.partition, "--slurm: sbatch --partition");
-  cmd->add_option("--time", options.time_limit, "--slurm: sbatch --time, each array task's limit");
-  cmd->add_option("--account", options.account, "--slurm: sbatch --account");
-  cmd->add_option("--sbatch-arg", options.sbatch_args,
-                  "--slurm: one more sbatch option as it is, e.g. --sbatch-arg=--qos=long; repeatable");
   o->collect = cmd->add_subcommand("collect", "Merge a sweep's rows into its table and maps");
   describeCommand(
       *o->collect,

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "tools/slurm_options.hpp"
 #include "tools/tune/tune.hpp"
 #include "tools/tune/tune_slurm.hpp"
 #include "util/error.hpp"
@@ -69,14 +70,7 @@ Subcommand addTuneCommand(CLI::App& app) {
       "every node at the same path (docs/tuning.md)");
   cmd->add_option("--starts", o->starts, "--slurm: searches, one array task each, 1 to 100000 (default 8)")
       ->check(CLI::Range(1, 100000).description(""));
-  cmd->add_flag("--no-wait", o->slurm_options.no_wait,
-                "--slurm: return once the job is submitted; then `lagrange tune collect OUT`");
-  cmd->add_option("--partition", o->slurm_options.partition, "--slurm: sbatch --partition");
-  cmd->add_option("--time", o->slurm_options.time_limit, "--slurm: sbatch --time, each array task's limit");
-  cmd->add_option("--account", o->slurm_options.account, "--slurm: sbatch --account");
-  cmd->add_option(
-      "--sbatch-arg", o->slurm_options.sbatch_args,
-      "--slurm: one more sbatch option as it is, e.g. --sbatch-arg=--cpus-per-task=4; repeatable");
+  addSlurmOptions(*cmd, o->slurm_options, "lagrange tune collect OUT", "--cpus-per-task=4");
   line->collect = cmd->add_subcommand("collect", "The best of a Slurm tune's starts");
   describeCommand(
       *line->collect,

@@ -252,13 +252,6 @@ std::string arrayIndices(const std::vector<int>& ks) {
   return out;
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 std::string startText(int k, unsigned seed) {
   return "start " + std::to_string(k) + " (seed " + std::to_string(seed) + ")";
 }
@@ -442,6 +435,7 @@ int runTuneSlurm(const TuneOptions& given) {
   const fs::path slurm = dir / "slurm";
   const fs::path sbatch_out = slurm / "sbatch.out";
   pid_t pid = -1;
+  wiring::SlurmArray array;
   try {
     util::makeOutputDirectory(slurm.string());  // never a planted link (Slurm writes its outputs there)
     util::makeOutputDirectory((dir / "starts").string());
@@ -466,7 +460,6 @@ int runTuneSlurm(const TuneOptions& given) {
         "#!/bin/sh\n# One start of a lagrange tune: Slurm array task K searches from seed " +
             std::to_string(o.seed) +
             " + K into OUT/starts/K (docs/tuning.md).\nk=\"$SLURM_ARRAY_TASK_ID\"\nexec " + command + "\n");
-    wiring::SlurmArray array;
     array.job_name = "lagrange-tune";
     array.indices = indices;
     array.script = (slurm / "start.sh").string();
@@ -484,45 +477,50 @@ int runTuneSlurm(const TuneOptions& given) {
     std::signal(SIGINT, SIG_DFL);
     std::signal(SIGTERM, SIG_DFL);
   };
-  std::string job;
-  int wstatus = 0;
-  for (;;) {
-    const pid_t done = waitpid(pid, &wstatus, WNOHANG);
-    if (job.empty()) {
-      job = wiring::slurmJobIdOf(readText(sbatch_out));
-      if (!job.empty()) {
-        // starts.json with the new budget and the job only once submitted:
-        // a refused submission leaves the tune as it was.
-        try {
-          writeStartsFile(dir, arguments, job);
-        } catch (const std::exception& e) {
-          restoreSignals();
-          std::cerr << kTuneCommand << ": submitted Slurm job " << job << ", but ";
-          return failWith("writing starts.json", e);
-        }
-        if (!o.quiet)
-          std::cout << kTuneCommand << ": submitted Slurm job " << job << ", " << to_run.size()
-                    << " array tasks (starts " << indices << " of " << o.starts << ")\n"
-                    << std::flush;
-      }
+  // starts.json with the new budget and the job only once submitted: a
+  // refused submission leaves the tune as it was.
+  struct StartsNotWritten {
+    std::string job;
+    std::exception_ptr error;
+  };
+  wiring::SlurmWait wait;
+  try {
+    wait = wiring::waitForSlurmArray(
+        pid, array,
+        [&](const std::string& submitted) {
+          try {
+            writeStartsFile(dir, arguments, submitted);
+          } catch (const std::exception&) {
+            throw StartsNotWritten{submitted, std::current_exception()};
+          }
+          if (!o.quiet)
+            std::cout << kTuneCommand << ": submitted Slurm job " << submitted << ", " << to_run.size()
+                      << " array tasks (starts " << indices << " of " << o.starts << ")\n"
+                      << std::flush;
+        },
+        {}, [] { return g_waiting_stopped != 0; });
+  } catch (const StartsNotWritten& not_written) {
+    restoreSignals();
+    std::cerr << kTuneCommand << ": submitted Slurm job " << not_written.job << ", but ";
+    try {
+      std::rethrow_exception(not_written.error);
+    } catch (const std::exception& e) {
+      return failWith("writing starts.json", e);
     }
-    if (done == pid) break;
-    if (g_waiting_stopped) {
-      restoreSignals();
-      std::cerr << kTuneCommand << ": stopped waiting; job " << (job.empty() ? "?" : job)
-                << " keeps running (scancel it to stop it); once it has ended: lagrange tune collect "
-                << o.out_dir << "\n";
-      return kExitInterrupted;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   restoreSignals();
+  const std::string& job = wait.job;
+  const int wstatus = wait.wstatus;
+  if (wait.stopped) {
+    std::cerr << kTuneCommand << ": stopped waiting; job " << (job.empty() ? "?" : job)
+              << " keeps running (scancel it to stop it); once it has ended: lagrange tune collect "
+              << o.out_dir << "\n";
+    return kExitInterrupted;
+  }
   if (job.empty()) {
-    std::cerr << kTuneCommand << ": sbatch "
-              << (WIFEXITED(wstatus) ? "exited with code " + std::to_string(WEXITSTATUS(wstatus))
-                                     : "was killed by signal " + std::to_string(WTERMSIG(wstatus)))
+    std::cerr << kTuneCommand << ": sbatch " << wiring::waitStatusText(wstatus)
               << " without submitting a job:\n"
-              << readText(sbatch_out);
+              << wiring::sbatchOutputOf(array);
     return kExitFailed;
   }
   if (o.slurm_options.no_wait) {
