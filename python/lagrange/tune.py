@@ -56,14 +56,15 @@ def evaluations_of(out):
 
 
 def tune(scenario, out=None, evaluations=None, minutes=None, jobs=None, seed=None, require_condition=False,
-         args=(), **overrides):
+         full_runs=False, args=(), **overrides):
     """Runs `lagrange tune SCENARIO` and returns (best, evaluations): best is
     tune.json's result.best (the gains, convergence_time, peak_torque,
     margin, sampled_verdict, ...), evaluations the lines of tune.jsonl.
     out: the output directory (default: a new temporary one; one that holds
     this tune is resumed); evaluations, minutes: the budget; jobs: the
     sampled-data check's processes; seed: the global phase's seed;
-    require_condition: keep only gains for which eq. (12) holds; args: more
+    require_condition: keep only gains for which eq. (12) holds; full_runs:
+    judge every candidate's run to its end (--full-runs); args: more
     options as they are (["--span", "1"]). Raises LagrangeError when an
     argument is refused, the program is missing, or no gains passed (exit 1,
     the message naming what binds; e.out holds tune.jsonl)."""
@@ -81,6 +82,8 @@ def tune(scenario, out=None, evaluations=None, minutes=None, jobs=None, seed=Non
         command += ["--seed", str(int(seed))]
     if require_condition:
         command += ["--require-condition"]
+    if full_runs:
+        command += ["--full-runs"]
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-tune-")
     command += ["--out", str(out), "--quiet"]
     _call(command + sets + [str(a) for a in args], out, "lagrange tune %s" % scenario)

@@ -146,10 +146,12 @@ TEST_F(Tune, OneSeedGivesTheSameEvaluationsWhateverTheJobs) {
   ASSERT_GT(a.size(), 3u);
   long cut = 0;
   for (size_t i = 0; i < a.size(); ++i) {
-    for (const char* key :
-         {"index", "phase", "gains", "value", "feasible", "failed", "status", "convergence_time", "judged_to",
-          "late_error", "estimated_time", "peak_torque", "sampled_verdict"})
-      EXPECT_EQ(a[i].at(key), b[i].at(key)) << i << " " << key;
+    nlohmann::json line_a = a[i], line_b = b[i];
+    for (nlohmann::json* line : {&line_a, &line_b}) {  // every field but the wall times
+      line->erase("wall_time");
+      line->erase("times");
+    }
+    EXPECT_EQ(line_a, line_b) << i;
     cut += a[i].at("status") == "cut";
   }
   EXPECT_GT(cut, 0);

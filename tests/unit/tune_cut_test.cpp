@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -102,6 +104,92 @@ TEST(TuneCut, ACandidateThatBeatsTheBestIsNeverCut) {
   EXPECT_FALSE(e.judged_to);
   EXPECT_EQ(e.convergence_time, first.findings.convergence_time);
   EXPECT_EQ(e.feasible, true);  // checked (it beat the best), and the shipped gains pass
+}
+
+// A run as runCandidate leaves it, by hand: `ticks` samples of ||q~|| =
+// error(k), the torque's peak 10 N m, its status and convergence time.
+CandidateRun handMadeRun(const TuneProblem& p, size_t ticks, const std::function<double(size_t)>& error,
+                         const std::string& status, std::optional<double> convergence_time = std::nullopt) {
+  CandidateRun run;
+  run.scenario = p.input;
+  run.findings.gains = p.input_gains;
+  run.findings.status = status;
+  run.findings.convergence_time = convergence_time;
+  run.findings.peak_torque = 10.0;
+  run.findings.final_error = error(ticks - 1);
+  if (status == "diverged") run.findings.failed = "diverged from the initial state: by hand";
+  for (size_t k = 0; k < ticks; ++k) {
+    run.errors.push_back(error(k));
+    run.peaks.push_back(10.0);
+  }
+  return run;
+}
+
+TEST(TuneCut, ADivergenceCountsOnlyBeforeTheCutTickAndALateConvergenceIsCut) {
+  TuneProblem p = shortProblem();
+  p.torque_limit = 100.0;
+  const double period = p.input.tickPeriod(), best = 0.9, cut = cutTime(p, best);
+  const size_t last = static_cast<size_t>(cutTick(cut, period));
+  const auto decaying = [&](size_t k) { return 0.5 * std::exp(-2.0 * static_cast<double>(k) * period); };
+  // Diverged with its last sample before the cut tick: as a run to its end says.
+  const TuneEvaluation early =
+      judgeCandidate(p, handMadeRun(p, last, decaying, "diverged"), best, cut, nullptr);
+  EXPECT_EQ(early.status, "diverged");
+  EXPECT_EQ(early.feasible, false);
+  EXPECT_GE(early.value, 3e6);
+  // Diverged at the cut tick or after: a run stopped at the cut would not have seen it.
+  for (const size_t ticks : {last + 1, last + 200}) {
+    const TuneEvaluation late =
+        judgeCandidate(p, handMadeRun(p, ticks, decaying, "diverged"), best, cut, nullptr);
+    EXPECT_EQ(late.status, "cut") << ticks;
+    EXPECT_TRUE(late.failed.empty()) << ticks;
+    EXPECT_DOUBLE_EQ(late.final_error, decaying(last)) << ticks;
+    ASSERT_TRUE(late.estimated_time) << ticks;
+    EXPECT_GT(late.value, cut) << ticks;
+  }
+  // Completed, converging at the cut or later: judged as a cut run; before it: its time.
+  const TuneEvaluation at_cut =
+      judgeCandidate(p, handMadeRun(p, 1501, decaying, "completed", cut), best, cut, nullptr);
+  EXPECT_EQ(at_cut.status, "cut");
+  EXPECT_FALSE(at_cut.convergence_time);
+  const TuneEvaluation before =
+      judgeCandidate(p, handMadeRun(p, 1501, decaying, "completed", 0.95 * cut), best, cut, nullptr);
+  EXPECT_EQ(before.status, "completed");
+  EXPECT_EQ(before.convergence_time, 0.95 * cut);
+  EXPECT_FALSE(before.judged_to);
+}
+
+TEST(TuneCut, AnEstimateIsAboveTheCutAndTheTorqueBeforeItCounts) {
+  TuneProblem p = shortProblem();
+  p.torque_limit = 100.0;
+  const double period = p.input.tickPeriod(), best = 0.9, cut = cutTime(p, best);
+  const double tolerance = p.input.metrics.tolerance;
+  // Below the tolerance over the last quarter (above it only after the cut):
+  // the estimate stays above the best's time, never a tie with it.
+  const auto dips = [&](size_t k) {
+    return static_cast<double>(k) * period < 0.7 * cut ? 0.1 : 0.5 * tolerance;
+  };
+  const TuneEvaluation dipped =
+      judgeCandidate(p, handMadeRun(p, 1501, dips, "completed"), best, cut, nullptr);
+  ASSERT_TRUE(dipped.estimated_time);
+  EXPECT_GT(*dipped.estimated_time, cut);
+  EXPECT_GT(dipped.value, best);
+  // Not decaying: after every estimate, below every band.
+  const TuneEvaluation flat = judgeCandidate(p,
+                                             handMadeRun(
+                                                 p, 1501, [](size_t) { return 0.1; }, "completed"),
+                                             best, cut, nullptr);
+  EXPECT_FALSE(flat.estimated_time);
+  EXPECT_GT(flat.value, cut + 1e4);
+  EXPECT_LT(flat.value, 1e5);
+  // Over the torque limit before the cut: the torque band.
+  CandidateRun strong = handMadeRun(
+      p, 1501, [](size_t) { return 0.1; }, "completed");
+  strong.peaks.assign(strong.peaks.size(), 150.0);
+  const TuneEvaluation over = judgeCandidate(p, strong, best, cut, nullptr);
+  EXPECT_EQ(over.failed, "torque over the limit");
+  EXPECT_GE(over.value, 1e6);
+  EXPECT_LT(over.value, 2e6);
 }
 
 class TuneCutFolder : public testing::TempDirTest {};

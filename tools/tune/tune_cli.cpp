@@ -61,7 +61,7 @@ Subcommand addTuneCommand(CLI::App& app) {
       "size for which it could");
   cmd->add_flag("--full-runs", o->full_runs,
                 "Judge every candidate's run to its end, none cut once it cannot beat the best: slower, "
-                "and every candidate's convergence time known (front.png draws them all)");
+                "and every candidate's convergence time known (front.png draws each that met the metric)");
   cmd->add_flag("-q,--quiet", o->quiet, "Print errors only");
   cmd->add_flag(
       "--slurm", o->slurm,

@@ -95,7 +95,9 @@ double largest(const std::vector<double>& errors, size_t from, size_t to) {
 // A cut run's late error and estimated convergence time: its error
 // envelope (the largest ||q~||) over the third and the last quarter of the
 // part judged, [X/2, 3X/4) and [3X/4, X]; decaying from one to the next,
-// the time at which that exponential decay would reach the tolerance.
+// the time at which that exponential decay, from the last quarter's start
+// (where a decaying envelope's largest value is), would reach the
+// tolerance -- kept after X, the best's time, which it did not beat.
 void estimateFromEnvelope(TuneEvaluation& e, const std::vector<double>& errors, size_t last, double cut,
                           double period, double tolerance) {
   const size_t half = std::min(static_cast<size_t>(cutTick(0.5 * cut, period)), last);
@@ -106,7 +108,8 @@ void estimateFromEnvelope(TuneEvaluation& e, const std::vector<double>& errors, 
   if (!(e.late_error < before) || !(e.late_error > 0.0)) return;  // not decaying
   const double per_quarter = std::log(before / e.late_error);
   const double remaining = 0.25 * cut * std::log(std::max(e.late_error, tolerance) / tolerance) / per_quarter;
-  e.estimated_time = cut + std::min(remaining, kNotDecaying);
+  e.estimated_time = std::max(0.75 * cut + std::min(remaining, kNotDecaying),
+                              std::nextafter(cut, std::numeric_limits<double>::infinity()));
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ struct TuneProblem {
   int jobs = 0;  ///< the sampled-data check's processes (0: one per core)
   /// The local phase judges a candidate's run only up to cut_factor x the
   /// best feasible time so far (cutTime); 0: every run judged to its end
-  /// (the objective before 2026-12-07, kept for the tests that compare).
+  /// (--full-runs; the objective before 2026-12-07).
   double cut_factor = 1.0;
 };
 
@@ -90,7 +90,8 @@ struct TuneEvaluation {
   /// With judged_to: the largest ||q~|| over the last quarter of the part
   /// judged -- how far from converged it still was [rad] -- and, when that
   /// is less than over the quarter before, the time at which the decay from
-  /// one to the other would reach the tolerance (an estimate) [s].
+  /// one to the other would reach the tolerance (an estimate, above the
+  /// cut) [s]; none when not decaying or too few ticks were judged.
   double late_error = 0.0;
   std::optional<double> estimated_time;
   double final_error = 0.0;             ///< [rad]
@@ -111,9 +112,9 @@ struct TuneEvaluation {
 /// The value of the findings (pure; docs/tuning.md, "The objective"):
 /// a feasible candidate's (or one not checked to the end) is its
 /// convergence time [s]; one judged only to its cut time X, its
-/// estimated_time (at least X: after every convergence time known), or
-/// when its error is not decaying X + 1e4 + late_error / tolerance
-/// squeezed into [0, 1); an infeasible one's a penalty above every
+/// estimated_time (above X: after the best's time and every time known
+/// below it), or when none X + 1e4 + late_error / tolerance squeezed into
+/// [0, 1) (below every band for X < 8e4 s); an infeasible one's a penalty above every
 /// feasible value, by band, worst first -- the scenario refused 5e6, eq.
 /// (11) violated with --require-condition [4e6, 5e6), the run diverged
 /// [3e6, 4e6), the metric not met from the initial state [2e6, 3e6), the

@@ -204,6 +204,11 @@ void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& argume
                      "one stops a run once it cannot beat the best: docs/tuning.md); its evaluations do not "
                      "resume this tune: expected another --out, or --full-runs to resume it");
     }
+    if (key == "cut" && before.at(key) != nlohmann::json(value))
+      throw BadInput(dir + " holds a tune made " + (value.is_null() ? "without" : "with") +
+                     " --full-runs (arguments.cut " + before.at(key).dump() +
+                     "); a resume judges the runs as that tune did: expected " +
+                     (value.is_null() ? "no --full-runs" : "--full-runs") + ", or another --out");
     if (!before.contains(key) || before.at(key) != nlohmann::json(value))
       throw BadInput(
           dir + " holds a tune with other arguments (" + key + ": " +

@@ -114,7 +114,8 @@ TuneOptions optionsOf(const nlohmann::ordered_json& a) {
     o.span = a.at("span").get<double>();
     o.global = a.at("global").get<int>();
     o.require_condition = a.at("require_condition").get<bool>();
-    o.full_runs = a.value("full_runs", false);  // (a starts.json before --full-runs has none)
+    // A starts.json from before the cut has none: its starts judged every run to its end.
+    o.full_runs = a.value("full_runs", true);
     o.starts = a.at("starts").get<int>();
     o.evaluations = a.at("evaluations").get<int>();
     o.minutes = a.at("minutes").get<double>();
@@ -165,7 +166,12 @@ Start readStart(const fs::path& dir, int k, const nlohmann::ordered_json& expect
       throw BadInput(json_path.string() +
                      " is not a tune's: expected an object with `arguments` and `result`, as lagrange tune "
                      "writes");
-    if (tune["arguments"] != nlohmann::json(expected))
+    nlohmann::json found = tune["arguments"];
+    // A start from before the cut has no `cut`: it judged every run to its end.
+    if (found.is_object() && !found.contains("cut") && expected.contains("cut") &&
+        expected.at("cut").is_null())
+      found["cut"] = nullptr;
+    if (found != nlohmann::json(expected))
       throw BadInput(json_path.string() + " holds another tune's arguments than start " + std::to_string(k) +
                      "'s (seed " + nlohmann::json(expected.at("seed")).dump() +
                      "); expected the folder this tune's start wrote");
@@ -392,8 +398,16 @@ int runTuneSlurm(const TuneOptions& given) {
                      " holds a tune run here, not on Slurm (tune.jsonl); expected another --out, or the "
                      "same command without --slurm to resume it");
     arguments = startsArguments(o);
-    const std::optional<StartsFile> before = readStartsFile(dir);
+    std::optional<StartsFile> before = readStartsFile(dir);
     if (before) {
+      // A starts.json from before the cut has no full_runs: its starts judged every run to its end.
+      if (!before->arguments.contains("full_runs") && !o.full_runs)
+        throw BadInput(
+            o.out_dir +
+            " holds a Slurm tune of an older lagrange, whose objective judged every run to its end "
+            "(this one stops a run once it cannot beat the best: docs/tuning.md); expected "
+            "--full-runs to resume it, or another --out");
+      before->arguments.emplace("full_runs", true);
       for (const char* key :
            {"scenario", "overrides", "seed", "span", "global", "require_condition", "full_runs"})
         if (!before->arguments.contains(key) || before->arguments.at(key) != arguments.at(key))
