@@ -14,8 +14,8 @@
 #                            [--evaluations N] [--table-evaluations N] [--skip-table] [--skip-rates]
 #                            [--redraw]   (rate.png and table.md again from the .tsv files, no tune)
 # --evaluations: each rate's tune (default: tune's own, 200); --table-evaluations:
-# each table row's (default 200). The Panda at five rates takes about half an
-# hour on a 2-core machine; the 2-joint arm (--rate-scenario
+# each table row's (default 200). The Panda at five rates takes about 8 minutes
+# on a 2-core machine (20 judged to the end, --full-runs); the 2-joint arm (--rate-scenario
 # configs/rigid_2dof.yaml) a few minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
