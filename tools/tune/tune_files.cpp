@@ -175,6 +175,12 @@ nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double
   return a;
 }
 
+std::string olderObjectiveText(const std::string& dir, const std::string& kind) {
+  return dir + " holds a " + kind +
+         " of an older lagrange, whose objective judged every run to its end (this one stops a run once it "
+         "cannot beat the best: docs/tuning.md)";
+}
+
 nlohmann::ordered_json tuneBudget(int evaluations, double minutes) {
   const int n = evaluations > 0 ? evaluations : minutes > 0.0 ? 0 : kDefaultEvaluations;
   nlohmann::ordered_json b;
@@ -199,10 +205,9 @@ void prepareTuneDir(const std::string& dir, const nlohmann::ordered_json& argume
   for (const auto& [key, value] : arguments.items()) {
     if (key == "cut" && !before.contains(key)) {
       if (value.is_null()) continue;  // --full-runs: the objective that tune was made with
-      throw BadInput(dir +
-                     " holds a tune of an older lagrange, whose objective judged every run to its end (this "
-                     "one stops a run once it cannot beat the best: docs/tuning.md); its evaluations do not "
-                     "resume this tune: expected another --out, or --full-runs to resume it");
+      throw BadInput(olderObjectiveText(dir, "tune") +
+                     "; its evaluations do not resume this tune: expected another --out, or --full-runs to "
+                     "resume it");
     }
     if (key == "cut" && before.at(key) != nlohmann::json(value))
       throw BadInput(dir + " holds a tune made " + (value.is_null() ? "without" : "with") +

@@ -39,6 +39,11 @@ void appendEvaluation(const std::string& dir, const nlohmann::ordered_json& line
 /// The arguments that decide the search's sequence (a resume must repeat them).
 nlohmann::ordered_json tuneArguments(const TuneProblem& p, unsigned seed, double span_decades, int global);
 
+/// "DIR holds a KIND of an older lagrange, whose objective judged every run
+/// to its end (...)": the start of the refusal of a folder from before the
+/// cut (no `cut` in its arguments), a tune's or a Slurm tune's.
+std::string olderObjectiveText(const std::string& dir, const std::string& kind);
+
 /// tune.json's result.budget: `evaluations` (null: unbounded, --minutes
 /// alone) and `minutes` (null: none) as a tune with these options runs them
 /// (no --evaluations and no --minutes: the default, 200 evaluations).

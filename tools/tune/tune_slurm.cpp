@@ -402,11 +402,8 @@ int runTuneSlurm(const TuneOptions& given) {
     if (before) {
       // A starts.json from before the cut has no full_runs: its starts judged every run to its end.
       if (!before->arguments.contains("full_runs") && !o.full_runs)
-        throw BadInput(
-            o.out_dir +
-            " holds a Slurm tune of an older lagrange, whose objective judged every run to its end "
-            "(this one stops a run once it cannot beat the best: docs/tuning.md); expected "
-            "--full-runs to resume it, or another --out");
+        throw BadInput(olderObjectiveText(o.out_dir, "Slurm tune") +
+                       "; expected --full-runs to resume it, or another --out");
       before->arguments.emplace("full_runs", true);
       for (const char* key :
            {"scenario", "overrides", "seed", "span", "global", "require_condition", "full_runs"})
