@@ -83,6 +83,10 @@
 #    sampled-data check's numerics, a computed verdict) and the 2-joint arm
 #    under faults (chain_m2's run under the same faults is kept: it has the
 #    actuator's process too).
+#  - (2026-12-08) the bad-config corpus through the command
+#    (BadConfigCorpus.EveryFile*: 99 instrumented starts, 61 s): the same
+#    files are refused in process here (BadConfigCorpusInProcess.*), and the
+#    command's refusal path runs in the corpus's other test, kept.
 # It compiles at -O1 with line tables only (-g1): the sanitizers' reports still
 # name file and line, and the build takes about half the time of -O2 -g.
 # The integration tests' own program is not built here (CI at 46.8 minutes
@@ -117,8 +121,9 @@ front='Help\.|Readme\.'
 outputs='integration\.(SampledWords|Suggest|SampledDataCheck|GainVerdicts|SampledVerdict|Sensors|Compare|Report|View|Export|RealArm|PlantLimits|Policies|Engines|ControllerSeam|RunCheck|Flexible|DefaultRun|ChainM1|Registered)[./]'
 wiring='integration\.(Sweep|Recorded|TwoHosts|StockLogger|RealtimeCpus|LockstepLogger|HostilePlant|ExternalPlant|RunVerdict|TerminalOutput|CrossRun)\.|^layers\.|^errors\.|^python\.'
 numerics='SweepMemory\.|Failure\.(MalformedPositionMessages|WrongActuatorStates)AreRejected|GainSearch\.SuggestsNothing|FrontEnd\.ARealCommand|ContinuousLoop|FollowsContinuousPdPlus'
+corpus='BadConfigCorpus\.EveryFileIsRefused'
 studies='PlantSim\.(MatchesTheAnalyticModelAndConvergesWithTheStep|OnMujocoChains|OnMujocoTheLongestChain)|GainSuggestion\.MeetsTheorem|EtaEstimate\.Eta2ReachesTheLargestValue|Bounds\.KcBoundsAHeavyTipped|UrdfPlant\.FollowsTheModelCloser|FlexiblePlant\.MatchesTheAnalyticModelAndConverges|GainSearch\.SuggestsGainsThatHold|BadInput\.ViolatedGainCondition|LockstepUnderFaults\.[A-Za-z]*/"rigid_2dof"'
-left_out="$timing|$sweeps|$java|$slurm|$front|$outputs|$numerics|$wiring|$studies"
+left_out="$timing|$sweeps|$java|$slurm|$front|$outputs|$numerics|$wiring|$studies|$corpus"
 # In parallel as scripts/test.sh runs them (those labelled `serial` alone):
 # the unit tests instrumented, then the integration tests against the
 # instrumented programs; both run, and either failing fails the pass.
