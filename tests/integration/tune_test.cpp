@@ -209,6 +209,16 @@ TEST_F(Tune, SlurmOptionsAndFoldersOfTheOtherKindAreRefusedNamingWhatWasWrong) {
   refused(lagrange("tune --slurm collect " + quote(dir_ + "/onslurm")),
           "expected only `lagrange tune collect DIR`");
   refused(lagrange("tune collect " + quote(dir_ + "/onslurm")), "is not a Slurm tune's starts.json");
+  // A Slurm tune from before the cut (no full_runs): its starts judged every
+  // run to its end, so it is rerun only with --full-runs.
+  std::filesystem::create_directories(dir_ + "/older");
+  std::ofstream(dir_ + "/older/starts.json")
+      << R"({"arguments": {"scenario": ")" << kScenario
+      << R"(", "overrides": [], "seed": 1, "span": 2.0, "global": 0, "require_condition": false,)"
+      << R"( "starts": 2, "evaluations": 4, "minutes": 0.0}, "job": null})";
+  refused(tune(dir_ + "/older", "--slurm --starts 2 --evaluations 4"),
+          "holds a Slurm tune of an older lagrange");
+  refused(tune(dir_ + "/older", "--slurm --starts 2 --evaluations 4"), "expected --full-runs to resume it");
 }
 
 }  // namespace
