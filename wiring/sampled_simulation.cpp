@@ -474,10 +474,12 @@ SampledSimulation notAssessedExternal(const config::Scenario& s) {
 
 }  // namespace
 
-SampledSimulation simulateSampledData(const config::Scenario& s, int jobs) {
+SampledSimulation simulateSampledData(const config::Scenario& s, int jobs,
+                                      const std::optional<LoopOutcome>& initial_run) {
   if (s.controller.type == "external" || s.plant.external()) return notAssessedExternal(s);
   const int threads = util::jobsOrCores(jobs);
-  return check(s, startsOf(s), kMaxRefinement, threads, std::nullopt);
+  return check(s, startsOf(s), kMaxRefinement, threads,
+               s.mode == config::Mode::kRealtime ? std::nullopt : initial_run);
 }
 
 SampledSimulation judgeRun(const config::Scenario& s, const LoopOutcome& run, bool (*stop_requested)()) {

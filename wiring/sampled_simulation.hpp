@@ -47,14 +47,6 @@ namespace lagrange::wiring {
 
 inline constexpr int kSeededStates = 2;
 
-/// The verdict for the scenario at its plant.publish_rate. Runs the
-/// simulations in process on up to `jobs` threads at a time, the calling
-/// thread one of them (0: one per core; 1: all on the calling thread). The
-/// verdict is the same whatever `jobs` (each simulation is its scenario's
-/// alone, and the results are read in a fixed order); safe to call from
-/// several threads at once (lagrange tune's workers, with jobs = 1).
-controller::SampledSimulation simulateSampledData(const config::Scenario& scenario, int jobs = 0);
-
 /// What one loop did: "completed", or "diverged" (the simulation was
 /// stopped); its convergence time; its RMS error over the last second [rad].
 struct LoopOutcome {
@@ -62,6 +54,21 @@ struct LoopOutcome {
   std::optional<double> time;
   double error = 0.0;
 };
+
+/// The verdict for the scenario at its plant.publish_rate. Runs the
+/// simulations in process on up to `jobs` threads at a time, the calling
+/// thread one of them (0: one per core; 1: all on the calling thread). The
+/// verdict is the same whatever `jobs` (each simulation is its scenario's
+/// alone, and the results are read in a fixed order); safe to call from
+/// several threads at once (lagrange tune's workers, with jobs = 1).
+/// `initial_run`: the scenario's own in-process run from its initial state,
+/// to its end, when the caller has made it (lagrange tune's candidate): it is
+/// the sampled loop from that start, bit for bit, so it is not simulated
+/// again -- one loop of seven. Ignored for a realtime scenario, whose
+/// sampled loop the check runs with a period of delay.
+controller::SampledSimulation simulateSampledData(
+    const config::Scenario& scenario, int jobs = 0,
+    const std::optional<LoopOutcome>& initial_run = std::nullopt);
 
 /// Thrown by judgeRun when its stop check turns true: the simulations end
 /// and no verdict is made (a sweep runs the row again on a restart).

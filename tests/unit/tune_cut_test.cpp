@@ -18,6 +18,7 @@
 #include "tools/tune/tune_evaluate.hpp"
 #include "tools/tune/tune_files.hpp"
 #include "util/error.hpp"
+#include "wiring/sampled_simulation.hpp"
 
 namespace lagrange::tools {
 namespace {
@@ -190,6 +191,39 @@ TEST(TuneCut, AnEstimateIsAboveTheCutAndTheTorqueBeforeItCounts) {
   EXPECT_EQ(over.failed, "torque over the limit");
   EXPECT_GE(over.value, 1e6);
   EXPECT_LT(over.value, 2e6);
+}
+
+// A candidate's own run, made to its end, is the sampled-data check's loop
+// from the initial state bit for bit: the check takes it instead of
+// simulating it again, and says the same, number for number.
+TEST(TuneCheck, ACandidatesRunStandsForTheChecksLoopFromTheInitialState) {
+  const TuneProblem p = shortProblem();
+  const CandidateRun run = runCandidate(p, p.input_gains, nullptr);
+  ASSERT_TRUE(run.loop);
+  EXPECT_EQ(run.loop->status, "completed");
+  const controller::SampledSimulation again = wiring::simulateSampledData(run.scenario, 1);
+  const controller::SampledSimulation reused = wiring::simulateSampledData(run.scenario, 1, run.loop);
+  EXPECT_EQ(reused.verdict, again.verdict);
+  EXPECT_EQ(reused.why, again.why);
+  EXPECT_EQ(reused.fine_rate, again.fine_rate);
+  ASSERT_EQ(reused.starts.size(), again.starts.size());
+  for (size_t i = 0; i < again.starts.size(); ++i) {
+    EXPECT_EQ(reused.starts[i].sampled_time, again.starts[i].sampled_time) << i;
+    EXPECT_EQ(reused.starts[i].sampled_error, again.starts[i].sampled_error) << i;
+    EXPECT_EQ(reused.starts[i].fine_time, again.starts[i].fine_time) << i;
+    EXPECT_EQ(reused.starts[i].verdict, again.starts[i].verdict) << i;
+  }
+  // It is what the check reads (a run said to have converged later shows there) ...
+  wiring::LoopOutcome later = *run.loop;
+  later.time = *later.time + 0.25;
+  EXPECT_EQ(wiring::simulateSampledData(run.scenario, 1, later).starts.front().sampled_time, later.time);
+  // ... but not for a realtime scenario, whose sampled loop has a period of delay.
+  config::Scenario realtime = run.scenario;
+  realtime.mode = config::Mode::kRealtime;
+  EXPECT_NE(wiring::simulateSampledData(realtime, 1, later).starts.front().sampled_time, later.time);
+  // A cut run did not go to its end: nothing to reuse.
+  std::atomic<double> early{0.1};
+  EXPECT_FALSE(runCandidate(p, p.input_gains, nullptr, &early).loop);
 }
 
 class TuneCutFolder : public testing::TempDirTest {};

@@ -271,6 +271,9 @@ CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*s
   e.peak_torque = run.tracking.max_abs_torque;
   if (run.status == "diverged")
     e.failed = "diverged from the initial state" + (run.stop_message.empty() ? "" : ": " + run.stop_message);
+  // As the check's simulation of the same loop would read it (wiring/sampled_simulation.cpp).
+  if (run.status == "completed")
+    out.loop = wiring::LoopOutcome{"completed", run.tracking.convergence_time, run.tracking.rms_last_second};
   return out;
 }
 
@@ -332,7 +335,7 @@ TuneEvaluation judgeCandidate(const TuneProblem& p, CandidateRun run, std::optio
     return finish();
 
   const auto check_start = std::chrono::steady_clock::now();
-  const controller::SampledSimulation check = wiring::simulateSampledData(s, p.jobs);
+  const controller::SampledSimulation check = wiring::simulateSampledData(s, p.jobs, run.loop);
   e.check_time = since(check_start);
   if (stop_requested && stop_requested()) throw TuneInterrupted();
   e.sampled_verdict = check.verdict;

@@ -16,6 +16,7 @@
 #include "controller/registry.hpp"
 #include "tools/tune/tune_search.hpp"
 #include "util/error.hpp"
+#include "wiring/sampled_simulation.hpp"
 
 namespace lagrange::tools {
 
@@ -141,6 +142,9 @@ struct CandidateRun {
   /// Per tick up to the deadline, for judging the run up to any cut time:
   /// ||q~||, and the largest |tau| so far.
   std::vector<double> errors, peaks;
+  /// The run, when it went to its end: the sampled-data check's loop from
+  /// the initial state, which the check then does not simulate again.
+  std::optional<wiring::LoopOutcome> loop;
 };
 
 /// The first part. Never throws for a candidate's own failure (a refused
