@@ -18,14 +18,20 @@ void describeCommand(CLI::App& cmd, const std::string& details, const std::vecto
 int dispatch(int argc, char** argv, const std::vector<AddSubcommand>& commands, const FrontEnd& front_end) {
   CLI::App app{front_end.description, front_end.name};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string(front_end.name) + " " + LAGRANGE_VERSION,
-                       "Print the program's name and version, then exit");
+  const std::string version = std::string(front_end.name) + " " + LAGRANGE_VERSION;
+  app.set_version_flag("--version", version, "Print the program's name and version, then exit");
   app.footer("\n" + util::wrapped("'" + std::string(front_end.name) +
                                       " COMMAND --help' shows a command's options and examples; "
                                       "docs/README.md maps the documentation.",
                                   "", 80));
   std::vector<Subcommand> declared;
-  for (const AddSubcommand add : commands) declared.push_back(add(app));
+  for (const AddSubcommand add : commands) {
+    declared.push_back(add(app));
+    // `lagrange run --version` too: what a user types to learn which
+    // program answers (it would otherwise ask for run's required options).
+    declared.back().cli->set_version_flag("--version", version,
+                                          "Print the program's name and version, then exit");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -88,6 +88,29 @@ TEST(FrontEnd, EveryRefusedCommandLineIsBadInputAndRunsNothing) {
   EXPECT_EQ(greet_seen.runs, 0);
 }
 
+// --version after a command prints the version as before it does, though
+// the command's required argument is missing, and runs nothing.
+TEST(FrontEnd, EveryCommandTakesVersion) {
+  greet_seen = {};
+  const std::vector<AddSubcommand> commands = {addGreetCommand, addRunCommand};
+  const auto printed = [&](std::vector<std::string> args, int* status) {
+    std::ostringstream captured;
+    std::streambuf* const old = std::cout.rdbuf(captured.rdbuf());
+    *status = dispatchArgs(std::move(args), commands);
+    std::cout.rdbuf(old);
+    return captured.str();
+  };
+  int status = -1;
+  const std::string version = printed({"lagrange", "--version"}, &status);
+  EXPECT_EQ(status, kExitOk);
+  EXPECT_EQ(version.rfind("lagrange ", 0), 0u) << version;
+  for (const char* command : {"greet", "run"}) {
+    EXPECT_EQ(printed({"lagrange", command, "--version"}, &status), version) << command;
+    EXPECT_EQ(status, kExitOk) << command;
+  }
+  EXPECT_EQ(greet_seen.runs, 0);
+}
+
 TEST(FrontEnd, WhatACommandLetsEscapeIsNamedAndExitsByItsKindNotAsACrash) {
   std::ostringstream captured;
   std::streambuf* const old = std::cerr.rdbuf(captured.rdbuf());
