@@ -194,14 +194,20 @@ std::string namingTheOption(std::string what, const std::vector<std::string>& ov
 }
 
 // In a tree merged from an extends chain, yaml-cpp keeps no line numbers: an
-// error's "(line N)" would point at line 1; it names the files instead.
-std::string namingTheChain(std::string what, const std::vector<std::string>& chain) {
+// error's "(line N)" would point at line 1. It names the line of the file
+// that wrote the key instead, or, for a key none wrote (one missing), the files.
+std::string namingTheChain(std::string what, const ScenarioTree& tree) {
+  const std::vector<std::string>& chain = tree.chain;
   if (chain.size() < 2) return what;
   const size_t line = what.find(" (line ");
   const size_t close = line == std::string::npos ? line : what.find(')', line);
   std::string files;
   for (size_t i = 1; i < chain.size(); ++i) files += (i > 1 ? ", " : "") + chain[i];
-  const std::string where = " (in this file or one it extends: " + files + ")";
+  std::string where = " (in this file or one it extends: " + files + ")";
+  if (const std::optional<KeyPlace> place = keyPlace(tree, keyOfError(what)))
+    where =
+        " (line " + std::to_string(place->line) +
+        (place->file == 0 ? std::string(")") : " of " + chain[place->file] + ", which this file extends)");
   if (close == std::string::npos) return what + where;
   return what.replace(line, close + 1 - line, where);
 }
@@ -235,7 +241,7 @@ Scenario readTree(ScenarioTree tree, const std::string& source, const std::vecto
     if (what.find("(from --set ") == std::string::npos) what = namingTheReplacement(what, replaced);
     if (what.find("(from --set ") == std::string::npos &&
         what.find("replaced the section") == std::string::npos)
-      what = namingTheChain(what, tree.chain);
+      what = namingTheChain(what, tree);
     // Prefix the source so the user knows which file (or --set) was wrong.
     throw ConfigError("config: " + source + ": " + what.substr(std::string("config: ").size()));
   }

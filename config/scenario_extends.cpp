@@ -81,7 +81,7 @@ void anchorPaths(YAML::Node& root, const fs::path& folder) {
 }
 
 YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& folder,
-                   std::vector<std::string>& chain) {
+                   std::vector<std::string>& chain, std::vector<std::string>& texts) {
   const YAML::Node extends = root["extends"];
   if (!extends.IsDefined()) return root;
   if (!extends.IsScalar() || extends.Scalar().empty())
@@ -110,8 +110,9 @@ YAML::Node resolve(YAML::Node root, const std::string& source, const fs::path& f
   const FileText file =
       readRegularFile(base_path.string(), kMaxScenarioBytes, "a YAML scenario file to extend");
   if (!file.error.empty()) throw ConfigError("config: " + source + ": extends: " + file.error);
-  YAML::Node base =
-      resolve(parseRoot(file.text, base_path.string()), base_path.string(), base_path.parent_path(), chain);
+  texts.push_back(file.text);
+  YAML::Node base = resolve(parseRoot(file.text, base_path.string()), base_path.string(),
+                            base_path.parent_path(), chain, texts);
   // Only a base in another folder has paths to anchor (the resolved text of
   // a same-folder chain stays as it was, whether named relatively or not:
   // hosts of one run compare it, config.resolved.yaml shows it).
@@ -155,10 +156,58 @@ ScenarioTree parseScenarioTree(const std::string& yaml_text, const std::string& 
   const fs::path canonical = fs::weakly_canonical(source, ec);
   ScenarioTree tree;
   tree.chain = {ec ? source : canonical.string()};
+  tree.texts = {yaml_text};
   fs::path folder = folderOf(source);
   if (folder.empty() && fs::is_regular_file(source, ec)) folder = ".";
-  tree.root = resolve(parseRoot(yaml_text, source), source, folder, tree.chain);
+  tree.root = resolve(parseRoot(yaml_text, source), source, folder, tree.chain, tree.texts);
   return tree;
+}
+
+std::optional<KeyPlace> keyPlace(const ScenarioTree& tree, const std::string& key) {
+  std::vector<std::string> names;
+  for (size_t start = 0;;) {
+    const size_t dot = key.find('.', start);
+    std::string name = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    name = name.substr(0, name.find('['));  // "kp[1]": the list's key
+    if (name.empty()) return std::nullopt;
+    names.push_back(name);
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  // Only a key the merged tree holds: a base's key that a change of the
+  // section's type dropped is not where a "missing" came from.
+  // (Walked with reset and const lookups: a Node's operator= would write
+  // into the tree, and a non-const [] may add the key.)
+  YAML::Node at = tree.root;
+  for (const std::string& name : names) {
+    const YAML::Node& here = at;
+    if (!here.IsMap() || !here[name].IsDefined()) return std::nullopt;
+    at.reset(here[name]);
+  }
+  for (size_t i = 0; i < tree.texts.size() && i < tree.chain.size(); ++i) {
+    YAML::Node node;
+    try {
+      node.reset(YAML::Load(tree.texts[i]));
+    } catch (const YAML::Exception&) {
+      return std::nullopt;
+    }
+    std::optional<YAML::Mark> mark;
+    for (const std::string& name : names) {
+      mark.reset();
+      if (!node.IsMap()) break;
+      YAML::Node next;
+      for (const auto& entry : node)
+        if (entry.first.IsScalar() && entry.first.Scalar() == name) {
+          mark = entry.first.Mark();
+          next.reset(entry.second);
+          break;
+        }
+      if (!mark) break;
+      node.reset(next);
+    }
+    if (mark && !mark->is_null()) return KeyPlace{i, mark->line + 1};
+  }
+  return std::nullopt;
 }
 
 ScenarioTree parseRecordedScenarioTree(const std::string& yaml_text, const std::string& source) {

@@ -14,6 +14,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <optional>
 #include <string>
 
 namespace lagrange::config {
@@ -27,7 +28,24 @@ struct ScenarioTree {
   /// than one: the merge has lost the values' line numbers (yaml-cpp keeps
   /// none in a merged tree), so errors name the chain instead.
   std::vector<std::string> chain;
+  /// Each file's text, in the chain's order: an error about a key names the
+  /// line of the file that wrote it (keyPlace).
+  std::vector<std::string> texts;
 };
+
+/// Where a key of the merged tree was written: the first file of the chain
+/// that writes it (the scenario's own first: its values win), and the
+/// key's line there (1-based).
+struct KeyPlace {
+  size_t file = 0;  ///< into ScenarioTree::chain
+  int line = 0;
+};
+
+/// `key` is a dotted path as errors name it ("plant.bogus",
+/// "controller.kp[1]": the list's key). None when the merged tree does not
+/// hold it (a missing key: a base's dropped by a change of type is not
+/// where it came from) or no file writes it, or a file's text does not parse.
+std::optional<KeyPlace> keyPlace(const ScenarioTree& tree, const std::string& key);
 
 /// The scenario file at `path` with its `extends` chain merged in.
 /// @throws ConfigError naming the file, the chain and what was expected.

@@ -124,16 +124,37 @@ TEST_F(Extends, ABaseFilesUrdfStaysRelativeToItsOwnFolder) {
       << "the base file's ../robots/panda.urdf, from the base file's folder";
 }
 
-// A merged tree has no line numbers: an error names the files instead of "(line 1)".
-TEST_F(Extends, AnErrorInAMergedScenarioNamesTheFilesNotALine) {
+// A merged tree has no line numbers (an error would say "(line 1)"): an
+// error names the line of the file that wrote the key -- this one, or one it
+// extends -- and, for a key none wrote, the files.
+TEST_F(Extends, AnErrorInAMergedScenarioNamesTheLineOfTheFileThatWroteTheKey) {
   const std::string child = write("child.yaml", "extends: " + kConfigs +
                                                     "/rigid_2dof.yaml\nname: c\n"
                                                     "controller: {kd: abc}\n");
   const std::string error = errorLoading(child);
   EXPECT_NE(error.find("controller.kd: expected"), std::string::npos) << error;
-  EXPECT_NE(error.find("(in this file or one it extends: "), std::string::npos) << error;
-  EXPECT_NE(error.find("rigid_2dof.yaml)"), std::string::npos) << error;
-  EXPECT_EQ(error.find("(line "), std::string::npos) << error;
+  EXPECT_NE(error.find("(line 3)"), std::string::npos) << error;
+  EXPECT_EQ(error.find("extends: "), std::string::npos) << error;
+
+  // Written by the base (an unknown key), two files down the chain.
+  write("base.yaml",
+        "extends: " + kConfigs + "/rigid_2dof.yaml\nname: b\nplant:\n  publish_rate: 500\n  bogus: 1\n");
+  const std::string top = write("top.yaml", "extends: base.yaml\nduration: 2\n");
+  const std::string unknown = errorLoading(top);
+  EXPECT_NE(unknown.find("plant.bogus: unknown key (line 5 of " + (dir_ / "base.yaml").string() +
+                         ", which this file extends)"),
+            std::string::npos)
+      << unknown;
+  // The same key written by both: the scenario's own value is the one read.
+  const std::string both = write("both.yaml", "extends: base.yaml\n\nplant: {bogus: 2}\n");
+  EXPECT_NE(errorLoading(both).find("plant.bogus: unknown key (line 3)"), std::string::npos)
+      << errorLoading(both);
+  // A key no file wrote (one missing): the files.
+  const std::string missing = write("missing.yaml", "extends: base.yaml\nreference: {type: sine}\n");
+  const std::string none = errorLoading(missing);
+  EXPECT_NE(none.find("(in this file or one it extends: "), std::string::npos) << none;
+  EXPECT_NE(none.find("rigid_2dof.yaml)"), std::string::npos) << none;
+
   const std::string set = errorLoading(child, {"extends=other.yaml"});
   EXPECT_NE(set.find("--set extends: a scenario's base is read before --set applies"), std::string::npos)
       << set;
