@@ -134,9 +134,9 @@ TEST_F(SubcommandLogic, SpyWaitsForARunToAppearAndSaysWhatItWaitedFor) {
     std::ofstream(live + "/lcm.json")
         << R"({"lcm_url": "udpm://239.255.76.67:7701?ttl=0", "netns_pid": null})";
   });
-  const RunEndpoint e = waitForLiveRun(live, 60, said, [&] { ++before; });
+  const RunEndpoint endpoint = waitForLiveRun(live, 60, said, [&] { ++before; });
   run.join();
-  EXPECT_EQ(e.lcm_url, "udpm://239.255.76.67:7701?ttl=0");
+  EXPECT_EQ(endpoint.lcm_url, "udpm://239.255.76.67:7701?ttl=0");
   EXPECT_EQ(before, 1);
   EXPECT_EQ(said.str(), "lagrange spy: waiting for a live run in " + live +
                             " (start one with: lagrange run SCENARIO --mode realtime --out " + live +
