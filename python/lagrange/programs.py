@@ -92,7 +92,9 @@ def _key(keyword):
 
 
 def _sets(overrides):
-    args = []
+    """The --set options of the keywords, and each key's keyword (for
+    _call, which names the keyword where the program names --set)."""
+    args, keywords = [], {}
     for keyword, value in overrides.items():
         key = _key(keyword)
         try:
@@ -101,10 +103,22 @@ def _sets(overrides):
             raise LagrangeError("the value of %s (keyword %s) is not JSON: %s; expected a number, a string, a list "
                                 "or a dict of them" % (key, keyword, e)) from None
         args += ["--set", "%s=%s" % (key, text)]
-    return args
+        keywords[key] = keyword
+    return args, keywords
 
 
-def _call(args, out, what):
+def _as_keywords(message, keywords):
+    """The program's message with the keywords the script wrote where it
+    names the --set options they became ("(from --set controller.Kd=...)"
+    becomes "(from the keyword controller__Kd=...)")."""
+    for key, keyword in keywords.items():
+        message = message.replace("--set %s=" % key, "the keyword %s=" % keyword)
+    if keywords:
+        message = message.replace("keys from --set too", "keys from keywords too")
+    return message
+
+
+def _call(args, out, what, keywords=None):
     try:
         child = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                  errors="replace")
@@ -120,6 +134,7 @@ def _call(args, out, what):
         raise
     if child.returncode != 0:
         tail = "\n".join((stderr.strip() or stdout.strip()).splitlines()[-15:])
+        tail = _as_keywords(tail, keywords or {})
         raise LagrangeError("%s exited with %d:\n%s" % (what, child.returncode, tail), child.returncode, out)
     return stdout
 
@@ -136,12 +151,12 @@ def run(scenario, out=None, mode=None, args=(), **overrides):
     code, last lines, `out`)."""
     if not os.path.isfile(str(scenario)):
         raise LagrangeError("the scenario %s is not a file; expected the path of a scenario YAML file" % scenario)
-    sets = _sets(overrides)  # a keyword that is no key is refused before anything runs
+    sets, keywords = _sets(overrides)  # a keyword that is no key is refused before anything runs
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-run-")
     command = [program(), "run", str(scenario), "--out", str(out), "--quiet"]
     if mode is not None:
         command += ["--mode", mode]
-    _call(command + sets + [str(a) for a in args], out, "lagrange run %s" % scenario)
+    _call(command + sets + [str(a) for a in args], out, "lagrange run %s" % scenario, keywords)
     try:
         return log.load(out)
     except log.LogError as e:  # the run's files are not what it wrote (replaced, or another program's)

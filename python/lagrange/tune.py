@@ -70,7 +70,7 @@ def tune(scenario, out=None, evaluations=None, minutes=None, jobs=None, seed=Non
     the message naming what binds; e.out holds tune.jsonl)."""
     if not os.path.isfile(str(scenario)):
         raise LagrangeError("the scenario %s is not a file; expected the path of a scenario YAML file" % scenario)
-    sets = _sets(overrides)
+    sets, keywords = _sets(overrides)
     command = [program(), "tune", str(scenario)]
     if evaluations is not None:
         command += ["--evaluations", str(_number("evaluations", evaluations, int))]
@@ -86,7 +86,7 @@ def tune(scenario, out=None, evaluations=None, minutes=None, jobs=None, seed=Non
         command += ["--full-runs"]
     out = out if out is not None else tempfile.mkdtemp(prefix="lagrange-tune-")
     command += ["--out", str(out), "--quiet"]
-    _call(command + sets + [str(a) for a in args], out, "lagrange tune %s" % scenario)
+    _call(command + sets + [str(a) for a in args], out, "lagrange tune %s" % scenario, keywords)
     result = _read_json(os.path.join(str(out), "tune.json"), "the tune.json lagrange tune writes", out)
     # (result is null while a tune runs, and after one was killed.)
     return (result.get("result") or {}).get("best"), evaluations_of(out)

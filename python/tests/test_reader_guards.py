@@ -354,10 +354,13 @@ class Programs(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(tempfile.gettempdir(), "never-made")))
 
     def test_keys_as_the_scenario_writes_them_pass_as_set_options(self):
-        self.assertEqual(lagrange.programs._sets({"controller__kp": [100, 8], "faults__channels__PLANT_POSITION":
-                                                  {"drop": 0.1}, "duration": 2.0}),
-                         ["--set", "controller.kp=[100, 8]", "--set", 'faults.channels.PLANT_POSITION={"drop": 0.1}',
-                          "--set", "duration=2.0"])
+        sets, keywords = lagrange.programs._sets({"controller__kp": [100, 8], "faults__channels__PLANT_POSITION":
+                                                  {"drop": 0.1}, "duration": 2.0})
+        self.assertEqual(sets, ["--set", "controller.kp=[100, 8]", "--set",
+                                'faults.channels.PLANT_POSITION={"drop": 0.1}', "--set", "duration=2.0"])
+        self.assertEqual(keywords, {"controller.kp": "controller__kp",
+                                    "faults.channels.PLANT_POSITION": "faults__channels__PLANT_POSITION",
+                                    "duration": "duration"})
         with self.assertRaisesRegex(lagrange.LagrangeError, "the value of duration \\(keyword duration\\) is not JSON"):
             lagrange.programs._sets({"duration": float("nan")})
         with self.assertRaisesRegex(lagrange.LagrangeError, "the value of controller.kp \\(keyword controller__kp\\)"):

@@ -87,10 +87,12 @@ class TypeSwitch(unittest.TestCase):
         self.assertIn("expected one of: kd, kp, type (the keys of controller type pd_plus_differenced)", error)
 
     def test_a_near_miss_and_a_guessed_key_are_named(self):
-        self.assertIn("controller.Kd: unknown key (from --set controller.Kd=[15, 1]); did you mean kd?",
+        # Named by the keyword the script wrote, not the --set it became.
+        self.assertIn("controller.Kd: unknown key (from the keyword controller__Kd=[15, 1]); did you mean kd?",
                       self.refusal(controller__Kd=[15, 1]))
-        self.assertIn("controller.rate: unknown key (from --set controller.rate=200); the control rate is "
-                      "plant.publish_rate [Hz]", self.refusal(controller__rate=200))
+        self.assertIn("controller.rate: unknown key (from the keyword controller__rate=200); the control rate "
+                      "is plant.publish_rate [Hz]", self.refusal(controller__rate=200))
+        self.assertNotIn("--set", self.refusal(controller__rate=200))
 
 
 if __name__ == "__main__":
