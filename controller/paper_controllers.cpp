@@ -89,13 +89,13 @@ ControllerKind paperKind(const char* type, int listing) {
   kind.report = checkPaperGains;
   kind.section = paperSectionCodec();
   kind.listing = listing;
-  // Stage 0's gains, per joint; the stages of a chain keep their
-  // configured gains. Wide ranges: the search box is narrowed about the
+  // Stage 0's gains, per joint, and a chain's later stages' the same
+  // (theorem1 has none). Wide ranges: the search box is narrowed about the
   // scenario's own gains (docs/tuning.md).
-  kind.tunable = {{"kp", true, 1e-2, 1e5, 100.0},
-                  {"kd", true, 1e-3, 1e4, 10.0},
-                  {"a", true, 1.0, 1e5, 50.0},
-                  {"b", true, 1.0, 1e5, 50.0}};
+  kind.tunable = {{"kp", true, 1e-2, 1e5, 100.0},       {"kd", true, 1e-3, 1e4, 10.0},
+                  {"a", true, 1.0, 1e5, 50.0},          {"b", true, 1.0, 1e5, 50.0},
+                  {"kp", true, 1e-2, 1e5, 100.0, true}, {"kd", true, 1e-3, 1e4, 1.0, true},
+                  {"a", true, 1.0, 1e5, 100.0, true},   {"b", true, 1.0, 1e5, 100.0, true}};
   return kind;
 }
 

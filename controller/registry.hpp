@@ -33,13 +33,17 @@ namespace lagrange::controller {
 /// controller.* holding positive numbers, searched on a log scale between
 /// `lower` and `upper`.
 struct TunableGain {
-  std::string name;       ///< its key in controller.* (for the paper's: stage 0's kp, kd, a, b)
+  std::string name;       ///< its key in controller.* (or in each stage's, per_stage)
   bool per_joint = true;  ///< one value per joint; false: one value for every joint
   double lower = 0.0;     ///< the range searched: 0 < lower < upper
   double upper = 0.0;
   /// Where the search starts when the scenario's value lies outside the
   /// range (within it: the scenario's value).
   double fallback = 1.0;
+  /// A key of each of controller.stages[i] (a chain's later stages: the
+  /// paper's cascaded and flexible controllers), searched for every stage
+  /// the scenario has; false: a key of controller.* itself.
+  bool per_stage = false;
 };
 
 struct ControllerKind {

@@ -5,6 +5,7 @@
 // not depend on where the run itself stopped -- else one seed would not give
 // one tune.jsonl whatever -j. In process, on the 2-joint arm's short runs.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <atomic>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include <limits>
 #include <string>
 
+#include "controller/paper_section.hpp"
 #include "support/temp_dir.hpp"
 #include "tools/tune/tune_evaluate.hpp"
 #include "tools/tune/tune_files.hpp"
@@ -224,6 +226,56 @@ TEST(TuneCheck, ACandidatesRunStandsForTheChecksLoopFromTheInitialState) {
   // A cut run did not go to its end: nothing to reuse.
   std::atomic<double> early{0.1};
   EXPECT_FALSE(runCandidate(p, p.input_gains, nullptr, &early).loop);
+}
+
+// A chain's later stages are searched too: each stage's kp, kd, a, b per
+// joint, named stages[i].KEY. They reach the scenario as controller.stages
+// whole (a list is replaced whole), each stage's other keys kept, and
+// tuned.yaml writes them so.
+class TuneStages : public testing::TempDirTest {};
+
+TEST_F(TuneStages, AChainsStagesAreSearchedAndWrittenWithTheirOtherKeys) {
+  const std::string flexible = std::string(LAGRANGE_SOURCE_DIR) + "/configs/double_pendulum_flexible.yaml";
+  const TuneProblem p = makeTuneProblem(flexible, {"duration=1"}, 2.0);
+  std::vector<std::string> labels;
+  for (const SearchVariable& v : p.variables) labels.push_back(v.label);
+  ASSERT_EQ(labels.size(),
+            24u);  // stage 0 and the two stages of xi_1 = K q2, xi_2 = K q2': 3 x 4 gains x 2 joints
+  EXPECT_EQ(labels[8], "stages[0].kp[0]");
+  EXPECT_EQ(labels[23], "stages[1].b[1]");
+
+  // The input's gains put back give the input scenario, key for key.
+  std::vector<std::string> overrides = {"duration=1"};
+  for (const std::string& o : gainOverrides(p.input, p.input_gains)) overrides.push_back(o);
+  EXPECT_EQ(config::toYaml(config::loadScenario(flexible, overrides)), config::toYaml(p.input));
+
+  // Another stage gain: it alone changes, the stages' bumpless starts stay.
+  TuneGains gains = p.input_gains;
+  for (auto& [name, values] : gains)
+    if (name == "stages[1].kp") values = {123.5, 77.25};
+  overrides = {"duration=1"};
+  for (const std::string& o : gainOverrides(p.input, gains)) overrides.push_back(o);
+  const config::Scenario tuned = config::loadScenario(flexible, overrides);
+  const controller::PaperSettings was = controller::paperSettings(p.input),
+                                  is = controller::paperSettings(tuned);
+  ASSERT_EQ(is.stages.size(), 2u);
+  EXPECT_EQ(is.stages[1].kp, (Eigen::Vector2d() << 123.5, 77.25).finished());
+  EXPECT_EQ(is.stages[0].kp, was.stages[0].kp);
+  EXPECT_EQ(is.stages[1].a, was.stages[1].a);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_TRUE(was.stage_starts[i].bumpless) << i;
+    EXPECT_TRUE(is.stage_starts[i].bumpless) << i;
+  }
+  // tuned.yaml, run as it is, has that controller (its other sections the
+  // input's, the URDF's path anchored to the input's folder).
+  writeTunedYaml(dir_, p, gains);
+  const auto controllerOf = [](const config::Scenario& s) {
+    return YAML::Dump(YAML::Load(config::toYaml(s))["controller"]);
+  };
+  EXPECT_EQ(controllerOf(config::loadScenario(dir_ + "/tuned.yaml", {"duration=1"})), controllerOf(tuned));
+
+  // A rigid arm has no stages: stage 0's four gains per joint alone.
+  EXPECT_EQ(shortProblem().variables.size(), 8u);
 }
 
 class TuneCutFolder : public testing::TempDirTest {};

@@ -29,10 +29,14 @@ TEST(TunableGains, EveryRegisteredControllerDeclaresAtLeastOneWithAValidRange) {
     SCOPED_TRACE(type);
     const std::vector<controller::TunableGain>& gains = controller::tunableGains(type);
     ASSERT_FALSE(gains.empty());
-    std::set<std::string> names;
+    std::set<std::pair<std::string, bool>> names;  // a stage's kp is not stage 0's
     for (const controller::TunableGain& g : gains) {
       SCOPED_TRACE(g.name);
-      EXPECT_TRUE(names.insert(g.name).second) << "declared twice";
+      EXPECT_TRUE(names.insert({g.name, g.per_stage}).second) << "declared twice";
+      // Only the paper's chains have stages.
+      if (g.per_stage) {
+        EXPECT_TRUE(type == "cascaded" || type == "flexible" || type == "theorem1") << type;
+      }
       EXPECT_GT(g.lower, 0.0);
       EXPECT_GT(g.upper, g.lower);
       EXPECT_GE(g.fallback, g.lower);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 
 #include "controller/gain_report.hpp"
 #include "controller/paper_section.hpp"
@@ -23,8 +24,19 @@ namespace {
 // A gain's values as the resolved scenario holds them (config.resolved.yaml's
 // text): the one place that knows every controller's section, so that tune
 // reads the paper's section and a baseline's keys alike.
+// A stage's gain is named "stages[i].KEY" (controller.stages[i].KEY).
+std::optional<std::pair<size_t, std::string>> stageOf(const std::string& name) {
+  const std::string prefix = "stages[";
+  const size_t close = name.find("].");
+  if (name.rfind(prefix, 0) != 0 || close == std::string::npos) return std::nullopt;
+  return std::make_pair(static_cast<size_t>(std::stoul(name.substr(prefix.size(), close - prefix.size()))),
+                        name.substr(close + 2));
+}
+
 std::vector<double> scenarioGain(const config::Scenario& s, const std::string& name) {
-  const YAML::Node node = YAML::Load(config::toYaml(s))["controller"][name];
+  const YAML::Node controller = YAML::Load(config::toYaml(s))["controller"];
+  const auto stage = stageOf(name);
+  const YAML::Node node = stage ? controller["stages"][stage->first][stage->second] : controller[name];
   std::vector<double> out;
   if (node.IsSequence())
     for (const YAML::Node& v : node) out.push_back(v.as<double>());
@@ -141,7 +153,20 @@ TuneProblem makeTuneProblem(const std::string& scenario_path, const std::vector<
     throw BadInput(
         "an external plant runs as its own program, and tune simulates in process; expected a "
         "scenario whose plant lagrange simulates");
-  p.tunable = controller::tunableGains(p.input.controller.type);
+  // A per-stage gain once for each of the scenario's stages, named
+  // "stages[i].KEY": stage 0's gains first, then stage 1's, and so on.
+  const std::vector<controller::TunableGain>& declared = controller::tunableGains(p.input.controller.type);
+  const YAML::Node stages = YAML::Load(config::toYaml(p.input))["controller"]["stages"];
+  const size_t stage_count = stages.IsSequence() ? stages.size() : 0;
+  for (const controller::TunableGain& g : declared)
+    if (!g.per_stage) p.tunable.push_back(g);
+  for (size_t i = 0; i < stage_count; ++i)
+    for (controller::TunableGain g : declared)
+      if (g.per_stage) {
+        g.name = "stages[" + std::to_string(i) + "]." + g.name;
+        g.per_stage = false;
+        p.tunable.push_back(g);
+      }
   const double span = std::pow(10.0, span_decades);
   for (const controller::TunableGain& g : p.tunable) {
     std::vector<double> values = scenarioGain(p.input, g.name);
@@ -179,9 +204,34 @@ TuneGains gainsOf(const TuneProblem& p, const std::vector<double>& point) {
   return out;
 }
 
-std::vector<std::string> gainOverrides(const TuneGains& gains) {
-  std::vector<std::string> out;
+std::string stagesYaml(const config::Scenario& input, const TuneGains& gains) {
+  YAML::Node stages = YAML::Clone(YAML::Load(config::toYaml(input))["controller"]["stages"]);
+  bool tuned = false;
   for (const auto& [name, values] : gains) {
+    const auto stage = stageOf(name);
+    if (!stage) continue;
+    if (!stages.IsSequence() || stage->first >= stages.size())
+      throw std::invalid_argument("the gain " + name + " names a stage the scenario does not have");
+    YAML::Node list(YAML::NodeType::Sequence);
+    for (double v : values) list.push_back(exactNumber(v));  // a plain scalar: read back as the same double
+    YAML::Node entry = stages[stage->first];
+    entry[stage->second] = values.size() == 1 ? YAML::Node(exactNumber(values.front())) : list;
+    tuned = true;
+  }
+  if (!tuned) return "";
+  YAML::Emitter out;
+  out.SetMapFormat(YAML::Flow);
+  out.SetSeqFormat(YAML::Flow);
+  out << stages;
+  return out.c_str();
+}
+
+std::vector<std::string> gainOverrides(const config::Scenario& input, const TuneGains& gains) {
+  std::vector<std::string> out;
+  if (const std::string stages = stagesYaml(input, gains); !stages.empty())
+    out.push_back("controller.stages=" + stages);
+  for (const auto& [name, values] : gains) {
+    if (stageOf(name)) continue;  // in controller.stages above
     std::string text = "controller." + name + "=";
     if (values.size() == 1) {
       text += exactNumber(values.front());  // one number for every joint
@@ -229,7 +279,7 @@ CandidateRun runCandidate(const TuneProblem& p, const TuneGains& gains, bool (*s
   TuneEvaluation& e = out.findings;
   e.gains = gains;
   std::vector<std::string> overrides = p.overrides;
-  for (const std::string& o : gainOverrides(gains)) overrides.push_back(o);
+  for (const std::string& o : gainOverrides(p.input, gains)) overrides.push_back(o);
   try {
     out.scenario = config::loadScenario(p.scenario_path, overrides);
   } catch (const std::exception& error) {
@@ -368,7 +418,7 @@ TuneEvaluation evaluateGains(const TuneProblem& p, const TuneGains& gains, std::
 
 controller::SampledDataCheck linearisedCheckOf(const TuneProblem& p, const TuneGains& gains) {
   std::vector<std::string> overrides = p.overrides;
-  for (const std::string& o : gainOverrides(gains)) overrides.push_back(o);
+  for (const std::string& o : gainOverrides(p.input, gains)) overrides.push_back(o);
   return controller::checkSampledData(config::loadScenario(p.scenario_path, overrides));
 }
 

@@ -71,8 +71,13 @@ TuneProblem makeTuneProblem(const std::string& scenario_path, const std::vector<
 
 /// A point of the search as gains.
 TuneGains gainsOf(const TuneProblem& p, const std::vector<double>& point);
-/// The --set strings that put `gains` into the scenario (controller.NAME=[...]).
-std::vector<std::string> gainOverrides(const TuneGains& gains);
+/// The --set strings that put `gains` into the scenario `input`
+/// (controller.NAME=[...]; a stage's gains, "stages[i].KEY", as
+/// controller.stages=[...] whole, the input's other keys of each stage kept).
+std::vector<std::string> gainOverrides(const config::Scenario& input, const TuneGains& gains);
+/// The input's controller.stages with the stage gains of `gains`, as flow
+/// YAML; "" when `gains` has none.
+std::string stagesYaml(const config::Scenario& input, const TuneGains& gains);
 
 /// One candidate's findings (a line of tune.jsonl, docs/tuning.md).
 struct TuneEvaluation {

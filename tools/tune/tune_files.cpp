@@ -250,7 +250,11 @@ void writeTunedYaml(const std::string& dir, const TuneProblem& p, const TuneGain
   }
   YAML::Node controller = root["controller"];
   controller["type"] = p.input.controller.type;
+  // A chain's stages whole, as extends replaces a list: their other keys kept.
+  if (const std::string stages = stagesYaml(p.input, gains); !stages.empty())
+    controller["stages"] = YAML::Load(stages);
   for (const auto& [name, values] : gains) {
+    if (name.rfind("stages[", 0) == 0) continue;  // in controller.stages above
     if (values.size() == 1) {
       controller[name] = values.front();
     } else {
