@@ -80,10 +80,26 @@ def parse_size(text):
     return width, height
 
 
+def check_served(url):
+    """The page's server answers, asked before chromedriver starts: a URL
+    nothing serves is named at once -- and never served by chromedriver
+    itself, whose free port may be the one a stopped viewer had."""
+    try:
+        with OPENER.open(url, timeout=5) as response:
+            response.read(1)
+    except urllib.error.HTTPError:
+        return  # it answers (with an error page the browser will show)
+    except (urllib.error.URLError, OSError) as e:
+        reason = getattr(e, "reason", e)
+        raise Failed("cannot open %s (%s); expected the URL lagrange view printed, while it serves" % (
+            url, reason)) from None
+
+
 def screenshot(args, work):
     driver = shutil.which("chromedriver")
     if driver is None:
         raise Failed("chromedriver is not installed; on Debian 12: sudo apt-get install chromium chromium-driver")
+    check_served(args.url)
     port = free_port()
     env = dict(os.environ)
     env.pop("DISPLAY", None)  # headless chromium given a display it cannot reach makes no WebGL context
