@@ -60,8 +60,10 @@ std::vector<KeyInfo> runKeys() {
           "e.g. `controller`, replaced whole), then `--set` applies. It may "
           "extend a third; a cycle is refused. "
           "Relative `robot.urdf.file`, `controller.working_directory` and the program of "
-          "`controller.command` (a path) of a base file stay relative to its own folder. Errors in a merged "
-          "scenario name the files instead of a line. The resolved scenario has no `extends`; "
+          "`controller.command` (a path) of a base file stay relative to its own folder. An error about a "
+          "key in a merged scenario names the line of the file that wrote it (\"(line 5 of base.yaml, which "
+          "this file extends)\"), or, for a key none wrote (one missing), the files. The resolved scenario "
+          "has no `extends`; "
           "`--set extends` is refused"),
       row("name", "string", "required", "scenario name, shown in outputs"),
       row("description", "string", "`\"\"`", "free text"),
