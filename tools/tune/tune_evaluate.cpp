@@ -21,9 +21,6 @@ namespace lagrange::tools {
 
 namespace {
 
-// A gain's values as the resolved scenario holds them (config.resolved.yaml's
-// text): the one place that knows every controller's section, so that tune
-// reads the paper's section and a baseline's keys alike.
 // A stage's gain is named "stages[i].KEY" (controller.stages[i].KEY).
 std::optional<std::pair<size_t, std::string>> stageOf(const std::string& name) {
   const std::string prefix = "stages[";
@@ -33,6 +30,9 @@ std::optional<std::pair<size_t, std::string>> stageOf(const std::string& name) {
                         name.substr(close + 2));
 }
 
+// A gain's values as the resolved scenario holds them (config.resolved.yaml's
+// text): the one place that knows every controller's section, so that tune
+// reads the paper's section and a baseline's keys alike.
 std::vector<double> scenarioGain(const config::Scenario& s, const std::string& name) {
   const YAML::Node controller = YAML::Load(config::toYaml(s))["controller"];
   const auto stage = stageOf(name);
