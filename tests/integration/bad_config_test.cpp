@@ -9,30 +9,20 @@
 #include <filesystem>
 #include <fstream>
 
+#include "support/configs.hpp"
 #include "support/launch.hpp"
 
 namespace lagrange::testing {
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kCorpus = std::string(LAGRANGE_SOURCE_DIR) + "/tests/data/bad_configs";
-
-std::string expectedMessage(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  std::getline(in, line);
-  const std::string tag = "# expect: ";
-  return line.rfind(tag, 0) == 0 ? line.substr(tag.size()) : "";
-}
-
 TEST(BadConfigCorpus, EveryFileIsRefusedWithItsMessageBeforeAnythingStarts) {
   int files = 0;
-  for (const auto& entry : fs::directory_iterator(kCorpus)) {
+  for (const auto& entry : fs::directory_iterator(kBadConfigs)) {
     if (entry.path().extension() != ".yaml") continue;
     ++files;
     SCOPED_TRACE(entry.path().filename().string());
-    const std::string expected = expectedMessage(entry.path());
+    const std::string expected = expectedMessageOf(entry.path());
     ASSERT_FALSE(expected.empty()) << "no '# expect: ' on the second line";
     const std::string out = freshDir("badconfig");
     const RunResult r = runScenario(entry.path().string(), out, "-q");

@@ -13,6 +13,7 @@
 
 #include "config/scenario.hpp"
 #include "plant/scenario_plant.hpp"
+#include "support/configs.hpp"
 
 namespace lagrange::testing {
 namespace {
@@ -27,17 +28,8 @@ std::string withoutTestKinds(std::string message) {
   return std::regex_replace(message, std::regex(R"( \(or a kind built into this program: [^)]*\))"), "");
 }
 
-std::string expectedMessageOf(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::getline(in, line);
-  std::getline(in, line);
-  const std::string tag = "# expect: ";
-  return line.rfind(tag, 0) == 0 ? line.substr(tag.size()) : "";
-}
-
 TEST(BadConfigCorpusInProcess, EveryFileIsRefusedWithItsMessage) {
-  const fs::path corpus = fs::path(LAGRANGE_SOURCE_DIR) / "tests/data/bad_configs";
+  const fs::path corpus = kBadConfigs;
   int files = 0;
   for (const auto& entry : fs::directory_iterator(corpus)) {
     if (entry.path().extension() != ".yaml") continue;
